@@ -1,0 +1,294 @@
+/*
+ * mcstat.h - statistical hypothesis tests for Monte Carlo estimators.
+ *
+ * The tests of Subr & Arvo, "Statistical Hypothesis Testing for Assessing
+ * Monte Carlo Estimators": one-sample t (mean vs mu0), one-sample chi-squared
+ * (variance vs sigma0^2), Welch's two-sample t, and the two-sample F test,
+ * on arrays or on streaming, mergeable accumulators.
+ *
+ * Conventions, for every function in this header:
+ *   - Fallible calls return an int status: MCSTAT_OK (0) or one of the
+ *     MCSTAT_E* codes below; mcstat_strerror() gives a sentence for it.
+ *     Outputs are written through the pointer given last, and only on success.
+ *   - Nothing here calls abort() or exit(), nothing touches GSL's process-wide
+ *     error handler (see mcstat_gsl_handler_off), there is no global state:
+ *     every function is thread-safe on distinct objects.
+ *   - No function allocates on the accumulator path.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#ifndef MCSTAT_H
+#define MCSTAT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32) && defined(MCSTAT_SHARED_BUILD)
+#  define MCSTAT_API __declspec(dllexport)
+#elif defined(__GNUC__) || defined(__clang__)
+#  define MCSTAT_API __attribute__((visibility("default")))
+#else
+#  define MCSTAT_API
+#endif
+
+/* ------------------------------------------------------------------------ */
+/* Versions.                                                                 */
+/* The release number (MAJOR.MINOR.PATCH) is separate from the shared        */
+/* library's SOVERSION, which changes only when the ABI breaks.              */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_VERSION_MAJOR 0
+#define MCSTAT_VERSION_MINOR 1
+#define MCSTAT_VERSION_PATCH 0
+#define MCSTAT_VERSION_NUMBER \
+    (MCSTAT_VERSION_MAJOR * 10000 + MCSTAT_VERSION_MINOR * 100 + MCSTAT_VERSION_PATCH)
+
+/* MCSTAT_VERSION_NUMBER of the library actually linked. */
+MCSTAT_API unsigned mcstat_version_number(void);
+/* "MAJOR.MINOR.PATCH" of the library actually linked (static storage). */
+MCSTAT_API const char *mcstat_version(void);
+
+/* ------------------------------------------------------------------------ */
+/* Status codes.                                                             */
+/* ------------------------------------------------------------------------ */
+enum mcstat_status {
+    MCSTAT_OK = 0,
+    MCSTAT_EINVAL = 1,      /* invalid argument: NULL, bad enum, alpha outside (0,1), ... */
+    MCSTAT_ETOOFEW = 2,     /* too few observations (fewer than 2 per sample) */
+    MCSTAT_ENONFINITE = 3,  /* the data contain NaN or +-Inf */
+    MCSTAT_EDEGENERATE = 4, /* the data have (essentially) zero spread */
+    MCSTAT_ENOMEM = 5,      /* out of memory */
+    MCSTAT_ENUMERIC = 6,    /* a numerical method failed to converge */
+    MCSTAT_EBUFSIZE = 7,    /* the caller's buffer is too small */
+    MCSTAT_ECORRUPT = 8     /* serialized bytes are corrupt, truncated or of an unknown version */
+};
+
+/* A sentence describing status (static storage; never NULL). */
+MCSTAT_API const char *mcstat_strerror(int status);
+
+/* ------------------------------------------------------------------------ */
+/* Alternatives and tails.                                                   */
+/* An alternative is a claim about the first sample: MCSTAT_LESS means       */
+/* mean(x) < mu0 (or mean(x) < mean(y), var(x) < sigma0^2, var(x)/var(y) <   */
+/* ratio).  Values match across versions; FFI callers may use the integers. */
+/* ------------------------------------------------------------------------ */
+enum mcstat_alternative {
+    MCSTAT_TWO_SIDED = 0,
+    MCSTAT_LESS = 1,
+    MCSTAT_GREATER = 2
+};
+
+/* Parses "two-sided" (also "two.sided", "two_sided"), "less", "greater". */
+MCSTAT_API int mcstat_alternative_parse(const char *name, int *alternative);
+/* "two-sided", "less", "greater", or NULL for an invalid value. */
+MCSTAT_API const char *mcstat_alternative_name(int alternative);
+
+/* ------------------------------------------------------------------------ */
+/* Streaming moments.                                                        */
+/* A fixed-size plain struct the caller owns (128 bytes): count, mean, the   */
+/* second to fourth central sums, min and max.  Data are added one value or  */
+/* one array at a time; two accumulators merge exactly (Chan et al., Pebay), */
+/* so per-thread accumulators can be combined at the end of a frame.         */
+/*                                                                           */
+/* Accuracy: arrays are processed in cache-sized blocks, two passes each     */
+/* (shifted sums), blocks merged in a pairwise tree.  The mean is kept as a  */
+/* double-double (mean + mean_lo), so data like 1e9 + 1e-3 noise keep their  */
+/* digits in differences of means.  Central sums are stored divided by a     */
+/* power of two (m2 = M2 / 2^(2*scale), m3 = M3 / 2^(3*scale), m4 likewise)  */
+/* so that data near 1e+-300 neither overflow nor underflow; use the         */
+/* accessors below rather than the raw fields.                               */
+/* ------------------------------------------------------------------------ */
+typedef struct mcstat_moments {
+    uint64_t n;        /* number of observations */
+    int32_t scale;     /* binary exponent of the central sums (see above) */
+    uint32_t version;  /* MCSTAT_MOMENTS_VERSION once initialised */
+    double mean;       /* the mean, rounded to double */
+    double mean_lo;    /* mean + mean_lo is the mean to about 32 digits */
+    double m2;         /* sum (x - mean)^2, divided by 2^(2*scale) */
+    double m3;         /* sum (x - mean)^3, divided by 2^(3*scale) */
+    double m4;         /* sum (x - mean)^4, divided by 2^(4*scale) */
+    double min;        /* smallest value added (+Inf when n == 0) */
+    double max;        /* largest value added (-Inf when n == 0) */
+    double reserved[7];/* zero; room to grow without changing the size */
+} mcstat_moments;
+
+#define MCSTAT_MOMENTS_VERSION 1u
+/* Size of the serialized form written by mcstat_moments_to_bytes. */
+#define MCSTAT_MOMENTS_BYTES 96u
+
+/* Empties m. */
+MCSTAT_API int mcstat_moments_init(mcstat_moments *m);
+/* Adds one value. MCSTAT_ENONFINITE (m unchanged) for NaN or +-Inf. */
+MCSTAT_API int mcstat_moments_add(mcstat_moments *m, double x);
+/* Adds n values. MCSTAT_ENONFINITE (m unchanged) if any is NaN or +-Inf. */
+MCSTAT_API int mcstat_moments_add_array(mcstat_moments *m, const double *x, size_t n);
+/* Like mcstat_moments_add_array, but NaN values are skipped (+-Inf is still
+ * an error).  *n_omitted (may be NULL) receives the number skipped. */
+MCSTAT_API int mcstat_moments_add_array_omit_nan(mcstat_moments *m, const double *x,
+                                                 size_t n, size_t *n_omitted);
+/* dst <- dst merged with src (src may equal dst). */
+MCSTAT_API int mcstat_moments_merge(mcstat_moments *dst, const mcstat_moments *src);
+
+/* Derived quantities; each returns NaN when undefined (e.g. n < 2). */
+MCSTAT_API double mcstat_moments_mean(const mcstat_moments *m);
+MCSTAT_API double mcstat_moments_var(const mcstat_moments *m);      /* M2/(n-1); may overflow to Inf */
+MCSTAT_API double mcstat_moments_sd(const mcstat_moments *m);       /* sqrt(var), computed without overflow */
+MCSTAT_API double mcstat_moments_skewness(const mcstat_moments *m); /* g1 = sqrt(n) M3 / M2^1.5 */
+MCSTAT_API double mcstat_moments_kurtosis(const mcstat_moments *m); /* excess g2 = n M4 / M2^2 - 3 */
+
+/* Versioned, little-endian serialization (MCSTAT_MOMENTS_BYTES bytes, with a
+ * magic number and a checksum).  from_bytes returns MCSTAT_ECORRUPT for bytes
+ * that are truncated, corrupt, of another version or internally inconsistent. */
+MCSTAT_API int mcstat_moments_to_bytes(const mcstat_moments *m, unsigned char *buf, size_t size);
+MCSTAT_API int mcstat_moments_from_bytes(const unsigned char *buf, size_t size, mcstat_moments *m);
+
+/* ------------------------------------------------------------------------ */
+/* Test results.                                                             */
+/* A plain struct filled by every test.  Fields that do not apply are NaN    */
+/* (df[1] of a t test) or +-Inf (the open end of a one-sided confidence      */
+/* interval or the missing critical value of a one-sided test).              */
+/* ------------------------------------------------------------------------ */
+enum mcstat_test {
+    MCSTAT_TEST_T_1 = 1,   /* one-sample t */
+    MCSTAT_TEST_T_2 = 2,   /* Welch two-sample t */
+    MCSTAT_TEST_VAR_1 = 3, /* one-sample chi-squared test on the variance */
+    MCSTAT_TEST_VAR_2 = 4  /* two-sample F test on the ratio of variances */
+};
+
+enum mcstat_method {
+    MCSTAT_METHOD_ANALYTIC = 0 /* p-value from the statistic's exact null distribution (t, chi^2, F) */
+};
+
+typedef struct mcstat_result {
+    int32_t test;          /* enum mcstat_test */
+    int32_t method;        /* enum mcstat_method: how the p-value was obtained */
+    int32_t alternative;   /* enum mcstat_alternative */
+    int32_t reject;        /* 1 if H0 is rejected at level alpha against `alternative` */
+    int32_t decision;      /* the paper's three-way outcome: -1 less, 0 equal, +1 greater */
+    int32_t reserved_i[3];
+    uint64_t n[2];         /* sample sizes (n[1] = 0 for one-sample tests) */
+    double statistic;      /* t, X-squared or F */
+    double df[2];          /* degrees of freedom (df[1] NaN unless F) */
+    double p_value;        /* for `alternative` */
+    double p_value_se;     /* Monte Carlo standard error of p_value; 0 when exact */
+    double conf_int[2];    /* (1 - alpha) confidence interval for the tested parameter */
+    double estimate[2];    /* mean of x (,mean of y); variance of x; ratio of variances */
+    double null_value;     /* mu0, mu0 (difference), sigma0^2 or ratio under H0 */
+    double alpha;          /* significance level used for reject/decision/critical/conf_int */
+    double critical[2];    /* reject when statistic < critical[0] or > critical[1] */
+    double std_error;      /* standard error of the estimate (t tests); NaN otherwise */
+    double reserved[7];
+} mcstat_result;
+
+/* The decision rule (ERRATA 6): `reject` is the test against the chosen
+ * alternative at level alpha; `decision` is 0 when H0 is not rejected, else
+ * the sign of the estimate's deviation from the null value.  With the
+ * two-sided alternative this is the paper's less / equal / greater outcome. */
+
+/* Writes the R-style block (the layout and number formatting of R's
+ * print.htest, plus a final "decision at alpha = ...: ..." line) into buf.
+ * x_name and y_name name the data ("x" and "y" when NULL).  *length (may be
+ * NULL) receives the length of the full text, without the terminating NUL;
+ * MCSTAT_EBUFSIZE when it does not fit in size bytes (buf then holds a
+ * NUL-terminated prefix). */
+MCSTAT_API int mcstat_result_format(const mcstat_result *r, const char *x_name,
+                                    const char *y_name, char *buf, size_t size,
+                                    size_t *length);
+
+/* "less", "equal" or "greater" for a decision value, NULL otherwise. */
+MCSTAT_API const char *mcstat_decision_name(int decision);
+
+/* ------------------------------------------------------------------------ */
+/* The tests.                                                                */
+/* Each comes on arrays and on accumulators.  Common arguments:              */
+/*   alternative  enum mcstat_alternative                                    */
+/*   alpha        significance level in (0, 1); conf_int has level 1-alpha   */
+/* Statuses: MCSTAT_EINVAL (NULL pointer, bad enum, alpha or a null value    */
+/* out of range or non-finite), MCSTAT_ETOOFEW (n < 2 in a sample),          */
+/* MCSTAT_ENONFINITE (NaN/Inf in data), MCSTAT_EDEGENERATE (a sample is      */
+/* constant to within rounding: its standard deviation is zero or below      */
+/* 10*DBL_EPSILON*|mean|; Welch needs this of only one of its samples),      */
+/* MCSTAT_ENUMERIC.  (R's t.test applies 10*eps*|mean| to the standard       */
+/* error instead, which refuses large samples at large offsets.)             */
+/* ------------------------------------------------------------------------ */
+
+/* One-sample t test of mean(x) against mu0 (section 2.1, eq. 1). */
+MCSTAT_API int mcstat_t_test_1(const double *x, size_t n, double mu0, int alternative,
+                               double alpha, mcstat_result *out);
+MCSTAT_API int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative,
+                                       double alpha, mcstat_result *out);
+
+/* Welch's two-sample t test of mean(x) - mean(y) against mu0 (section 2.3,
+ * eq. 3, Welch-Satterthwaite degrees of freedom). */
+MCSTAT_API int mcstat_t_test_2(const double *x, size_t nx, const double *y, size_t ny,
+                               double mu0, int alternative, double alpha, mcstat_result *out);
+MCSTAT_API int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
+                                       double mu0, int alternative, double alpha,
+                                       mcstat_result *out);
+
+/* One-sample chi-squared test of var(x) against sigma2 > 0: statistic
+ * (n-1) s^2 / sigma2 on n-1 degrees of freedom (section 2.2, eq. 2). */
+MCSTAT_API int mcstat_var_test_1(const double *x, size_t n, double sigma2, int alternative,
+                                 double alpha, mcstat_result *out);
+MCSTAT_API int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2,
+                                         int alternative, double alpha, mcstat_result *out);
+
+/* Two-sample F test of var(x)/var(y) against ratio > 0: statistic
+ * (s_x^2 / s_y^2) / ratio on (nx-1, ny-1) degrees of freedom (section 2.4). */
+MCSTAT_API int mcstat_var_test_2(const double *x, size_t nx, const double *y, size_t ny,
+                                 double ratio, int alternative, double alpha,
+                                 mcstat_result *out);
+MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
+                                         double ratio, int alternative, double alpha,
+                                         mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Distributions.                                                            */
+/* Tail probabilities accurate to about 1e-13 relative down to the smallest  */
+/* normal double, computed from whichever tail is small (never as 1 - P);    */
+/* log versions stay finite where the probability underflows.  Quantiles     */
+/* invert these by safeguarded Newton iteration, for any degrees of freedom  */
+/* from 1e-3 to 1e12 or more.  `upper` selects the tail: 0 gives P[X <= x],  */
+/* 1 gives P[X > x]; a quantile solves that tail's probability = p.          */
+/* Statuses: MCSTAT_EINVAL for NaN or out-of-domain arguments,               */
+/* MCSTAT_ENUMERIC if an iteration fails (not expected).                     */
+/* ------------------------------------------------------------------------ */
+MCSTAT_API int mcstat_t_cdf(double x, double df, int upper, double *p);
+MCSTAT_API int mcstat_t_logcdf(double x, double df, int upper, double *logp);
+MCSTAT_API int mcstat_t_quantile(double p, double df, int upper, double *x);
+MCSTAT_API int mcstat_chisq_cdf(double x, double df, int upper, double *p);
+MCSTAT_API int mcstat_chisq_logcdf(double x, double df, int upper, double *logp);
+MCSTAT_API int mcstat_chisq_quantile(double p, double df, int upper, double *x);
+MCSTAT_API int mcstat_f_cdf(double x, double df1, double df2, int upper, double *p);
+MCSTAT_API int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *logp);
+MCSTAT_API int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x);
+
+/* ------------------------------------------------------------------------ */
+/* Sizes and constants as functions, for FFI callers that cannot read       */
+/* macros or sizeof.                                                         */
+/* ------------------------------------------------------------------------ */
+MCSTAT_API size_t mcstat_sizeof_moments(void);
+MCSTAT_API size_t mcstat_sizeof_result(void);
+MCSTAT_API size_t mcstat_moments_bytes(void);
+
+/* ------------------------------------------------------------------------ */
+/* GSL's error handler.                                                      */
+/* GSL's default handler aborts the process.  mcstat validates every         */
+/* argument before calling GSL, so the handler is never reached through      */
+/* mcstat, and mcstat never changes it: it is one global shared by every     */
+/* library in the process.  A program that wants GSL's own calls to return   */
+/* error codes instead of aborting may opt in here.                          */
+/* ------------------------------------------------------------------------ */
+/* Turns GSL's error handler off (gsl_set_error_handler_off). */
+MCSTAT_API void mcstat_gsl_handler_off(void);
+/* Turns it off only if no handler has been installed (GSL's default is in
+ * force); returns 1 if it did so, 0 if a caller's handler was left alone. */
+MCSTAT_API int mcstat_gsl_handler_off_if_default(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* MCSTAT_H */

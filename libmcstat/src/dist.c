@@ -1,0 +1,421 @@
+/*
+ * dist.c - Student t, chi-squared and F: both tails, their logarithms, and
+ * quantiles, for any positive degrees of freedom.
+ *
+ * Tails come from the incomplete beta and gamma functions of special.c (never
+ * 1 - P for a small upper tail).  GSL's own versions are not used because
+ * gsl_cdf_tdist_P/Q switch to a Cornish-Fisher expansion for df > 30 that is
+ * only ~2e-7 relative in the tails, and the GSL inverses fail at Monte Carlo
+ * sizes (gsl_cdf_chisq_Qinv is wrong by tens of percent for df >= 1e5,
+ * gsl_cdf_fdist_Pinv returns NaN for df >= 1e5, gsl_cdf_tdist_Pinv NaN for
+ * p <= 1e-100 at small df).
+ *
+ * Each density is simple in terms of the incomplete functions' prefactor K:
+ *   t:    f(t) = K / |t|,  K = x^(df/2) y^(1/2) / B(df/2, 1/2), x = df/(df+t^2)
+ *   F:    f(F) = K / F,    K = x^a y^b / B(a, b), a = df1/2, b = df2/2
+ *   chi2: f(x) = a K / x,  K = (x/2)^a e^(-x/2) / Gamma(a+1), a = df/2
+ * so the quantile solver works with z = log x, where Newton's derivative is
+ * d log T / dz = -+ x f(x) / T(x): smooth, and exact in the power-law tails.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "internal.h"
+
+#include <float.h>
+
+#define LOG_HALF (-0.69314718055994530942)
+#define Z_MIN (-708.39) /* log of DBL_MIN: a quantile below the smallest normal is returned as 0 */
+#define Z_MAX (709.78) /* log of DBL_MAX */
+
+static int valid_df(double df)
+{
+    return df > 0.0 && isfinite(df);
+}
+
+/* ---- Student t ---------------------------------------------------------- */
+
+/* x = df/(df+t^2) and y = t^2/(df+t^2), each to a few ulps (|t| < 1e150). */
+static void t_xy(double at, double df, double *x, double *y)
+{
+    double t2 = at * at, s = df + t2;
+    *x = df / s;
+    *y = t2 / s;
+}
+
+/* log P[T > u] for u >= 1e150, where P = u^-df df^(df/2-1) / B(df/2, 1/2)
+ * to relative O(df/u^2), i.e. exactly in double precision. */
+static double t_log_upper_far(double u, double df)
+{
+    double a = 0.5 * df, b = 0.5;
+    /* log B(a, b) by Stirling with remainders (no cancellation concerns: the
+     * result is only needed to relative accuracy, and it is dwarfed by df log u). */
+    double lb = 0.5 * log(2.0 * M_PI) + (a - 0.5) * log(a) + (b - 0.5) * log(b) - (a + b - 0.5) * log(a + b)
+              + mcstat__log_gammastar(a) + mcstat__log_gammastar(b) - mcstat__log_gammastar(a + b);
+    return -df * log(u) + (a - 1.0) * log(df) - lb;
+}
+
+int mcstat__t_tails(double t, double df, mcstat_tails *out)
+{
+    if (t == 0.0) {
+        out->p = out->q = 0.5;
+        out->logp = out->logq = LOG_HALF;
+        return MCSTAT_OK;
+    }
+    double at = fabs(t), up, logup, other, logother;
+    if (isinf(at)) {
+        up = 0.0; logup = -INFINITY; other = 1.0; logother = 0.0;
+    } else if (at < 1e150) {
+        double x, y;
+        mcstat_tails b;
+        t_xy(at, df, &x, &y);
+        /* P[T > |t|] = I_x(df/2, 1/2) / 2;  P[T <= |t|] = 1/2 + I_y(1/2, df/2) / 2 */
+        int st = mcstat__beta_inc(0.5 * df, 0.5, x, y, &b);
+        if (st)
+            return st;
+        up = 0.5 * b.p;
+        logup = LOG_HALF + b.logp;
+        other = 0.5 + 0.5 * b.q;
+        logother = log1p(-up);
+    } else {
+        logup = t_log_upper_far(at, df);
+        up = exp(logup);
+        other = 1.0 - up;
+        logother = log1p(-up);
+    }
+    if (t > 0.0) {
+        out->q = up; out->logq = logup; out->p = other; out->logp = logother;
+    } else {
+        out->p = up; out->logp = logup; out->q = other; out->logq = logother;
+    }
+    return MCSTAT_OK;
+}
+
+/* log(u f(u)) for u > 0 */
+static double t_log_xf(double u, double df)
+{
+    if (u >= 1e150) /* f(u) u = df * P[T > u] in the power-law tail */
+        return log(df) + t_log_upper_far(u, df);
+    double x, y;
+    t_xy(u, df, &x, &y);
+    return mcstat__log_beta_prefactor(0.5 * df, 0.5, x, y);
+}
+
+/* ---- chi-squared ------------------------------------------------------- */
+
+int mcstat__chisq_tails(double x, double df, mcstat_tails *out)
+{
+    if (x <= 0.0) {
+        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0;
+        return MCSTAT_OK;
+    }
+    return mcstat__gamma_inc(0.5 * df, 0.5 * x, out);
+}
+
+static double chisq_log_xf(double x, double df)
+{
+    double a = 0.5 * df;
+    return log(a) + mcstat__log_gamma_prefactor(a, 0.5 * x);
+}
+
+/* ---- F ----------------------------------------------------------------- */
+
+/* x = df1 F / (df1 F + df2), y = df2 / (df1 F + df2), without overflow. */
+static void f_xy(double f, double df1, double df2, double *x, double *y)
+{
+    double r = (df1 / df2) * f; /* may overflow to Inf or underflow to 0 */
+    if (r <= 1.0) {
+        *x = r / (1.0 + r);
+        *y = 1.0 / (1.0 + r);
+    } else {
+        double s = (df2 / df1) / f;
+        *x = 1.0 / (1.0 + s);
+        *y = s / (1.0 + s);
+    }
+}
+
+int mcstat__f_tails(double f, double df1, double df2, mcstat_tails *out)
+{
+    if (f <= 0.0) {
+        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0;
+        return MCSTAT_OK;
+    }
+    if (isinf(f)) {
+        out->p = 1.0; out->logp = 0.0; out->q = 0.0; out->logq = -INFINITY;
+        return MCSTAT_OK;
+    }
+    double x, y;
+    f_xy(f, df1, df2, &x, &y);
+    return mcstat__beta_inc(0.5 * df1, 0.5 * df2, x, y, out);
+}
+
+static double f_log_xf(double f, double df1, double df2)
+{
+    double x, y;
+    f_xy(f, df1, df2, &x, &y);
+    return mcstat__log_beta_prefactor(0.5 * df1, 0.5 * df2, x, y);
+}
+
+/* ---- the quantile solver ------------------------------------------------ */
+
+typedef struct {
+    int kind; /* 0 t (on u > 0, upper tail of T), 1 chi-squared, 2 F */
+    double df1, df2;
+} dist_ctx;
+
+static int eval_tails(const dist_ctx *d, double x, mcstat_tails *t)
+{
+    switch (d->kind) {
+    case 0: return mcstat__t_tails(x, d->df1, t);
+    case 1: return mcstat__chisq_tails(x, d->df1, t);
+    default: return mcstat__f_tails(x, d->df1, d->df2, t);
+    }
+}
+
+static double eval_log_xf(const dist_ctx *d, double x)
+{
+    switch (d->kind) {
+    case 0: return t_log_xf(x, d->df1);
+    case 1: return chisq_log_xf(x, d->df1);
+    default: return f_log_xf(x, d->df1, d->df2);
+    }
+}
+
+/* L(z) = log T(e^z) - log p, T the chosen tail; also returns L'(z). */
+static int eval_L(const dist_ctx *d, double z, int upper, double logp, double *L, double *dL)
+{
+    double x = exp(z);
+    mcstat_tails t;
+    int st = eval_tails(d, x, &t);
+    if (st)
+        return st;
+    double logT = upper ? t.logq : t.logp;
+    *L = logT - logp;
+    double slope = exp(eval_log_xf(d, x) - logT);
+    *dL = upper ? -slope : slope;
+    return MCSTAT_OK;
+}
+
+/* Solves T(x) = p for x > 0, T the upper (decreasing) or lower (increasing)
+ * tail, by Newton's method in z = log x inside a bracket that is widened
+ * geometrically until it holds the root and bisected whenever a Newton step
+ * would leave it.  Roots below the smallest normal double give 0; above DBL_MAX,
+ * +Inf (subnormal arguments lose the digits these tails need). */
+static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, double *out)
+{
+    const double sgn = upper ? -1.0 : 1.0; /* sgn * L is increasing in z */
+    double lo = Z_MIN, hi = Z_MAX;          /* sgn*L(lo) < 0 < sgn*L(hi) once known */
+    int lo_known = 0, hi_known = 0;
+    double z = log(x0), step = 1.0;
+    if (!(z > Z_MIN && z < Z_MAX))
+        z = 0.0;
+    for (int it = 0; it < 400; it++) {
+        double L, dL;
+        int st = eval_L(d, z, upper, logp, &L, &dL);
+        if (st)
+            return st;
+        if (L == 0.0) {
+            *out = exp(z);
+            return MCSTAT_OK;
+        }
+        if (sgn * L > 0.0) {
+            hi = z;
+            hi_known = 1;
+        } else {
+            lo = z;
+            lo_known = 1;
+        }
+        double zn = z - L / dL;
+        if (!(zn > lo && zn < hi)) {
+            if (lo_known && hi_known) {
+                zn = 0.5 * (lo + hi);
+            } else if (!hi_known) { /* root lies above: expand upwards */
+                zn = z + step;
+                step *= 2.0;
+                if (zn >= Z_MAX) {
+                    if (z >= Z_MAX - 1e-9) {
+                        *out = INFINITY;
+                        return MCSTAT_OK;
+                    }
+                    zn = Z_MAX;
+                }
+            } else {
+                zn = z - step;
+                step *= 2.0;
+                if (zn <= Z_MIN) {
+                    if (z <= Z_MIN + 1e-9) {
+                        *out = 0.0;
+                        return MCSTAT_OK;
+                    }
+                    zn = Z_MIN;
+                }
+            }
+        }
+        double dz = fabs(zn - z);
+        z = zn;
+        if (dz <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(z)) ||
+            (lo_known && hi_known && hi - lo <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(z)))) {
+            *out = exp(z);
+            return MCSTAT_OK;
+        }
+    }
+    return MCSTAT_ENUMERIC;
+}
+
+/* Picks the better of two starting points (the one with smaller |L|). */
+static double better_start(const dist_ctx *d, double logp, int upper, double x1, double x2)
+{
+    if (!(x1 > 0.0 && isfinite(x1)))
+        return x2;
+    if (!(x2 > 0.0 && isfinite(x2)))
+        return x1;
+    double L1, L2, dL;
+    if (eval_L(d, log(x1), upper, logp, &L1, &dL) || eval_L(d, log(x2), upper, logp, &L2, &dL))
+        return x1;
+    return fabs(L1) <= fabs(L2) ? x1 : x2;
+}
+
+/* log Gamma(a) by Stirling with GSL's remainder; a > 0. */
+static double log_gamma(double a)
+{
+    return 0.5 * log(2.0 * M_PI) + (a - 0.5) * log(a) - a + mcstat__log_gammastar(a);
+}
+
+/* u > 0 with P[T > u] = p, p in (0, 1/2). */
+static int t_upper_quantile(double p, double df, double *u)
+{
+    dist_ctx d = {0, df, 0.0};
+    double logp = log(p);
+    /* Cornish-Fisher about the normal quantile, and the power-law tail. */
+    double z = mcstat__norm_quantile(p, 1), z2 = z * z;
+    double cf = z + z * (z2 + 1.0) / (4.0 * df) + z * ((5.0 * z2 + 16.0) * z2 + 3.0) / (96.0 * df * df);
+    double a = 0.5 * df;
+    double lb = log_gamma(a) + log_gamma(0.5) - log_gamma(a + 0.5);
+    double tail = exp(((a - 1.0) * log(df) - lb - logp) / df);
+    return solve_positive(&d, logp, 1, better_start(&d, logp, 1, cf, tail), u);
+}
+
+/* ---- public API ---------------------------------------------------------- */
+
+static int store_tail(const mcstat_tails *t, int upper, int logscale, double *out)
+{
+    *out = upper ? (logscale ? t->logq : t->q) : (logscale ? t->logp : t->p);
+    return MCSTAT_OK;
+}
+
+static int t_cdf(double x, double df, int upper, int logscale, double *out)
+{
+    if (!out || isnan(x) || !valid_df(df) || (upper != 0 && upper != 1))
+        return MCSTAT_EINVAL;
+    mcstat_tails t;
+    int st = mcstat__t_tails(x, df, &t);
+    return st ? st : store_tail(&t, upper, logscale, out);
+}
+
+int mcstat_t_cdf(double x, double df, int upper, double *p) { return t_cdf(x, df, upper, 0, p); }
+int mcstat_t_logcdf(double x, double df, int upper, double *p) { return t_cdf(x, df, upper, 1, p); }
+
+static int chisq_cdf(double x, double df, int upper, int logscale, double *out)
+{
+    if (!out || isnan(x) || !valid_df(df) || (upper != 0 && upper != 1))
+        return MCSTAT_EINVAL;
+    mcstat_tails t;
+    int st = mcstat__chisq_tails(x, df, &t);
+    return st ? st : store_tail(&t, upper, logscale, out);
+}
+
+int mcstat_chisq_cdf(double x, double df, int upper, double *p) { return chisq_cdf(x, df, upper, 0, p); }
+int mcstat_chisq_logcdf(double x, double df, int upper, double *p) { return chisq_cdf(x, df, upper, 1, p); }
+
+static int f_cdf(double x, double df1, double df2, int upper, int logscale, double *out)
+{
+    if (!out || isnan(x) || !valid_df(df1) || !valid_df(df2) || (upper != 0 && upper != 1))
+        return MCSTAT_EINVAL;
+    mcstat_tails t;
+    int st = mcstat__f_tails(x, df1, df2, &t);
+    return st ? st : store_tail(&t, upper, logscale, out);
+}
+
+int mcstat_f_cdf(double x, double df1, double df2, int upper, double *p) { return f_cdf(x, df1, df2, upper, 0, p); }
+int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *p) { return f_cdf(x, df1, df2, upper, 1, p); }
+
+int mcstat_t_quantile(double p, double df, int upper, double *x)
+{
+    if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df) || (upper != 0 && upper != 1))
+        return MCSTAT_EINVAL;
+    /* Work with the lower-tail probability pl; T is symmetric. */
+    double pl = upper ? 1.0 - p : p; /* exact when it matters: small p is handled below */
+    if (p == 0.0) {
+        *x = upper ? INFINITY : -INFINITY;
+        return MCSTAT_OK;
+    }
+    if (p == 1.0) {
+        *x = upper ? -INFINITY : INFINITY;
+        return MCSTAT_OK;
+    }
+    if (pl == 0.5) {
+        *x = 0.0;
+        return MCSTAT_OK;
+    }
+    double u;
+    int st;
+    if (p < 0.5) { /* the requested tail itself is small: solve P[T > u] = p */
+        st = t_upper_quantile(p, df, &u);
+        if (st)
+            return st;
+        *x = upper ? u : -u;
+    } else {
+        st = t_upper_quantile(1.0 - p, df, &u);
+        if (st)
+            return st;
+        *x = upper ? -u : u;
+    }
+    return MCSTAT_OK;
+}
+
+int mcstat_chisq_quantile(double p, double df, int upper, double *x)
+{
+    if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df) || (upper != 0 && upper != 1))
+        return MCSTAT_EINVAL;
+    if (p == 0.0 || p == 1.0) {
+        *x = ((p == 0.0) == (upper == 0)) ? 0.0 : INFINITY;
+        return MCSTAT_OK;
+    }
+    dist_ctx d = {1, df, 0.0};
+    /* Solve in whichever tail is smaller, so log p keeps its digits. */
+    int up = upper;
+    double q = p;
+    if (p > 0.5) {
+        up = !upper;
+        q = 1.0 - p;
+    }
+    double logq = log(q);
+    /* Wilson-Hilferty, and the small-x limit P ~ (x/2)^a / Gamma(a+1). */
+    double z = mcstat__norm_quantile(q, up), c = 2.0 / (9.0 * df);
+    double wh = 1.0 - c + z * sqrt(c);
+    wh = wh > 0.0 ? df * wh * wh * wh : NAN;
+    double a = 0.5 * df;
+    double small = up ? NAN : 2.0 * exp((logq + log_gamma(a + 1.0)) / a);
+    return solve_positive(&d, logq, up, better_start(&d, logq, up, wh, small), x);
+}
+
+int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x)
+{
+    if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df1) || !valid_df(df2) || (upper != 0 && upper != 1))
+        return MCSTAT_EINVAL;
+    if (p == 0.0 || p == 1.0) {
+        *x = ((p == 0.0) == (upper == 0)) ? 0.0 : INFINITY;
+        return MCSTAT_OK;
+    }
+    dist_ctx d = {2, df1, df2};
+    int up = upper;
+    double q = p;
+    if (p > 0.5) {
+        up = !upper;
+        q = 1.0 - p;
+    }
+    double logq = log(q);
+    /* log F is roughly normal with variance 2 (1/df1 + 1/df2) for large df. */
+    double z = mcstat__norm_quantile(q, up);
+    double g = exp(z * sqrt(2.0 / df1 + 2.0 / df2));
+    return solve_positive(&d, logq, up, better_start(&d, logq, up, g, 1.0), x);
+}

@@ -1,0 +1,179 @@
+/*
+ * format.c - the R-style text block of a result: R's print.htest layout
+ * (options(digits = 7): statistic and parameters at 5 significant digits,
+ * the p-value through format.pval at 4, interval and estimates at 7), then
+ * mcstat's decision line before the closing blank line.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "internal.h"
+#include "rformat.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#define R_DIGITS 7
+#define WRAP_WIDTH 72 /* strwrap's default width: 0.9 * getOption("width") */
+
+/* A string builder over the caller's buffer that keeps counting past its end. */
+typedef struct {
+    char *buf;
+    size_t size, len;
+} sbuf;
+
+static void sb_put(sbuf *s, const char *text, size_t n)
+{
+    if (s->len < s->size) {
+        size_t room = s->size - s->len - 1;
+        size_t k = n < room ? n : room;
+        memcpy(s->buf + s->len, text, k);
+        s->buf[s->len + k] = '\0';
+    }
+    s->len += n;
+}
+
+static void sb_puts(sbuf *s, const char *text)
+{
+    sb_put(s, text, strlen(text));
+}
+
+static void sb_printf(sbuf *s, const char *fmt, ...)
+{
+    char tmp[512];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n > 0)
+        sb_put(s, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
+}
+
+/* The words of `line` re-flowed like strwrap(): lines shorter than WRAP_WIDTH. */
+static void sb_wrapped(sbuf *s, const char *line)
+{
+    size_t col = 0;
+    const char *p = line;
+    while (*p) {
+        while (*p == ' ')
+            p++;
+        const char *w = p;
+        while (*p && *p != ' ')
+            p++;
+        size_t wl = (size_t)(p - w);
+        if (wl == 0)
+            break;
+        if (col > 0 && col + 1 + wl >= WRAP_WIDTH) {
+            sb_puts(s, "\n");
+            col = 0;
+        }
+        if (col > 0) {
+            sb_puts(s, " ");
+            col++;
+        }
+        sb_put(s, w, wl);
+        col += wl;
+    }
+    sb_puts(s, "\n");
+}
+
+typedef struct {
+    const char *method, *stat_name, *param_name[2], *null_name, *est_name[2];
+    int two_sample;
+} test_text;
+
+static int describe(const mcstat_result *r, test_text *t)
+{
+    memset(t, 0, sizeof *t);
+    switch (r->test) {
+    case MCSTAT_TEST_T_1:
+        *t = (test_text){"One Sample t-test", "t", {"df", NULL}, "mean", {"mean of x", NULL}, 0};
+        return 1;
+    case MCSTAT_TEST_T_2:
+        *t = (test_text){"Welch Two Sample t-test", "t", {"df", NULL}, "difference in means",
+                         {"mean of x", "mean of y"}, 1};
+        return 1;
+    case MCSTAT_TEST_VAR_1:
+        *t = (test_text){"One Sample Chi-squared test on variance", "X-squared", {"df", NULL}, "variance",
+                         {"variance of x", NULL}, 0};
+        return 1;
+    case MCSTAT_TEST_VAR_2:
+        *t = (test_text){"F test to compare two variances", "F", {"num df", "denom df"}, "ratio of variances",
+                         {"ratio of variances", NULL}, 1};
+        return 1;
+    default:
+        return 0;
+    }
+}
+
+int mcstat_result_format(const mcstat_result *r, const char *x_name, const char *y_name, char *buf,
+                         size_t size, size_t *length)
+{
+    test_text tt;
+    if (!r || (!buf && size > 0) || !describe(r, &tt) || !valid_alternative(r->alternative))
+        return MCSTAT_EINVAL;
+    if (!x_name)
+        x_name = "x";
+    if (!y_name)
+        y_name = "y";
+    sbuf s = {buf, size, 0};
+    if (size > 0)
+        buf[0] = '\0';
+    char a[64], b[64];
+
+    sb_printf(&s, "\n\t%s\n\n", tt.method);
+    if (tt.two_sample)
+        sb_printf(&s, "data:  %s and %s\n", x_name, y_name);
+    else
+        sb_printf(&s, "data:  %s\n", x_name);
+
+    /* "t = -2.3376, df = 18.466, p-value = 0.03084", wrapped like strwrap */
+    char line[512];
+    size_t ll = 0;
+    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, "%s = %s", tt.stat_name, a);
+    for (int k = 0; k < 2 && tt.param_name[k]; k++) {
+        mcstat__rformat1(r->df[k], R_DIGITS - 2, a, sizeof a);
+        ll += (size_t)snprintf(line + ll, sizeof line - ll, ", %s = %s", tt.param_name[k], a);
+    }
+    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
+    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
+    sb_wrapped(&s, line);
+
+    static const char *alt_text[] = {"not equal to", "less than", "greater than"};
+    mcstat__rformat1(r->null_value, R_DIGITS, a, sizeof a);
+    sb_printf(&s, "alternative hypothesis: true %s is %s %s\n", tt.null_name, alt_text[r->alternative], a);
+
+    mcstat__rformat1(100.0 * (1.0 - r->alpha), R_DIGITS, a, sizeof a);
+    sb_printf(&s, "%s percent confidence interval:\n", a);
+    mcstat_rlayout lay;
+    mcstat__rformat_layout(r->conf_int, 2, R_DIGITS, &lay);
+    mcstat__rformat_encode(r->conf_int[0], &lay, 0, a, sizeof a);
+    mcstat__rformat_encode(r->conf_int[1], &lay, 0, b, sizeof b);
+    sb_printf(&s, " %s %s\n", a, b);
+
+    /* print() of a named vector: each column right-justified to the wider of
+     * its name and the common width of the values, followed by one space. */
+    sb_puts(&s, "sample estimates:\n");
+    int ne = tt.est_name[1] ? 2 : 1;
+    mcstat__rformat_layout(r->estimate, ne, R_DIGITS, &lay);
+    int colw[2];
+    for (int k = 0; k < ne; k++) {
+        int nl = (int)strlen(tt.est_name[k]);
+        colw[k] = nl > lay.w ? nl : lay.w;
+        sb_printf(&s, "%*s ", colw[k], tt.est_name[k]);
+    }
+    sb_puts(&s, "\n");
+    for (int k = 0; k < ne; k++) {
+        mcstat__rformat_encode(r->estimate[k], &lay, colw[k], a, sizeof a);
+        sb_printf(&s, "%s ", a);
+    }
+    sb_puts(&s, "\n");
+
+    mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
+    sb_printf(&s, "decision at alpha = %s: %s\n\n", a, mcstat_decision_name(r->decision));
+
+    if (length)
+        *length = s.len;
+    return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+}

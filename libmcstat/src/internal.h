@@ -1,0 +1,142 @@
+/*
+ * internal.h - helpers shared by libmcstat's sources; nothing here is exported.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#ifndef MCSTAT_INTERNAL_H
+#define MCSTAT_INTERNAL_H
+
+#include "mcstat.h"
+
+#include <math.h>
+#include <stddef.h>
+
+#define MCSTAT_HIDDEN __attribute__((visibility("hidden")))
+
+/* ---- double-double arithmetic (Dekker, Knuth) ----------------------------
+ * Exact when the compiler neither reorders nor contracts these operations;
+ * the build passes -ffp-contract=off and never -ffast-math. */
+typedef struct {
+    double hi, lo;
+} mcstat_dd;
+
+static inline mcstat_dd dd_two_sum(double a, double b)
+{
+    double s = a + b;
+    double bb = s - a;
+    double e = (a - (s - bb)) + (b - bb);
+    mcstat_dd r = {s, e};
+    return r;
+}
+
+static inline mcstat_dd dd_fast_two_sum(double a, double b) /* |a| >= |b| */
+{
+    double s = a + b;
+    mcstat_dd r = {s, b - (s - a)};
+    return r;
+}
+
+static inline mcstat_dd dd_add(mcstat_dd a, mcstat_dd b)
+{
+    mcstat_dd s = dd_two_sum(a.hi, b.hi);
+    mcstat_dd t = dd_two_sum(a.lo, b.lo);
+    s.lo += t.hi;
+    s = dd_fast_two_sum(s.hi, s.lo);
+    s.lo += t.lo;
+    return dd_fast_two_sum(s.hi, s.lo);
+}
+
+static inline mcstat_dd dd_neg(mcstat_dd a)
+{
+    mcstat_dd r = {-a.hi, -a.lo};
+    return r;
+}
+
+/* a * b for doubles, exactly, by Dekker's splitting (no FMA needed). */
+static inline mcstat_dd dd_two_prod(double a, double b)
+{
+    const double split = 134217729.0; /* 2^27 + 1 */
+    double p = a * b;
+    double ta = split * a, ah = ta - (ta - a), al = a - ah;
+    double tb = split * b, bh = tb - (tb - b), bl = b - bh;
+    double e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    mcstat_dd r = {p, e};
+    return r;
+}
+
+static inline mcstat_dd dd_mul_d(mcstat_dd a, double b)
+{
+    mcstat_dd p = dd_two_prod(a.hi, b);
+    p.lo += a.lo * b;
+    return dd_fast_two_sum(p.hi, p.lo);
+}
+
+/* a / b for a double-double and a double, to about 2^-104 relative. */
+static inline mcstat_dd dd_div_d(mcstat_dd a, double b)
+{
+    double q1 = a.hi / b;
+    mcstat_dd p = dd_two_prod(q1, b);
+    mcstat_dd r = dd_two_sum(a.hi, -p.hi);
+    r.lo += a.lo - p.lo;
+    double q2 = (r.hi + r.lo) / b;
+    return dd_fast_two_sum(q1, q2);
+}
+
+/* ---- argument checks ---------------------------------------------------- */
+static inline int valid_alternative(int alt)
+{
+    return alt == MCSTAT_TWO_SIDED || alt == MCSTAT_LESS || alt == MCSTAT_GREATER;
+}
+
+static inline int valid_alpha(double alpha)
+{
+    return alpha > 0.0 && alpha < 1.0; /* false for NaN */
+}
+
+/* ---- special functions (special.c) --------------------------------------
+ * Both tails of a distribution function and their logarithms, each computed
+ * from the side where it is small, so neither loses relative accuracy. */
+typedef struct {
+    double p, q;       /* lower and upper tail, p + q = 1 */
+    double logp, logq; /* their logarithms, finite where p or q underflow */
+} mcstat_tails;
+
+/* Regularized incomplete beta I_x(a, b) for a, b > 0, with x + y = 1 both
+ * given so that neither needs to be formed as 1 - the other. */
+MCSTAT_HIDDEN int mcstat__beta_inc(double a, double b, double x, double y, mcstat_tails *t);
+/* Regularized incomplete gamma P(a, x), Q(a, x) for a > 0, x >= 0. */
+MCSTAT_HIDDEN int mcstat__gamma_inc(double a, double x, mcstat_tails *t);
+/* log of x^a y^b / B(a, b) (x + y = 1) and of x^a e^-x / Gamma(a+1): the
+ * densities below are these over x (see dist.c). */
+MCSTAT_HIDDEN double mcstat__log_beta_prefactor(double a, double b, double x, double y);
+MCSTAT_HIDDEN double mcstat__log_gamma_prefactor(double a, double x);
+/* log of the Stirling remainder Gamma*(a) = Gamma(a) / (sqrt(2 pi) a^(a-1/2) e^-a). */
+MCSTAT_HIDDEN double mcstat__log_gammastar(double a);
+/* a * (u - log1p(u)) >= 0 without cancellation near u = 0; the caller gives
+ * log1pu = log(1 + u), computed from its inputs where 1 + u would lose digits. */
+MCSTAT_HIDDEN double mcstat__dev(double a, double u, double log1pu);
+
+/* Standard normal quantile (a starting value for the iterations). */
+MCSTAT_HIDDEN double mcstat__norm_quantile(double p, int upper);
+
+/* ---- distributions (dist.c), with validated arguments ------------------- */
+MCSTAT_HIDDEN int mcstat__t_tails(double x, double df, mcstat_tails *t);
+MCSTAT_HIDDEN int mcstat__chisq_tails(double x, double df, mcstat_tails *t);
+MCSTAT_HIDDEN int mcstat__f_tails(double x, double df1, double df2, mcstat_tails *t);
+
+/* ---- moments (moments.c) ------------------------------------------------ */
+/* The variance as v * 2^(2*e) with v finite: *v = m2/(n-1) in scaled units. */
+MCSTAT_HIDDEN void mcstat__moments_var_scaled(const mcstat_moments *m, double *v, int *e);
+MCSTAT_HIDDEN mcstat_dd mcstat__moments_mean_dd(const mcstat_moments *m);
+/* MCSTAT_ETOOFEW / MCSTAT_EDEGENERATE / MCSTAT_EINVAL checks of a sample. */
+MCSTAT_HIDDEN int mcstat__moments_check(const mcstat_moments *m);
+
+/* ---- results (result.c) -------------------------------------------------- */
+/* Fills p_value, critical[], reject, decision from the statistic's tails.
+ * `quantile(p, upper, ctx, &x)` inverts the null distribution. */
+typedef int (*mcstat_quantile_fn)(double p, int upper, const void *ctx, double *x);
+MCSTAT_HIDDEN int mcstat__finish(mcstat_result *r, const mcstat_tails *tails,
+                                 mcstat_quantile_fn quantile, const void *ctx);
+MCSTAT_HIDDEN void mcstat__result_clear(mcstat_result *r);
+
+#endif /* MCSTAT_INTERNAL_H */

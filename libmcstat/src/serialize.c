@@ -1,0 +1,148 @@
+/*
+ * serialize.c - a versioned, endian-defined byte form of mcstat_moments, so
+ * accumulators can cross processes, machines and languages.
+ *
+ * Layout (MCSTAT_MOMENTS_BYTES = 96 bytes, all integers little-endian,
+ * doubles as the little-endian bytes of their IEEE 754 binary64 pattern):
+ *    0  4  magic "MCSM"
+ *    4  4  format version (1)
+ *    8  8  n
+ *   16  4  scale (int32)
+ *   20  4  zero
+ *   24 56  mean, mean_lo, m2, m3, m4, min, max
+ *   80  8  zero
+ *   88  8  FNV-1a 64 checksum of bytes 0..87
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "internal.h"
+
+#include <string.h>
+
+#define FORMAT_VERSION 1u
+#define CHECKED_BYTES 88
+
+static void put_u32(unsigned char *p, uint32_t v)
+{
+    for (int i = 0; i < 4; i++)
+        p[i] = (unsigned char)(v >> (8 * i));
+}
+
+static void put_u64(unsigned char *p, uint64_t v)
+{
+    for (int i = 0; i < 8; i++)
+        p[i] = (unsigned char)(v >> (8 * i));
+}
+
+static uint32_t get_u32(const unsigned char *p)
+{
+    uint32_t v = 0;
+    for (int i = 0; i < 4; i++)
+        v |= (uint32_t)p[i] << (8 * i);
+    return v;
+}
+
+static uint64_t get_u64(const unsigned char *p)
+{
+    uint64_t v = 0;
+    for (int i = 0; i < 8; i++)
+        v |= (uint64_t)p[i] << (8 * i);
+    return v;
+}
+
+static void put_f64(unsigned char *p, double d)
+{
+    uint64_t v;
+    memcpy(&v, &d, sizeof v);
+    put_u64(p, v);
+}
+
+static double get_f64(const unsigned char *p)
+{
+    uint64_t v = get_u64(p);
+    double d;
+    memcpy(&d, &v, sizeof d);
+    return d;
+}
+
+static uint64_t fnv1a(const unsigned char *p, size_t n)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+int mcstat_moments_to_bytes(const mcstat_moments *m, unsigned char *buf, size_t size)
+{
+    if (!m || !buf || (m->n > 0 && m->version != MCSTAT_MOMENTS_VERSION))
+        return MCSTAT_EINVAL;
+    if (size < MCSTAT_MOMENTS_BYTES)
+        return MCSTAT_EBUFSIZE;
+    memset(buf, 0, MCSTAT_MOMENTS_BYTES);
+    memcpy(buf, "MCSM", 4);
+    put_u32(buf + 4, FORMAT_VERSION);
+    put_u64(buf + 8, m->n);
+    if (m->n > 0) { /* an empty accumulator has one canonical form */
+        put_u32(buf + 16, (uint32_t)m->scale);
+        const double f[7] = {m->mean, m->mean_lo, m->m2, m->m3, m->m4, m->min, m->max};
+        for (int i = 0; i < 7; i++)
+            put_f64(buf + 24 + 8 * i, f[i]);
+    }
+    put_u64(buf + CHECKED_BYTES, fnv1a(buf, CHECKED_BYTES));
+    return MCSTAT_OK;
+}
+
+/* The invariants every accumulator mcstat produces satisfies. */
+static int consistent(const mcstat_moments *m)
+{
+    if (m->n == 0)
+        return 1;
+    const double f[7] = {m->mean, m->mean_lo, m->m2, m->m3, m->m4, m->min, m->max};
+    for (int i = 0; i < 7; i++)
+        if (!isfinite(f[i]))
+            return 0;
+    if (m->scale < -1100 || m->scale > 1100 || m->m2 < 0.0 || m->m4 < 0.0 || m->min > m->max)
+        return 0;
+    if (fabs(m->mean_lo) > fabs(m->mean) * 0x1p-50 + 0x1p-1074)
+        return 0;
+    double slack = fmax(fabs(m->min), fabs(m->max)) * 0x1p-48;
+    if (m->mean < m->min - slack || m->mean > m->max + slack)
+        return 0;
+    if (m->n == 1 && (m->m2 != 0.0 || m->min != m->max))
+        return 0;
+    return 1;
+}
+
+int mcstat_moments_from_bytes(const unsigned char *buf, size_t size, mcstat_moments *m)
+{
+    if (!buf || !m)
+        return MCSTAT_EINVAL;
+    if (size != MCSTAT_MOMENTS_BYTES || memcmp(buf, "MCSM", 4) != 0 || get_u32(buf + 4) != FORMAT_VERSION ||
+        get_u64(buf + CHECKED_BYTES) != fnv1a(buf, CHECKED_BYTES) || get_u32(buf + 20) != 0 ||
+        get_u64(buf + 80) != 0)
+        return MCSTAT_ECORRUPT;
+    mcstat_moments r;
+    mcstat_moments_init(&r);
+    r.n = get_u64(buf + 8);
+    if (r.n > 0) {
+        r.scale = (int32_t)get_u32(buf + 16);
+        r.mean = get_f64(buf + 24);
+        r.mean_lo = get_f64(buf + 32);
+        r.m2 = get_f64(buf + 40);
+        r.m3 = get_f64(buf + 48);
+        r.m4 = get_f64(buf + 56);
+        r.min = get_f64(buf + 64);
+        r.max = get_f64(buf + 72);
+    } else {
+        for (int i = 16; i < 80; i++)
+            if (buf[i] != 0)
+                return MCSTAT_ECORRUPT;
+    }
+    if (!consistent(&r))
+        return MCSTAT_ECORRUPT;
+    *m = r;
+    return MCSTAT_OK;
+}

@@ -1,0 +1,94 @@
+/*
+ * status.c - versions, status texts, enum names, sizes, GSL's handler.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "internal.h"
+
+#include <gsl/gsl_errno.h>
+#include <string.h>
+
+#define STR2(x) #x
+#define STR(x) STR2(x)
+
+unsigned mcstat_version_number(void)
+{
+    return MCSTAT_VERSION_NUMBER;
+}
+
+const char *mcstat_version(void)
+{
+    return STR(MCSTAT_VERSION_MAJOR) "." STR(MCSTAT_VERSION_MINOR) "." STR(MCSTAT_VERSION_PATCH);
+}
+
+const char *mcstat_strerror(int status)
+{
+    switch (status) {
+    case MCSTAT_OK: return "success";
+    case MCSTAT_EINVAL: return "invalid argument (NULL pointer, unknown option, or a parameter outside its domain)";
+    case MCSTAT_ETOOFEW: return "too few observations: each sample needs at least 2";
+    case MCSTAT_ENONFINITE: return "the data contain NaN or infinite values";
+    case MCSTAT_EDEGENERATE: return "the data are essentially constant (zero spread)";
+    case MCSTAT_ENOMEM: return "out of memory";
+    case MCSTAT_ENUMERIC: return "numerical failure: an iteration did not converge";
+    case MCSTAT_EBUFSIZE: return "the output buffer is too small";
+    case MCSTAT_ECORRUPT: return "serialized data are truncated, corrupt or of an unknown version";
+    default: return "unknown status code";
+    }
+}
+
+int mcstat_alternative_parse(const char *name, int *alternative)
+{
+    if (!name || !alternative)
+        return MCSTAT_EINVAL;
+    if (!strcmp(name, "two-sided") || !strcmp(name, "two.sided") || !strcmp(name, "two_sided"))
+        *alternative = MCSTAT_TWO_SIDED;
+    else if (!strcmp(name, "less"))
+        *alternative = MCSTAT_LESS;
+    else if (!strcmp(name, "greater"))
+        *alternative = MCSTAT_GREATER;
+    else
+        return MCSTAT_EINVAL;
+    return MCSTAT_OK;
+}
+
+const char *mcstat_alternative_name(int alternative)
+{
+    switch (alternative) {
+    case MCSTAT_TWO_SIDED: return "two-sided";
+    case MCSTAT_LESS: return "less";
+    case MCSTAT_GREATER: return "greater";
+    default: return NULL;
+    }
+}
+
+const char *mcstat_decision_name(int decision)
+{
+    switch (decision) {
+    case -1: return "less";
+    case 0: return "equal";
+    case 1: return "greater";
+    default: return NULL;
+    }
+}
+
+size_t mcstat_sizeof_moments(void) { return sizeof(mcstat_moments); }
+size_t mcstat_sizeof_result(void) { return sizeof(mcstat_result); }
+size_t mcstat_moments_bytes(void) { return MCSTAT_MOMENTS_BYTES; }
+
+void mcstat_gsl_handler_off(void)
+{
+    gsl_set_error_handler_off();
+}
+
+int mcstat_gsl_handler_off_if_default(void)
+{
+    /* gsl_set_error_handler returns the previous handler: NULL means GSL's
+     * default (abort) was in force.  Put back anything else. */
+    gsl_error_handler_t *prev = gsl_set_error_handler_off();
+    if (prev != NULL) {
+        gsl_set_error_handler(prev);
+        return 0;
+    }
+    return 1;
+}
