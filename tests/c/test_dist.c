@@ -1,0 +1,188 @@
+/*
+ * test_dist.c - distributions against closed forms that hold over their whole
+ * range (Cauchy = t1, t2, chi-squared with 2 df, F(2,2), F(1,1)), symmetry,
+ * P + Q = 1, monotonicity, boundaries, and quantile round trips for degrees
+ * of freedom from 1 to 1e15 and probabilities down to 1e-300.
+ */
+#include "harness.h"
+#include "mcstat.h"
+
+#include <float.h>
+
+/* A tail computed as exp(log p) carries the absolute error of log p, so the
+ * relative tolerance grows with |log p| (about 8e-14 at p = 1e-300). */
+#define TAIL_TOL(p) (4e-15 * fmax(1.0, fabs(log(p))))
+
+static void test_closed_forms(void)
+{
+    for (double x = 1e-8; x < 1e300; x *= 3.7) {
+        double p, lp;
+        /* t1 (Cauchy): P[T > x] = atan2(1, x) / pi */
+        mcstat_t_cdf(x, 1, 1, &p);
+        CHECK_REL(p, atan2(1.0, x) / M_PI, TAIL_TOL(p), "cauchy upper x=%g", x);
+        mcstat_t_cdf(-x, 1, 0, &p);
+        CHECK_REL(p, atan2(1.0, x) / M_PI, TAIL_TOL(p), "cauchy lower x=%g", -x);
+        /* t2: P[T > x] = (1 - x / sqrt(2 + x^2)) / 2 = 1 / (s (s + x)), s = sqrt(2 + x^2) */
+        if (x < 1e150) {
+            double s = sqrt(2.0 + x * x);
+            mcstat_t_cdf(x, 2, 1, &p);
+            CHECK_REL(p, 1.0 / (s * (s + x)), TAIL_TOL(p), "t2 upper x=%g", x);
+        }
+        /* chi-squared, 2 df: Q = exp(-x/2), P = -expm1(-x/2) */
+        mcstat_chisq_cdf(x, 2, 1, &p);
+        CHECK_REL(p, exp(-0.5 * x), TAIL_TOL(p), "chisq2 upper x=%g", x);
+        mcstat_chisq_logcdf(x, 2, 1, &lp);
+        CHECK_REL(lp, -0.5 * x, 4e-15, "chisq2 log upper x=%g", x);
+        mcstat_chisq_cdf(x, 2, 0, &p);
+        CHECK_REL(p, -expm1(-0.5 * x), TAIL_TOL(p), "chisq2 lower x=%g", x);
+        /* F(2,2): Q = 1/(1+f); F(1,1): Q = 2 atan2(1, sqrt f) / pi */
+        mcstat_f_cdf(x, 2, 2, 1, &p);
+        CHECK_REL(p, 1.0 / (1.0 + x), TAIL_TOL(p), "F(2,2) upper x=%g", x);
+        mcstat_f_cdf(x, 2, 2, 0, &p);
+        CHECK_REL(p, x / (1.0 + x), TAIL_TOL(p), "F(2,2) lower x=%g", x);
+        mcstat_f_cdf(x, 1, 1, 1, &p);
+        CHECK_REL(p, 2.0 * atan2(1.0, sqrt(x)) / M_PI, TAIL_TOL(p), "F(1,1) upper x=%g", x);
+        /* quantiles invert them, from the tail that is small (recovering x
+         * from a probability near 1 would be ill-conditioned) */
+        double q;
+        if (x > 1e-300 && x < 1e290) {
+            int up = x > 2.0 * M_LN2;
+            double pc = up ? exp(-0.5 * x) : -expm1(-0.5 * x);
+            if (pc > 1e-300) {
+                mcstat_chisq_quantile(pc, 2, up, &q);
+                CHECK_REL(q, x, TAIL_TOL(pc), "chisq2 quantile x=%g", x);
+            }
+            up = x > 1.0;
+            double pf = up ? 1.0 / (1.0 + x) : x / (1.0 + x);
+            mcstat_f_quantile(pf, 2, 2, up, &q);
+            CHECK_REL(q, x, TAIL_TOL(pf), "F(2,2) quantile x=%g", x);
+            if (x > 1.0) {
+                double pt = atan2(1.0, x) / M_PI;
+                mcstat_t_quantile(pt, 1, 1, &q);
+                CHECK_REL(q, x, TAIL_TOL(pt), "cauchy quantile x=%g", x);
+            }
+        }
+    }
+    /* the t limit: the normal distribution */
+    double p;
+    mcstat_t_cdf(1.5, 1e300, 1, &p);
+    CHECK_REL(p, 0.066807201268858066, 2e-15, "t with df = 1e300"); /* erfc(1.5/sqrt 2)/2, mpmath */
+}
+
+static void test_symmetry_and_complements(void)
+{
+    const double dfs[] = {0.5, 1, 2, 3.5, 10, 63, 1e3, 1e6, 1e9, 1e12};
+    for (size_t i = 0; i < sizeof dfs / sizeof dfs[0]; i++) {
+        double df = dfs[i], prev = -1.0;
+        for (double x = -60; x <= 60; x += 0.37) {
+            double p, q, pm, lp, lq;
+            CHECK_INT(mcstat_t_cdf(x, df, 0, &p), MCSTAT_OK);
+            mcstat_t_cdf(x, df, 1, &q);
+            mcstat_t_cdf(-x, df, 1, &pm);
+            CHECK(p == pm);                           /* symmetric, bit for bit */
+            CHECK_REL(p + q, 1.0, 2e-16, "P + Q, t df=%g x=%g", df, x);
+            CHECK(p >= prev);                         /* monotone */
+            prev = p;
+            mcstat_t_logcdf(x, df, 0, &lp);
+            mcstat_t_logcdf(x, df, 1, &lq);
+            if (p > 1e-300)
+                CHECK_REL(exp(lp), p, 1e-13, "exp(log P), t df=%g x=%g", df, x);
+            CHECK(lp <= 0 && lq <= 0);
+        }
+        for (double z = -40; z <= 40; z += 0.53) {
+            double x = df + z * sqrt(2 * df), p, q;
+            if (x <= 0)
+                continue;
+            mcstat_chisq_cdf(x, df, 0, &p);
+            mcstat_chisq_cdf(x, df, 1, &q);
+            CHECK_REL(p + q, 1.0, 2e-16, "P + Q, chisq df=%g x=%g", df, x);
+            double f = exp(z * sqrt(2.0 / df + 2.0 / 7.0));
+            mcstat_f_cdf(f, df, 7, 0, &p);
+            mcstat_f_cdf(f, df, 7, 1, &q);
+            CHECK_REL(p + q, 1.0, 2e-16, "P + Q, F df=%g f=%g", df, f);
+            /* F(d1, d2) at f and F(d2, d1) at 1/f swap tails */
+            double q2;
+            mcstat_f_cdf(1.0 / f, 7, df, 0, &q2);
+            CHECK_REL(q2, q, 1e-13, "F swap df=%g f=%g", df, f);
+        }
+    }
+}
+
+/* x -> p -> x: the quantile inverts the cdf.  (This direction is the well-
+ * conditioned one: d log x = d log p / (x f / p), and x f / p is large at
+ * large df.  Accuracy of the values themselves is test_reference's job.) */
+typedef int (*qfn)(double p, double d1, double d2, int up, double *x);
+typedef int (*cfn)(double x, double d1, double d2, int up, double *p);
+static int q_t(double p, double d1, double d2, int up, double *x) { (void)d2; return mcstat_t_quantile(p, d1, up, x); }
+static int c_t(double x, double d1, double d2, int up, double *p) { (void)d2; return mcstat_t_cdf(x, d1, up, p); }
+static int q_c(double p, double d1, double d2, int up, double *x) { (void)d2; return mcstat_chisq_quantile(p, d1, up, x); }
+static int c_c(double x, double d1, double d2, int up, double *p) { (void)d2; return mcstat_chisq_cdf(x, d1, up, p); }
+static int q_f(double p, double d1, double d2, int up, double *x) { return mcstat_f_quantile(p, d1, d2, up, x); }
+static int c_f(double x, double d1, double d2, int up, double *p) { return mcstat_f_cdf(x, d1, d2, up, p); }
+
+static void round_trip(const char *name, qfn q, cfn c, double p, double d1, double d2, int up)
+{
+    double x, p2, x2;
+    CHECK_INT(q(p, d1, d2, up, &x), MCSTAT_OK);
+    if (!(x != 0.0 && isfinite(x)))
+        return;
+    CHECK_INT(c(x, d1, d2, up, &p2), MCSTAT_OK);
+    CHECK_INT(q(p2, d1, d2, up, &x2), MCSTAT_OK);
+    CHECK_REL(x2, x, 1e-13, "%s df=%g,%g p=%g up=%d: quantile(cdf(x))", name, d1, d2, p, up);
+}
+
+static void test_quantile_round_trips(void)
+{
+    const double dfs[] = {1, 1.5, 2, 7, 30, 1e3, 1e5, 1e7, 1e9, 1e11, 1e13, 1e15};
+    const double ps[] = {0.5, 0.3, 0.05, 1e-3, 1e-10, 1e-50, 1e-150, 1e-300};
+    for (size_t i = 0; i < sizeof dfs / sizeof dfs[0]; i++) {
+        for (size_t j = 0; j < sizeof ps / sizeof ps[0]; j++) {
+            double df = dfs[i], p = ps[j];
+            for (int up = 0; up <= 1; up++) {
+                round_trip("t", q_t, c_t, p, df, 0, up);
+                round_trip("chisq", q_c, c_c, p, df, 0, up);
+                round_trip("F", q_f, c_f, p, df, 12, up);
+                round_trip("F", q_f, c_f, p, df, df, up);
+            }
+            double lo, hi; /* lower and upper quantiles of the t are negatives */
+            mcstat_t_quantile(p, df, 0, &lo);
+            mcstat_t_quantile(p, df, 1, &hi);
+            CHECK(lo == -hi);
+        }
+    }
+}
+
+static void test_boundaries(void)
+{
+    double x, p;
+    CHECK(mcstat_t_quantile(0.0, 5, 0, &x) == MCSTAT_OK && x == -INFINITY);
+    CHECK(mcstat_t_quantile(1.0, 5, 0, &x) == MCSTAT_OK && x == INFINITY);
+    CHECK(mcstat_t_quantile(0.0, 5, 1, &x) == MCSTAT_OK && x == INFINITY);
+    CHECK(mcstat_t_quantile(0.5, 5, 1, &x) == MCSTAT_OK && x == 0.0);
+    CHECK(mcstat_chisq_quantile(0.0, 5, 0, &x) == MCSTAT_OK && x == 0.0);
+    CHECK(mcstat_chisq_quantile(0.0, 5, 1, &x) == MCSTAT_OK && x == INFINITY);
+    CHECK(mcstat_f_quantile(1.0, 5, 3, 0, &x) == MCSTAT_OK && x == INFINITY);
+    CHECK(mcstat_t_cdf(INFINITY, 3, 0, &p) == MCSTAT_OK && p == 1.0);
+    CHECK(mcstat_t_cdf(-INFINITY, 3, 0, &p) == MCSTAT_OK && p == 0.0);
+    CHECK(mcstat_chisq_cdf(-1.0, 3, 0, &p) == MCSTAT_OK && p == 0.0);
+    CHECK(mcstat_chisq_cdf(INFINITY, 3, 1, &p) == MCSTAT_OK && p == 0.0);
+    CHECK(mcstat_f_cdf(0.0, 3, 4, 1, &p) == MCSTAT_OK && p == 1.0);
+    /* a quantile below the smallest normal double is 0, above DBL_MAX Inf */
+    CHECK(mcstat_chisq_quantile(1e-300, 1, 0, &x) == MCSTAT_OK && x == 0.0);
+    CHECK(mcstat_f_quantile(1e-300, 1, 1, 1, &x) == MCSTAT_OK && x == INFINITY);
+    /* deep tails of the t keep their logarithm */
+    double lp;
+    CHECK_INT(mcstat_t_logcdf(1e200, 3, 1, &lp), MCSTAT_OK);
+    CHECK(isfinite(lp) && lp < -1380 && lp > -1390);
+    CHECK_INT(mcstat_t_cdf(1e200, 3, 1, &p), MCSTAT_OK);
+    CHECK(p == 0.0);
+}
+
+int main(void)
+{
+    test_closed_forms();
+    test_symmetry_and_complements();
+    test_quantile_round_trips();
+    test_boundaries();
+    return h_report("test_dist");
+}
