@@ -119,19 +119,40 @@ static double chisq_log_xf(double x, double df)
 
 /* ---- F ----------------------------------------------------------------- */
 
-/* x = df1 F / (df1 F + df2), y = df2 / (df1 F + df2), without overflow. */
-static void f_xy(double f, double df1, double df2, double *x, double *y)
+/* The incomplete beta's arguments for F at f: x = df1 f / (df1 f + df2),
+ * y = df2 / (df1 f + df2), and the deviations u_x = df2 (f-1)/(df1 f + df2),
+ * u_y = df1 (1-f)/(df1 f + df2), all without overflow.  The deviations are
+ * formed from f - 1 (exact near 1): at large df F lives within 1e-7 of 1, and
+ * going through x would round away the digits that matter. */
+typedef struct {
+    double x, y, ux, uy;
+} f_args;
+
+static f_args f_xy(double f, double df1, double df2)
 {
+    f_args a;
     double r = (df1 / df2) * f; /* may overflow to Inf or underflow to 0 */
+    double fm1 = f - 1.0;
     if (r <= 1.0) {
-        *x = r / (1.0 + r);
-        *y = 1.0 / (1.0 + r);
+        a.x = r / (1.0 + r);
+        a.y = 1.0 / (1.0 + r);
+        a.ux = fm1 / (1.0 + r);
+        a.uy = -(df1 / df2) * fm1 / (1.0 + r);
     } else {
         double s = (df2 / df1) / f;
-        *x = 1.0 / (1.0 + s);
-        *y = s / (1.0 + s);
+        a.x = 1.0 / (1.0 + s);
+        a.y = s / (1.0 + s);
+        a.ux = s * fm1 / (1.0 + s);
+        a.uy = -(fm1 / f) / (1.0 + s);
     }
+    return a;
 }
+
+/* When one df exceeds the other by F_LIMIT, F is a scaled chi-squared to
+ * double precision (the tails change by a relative O(z^2 d_small/d_large)):
+ * F -> chi2(df1)/df1 as df2 -> Inf, F -> df2/chi2(df2) as df1 -> Inf.  The
+ * incomplete beta's fraction does not converge usefully there. */
+#define F_LIMIT 1e20
 
 int mcstat__f_tails(double f, double df1, double df2, mcstat_tails *out)
 {
@@ -143,16 +164,26 @@ int mcstat__f_tails(double f, double df1, double df2, mcstat_tails *out)
         out->p = 1.0; out->logp = 0.0; out->q = 0.0; out->logq = -INFINITY;
         return MCSTAT_OK;
     }
-    double x, y;
-    f_xy(f, df1, df2, &x, &y);
-    return mcstat__beta_inc(0.5 * df1, 0.5 * df2, x, y, out);
+    if (df2 >= F_LIMIT * df1)
+        return mcstat__chisq_tails(df1 * f, df1, out);
+    if (df1 >= F_LIMIT * df2) {
+        mcstat_tails c; /* P[F <= f] = P[chi2(df2) >= df2 / f] */
+        int st = mcstat__chisq_tails(df2 / f, df2, &c);
+        out->p = c.q; out->logp = c.logq; out->q = c.p; out->logq = c.logp;
+        return st;
+    }
+    f_args g = f_xy(f, df1, df2);
+    return mcstat__beta_inc_u(0.5 * df1, 0.5 * df2, g.x, g.y, g.ux, g.uy, out);
 }
 
 static double f_log_xf(double f, double df1, double df2)
 {
-    double x, y;
-    f_xy(f, df1, df2, &x, &y);
-    return mcstat__log_beta_prefactor(0.5 * df1, 0.5 * df2, x, y);
+    if (df2 >= F_LIMIT * df1) /* x f(x) is invariant under x -> c x and x -> c / x */
+        return chisq_log_xf(df1 * f, df1);
+    if (df1 >= F_LIMIT * df2)
+        return chisq_log_xf(df2 / f, df2);
+    f_args g = f_xy(f, df1, df2);
+    return mcstat__log_beta_prefactor_u(0.5 * df1, 0.5 * df2, g.x, g.y, g.ux, g.uy);
 }
 
 /* ---- the quantile solver ------------------------------------------------ */
@@ -197,15 +228,17 @@ static int eval_L(const dist_ctx *d, double z, int upper, double logp, double *L
 
 /* Solves T(x) = p for x > 0, T the upper (decreasing) or lower (increasing)
  * tail, by Newton's method in z = log x inside a bracket that is widened
- * geometrically until it holds the root and bisected whenever a Newton step
- * would leave it.  Roots below the smallest normal double give 0; above DBL_MAX,
- * +Inf (subnormal arguments lose the digits these tails need). */
+ * geometrically until it holds the root.  A Newton step is taken when it
+ * stays inside the bracket and the previous one at least halved |L|;
+ * otherwise the bracket is bisected (far out on a steep log-tail Newton
+ * alone would crawl).  Roots below the smallest normal double give 0; above
+ * DBL_MAX, +Inf (subnormal arguments lose the digits these tails need). */
 static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, double *out)
 {
     const double sgn = upper ? -1.0 : 1.0; /* sgn * L is increasing in z */
     double lo = Z_MIN, hi = Z_MAX;          /* sgn*L(lo) < 0 < sgn*L(hi) once known */
     int lo_known = 0, hi_known = 0;
-    double z = log(x0), step = 1.0;
+    double z = log(x0), step = 1.0, prev_abs_L = INFINITY;
     if (!(z > Z_MIN && z < Z_MAX))
         z = 0.0;
     for (int it = 0; it < 400; it++) {
@@ -224,10 +257,19 @@ static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, 
             lo = z;
             lo_known = 1;
         }
-        double zn = z - L / dL;
-        if (!(zn > lo && zn < hi)) {
+        double tol = 4.0 * DBL_EPSILON * fmax(1.0, fabs(z));
+        double newton = L / dL;
+        if (fabs(newton) <= tol) { /* converged: the step is below z's resolution */
+            *out = exp(z - newton);
+            return MCSTAT_OK;
+        }
+        double zn = z - newton;
+        int newton_ok = zn > lo && zn < hi && fabs(L) <= 0.5 * prev_abs_L;
+        prev_abs_L = fabs(L);
+        if (!newton_ok) {
             if (lo_known && hi_known) {
                 zn = 0.5 * (lo + hi);
+                prev_abs_L = INFINITY; /* let Newton try again from the midpoint */
             } else if (!hi_known) { /* root lies above: expand upwards */
                 zn = z + step;
                 step *= 2.0;
@@ -250,10 +292,8 @@ static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, 
                 }
             }
         }
-        double dz = fabs(zn - z);
         z = zn;
-        if (dz <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(z)) ||
-            (lo_known && hi_known && hi - lo <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(z)))) {
+        if (lo_known && hi_known && hi - lo <= tol) {
             *out = exp(z);
             return MCSTAT_OK;
         }

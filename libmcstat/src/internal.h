@@ -104,11 +104,16 @@ typedef struct {
 /* Regularized incomplete beta I_x(a, b) for a, b > 0, with x + y = 1 both
  * given so that neither needs to be formed as 1 - the other. */
 MCSTAT_HIDDEN int mcstat__beta_inc(double a, double b, double x, double y, mcstat_tails *t);
+/* The same with the deviations from the centre given by the caller:
+ * ux = x (a+b)/a - 1, uy = y (a+b)/b - 1 (see special.c). */
+MCSTAT_HIDDEN int mcstat__beta_inc_u(double a, double b, double x, double y, double ux, double uy,
+                                     mcstat_tails *t);
 /* Regularized incomplete gamma P(a, x), Q(a, x) for a > 0, x >= 0. */
 MCSTAT_HIDDEN int mcstat__gamma_inc(double a, double x, mcstat_tails *t);
 /* log of x^a y^b / B(a, b) (x + y = 1) and of x^a e^-x / Gamma(a+1): the
  * densities below are these over x (see dist.c). */
 MCSTAT_HIDDEN double mcstat__log_beta_prefactor(double a, double b, double x, double y);
+MCSTAT_HIDDEN double mcstat__log_beta_prefactor_u(double a, double b, double x, double y, double ux, double uy);
 MCSTAT_HIDDEN double mcstat__log_gamma_prefactor(double a, double x);
 /* log of the Stirling remainder Gamma*(a) = Gamma(a) / (sqrt(2 pi) a^(a-1/2) e^-a). */
 MCSTAT_HIDDEN double mcstat__log_gammastar(double a);
