@@ -29,6 +29,13 @@ py::handle error_class(int status);
 // Invalid argument with a message of its own (InvalidArgumentError).
 [[noreturn]] void throw_invalid(const std::string &message);
 
+// ---- input arrays (tests.cpp) ---------------------------------------------
+// obj as a float64 array: the same object when it already is one (any
+// layout), else converted once; NumPy's own error when it cannot be.
+py::array as_float_array(py::handle obj);
+// The same, C-contiguous (a copy only when obj is not).
+py::array as_contiguous_array(py::handle obj);
+
 // ---- accumulators (moments.cpp) ---------------------------------------------
 struct Moments {
     mcstat_moments m;
@@ -63,7 +70,7 @@ struct TestArgs {
 
 // One test per row of N-D arrays (axis moved last); returns the
 // BatchResult built by mcstat._result (which also raises for bad rows).
-py::object run_rows(const TestArgs &a, py::array x, py::array y);
+py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two);
 
 // Worker threads for row-wise work (mcstat.set_num_threads).
 int num_threads();

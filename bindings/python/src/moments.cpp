@@ -30,9 +30,7 @@ void push_values(mcstat_moments &m, py::handle values, bool omit)
 {
     if (values.is_none())
         throw py::type_error("Moments.push() needs numbers, not None");
-    carray a = carray::ensure(values);
-    if (!a)
-        throw py::error_already_set();
+    carray a = as_contiguous_array(values);
     const double *p = a.data();
     size_t n = static_cast<size_t>(a.size());
     mcstat_moments local;
@@ -220,7 +218,7 @@ every machine and in every language binding.)doc")
 Raises `CorruptDataError` for bytes that are truncated, corrupt, of another
 format version or internally inconsistent.)doc")
         .def("__reduce__", [](py::object self) {
-            return py::make_tuple(self.get_type().attr("from_bytes"),
+            return py::make_tuple(py::module_::import("mcstat._core").attr("_moments_from_bytes"),
                                   py::make_tuple(to_bytes(self.cast<const Moments &>())));
         })
         .def("__eq__", [](const Moments &a, py::handle b) -> py::object {
@@ -237,6 +235,7 @@ format version or internally inconsistent.)doc")
             return std::string(buf);
         });
     py::setattr(mod.attr("Moments"), "__hash__", py::none());
+    mod.def("_moments_from_bytes", &from_bytes, py::arg("data"), "Moments.from_bytes (for pickle).");
 
     mod.def(
         "batch_means",
@@ -247,9 +246,7 @@ format version or internally inconsistent.)doc")
                 throw_invalid("k must be a positive integer, got " + std::to_string(k));
             if (remainder != "drop" && remainder != "raise")
                 throw_invalid("remainder must be 'drop' or 'raise', got '" + remainder + "'");
-            py::array a = py::array_t<double, py::array::forcecast>::ensure(x);
-            if (!a)
-                throw py::error_already_set();
+            py::array a = as_float_array(x);
             int nd = static_cast<int>(a.ndim());
             if (nd < 1)
                 throw_invalid("x must be at least 1-D");
@@ -259,7 +256,7 @@ format version or internally inconsistent.)doc")
             if (axis < 0)
                 axis += nd;
             py::module_ np = py::module_::import("numpy");
-            carray c = carray::ensure(np.attr("moveaxis")(a, axis, -1));
+            carray c = as_contiguous_array(np.attr("moveaxis")(a, axis, -1));
             size_t n = static_cast<size_t>(c.shape(nd - 1));
             size_t rows = n ? static_cast<size_t>(c.size()) / n : 0;
             if (remainder == "raise" && n % static_cast<size_t>(k) != 0)

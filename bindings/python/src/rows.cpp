@@ -192,9 +192,8 @@ void set_num_threads(int n)
     g_threads.store(n > 0 ? n : 0);
 }
 
-py::object run_rows(const TestArgs &a, py::array x, py::array y)
+py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
 {
-    bool two = static_cast<bool>(y);
     int nd = static_cast<int>(x.ndim());
     if (two && y.ndim() != nd)
         throw_invalid("x and y must have the same number of dimensions for row-wise tests, got " +
@@ -207,8 +206,13 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y)
     if (two) {
         for (int d = 0; d < nd; d++) {
             if (d != axis && x.shape(d) != y.shape(d)) {
-                std::string sx = py::str(py::tuple(py::cast(std::vector<py::ssize_t>(x.shape(), x.shape() + nd))));
-                std::string sy = py::str(py::tuple(py::cast(std::vector<py::ssize_t>(y.shape(), y.shape() + nd))));
+                auto shape_str = [nd](const py::array &v) {
+                    std::string out = "(";
+                    for (int k = 0; k < nd; k++)
+                        out += std::to_string(v.shape(k)) + (k + 1 < nd || nd == 1 ? "," : "") + (k + 1 < nd ? " " : "");
+                    return out + ")";
+                };
+                std::string sx = shape_str(x), sy = shape_str(y);
                 throw_invalid("x and y must have the same shape except along axis " + std::to_string(axis) +
                               ", got " + sx + " and " + sy);
             }

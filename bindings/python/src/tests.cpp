@@ -156,9 +156,7 @@ void common_args(const Parsed &p, TestArgs &a)
 // Moments of a 1-D array-like (for a test that mixes an accumulator and an array).
 mcstat_moments moments_of(py::handle obj, bool omit)
 {
-    carray a = carray::ensure(obj);
-    if (!a)
-        throw py::error_already_set();
+    carray a = as_contiguous_array(obj);
     if (a.ndim() != 1)
         throw_invalid("an array tested against an mcstat.Moments must be 1-D, got " + std::to_string(a.ndim()) +
                       "-D");
@@ -229,26 +227,21 @@ py::object run(const Parsed &p, TestArgs &a)
             throw_status(st, st == MCSTAT_ETOOFEW ? sizes_detail(a, mx->n, my ? my->n : 0) : "");
         return make_result(r);
     }
-    py::array xa = farray::ensure(p.x), ya;
-    if (!xa)
-        throw py::error_already_set();
-    if (two) {
-        ya = farray::ensure(p.y);
-        if (!ya)
-            throw py::error_already_set();
-    }
+    py::array xa = as_float_array(p.x), ya;
+    if (two)
+        ya = as_float_array(p.y);
     int nd = static_cast<int>(xa.ndim());
     if (nd == 0 || (two && ya.ndim() == 0))
         throw_invalid("x and y must be at least 1-D arrays (got a scalar)");
     if (nd > 1 || (two && ya.ndim() > 1))
-        return run_rows(a, xa, ya);
+        return run_rows(a, xa, ya, two);
     if (a.axis != 0 && a.axis != -1)
         throw_invalid("axis " + std::to_string(a.axis) + " is out of range for 1-D input");
     // One test: contiguous float64 is read in place, anything else converted once.
     if (!(xa.flags() & py::array::c_style))
-        xa = carray::ensure(xa);
+        xa = as_contiguous_array(xa);
     if (two && !(ya.flags() & py::array::c_style))
-        ya = carray::ensure(ya);
+        ya = as_contiguous_array(ya);
     const double *x = static_cast<const double *>(xa.data()), *y = two ? static_cast<const double *>(ya.data()) : nullptr;
     size_t nx = static_cast<size_t>(xa.size()), ny = two ? static_cast<size_t>(ya.size()) : 0;
     int st;
@@ -331,10 +324,31 @@ PyMethodDef methods[] = {
 
 } // namespace
 
+py::array as_float_array(py::handle obj)
+{
+    py::array a = farray::ensure(obj);
+    if (!a) // pybind11 swallowed NumPy's error: let NumPy raise it again
+        py::module_::import("numpy").attr("asarray")(obj, "float64");
+    if (!a)
+        throw py::type_error("cannot convert " + repr(obj.ptr()) + " to a float64 array");
+    return a;
+}
+
+py::array as_contiguous_array(py::handle obj)
+{
+    py::array a = carray::ensure(obj);
+    if (!a)
+        py::module_::import("numpy").attr("ascontiguousarray")(obj, "float64");
+    if (!a)
+        throw py::type_error("cannot convert " + repr(obj.ptr()) + " to a float64 array");
+    return a;
+}
+
 void register_tests(py::module_ &mod)
 {
     for (PyMethodDef *d = methods; d->ml_name; d++) {
-        PyObject *f = PyCFunction_NewEx(d, nullptr, mod.attr("__name__").ptr());
+        // self = the module, as for any module function (inspect then drops $module)
+        PyObject *f = PyCFunction_NewEx(d, mod.ptr(), mod.attr("__name__").ptr());
         if (!f)
             throw py::error_already_set();
         mod.add_object(d->ml_name, py::reinterpret_steal<py::object>(f));
