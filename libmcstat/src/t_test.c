@@ -12,11 +12,6 @@
 
 #include <float.h>
 
-static int t_quantile_cb(double p, int upper, const void *ctx, double *x)
-{
-    return mcstat_t_quantile(p, *(const double *)ctx, upper, x);
-}
-
 /* (hi + lo) scaled by 2^-e, rounded to double. */
 static double dd_scaled(mcstat_dd d, int e)
 {
@@ -38,8 +33,8 @@ static int check_args(double mu0, int alternative, double alpha, const mcstat_re
     return out && isfinite(mu0) && valid_alternative(alternative) && valid_alpha(alpha);
 }
 
-int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative, double alpha,
-                            mcstat_result *out)
+int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, double alpha, mcstat_qcache *qc,
+                     mcstat_result *out)
 {
     if (!x || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
@@ -68,8 +63,15 @@ int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative
     r.std_error = ldexp(se, e);
 
     mcstat_tails t;
-    if ((st = mcstat__t_tails(r.statistic, df, &t)) || (st = mcstat__finish(&r, &t, t_quantile_cb, &df)))
+    if (qc)
+        mcstat__qcache_use(qc, MCSTAT_Q_T, df, 0.0);
+    if ((st = mcstat__t_tails(r.statistic, df, &t)) ||
+        (st = mcstat__finish(&r, &t, qc ? mcstat__qcache_quantile : NULL, qc)))
         return st;
+    if (!qc) { /* no intervals asked for */
+        *out = r;
+        return MCSTAT_OK;
+    }
     mcstat_dd ms = {ldexp(mean.hi, -e), ldexp(mean.lo, -e)};
     r.conf_int[0] = ci_bound(ms, r.critical[1], se, e);
     r.conf_int[1] = ci_bound(ms, r.critical[0], se, e);
@@ -77,8 +79,8 @@ int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative
     return MCSTAT_OK;
 }
 
-int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double mu0,
-                            int alternative, double alpha, mcstat_result *out)
+int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
+                     double alpha, mcstat_qcache *qc, mcstat_result *out)
 {
     if (!x || !y || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
@@ -129,14 +131,39 @@ int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, do
     r.std_error = ldexp(se, e);
 
     mcstat_tails t;
-    if ((st = mcstat__t_tails(r.statistic, df, &t)) || (st = mcstat__finish(&r, &t, t_quantile_cb, &df)))
+    if (qc)
+        mcstat__qcache_use(qc, MCSTAT_Q_T, df, 0.0);
+    if ((st = mcstat__t_tails(r.statistic, df, &t)) ||
+        (st = mcstat__finish(&r, &t, qc ? mcstat__qcache_quantile : NULL, qc)))
         return st;
+    if (!qc) {
+        *out = r;
+        return MCSTAT_OK;
+    }
     mcstat_dd ds = {ldexp(diff.hi, -e), ldexp(diff.lo, -e)};
     ds = dd_fast_two_sum(ds.hi, ds.lo);
     r.conf_int[0] = ci_bound(ds, r.critical[1], se, e);
     r.conf_int[1] = ci_bound(ds, r.critical[0], se, e);
     *out = r;
     return MCSTAT_OK;
+}
+
+/* The public calls: a fresh cache, which still answers the second
+ * two-sided critical value of a t from the first (c and -c). */
+int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative, double alpha,
+                            mcstat_result *out)
+{
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    return mcstat__t_test_1(x, mu0, alternative, alpha, &qc, out);
+}
+
+int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double mu0,
+                            int alternative, double alpha, mcstat_result *out)
+{
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    return mcstat__t_test_2(x, y, mu0, alternative, alpha, &qc, out);
 }
 
 int mcstat_t_test_1(const double *x, size_t n, double mu0, int alternative, double alpha, mcstat_result *out)
