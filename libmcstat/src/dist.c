@@ -60,7 +60,7 @@ static double t_log_upper_far(double u, double df)
  * the sum is accurate to a few ulps; for y <= 1/2 it converges in at most ~60
  * terms (about 20 at Monte Carlo df), where the continued fraction near the
  * centre needs O(sqrt df) costly steps.  Returns 0 if it did not converge. */
-static int t_central(double df, double x, double y, double *s)
+static int t_central(double df, double x, double y, double *s, double *logk)
 {
     const double A = 0.5 * df + 0.5;
     double term = 1.0, sum = 1.0;
@@ -68,32 +68,37 @@ static int t_central(double df, double x, double y, double *s)
         term *= (A + j) / (1.5 + j) * y;
         sum += term;
         if (term <= 0.25 * DBL_EPSILON * sum) {
-            *s = exp(mcstat__log_beta_prefactor(0.5, 0.5 * df, y, x) + M_LN2) * sum;
+            *logk = mcstat__log_beta_prefactor(0.5, 0.5 * df, y, x);
+            *s = exp(*logk + M_LN2) * sum;
             return 1;
         }
     }
     return 0;
 }
 
+/* Both tails of T at t; logk = log(|t| f(t)), the incomplete beta's
+ * prefactor, for the quantile solver. */
 int mcstat__t_tails(double t, double df, mcstat_tails *out)
 {
     if (t == 0.0) {
         out->p = out->q = 0.5;
         out->logp = out->logq = LOG_HALF;
+        out->logk = -INFINITY;
         return MCSTAT_OK;
     }
-    double at = fabs(t), up, logup, other, logother;
+    double at = fabs(t), up, logup, other, logother, logk;
     if (isinf(at)) {
-        up = 0.0; logup = -INFINITY; other = 1.0; logother = 0.0;
+        up = 0.0; logup = -INFINITY; other = 1.0; logother = 0.0; logk = -INFINITY;
     } else if (at < 1e150) {
         double x, y, c;
         mcstat_tails b;
         t_xy(at, df, &x, &y);
-        /* The bulk (|t| below ~1.3 at Monte Carlo df, where every test under
-         * H0 spends most of its time): the central probability c by its
-         * series; the upper tail (1 - c)/2 >= 0.05 then carries at most
-         * c/(1-c) <= 9 times c's few-ulp relative error (below 4e-15). */
-        if (y <= 0.5 && at <= 1.75 && t_central(df, x, y, &c) && c <= 0.9) {
+        /* The bulk (|t| below ~2, where every test under H0 spends most of
+         * its time, and the critical values at alpha = 0.05): the central
+         * probability c by its series; the upper tail (1 - c)/2 >= 0.02 then
+         * carries at most c/(1-c) <= 24 times c's few-ulp relative error
+         * (about 1e-14). */
+        if (y <= 0.5 && at <= 2.5 && t_central(df, x, y, &c, &logk) && c <= 0.96) {
             up = 0.5 - 0.5 * c;
             logup = log(up);
             other = 0.5 + 0.5 * c;
@@ -108,13 +113,16 @@ int mcstat__t_tails(double t, double df, mcstat_tails *out)
         logup = LOG_HALF + b.logp;
         other = 0.5 + 0.5 * b.q;
         logother = log1p(-up);
+        logk = b.logk;
     } else {
         logup = t_log_upper_far(at, df);
         up = exp(logup);
         other = 1.0 - up;
         logother = log1p(-up);
+        logk = log(df) + logup; /* u f(u) = df P[T > u] in the power-law tail */
     }
 done:
+    out->logk = logk;
     if (t > 0.0) {
         out->q = up; out->logq = logup; out->p = other; out->logp = logother;
     } else {
@@ -123,31 +131,19 @@ done:
     return MCSTAT_OK;
 }
 
-/* log(u f(u)) for u > 0 */
-static double t_log_xf(double u, double df)
-{
-    if (u >= 1e150) /* f(u) u = df * P[T > u] in the power-law tail */
-        return log(df) + t_log_upper_far(u, df);
-    double x, y;
-    t_xy(u, df, &x, &y);
-    return mcstat__log_beta_prefactor(0.5 * df, 0.5, x, y);
-}
-
 /* ---- chi-squared ------------------------------------------------------- */
 
+/* Both tails of chi-squared at x; logk = log(x f(x)) = log(a) + the
+ * incomplete gamma's prefactor. */
 int mcstat__chisq_tails(double x, double df, mcstat_tails *out)
 {
     if (x <= 0.0) {
-        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0;
+        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0; out->logk = -INFINITY;
         return MCSTAT_OK;
     }
-    return mcstat__gamma_inc(0.5 * df, 0.5 * x, out);
-}
-
-static double chisq_log_xf(double x, double df)
-{
-    double a = 0.5 * df;
-    return log(a) + mcstat__log_gamma_prefactor(a, 0.5 * x);
+    int st = mcstat__gamma_inc(0.5 * df, 0.5 * x, out);
+    out->logk += log(0.5 * df);
+    return st;
 }
 
 /* ---- F ----------------------------------------------------------------- */
@@ -190,33 +186,23 @@ static f_args f_xy(double f, double df1, double df2)
 int mcstat__f_tails(double f, double df1, double df2, mcstat_tails *out)
 {
     if (f <= 0.0) {
-        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0;
+        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0; out->logk = -INFINITY;
         return MCSTAT_OK;
     }
     if (isinf(f)) {
-        out->p = 1.0; out->logp = 0.0; out->q = 0.0; out->logq = -INFINITY;
+        out->p = 1.0; out->logp = 0.0; out->q = 0.0; out->logq = -INFINITY; out->logk = -INFINITY;
         return MCSTAT_OK;
     }
     if (df2 >= F_LIMIT * df1)
         return mcstat__chisq_tails(df1 * f, df1, out);
     if (df1 >= F_LIMIT * df2) {
-        mcstat_tails c; /* P[F <= f] = P[chi2(df2) >= df2 / f] */
+        mcstat_tails c; /* P[F <= f] = P[chi2(df2) >= df2 / f]; x f(x) carries over */
         int st = mcstat__chisq_tails(df2 / f, df2, &c);
-        out->p = c.q; out->logp = c.logq; out->q = c.p; out->logq = c.logp;
+        out->p = c.q; out->logp = c.logq; out->q = c.p; out->logq = c.logp; out->logk = c.logk;
         return st;
     }
     f_args g = f_xy(f, df1, df2);
     return mcstat__beta_inc_u(0.5 * df1, 0.5 * df2, g.x, g.y, g.ux, g.uy, out);
-}
-
-static double f_log_xf(double f, double df1, double df2)
-{
-    if (df2 >= F_LIMIT * df1) /* x f(x) is invariant under x -> c x and x -> c / x */
-        return chisq_log_xf(df1 * f, df1);
-    if (df1 >= F_LIMIT * df2)
-        return chisq_log_xf(df2 / f, df2);
-    f_args g = f_xy(f, df1, df2);
-    return mcstat__log_beta_prefactor_u(0.5 * df1, 0.5 * df2, g.x, g.y, g.ux, g.uy);
 }
 
 /* ---- the quantile solver ------------------------------------------------ */
@@ -235,15 +221,6 @@ static int eval_tails(const dist_ctx *d, double x, mcstat_tails *t)
     }
 }
 
-static double eval_log_xf(const dist_ctx *d, double x)
-{
-    switch (d->kind) {
-    case 0: return t_log_xf(x, d->df1);
-    case 1: return chisq_log_xf(x, d->df1);
-    default: return f_log_xf(x, d->df1, d->df2);
-    }
-}
-
 /* L(z) = log T(e^z) - log p, T the chosen tail; also returns L'(z). */
 static int eval_L(const dist_ctx *d, double z, int upper, double logp, double *L, double *dL)
 {
@@ -254,7 +231,7 @@ static int eval_L(const dist_ctx *d, double z, int upper, double logp, double *L
         return st;
     double logT = upper ? t.logq : t.logp;
     *L = logT - logp;
-    double slope = exp(eval_log_xf(d, x) - logT);
+    double slope = exp(t.logk - logT); /* x f(x) / T(x) */
     *dL = upper ? -slope : slope;
     return MCSTAT_OK;
 }

@@ -82,6 +82,12 @@ static inline mcstat_dd dd_div_d(mcstat_dd a, double b)
     return dd_fast_two_sum(q1, q2);
 }
 
+/* x * 2^e; the common e == 0 costs nothing (ldexp is a libm call). */
+static inline double scale2(double x, int e)
+{
+    return e ? ldexp(x, e) : x;
+}
+
 /* ---- argument checks ---------------------------------------------------- */
 static inline int valid_alternative(int alt)
 {
@@ -99,6 +105,9 @@ static inline int valid_alpha(double alpha)
 typedef struct {
     double p, q;       /* lower and upper tail, p + q = 1 */
     double logp, logq; /* their logarithms, finite where p or q underflow */
+    double logk;       /* special.c: log of the prefactor x^a y^b / B(a,b) or
+                        * x^a e^-x / Gamma(a+1); dist.c: log(x f(x)), the density
+                        * at x times x, which is that prefactor (times a for chi2) */
 } mcstat_tails;
 
 /* Regularized incomplete beta I_x(a, b) for a, b > 0, with x + y = 1 both

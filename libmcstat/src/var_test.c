@@ -16,7 +16,7 @@ static double ratio_pow2(double num, int k, double den)
 {
     int kd;
     double fd = frexp(den, &kd);
-    return ldexp(num / fd, k - kd);
+    return scale2(num / fd, k - kd);
 }
 
 int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, double alpha,
@@ -54,8 +54,8 @@ int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, 
         return MCSTAT_OK;
     }
     /* {sigma^2 : c0 <= M2 / sigma^2 <= c1} */
-    r.conf_int[0] = ldexp(x->m2 / r.critical[1], 2 * x->scale);
-    r.conf_int[1] = ldexp(x->m2 / r.critical[0], 2 * x->scale);
+    r.conf_int[0] = scale2(x->m2 / r.critical[1], 2 * x->scale);
+    r.conf_int[1] = scale2(x->m2 / r.critical[0], 2 * x->scale);
     *out = r;
     return MCSTAT_OK;
 }
@@ -87,7 +87,7 @@ int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double 
     mcstat__moments_var_scaled(x, &vx, &ex);
     mcstat__moments_var_scaled(y, &vy, &ey);
     int k = 2 * (ex - ey);
-    double est = ldexp(vx / vy, k); /* s_x^2 / s_y^2, as R reports it */
+    double est = scale2(vx / vy, k); /* s_x^2 / s_y^2, as R reports it */
     r.statistic = ratio_pow2(vx / vy, k, ratio);
     r.df[0] = df1;
     r.df[1] = df2;
@@ -104,8 +104,8 @@ int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double 
         return MCSTAT_OK;
     }
     /* {rho : c0 <= est / rho <= c1} */
-    r.conf_int[0] = ldexp((vx / vy) / r.critical[1], k);
-    r.conf_int[1] = ldexp((vx / vy) / r.critical[0], k);
+    r.conf_int[0] = scale2((vx / vy) / r.critical[1], k);
+    r.conf_int[1] = scale2((vx / vy) / r.critical[0], k);
     *out = r;
     return MCSTAT_OK;
 }
