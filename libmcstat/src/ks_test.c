@@ -251,7 +251,7 @@ int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny, int
     if (nx == 0 || ny == 0)
         return MCSTAT_ETOOFEW;
     /* u = i ny - j nx must fit in an int64, and 2 N keys in memory */
-    if ((uint64_t)nx > (UINT64_C(1) << 62) / (uint64_t)ny || nx > SIZE_MAX / 32 || ny > SIZE_MAX / 32)
+    if ((uint64_t)nx > ((UINT64_C(1) << 62) - 1) / (uint64_t)ny || nx > SIZE_MAX / 32 || ny > SIZE_MAX / 32)
         return MCSTAT_ETOOBIG;
 
     int method = o.method;
