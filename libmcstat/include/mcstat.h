@@ -268,7 +268,8 @@ MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_m
 /* Under H0 only the order of the labels matters; p-values are conditional  */
 /* on the tie pattern.  Methods:                                             */
 /*   EXACT      the permutation distribution by a lattice-path recursion in */
-/*              probability scale (O(nx ny) time, O(min(nx, ny)) memory),    */
+/*              probability scale (O(nx ny) time at most, O(N^1.5) in        */
+/*              practice, O(min(nx, ny)) memory),                            */
 /*              exact integer comparisons, ties handled; relative error      */
 /*              about 1e-13, absolute error below 1e-290.  MCSTAT_ETOOBIG    */
 /*              when (min(nx,ny)+1)(nx+ny+1) > MCSTAT_KS_EXACT_MAX_WORK.     */
@@ -301,10 +302,14 @@ enum mcstat_ks_weight {
 #define MCSTAT_RESULT_CRITICAL_SE(r) ((r)->reserved[0])
 #define MCSTAT_RESULT_N_SIM(r) ((r)->reserved[1])
 
-/* Work limits of the exact method, in lattice cells (min(nx,ny)+1)(nx+ny+1):
- * about 1 ns each on one core (bench/RESULTS_ks.md). */
-#define MCSTAT_KS_EXACT_MAX_WORK 20000000000.0 /* ~20 s: beyond, MCSTAT_ETOOBIG */
-#define MCSTAT_KS_AUTO_EXACT_WORK 4000000.0     /* ~5 ms: auto's bound */
+/* Size limits of the exact method, in lattice cells (min(nx,ny)+1)(nx+ny+1).
+ * The recursion only visits the band of points that the threshold has not
+ * absorbed and whose probability is above 2^-1000, O(sqrt(N)) wide, so its
+ * time grows like N^1.5: 0.16 ms for a Canner p-value at 1000 + 1000, 0.8 ms
+ * at 4000 + 4000; the critical value (a search) costs 10-40 p-values
+ * (bench/RESULTS_ks.md). */
+#define MCSTAT_KS_EXACT_MAX_WORK 2e11  /* ~3.2e5 + 3.2e5, seconds: beyond, MCSTAT_ETOOBIG */
+#define MCSTAT_KS_AUTO_EXACT_WORK 1.6e7 /* ~2800 + 2800: p-value ~0.5 ms, critical value ~20 ms */
 #define MCSTAT_KS_DEFAULT_N_SIM 10000
 
 /* A cache of simulated null distributions, owned by the caller and shared by
