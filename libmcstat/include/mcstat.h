@@ -277,8 +277,10 @@ MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_m
 /*              p = (1 + #{D* >= D})/(n_sim + 1), p_value_se its Monte Carlo */
 /*              standard error sqrt(p(1-p)/n_sim); bit-identical for any     */
 /*              number of threads; optionally cached (mcstat_ks_cache).      */
-/*   ASYMPTOTIC weight NONE only: Kolmogorov's limit with Stephens' small-   */
-/*              sample correction (see bench/RESULTS_ks.md for its error).   */
+/*   ASYMPTOTIC weight NONE only: Kolmogorov's limit at sqrt(ne) D (ne =    */
+/*              nx ny/N), one-sided exp(-2 ne D^2); conservative, p within  */
+/*              2% at 300+300 and beyond (bench/RESULTS_ks.md; Stephens'     */
+/*              correction was measured and is anti-conservative here).      */
 /*              Canner's statistic has no usable limit (ERRATA 3):           */
 /*              MCSTAT_EINVAL.                                               */
 /*   AUTO       EXACT when (min+1)(N+1) <= MCSTAT_KS_AUTO_EXACT_WORK, else   */

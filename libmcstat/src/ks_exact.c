@@ -304,7 +304,7 @@ int mcstat__ks_exact_critical(const mcstat__ks_data *d, double alpha, double *ke
     if (st)
         return st;
     const int none = c.weight == MCSTAT_KS_WEIGHT_NONE;
-    /* A first bracket around a guess (Stephens-corrected Kolmogorov or
+    /* A first bracket around a guess (Kolmogorov's limit or
      * Jaeschke's limit, good to ~10% in the statistic), widened by 30% steps;
      * the largest attainable value, whose band would be the whole lattice,
      * is evaluated only if the guesses run into it. */
