@@ -284,7 +284,8 @@ MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_m
 /*              Canner's statistic has no usable limit (ERRATA 3):           */
 /*              MCSTAT_EINVAL.                                               */
 /*   AUTO       EXACT when (min+1)(N+1) <= MCSTAT_KS_AUTO_EXACT_WORK, else   */
-/*              SIMULATE (Canner) or ASYMPTOTIC (NONE).                      */
+/*              SIMULATE (Canner, or NONE with ties) or ASYMPTOTIC (NONE     */
+/*              without ties).                                               */
 /* Result fields: statistic D or D2; critical[1] is the value above which H0 */
 /* is rejected at alpha (reject == statistic > critical[1] == p <= alpha),   */
 /* critical[0] = -Inf; decision is 0, or the sign of F - G where the         */
@@ -337,8 +338,8 @@ typedef struct mcstat_ks_options {
     int64_t n_sim;          /* replicates when simulating, >= 1; default 10000 */
     uint64_t seed;          /* simulation seed; default 0 */
     mcstat_ks_cache *cache; /* simulated distributions to reuse; NULL: none */
-    int32_t critical;       /* 1: compute critical[1] (exact: a search, ~log2 of the
-                               lattice's values p-value computations); 0: NaN; default 1 */
+    int32_t critical;       /* 1: compute critical[1] (exact: a search costing 10-40
+                               p-value computations); 0: leave it NaN; default 1 */
     int32_t reserved;       /* zero */
 } mcstat_ks_options;
 
