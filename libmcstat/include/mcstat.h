@@ -63,7 +63,9 @@ enum mcstat_status {
     MCSTAT_ENOMEM = 5,      /* out of memory */
     MCSTAT_ENUMERIC = 6,    /* a numerical method failed to converge */
     MCSTAT_EBUFSIZE = 7,    /* the caller's buffer is too small */
-    MCSTAT_ECORRUPT = 8     /* serialized bytes are corrupt, truncated or of an unknown version */
+    MCSTAT_ECORRUPT = 8,    /* serialized bytes are corrupt, truncated or of an unknown version */
+    MCSTAT_ETOOBIG = 9      /* the sizes are too large for the requested method (e.g. an exact
+                               K-S p-value whose lattice would not fit): choose another method */
 };
 
 /* A sentence describing status (static storage; never NULL). */
@@ -155,11 +157,16 @@ enum mcstat_test {
     MCSTAT_TEST_T_1 = 1,   /* one-sample t */
     MCSTAT_TEST_T_2 = 2,   /* Welch two-sample t */
     MCSTAT_TEST_VAR_1 = 3, /* one-sample chi-squared test on the variance */
-    MCSTAT_TEST_VAR_2 = 4  /* two-sample F test on the ratio of variances */
+    MCSTAT_TEST_VAR_2 = 4, /* two-sample F test on the ratio of variances */
+    MCSTAT_TEST_KS_2 = 5   /* two-sample Kolmogorov-Smirnov, unweighted or with Canner's weight */
 };
 
 enum mcstat_method {
-    MCSTAT_METHOD_ANALYTIC = 0 /* p-value from the statistic's exact null distribution (t, chi^2, F) */
+    MCSTAT_METHOD_ANALYTIC = 0,  /* p-value from the statistic's exact null distribution (t, chi^2, F) */
+    MCSTAT_METHOD_AUTO = 1,      /* (K-S option only) let the test choose; results never carry it */
+    MCSTAT_METHOD_EXACT = 2,     /* exact permutation distribution (K-S: lattice paths) */
+    MCSTAT_METHOD_SIMULATE = 3,  /* Monte Carlo: p_value_se > 0 */
+    MCSTAT_METHOD_ASYMPTOTIC = 4 /* a large-sample approximation */
 };
 
 typedef struct mcstat_result {
@@ -244,6 +251,119 @@ MCSTAT_API int mcstat_var_test_2(const double *x, size_t nx, const double *y, si
 MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
                                          double ratio, int alternative, double alpha,
                                          mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Two-sample Kolmogorov-Smirnov test (section 2.5, ERRATA 1-3, 7).          */
+/* F and G are the empirical CDFs #{x_i <= t}/nx and #{y_j <= t}/ny, z =     */
+/* (nx F + ny G)/(nx + ny) the pooled one.  They are compared at the pooled  */
+/* jump points only, and where values are tied only after the last of a run */
+/* of equal values.  The statistic is                                        */
+/*   weight NONE:   D  = sup |F - G|                     (as R and SciPy)    */
+/*   weight CANNER: D2 = sqrt(nx ny/(nx+ny)) sup |F - G| / sqrt(z (1 - z)),  */
+/*                  the sup over jump points with 0 < z < 1.                 */
+/* Alternatives are claims about the first sample, as for every mcstat test */
+/* (ERRATA 4): MCSTAT_LESS = x tends to be smaller than y, i.e. its CDF lies */
+/* above, sup (F - G); MCSTAT_GREATER = x tends to be larger, sup (G - F).   */
+/* NOTE: R's ks.test and SciPy's ks_2samp name one-sided alternatives by the */
+/* CDF, the other way round: mcstat's LESS is their "greater".  The printed */
+/* block uses R's wording ("the CDF of x lies above that of y").  One-sided  */
+/* statistics include the end point where F = G, so they are >= 0.          */
+/* Under H0 only the order of the labels matters; p-values are conditional  */
+/* on the tie pattern.  Methods:                                             */
+/*   EXACT      the permutation distribution by a lattice-path recursion in */
+/*              probability scale (O(nx ny) time at most, O(N^1.5) in        */
+/*              practice, O(min(nx, ny)) memory),                            */
+/*              exact integer comparisons, ties handled; relative error      */
+/*              about 1e-13, absolute error below 1e-290.  MCSTAT_ETOOBIG    */
+/*              when (min(nx,ny)+1)(nx+ny+1) > MCSTAT_KS_EXACT_MAX_WORK.     */
+/*   SIMULATE   n_sim random label arrangements (over the fixed tie blocks): */
+/*              p = (1 + #{D* >= D})/(n_sim + 1), p_value_se its Monte Carlo */
+/*              standard error sqrt(p(1-p)/n_sim); bit-identical for any     */
+/*              number of threads; optionally cached (mcstat_ks_cache).      */
+/*   ASYMPTOTIC weight NONE only: Kolmogorov's limit at sqrt(ne) D (ne =    */
+/*              nx ny/N), one-sided exp(-2 ne D^2); conservative, p within  */
+/*              2% at 300+300 and beyond (bench/RESULTS_ks.md; Stephens'     */
+/*              correction was measured and is anti-conservative here).      */
+/*              Canner's statistic has no usable limit (ERRATA 3):           */
+/*              MCSTAT_EINVAL.                                               */
+/*   AUTO       EXACT when (min+1)(N+1) <= MCSTAT_KS_AUTO_EXACT_WORK, else   */
+/*              SIMULATE (Canner, or NONE with ties) or ASYMPTOTIC (NONE     */
+/*              without ties).                                               */
+/* Result fields: statistic D or D2; critical[1] is the value above which H0 */
+/* is rejected at alpha (reject == statistic > critical[1] == p <= alpha),   */
+/* critical[0] = -Inf; decision is 0, or -1 ("less": x tends to be smaller, */
+/* its CDF lies above where the (weighted) deviation is largest) or +1.  df, */
+/* estimate, conf_int, null_value, std_error are NaN.  Reserved fields used: */
+/*   MCSTAT_RESULT_KS_WEIGHT(r)     reserved_i[0]: enum mcstat_ks_weight     */
+/*   MCSTAT_RESULT_CRITICAL_SE(r)   reserved[0]: Monte Carlo standard error  */
+/*                                  of critical[1] (0 unless simulated)      */
+/*   MCSTAT_RESULT_N_SIM(r)         reserved[1]: replicates simulated        */
+/* ------------------------------------------------------------------------ */
+enum mcstat_ks_weight {
+    MCSTAT_KS_WEIGHT_NONE = 0,  /* the classical (Smirnov) statistic */
+    MCSTAT_KS_WEIGHT_CANNER = 1 /* Canner's [z(1-z)]^(-1/2) (the paper's) */
+};
+
+#define MCSTAT_RESULT_KS_WEIGHT(r) ((r)->reserved_i[0])
+#define MCSTAT_RESULT_CRITICAL_SE(r) ((r)->reserved[0])
+#define MCSTAT_RESULT_N_SIM(r) ((r)->reserved[1])
+
+/* Size limits of the exact method, in lattice cells (min(nx,ny)+1)(nx+ny+1).
+ * The recursion only visits the band of points that the threshold has not
+ * absorbed and whose probability is above 2^-1000, O(sqrt(N)) wide, so its
+ * time grows like N^1.5: 0.16 ms for a Canner p-value at 1000 + 1000, 0.8 ms
+ * at 4000 + 4000; the critical value (a search) costs 10-40 p-values
+ * (bench/RESULTS_ks.md). */
+#define MCSTAT_KS_EXACT_MAX_WORK 2e11  /* ~3.2e5 + 3.2e5, seconds: beyond, MCSTAT_ETOOBIG */
+#define MCSTAT_KS_AUTO_EXACT_WORK 1.6e7 /* ~2800 + 2800: p-value ~0.5 ms, critical value ~20 ms */
+#define MCSTAT_KS_DEFAULT_N_SIM 10000
+
+/* A cache of simulated null distributions, owned by the caller and shared by
+ * any number of threads (it has its own lock).  Entries are keyed by (nx, ny,
+ * weight, alternative, n_sim, seed, tie pattern), so a battery of tests at
+ * the same sizes simulates once.  When adding an entry would exceed
+ * max_bytes, the least recently used entries are dropped. */
+typedef struct mcstat_ks_cache mcstat_ks_cache;
+/* MCSTAT_EINVAL (cache NULL), MCSTAT_ENOMEM. */
+MCSTAT_API int mcstat_ks_cache_new(size_t max_bytes, mcstat_ks_cache **cache);
+/* Frees the cache (NULL is a no-op); no test may be using it. */
+MCSTAT_API void mcstat_ks_cache_free(mcstat_ks_cache *cache);
+/* Lookups that found an entry, lookups that did not, entries held (any may be NULL). */
+MCSTAT_API int mcstat_ks_cache_stats(const mcstat_ks_cache *cache, uint64_t *hits,
+                                     uint64_t *misses, uint64_t *entries);
+
+/* Options; grows by appending fields, so always start from the initialiser. */
+typedef struct mcstat_ks_options {
+    uint32_t size;          /* sizeof(mcstat_ks_options): set by the initialiser */
+    int32_t weight;         /* enum mcstat_ks_weight; default CANNER */
+    int32_t method;         /* MCSTAT_METHOD_AUTO (default), _EXACT, _SIMULATE, _ASYMPTOTIC */
+    int32_t threads;        /* simulation threads, 1..64; default 2 */
+    int64_t n_sim;          /* replicates when simulating, >= 1; default 10000 */
+    uint64_t seed;          /* simulation seed; default 0 */
+    mcstat_ks_cache *cache; /* simulated distributions to reuse; NULL: none */
+    int32_t critical;       /* 1: compute critical[1] (exact: a search costing 10-40
+                               p-value computations); 0: leave it NaN; default 1 */
+    int32_t reserved;       /* zero */
+} mcstat_ks_options;
+
+#define MCSTAT_KS_OPTIONS_INIT \
+    {sizeof(mcstat_ks_options), MCSTAT_KS_WEIGHT_CANNER, MCSTAT_METHOD_AUTO, 2, \
+     MCSTAT_KS_DEFAULT_N_SIM, 0u, NULL, 1, 0}
+
+/* Sets *opt to MCSTAT_KS_OPTIONS_INIT (for callers that cannot use macros). */
+MCSTAT_API int mcstat_ks_options_init(mcstat_ks_options *opt);
+MCSTAT_API size_t mcstat_sizeof_ks_options(void);
+
+/* The two-sample K-S test of x against y.  opt may be NULL (the defaults).
+ * Statuses: MCSTAT_EINVAL (NULL data or out, bad enum, alpha outside (0,1),
+ * n_sim < 1, threads outside 1..64, an options size this library does not
+ * know, ASYMPTOTIC with Canner's weight), MCSTAT_ETOOFEW (an empty sample),
+ * MCSTAT_ENONFINITE (NaN in the data; +-Inf are ordinary, ordered values),
+ * MCSTAT_ETOOBIG (nx*ny >= 2^62, or EXACT beyond MCSTAT_KS_EXACT_MAX_WORK),
+ * MCSTAT_ENOMEM. */
+MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny,
+                                int alternative, double alpha, const mcstat_ks_options *opt,
+                                mcstat_result *out);
 
 /* ------------------------------------------------------------------------ */
 /* Distributions.                                                            */

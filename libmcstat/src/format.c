@@ -106,10 +106,50 @@ static int describe(const mcstat_result *r, test_text *t)
     }
 }
 
+/* The K-S block: R's print of ks.test (method names, D / D^+ / D^-, the
+ * alternative's wording with R's literal "x" and "y"), the weight named in
+ * the method line, and for a simulated p-value a line with its Monte Carlo
+ * standard error and the number of replicates. */
+static void format_ks(const mcstat_result *r, const char *x_name, const char *y_name, sbuf *s)
+{
+    static const char *how[] = {"Exact", "Monte-Carlo", "Asymptotic"};
+    int m = r->method == MCSTAT_METHOD_SIMULATE ? 1 : r->method == MCSTAT_METHOD_ASYMPTOTIC ? 2 : 0;
+    int canner = MCSTAT_RESULT_KS_WEIGHT(r) == MCSTAT_KS_WEIGHT_CANNER;
+    sb_printf(s, "\n\t%s two-sample Kolmogorov-Smirnov test%s\n\n", how[m], canner ? " with Canner's weight" : "");
+    sb_printf(s, "data:  %s and %s\n", x_name, y_name);
+    char a[64], line[512];
+    static const char *suffix[] = {"", "^-", "^+"}; /* R's, by the CDF sense */
+    const int cdf_alt = mcstat__ks_cdf_alternative(r->alternative);
+    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
+    size_t ll = (size_t)snprintf(line, sizeof line, "%s%s = %s", canner ? "D2" : "D", suffix[cdf_alt], a);
+    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
+    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
+    sb_wrapped(s, line);
+    if (r->method == MCSTAT_METHOD_SIMULATE) {
+        mcstat__rformat1(r->p_value_se, 2, a, sizeof a);
+        sb_printf(s, "Monte Carlo standard error of the p-value: %s (%.0f replicates)\n", a, MCSTAT_RESULT_N_SIM(r));
+    }
+    static const char *alt[] = {"two-sided", "the CDF of x lies below that of y", "the CDF of x lies above that of y"};
+    sb_printf(s, "alternative hypothesis: %s\n", alt[cdf_alt]);
+    mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
+    sb_printf(s, "decision at alpha = %s: %s\n\n", a, mcstat_decision_name(r->decision));
+}
+
 int mcstat_result_format(const mcstat_result *r, const char *x_name, const char *y_name, char *buf,
                          size_t size, size_t *length)
 {
     test_text tt;
+    if (r && r->test == MCSTAT_TEST_KS_2) {
+        if ((!buf && size > 0) || !valid_alternative(r->alternative))
+            return MCSTAT_EINVAL;
+        sbuf s = {buf, size, 0};
+        if (size > 0)
+            buf[0] = '\0';
+        format_ks(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
+        if (length)
+            *length = s.len;
+        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+    }
     if (!r || (!buf && size > 0) || !describe(r, &tt) || !valid_alternative(r->alternative))
         return MCSTAT_EINVAL;
     if (!x_name)

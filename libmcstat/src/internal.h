@@ -10,6 +10,8 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdint.h>
+#include <string.h>
 
 #define MCSTAT_HIDDEN __attribute__((visibility("hidden")))
 
@@ -180,5 +182,97 @@ MCSTAT_HIDDEN int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int
                                      mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double ratio,
                                      int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
+
+
+/* ---- sorting (sort.c) ------------------------------------------------------
+ * Doubles as order-preserving unsigned keys (NaN excluded, -0 made +0 so
+ * that equal values have equal keys), sorted by an LSD radix sort. */
+static inline uint64_t mcstat__order_key(double x)
+{
+    uint64_t k;
+    x = x == 0.0 ? 0.0 : x;
+    memcpy(&k, &x, sizeof k);
+    return (k >> 63) ? ~k : k | 0x8000000000000000ull;
+}
+static inline double mcstat__key_double(uint64_t k)
+{
+    k = (k >> 63) ? k & 0x7fffffffffffffffull : ~k;
+    double x;
+    memcpy(&x, &k, sizeof x);
+    return x;
+}
+/* Sorts a[0..n) ascending; tmp has room for n keys.  MCSTAT_ENOMEM. */
+MCSTAT_HIDDEN int mcstat__radix_sort_u64(uint64_t *a, size_t n, uint64_t *tmp);
+
+/* ---- two-sample Kolmogorov-Smirnov (ks_*.c) --------------------------------
+ * mcstat's alternatives are claims about the first sample (API.md, ERRATA 4):
+ * LESS = x tends to be smaller = its CDF lies above.  R, SciPy and the
+ * internals of ks_*.c name them by the CDF instead (greater = sup (F - G));
+ * mcstat__ks_cdf_alternative maps one to the other (its own inverse).
+
+ * A lattice point after s = i + j pooled values (i of x, j of y) is
+ * u = i*ny - j*nx = (F - G) nx ny and q = s (N - s) = z (1 - z) N^2.  The
+ * test works with a monotone "key" of the statistic: |u| for weight NONE,
+ * u^2 / q for Canner's; D = key / (nx ny), D2 = sqrt(key N / (nx ny)).
+ * Comparisons that decide p-values are made on (u, q) in exact integer
+ * arithmetic, so no threshold needs nudging. */
+typedef struct {
+    uint64_t u, q; /* the value u^2/q (Canner) or u (NONE, q unused); u >= 0 */
+} mcstat__ks_point;
+
+static inline int mcstat__ks_cdf_alternative(int alternative)
+{
+    return alternative == MCSTAT_LESS ? MCSTAT_GREATER : alternative == MCSTAT_GREATER ? MCSTAT_LESS : alternative;
+}
+
+typedef struct {
+    uint64_t n1, n2, N;
+    int weight, alternative;
+    size_t nblocks;        /* distinct pooled values */
+    const uint64_t *ends;  /* s at the end of each block (ascending, last N); NULL: no ties */
+    mcstat__ks_point obs;  /* the observed sup */
+    double key;            /* its key */
+    int sign;              /* sign of F - G there (+1, -1; 0 when the statistic is 0) */
+} mcstat__ks_data;
+
+static inline double mcstat__ks_key(int weight, uint64_t u, uint64_t q)
+{
+    double du = (double)u;
+    return weight == MCSTAT_KS_WEIGHT_NONE ? du : du * du / (double)q;
+}
+MCSTAT_HIDDEN double mcstat__ks_key_statistic(const mcstat__ks_data *d, double key);
+/* -1, 0, +1 as a < b, a == b, a > b exactly (u < 2^63, products < 2^128 or
+ * compared in long double beyond). */
+MCSTAT_HIDDEN int mcstat__ks_point_cmp(int weight, mcstat__ks_point a, mcstat__ks_point b);
+
+/* Exact (ks_exact.c).  MCSTAT_ETOOBIG beyond the work limit. */
+MCSTAT_HIDDEN int mcstat__ks_exact_check(const mcstat__ks_data *d);
+/* P(statistic >= the value of t) under H0, given the tie pattern. */
+MCSTAT_HIDDEN int mcstat__ks_exact_sf(const mcstat__ks_data *d, mcstat__ks_point t, double *p);
+/* The largest attainable key c with P(key >= c) > alpha (+ its statistic). */
+MCSTAT_HIDDEN int mcstat__ks_exact_critical(const mcstat__ks_data *d, double alpha, double *key);
+
+/* Simulation (ks_simulate.c): n_sim keys of the null distribution, sorted. */
+MCSTAT_HIDDEN int mcstat__ks_simulate(const mcstat__ks_data *d, int64_t n_sim, uint64_t seed,
+                                      int threads, double *keys);
+/* The same with a chosen generator (the benchmark compares them). */
+enum { MCSTAT__KS_RNG_TAUS2 = 0, MCSTAT__KS_RNG_XOSHIRO = 1, MCSTAT__KS_RNG_DEFAULT = 1 };
+MCSTAT_HIDDEN int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t seed,
+                                          int threads, int rng, double *keys);
+
+/* Cache (ks_cache.c): copies of sorted simulated keys. */
+MCSTAT_HIDDEN int mcstat__ks_cache_get(mcstat_ks_cache *c, const mcstat__ks_data *d, int64_t n_sim,
+                                       uint64_t seed, double *keys);
+MCSTAT_HIDDEN int mcstat__ks_cache_put(mcstat_ks_cache *c, const mcstat__ks_data *d, int64_t n_sim,
+                                       uint64_t seed, const double *keys);
+
+/* Asymptotic (ks_asymptotic.c), weight NONE: upper tail at statistic D and
+ * the critical value at alpha. */
+MCSTAT_HIDDEN double mcstat__ks_asymp_sf(uint64_t n1, uint64_t n2, int two_sided, double d);
+MCSTAT_HIDDEN double mcstat__ks_asymp_critical(uint64_t n1, uint64_t n2, int two_sided, double alpha);
+/* Jaeschke's (1979) limit for Canner's statistic (measured in bench/, not used). */
+MCSTAT_HIDDEN double mcstat__ks_jaeschke_sf(double n, int two_sided, double d2);
+/* Kolmogorov's limit P(K > t). */
+MCSTAT_HIDDEN double mcstat__kolmogorov_sf(double t);
 
 #endif /* MCSTAT_INTERNAL_H */

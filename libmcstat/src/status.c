@@ -26,13 +26,14 @@ const char *mcstat_strerror(int status)
     switch (status) {
     case MCSTAT_OK: return "success";
     case MCSTAT_EINVAL: return "invalid argument (NULL pointer, unknown option, or a parameter outside its domain)";
-    case MCSTAT_ETOOFEW: return "too few observations: each sample needs at least 2";
+    case MCSTAT_ETOOFEW: return "too few observations: each sample needs at least 2 (at least 1 for the K-S test)";
     case MCSTAT_ENONFINITE: return "the data contain NaN or infinite values";
     case MCSTAT_EDEGENERATE: return "the data are essentially constant (zero spread)";
     case MCSTAT_ENOMEM: return "out of memory";
     case MCSTAT_ENUMERIC: return "numerical failure: an iteration did not converge";
     case MCSTAT_EBUFSIZE: return "the output buffer is too small";
     case MCSTAT_ECORRUPT: return "serialized data are truncated, corrupt or of an unknown version";
+    case MCSTAT_ETOOBIG: return "the sizes are too large for the requested method (e.g. an exact K-S p-value): choose another";
     default: return "unknown status code";
     }
 }
