@@ -342,10 +342,15 @@ MCEST_API int mcest_brdf_sample_exact(const mcest_brdf_plan *plan, uint64_t seed
 /*       (relative, below the rel_tol given to mcest_brdf_plan_albedo: 1e-6 */
 /*       in the tests, far below what 1e10 samples could resolve).            */
 /*       Plans without an albedo give MCEST_ENOTREADY.                       */
+/*   MCEST_RR_REJECTION_UNBIASED  the same direction, times an independent  */
+/*       unbiased estimate of the albedo, f cos / q at one more proposal    */
+/*       from the mixture: E[albedo_hat Lenv(wi)] = albedo E[Lenv(wi)] = Lr  */
+/*       exactly, with no quadrature, for more variance.                     */
 /* ------------------------------------------------------------------------ */
 enum mcest_rr_method {
     MCEST_RR_SAMPLING = 0,
-    MCEST_RR_REJECTION = 1
+    MCEST_RR_REJECTION = 1,
+    MCEST_RR_REJECTION_UNBIASED = 2
 };
 
 MCEST_API int mcest_environment_radiance(const double *w, size_t n, double *L);

@@ -36,7 +36,7 @@ int mcest_reflected_radiance(const mcest_brdf_plan *plan, int method, uint64_t s
 {
     if (!mcest_plan_ok(plan) || (n > 0 && !out))
         return MCEST_EINVAL;
-    if (method != MCEST_RR_SAMPLING && method != MCEST_RR_REJECTION)
+    if (method < MCEST_RR_SAMPLING || method > MCEST_RR_REJECTION_UNBIASED)
         return MCEST_EINVAL;
     uint64_t tag = mcest_tag(MCEST_DOMAIN_RR, (uint64_t)method, (uint64_t)plan->brdf.model);
     if (!(plan->bound > 0.0)) { /* f = 0 */
@@ -54,7 +54,7 @@ int mcest_reflected_radiance(const mcest_brdf_plan *plan, int method, uint64_t s
         }
         return MCEST_OK;
     }
-    if (!plan->has_albedo)
+    if (method == MCEST_RR_REJECTION && !plan->has_albedo)
         return MCEST_ENOTREADY;
     uint64_t trials = 0;
     for (size_t k = 0; k < n; k++) {
@@ -62,7 +62,17 @@ int mcest_reflected_radiance(const mcest_brdf_plan *plan, int method, uint64_t s
         int st = mcest_exact_one(plan, seed, tag, first_index + k, max_trials, wi, &trials);
         if (st != MCEST_OK)
             return st;
-        out[k] = plan->albedo * mcest_env(wi);
+        double albedo = plan->albedo;
+        if (method == MCEST_RR_REJECTION_UNBIASED) {
+            /* An independent unbiased estimate of the albedo: f cos / q at
+             * one more proposal, drawn from a block the rejection loop
+             * never reaches (blocks count up from 0). */
+            mcest_u64x4 r = mcest_random_block(seed, tag, first_index + k, UINT64_MAX);
+            double w2[3];
+            mcest_plan_propose(plan, r.v, w2);
+            albedo = mcest_plan_ratio(plan, w2);
+        }
+        out[k] = albedo * mcest_env(wi);
     }
     return MCEST_OK;
 }
