@@ -16,8 +16,12 @@
  *      when it spans 1e-8 radians, and a sizeable fraction at 1e-5.
  *   3. The final step, cos(theta) = 1 - u2 (1 - C'.B), forms 1 - C'.B ~
  *      theta^2/2 from a dot product near 1: the same sqrt(eps) loss.
- *   pbrt-v4 replaces acos by atan2-based AngleBetween and clamps, which
- *   cures most of (1) for the angles but keeps A_pi - pi and (2), (3).
+ *   pbrt-v4 takes the vertex angles with an atan2-based AngleBetween and
+ *   draws the sub-area plus pi between pi and A_pi (no subtraction there),
+ *   but its density 1/(A_pi - pi), the weight estimator S multiplies by,
+ *   keeps the cancellation of (1), its sin and cos of A'_pi ~ pi carry
+ *   A'_pi's absolute rounding, and it keeps (2) and (3) (SafeSqrt(1 - x^2)
+ *   for sin(b') and sin(theta)).
  *
  * The reformulation used here works only with differences of unit vectors
  * computed from the triangle's edges (never from differences of nearly
