@@ -13,7 +13,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps system-deps python-deps build test ctest demo bench references clean
+.PHONY: all deps system-deps python-deps build test ctest python pytest demo bench bench-python bench-estimators references clean
 
 all: build
 
@@ -45,7 +45,15 @@ build: system-deps
 ctest: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
-test: deps ctest
+# The Python package, built by scikit-build-core through the same CMake
+# (build/python/), installed into .venv.
+python: system-deps python-deps
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PY) -m pip install -q --no-build-isolation .
+
+pytest: python
+	$(PY) -m pytest -q tests/python
+
+test: deps ctest pytest
 
 demo: build
 	$(BUILD)/examples/c/mcstat_demo
@@ -55,10 +63,20 @@ bench: deps
 	cmake --build $(BUILD)-bench -j $(JOBS)
 	$(PY) bench/run.py --build $(BUILD)-bench
 
+bench-python: python
+	$(PY) bench/bench_python.py
+
+# C estimators against their NumPy twins; rewrites bench/RESULTS_estimators.md.
+bench-estimators: python-deps
+	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DMCSTAT_BUILD_BENCH=ON -DMCSTAT_BUILD_TESTS=OFF
+	cmake --build $(BUILD)-bench -j $(JOBS) --target bench_estimators
+	$(PY) bench/bench_estimators_numpy.py --c $(BUILD)-bench/bench/bench_estimators --write
+
 # Regenerates the committed reference numbers (needs R for the formatting).
 references: python-deps
 	$(PY) tests/reference/make_reference.py
 	Rscript tests/reference/make_rformat.R
+	Rscript tests/reference/make_rblocks_python.R
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-bench

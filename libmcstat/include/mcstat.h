@@ -288,6 +288,41 @@ MCSTAT_API void mcstat_gsl_handler_off(void);
  * force); returns 1 if it did so, 0 if a caller's handler was left alone. */
 MCSTAT_API int mcstat_gsl_handler_off_if_default(void);
 
+/* ------------------------------------------------------------------------ */
+/* Row-wise tests: the per-pixel case.                                       */
+/* One test per row of a matrix (an image whose every pixel holds k          */
+/* secondary estimates): row i of x starts at x + i * x_stride (strides in   */
+/* elements) and holds n contiguous values; row i of y pairs with row i of   */
+/* x.  out[i] receives row i's result, bit for bit what the single-sample    */
+/* call on that row returns, and status[i] (may be NULL) its status; a row   */
+/* that fails gets NaN fields and the other rows are still computed.         */
+/* Critical values are solved once for rows of equal degrees of freedom.     */
+/* flags: MCSTAT_ROWS_NO_INTERVALS skips critical values and confidence      */
+/* intervals (left NaN; p-value, reject and decision remain): the cheap path */
+/* when only the decision map is wanted.  MCSTAT_ROWS_OMIT_NAN skips NaN     */
+/* values in each row (+-Inf remains an error).                              */
+/* Returns MCSTAT_OK when every row succeeded, else the status of the first  */
+/* row that failed; MCSTAT_EINVAL (nothing written) for NULL pointers or     */
+/* unknown flags.  No allocation; disjoint row ranges may run on different   */
+/* threads (out + start, status + start).                                    */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_ROWS_NO_INTERVALS 1u
+#define MCSTAT_ROWS_OMIT_NAN 2u
+
+MCSTAT_API int mcstat_t_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double mu0,
+                                    int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                    int32_t *status);
+MCSTAT_API int mcstat_t_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y,
+                                    size_t ny, size_t y_stride, size_t rows, double mu0, int alternative,
+                                    double alpha, unsigned flags, mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_var_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride,
+                                      double sigma2, int alternative, double alpha, unsigned flags,
+                                      mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y,
+                                      size_t ny, size_t y_stride, size_t rows, double ratio,
+                                      int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                      int32_t *status);
+
 #ifdef __cplusplus
 }
 #endif

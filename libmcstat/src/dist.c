@@ -54,20 +54,57 @@ static double t_log_upper_far(double u, double df)
     return -df * log(u) + (a - 1.0) * log(df) - lb;
 }
 
+/* P[|T| <= u] = I_y(1/2, df/2), y = u^2/(df+u^2), by the hypergeometric
+ * series I_y(p,q) = y^p x^q / (p B(p,q)) * sum_j c_j, c_0 = 1,
+ * c_{j+1} = c_j (p+q+j)/(p+1+j) y (DLMF 8.17.8).  Every term is positive, so
+ * the sum is accurate to a few ulps; for y <= 1/2 it converges in at most ~60
+ * terms (about 20 at Monte Carlo df), where the continued fraction near the
+ * centre needs O(sqrt df) costly steps.  Returns 0 if it did not converge. */
+static int t_central(double df, double x, double y, double *s, double *logk)
+{
+    const double A = 0.5 * df + 0.5;
+    double term = 1.0, sum = 1.0;
+    for (int j = 0; j < 200; j++) {
+        term *= (A + j) / (1.5 + j) * y;
+        sum += term;
+        if (term <= 0.25 * DBL_EPSILON * sum) {
+            *logk = mcstat__log_beta_prefactor(0.5, 0.5 * df, y, x);
+            *s = exp(*logk + M_LN2) * sum;
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Both tails of T at t; logk = log(|t| f(t)), the incomplete beta's
+ * prefactor, for the quantile solver. */
 int mcstat__t_tails(double t, double df, mcstat_tails *out)
 {
     if (t == 0.0) {
         out->p = out->q = 0.5;
         out->logp = out->logq = LOG_HALF;
+        out->logk = -INFINITY;
         return MCSTAT_OK;
     }
-    double at = fabs(t), up, logup, other, logother;
+    double at = fabs(t), up, logup, other, logother, logk;
     if (isinf(at)) {
-        up = 0.0; logup = -INFINITY; other = 1.0; logother = 0.0;
+        up = 0.0; logup = -INFINITY; other = 1.0; logother = 0.0; logk = -INFINITY;
     } else if (at < 1e150) {
-        double x, y;
+        double x, y, c;
         mcstat_tails b;
         t_xy(at, df, &x, &y);
+        /* The bulk (|t| below ~2, where every test under H0 spends most of
+         * its time, and the critical values at alpha = 0.05): the central
+         * probability c by its series; the upper tail (1 - c)/2 >= 0.02 then
+         * carries at most c/(1-c) <= 24 times c's few-ulp relative error
+         * (about 1e-14). */
+        if (y <= 0.5 && at <= 2.5 && t_central(df, x, y, &c, &logk) && c <= 0.96) {
+            up = 0.5 - 0.5 * c;
+            logup = log(up);
+            other = 0.5 + 0.5 * c;
+            logother = log(other);
+            goto done;
+        }
         /* P[T > |t|] = I_x(df/2, 1/2) / 2;  P[T <= |t|] = 1/2 + I_y(1/2, df/2) / 2 */
         int st = mcstat__beta_inc(0.5 * df, 0.5, x, y, &b);
         if (st)
@@ -76,12 +113,16 @@ int mcstat__t_tails(double t, double df, mcstat_tails *out)
         logup = LOG_HALF + b.logp;
         other = 0.5 + 0.5 * b.q;
         logother = log1p(-up);
+        logk = b.logk;
     } else {
         logup = t_log_upper_far(at, df);
         up = exp(logup);
         other = 1.0 - up;
         logother = log1p(-up);
+        logk = log(df) + logup; /* u f(u) = df P[T > u] in the power-law tail */
     }
+done:
+    out->logk = logk;
     if (t > 0.0) {
         out->q = up; out->logq = logup; out->p = other; out->logp = logother;
     } else {
@@ -90,69 +131,78 @@ int mcstat__t_tails(double t, double df, mcstat_tails *out)
     return MCSTAT_OK;
 }
 
-/* log(u f(u)) for u > 0 */
-static double t_log_xf(double u, double df)
-{
-    if (u >= 1e150) /* f(u) u = df * P[T > u] in the power-law tail */
-        return log(df) + t_log_upper_far(u, df);
-    double x, y;
-    t_xy(u, df, &x, &y);
-    return mcstat__log_beta_prefactor(0.5 * df, 0.5, x, y);
-}
-
 /* ---- chi-squared ------------------------------------------------------- */
 
+/* Both tails of chi-squared at x; logk = log(x f(x)) = log(a) + the
+ * incomplete gamma's prefactor. */
 int mcstat__chisq_tails(double x, double df, mcstat_tails *out)
 {
     if (x <= 0.0) {
-        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0;
+        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0; out->logk = -INFINITY;
         return MCSTAT_OK;
     }
-    return mcstat__gamma_inc(0.5 * df, 0.5 * x, out);
-}
-
-static double chisq_log_xf(double x, double df)
-{
-    double a = 0.5 * df;
-    return log(a) + mcstat__log_gamma_prefactor(a, 0.5 * x);
+    int st = mcstat__gamma_inc(0.5 * df, 0.5 * x, out);
+    out->logk += log(0.5 * df);
+    return st;
 }
 
 /* ---- F ----------------------------------------------------------------- */
 
-/* x = df1 F / (df1 F + df2), y = df2 / (df1 F + df2), without overflow. */
-static void f_xy(double f, double df1, double df2, double *x, double *y)
+/* The incomplete beta's arguments for F at f: x = df1 f / (df1 f + df2),
+ * y = df2 / (df1 f + df2), and the deviations u_x = df2 (f-1)/(df1 f + df2),
+ * u_y = df1 (1-f)/(df1 f + df2), all without overflow.  The deviations are
+ * formed from f - 1 (exact near 1): at large df F lives within 1e-7 of 1, and
+ * going through x would round away the digits that matter. */
+typedef struct {
+    double x, y, ux, uy;
+} f_args;
+
+static f_args f_xy(double f, double df1, double df2)
 {
+    f_args a;
     double r = (df1 / df2) * f; /* may overflow to Inf or underflow to 0 */
+    double fm1 = f - 1.0;
     if (r <= 1.0) {
-        *x = r / (1.0 + r);
-        *y = 1.0 / (1.0 + r);
+        a.x = r / (1.0 + r);
+        a.y = 1.0 / (1.0 + r);
+        a.ux = fm1 / (1.0 + r);
+        a.uy = -(df1 / df2) * fm1 / (1.0 + r);
     } else {
         double s = (df2 / df1) / f;
-        *x = 1.0 / (1.0 + s);
-        *y = s / (1.0 + s);
+        a.x = 1.0 / (1.0 + s);
+        a.y = s / (1.0 + s);
+        a.ux = s * fm1 / (1.0 + s);
+        a.uy = -(fm1 / f) / (1.0 + s);
     }
+    return a;
 }
+
+/* When one df exceeds the other by F_LIMIT, F is a scaled chi-squared to
+ * double precision (the tails change by a relative O(z^2 d_small/d_large)):
+ * F -> chi2(df1)/df1 as df2 -> Inf, F -> df2/chi2(df2) as df1 -> Inf.  The
+ * incomplete beta's fraction does not converge usefully there. */
+#define F_LIMIT 1e20
 
 int mcstat__f_tails(double f, double df1, double df2, mcstat_tails *out)
 {
     if (f <= 0.0) {
-        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0;
+        out->p = 0.0; out->logp = -INFINITY; out->q = 1.0; out->logq = 0.0; out->logk = -INFINITY;
         return MCSTAT_OK;
     }
     if (isinf(f)) {
-        out->p = 1.0; out->logp = 0.0; out->q = 0.0; out->logq = -INFINITY;
+        out->p = 1.0; out->logp = 0.0; out->q = 0.0; out->logq = -INFINITY; out->logk = -INFINITY;
         return MCSTAT_OK;
     }
-    double x, y;
-    f_xy(f, df1, df2, &x, &y);
-    return mcstat__beta_inc(0.5 * df1, 0.5 * df2, x, y, out);
-}
-
-static double f_log_xf(double f, double df1, double df2)
-{
-    double x, y;
-    f_xy(f, df1, df2, &x, &y);
-    return mcstat__log_beta_prefactor(0.5 * df1, 0.5 * df2, x, y);
+    if (df2 >= F_LIMIT * df1)
+        return mcstat__chisq_tails(df1 * f, df1, out);
+    if (df1 >= F_LIMIT * df2) {
+        mcstat_tails c; /* P[F <= f] = P[chi2(df2) >= df2 / f]; x f(x) carries over */
+        int st = mcstat__chisq_tails(df2 / f, df2, &c);
+        out->p = c.q; out->logp = c.logq; out->q = c.p; out->logq = c.logp; out->logk = c.logk;
+        return st;
+    }
+    f_args g = f_xy(f, df1, df2);
+    return mcstat__beta_inc_u(0.5 * df1, 0.5 * df2, g.x, g.y, g.ux, g.uy, out);
 }
 
 /* ---- the quantile solver ------------------------------------------------ */
@@ -171,15 +221,6 @@ static int eval_tails(const dist_ctx *d, double x, mcstat_tails *t)
     }
 }
 
-static double eval_log_xf(const dist_ctx *d, double x)
-{
-    switch (d->kind) {
-    case 0: return t_log_xf(x, d->df1);
-    case 1: return chisq_log_xf(x, d->df1);
-    default: return f_log_xf(x, d->df1, d->df2);
-    }
-}
-
 /* L(z) = log T(e^z) - log p, T the chosen tail; also returns L'(z). */
 static int eval_L(const dist_ctx *d, double z, int upper, double logp, double *L, double *dL)
 {
@@ -190,22 +231,24 @@ static int eval_L(const dist_ctx *d, double z, int upper, double logp, double *L
         return st;
     double logT = upper ? t.logq : t.logp;
     *L = logT - logp;
-    double slope = exp(eval_log_xf(d, x) - logT);
+    double slope = exp(t.logk - logT); /* x f(x) / T(x) */
     *dL = upper ? -slope : slope;
     return MCSTAT_OK;
 }
 
 /* Solves T(x) = p for x > 0, T the upper (decreasing) or lower (increasing)
  * tail, by Newton's method in z = log x inside a bracket that is widened
- * geometrically until it holds the root and bisected whenever a Newton step
- * would leave it.  Roots below the smallest normal double give 0; above DBL_MAX,
- * +Inf (subnormal arguments lose the digits these tails need). */
+ * geometrically until it holds the root.  A Newton step is taken when it
+ * stays inside the bracket and the previous one at least halved |L|;
+ * otherwise the bracket is bisected (far out on a steep log-tail Newton
+ * alone would crawl).  Roots below the smallest normal double give 0; above
+ * DBL_MAX, +Inf (subnormal arguments lose the digits these tails need). */
 static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, double *out)
 {
     const double sgn = upper ? -1.0 : 1.0; /* sgn * L is increasing in z */
     double lo = Z_MIN, hi = Z_MAX;          /* sgn*L(lo) < 0 < sgn*L(hi) once known */
     int lo_known = 0, hi_known = 0;
-    double z = log(x0), step = 1.0;
+    double z = log(x0), step = 1.0, prev_abs_L = INFINITY;
     if (!(z > Z_MIN && z < Z_MAX))
         z = 0.0;
     for (int it = 0; it < 400; it++) {
@@ -224,10 +267,19 @@ static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, 
             lo = z;
             lo_known = 1;
         }
-        double zn = z - L / dL;
-        if (!(zn > lo && zn < hi)) {
+        double tol = 4.0 * DBL_EPSILON * fmax(1.0, fabs(z));
+        double newton = L / dL;
+        if (fabs(newton) <= tol) { /* converged: the step is below z's resolution */
+            *out = exp(z - newton);
+            return MCSTAT_OK;
+        }
+        double zn = z - newton;
+        int newton_ok = zn > lo && zn < hi && fabs(L) <= 0.5 * prev_abs_L;
+        prev_abs_L = fabs(L);
+        if (!newton_ok) {
             if (lo_known && hi_known) {
                 zn = 0.5 * (lo + hi);
+                prev_abs_L = INFINITY; /* let Newton try again from the midpoint */
             } else if (!hi_known) { /* root lies above: expand upwards */
                 zn = z + step;
                 step *= 2.0;
@@ -250,10 +302,8 @@ static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, 
                 }
             }
         }
-        double dz = fabs(zn - z);
         z = zn;
-        if (dz <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(z)) ||
-            (lo_known && hi_known && hi - lo <= 4.0 * DBL_EPSILON * fmax(1.0, fabs(z)))) {
+        if (lo_known && hi_known && hi - lo <= tol) {
             *out = exp(z);
             return MCSTAT_OK;
         }
@@ -280,11 +330,55 @@ static double log_gamma(double a)
     return 0.5 * log(2.0 * M_PI) + (a - 0.5) * log(a) - a + mcstat__log_gammastar(a);
 }
 
+/* Hill's approximation (CACM algorithm 396, 1970, as in R's qt) to u > 0
+ * with P[T > u] = p, p < 1/2, df > 1: about 6 digits or better. */
+static double t_hill(double p, double df)
+{
+    double P = 2.0 * p; /* Hill works with the two-sided probability */
+    double a = 1.0 / (df - 0.5), b = 48.0 / (a * a);
+    double c = ((20700.0 * a / b - 98.0) * a - 16.0) * a + 96.36;
+    double d = ((94.5 / (b + c) - 3.0) / b + 1.0) * sqrt(a * M_PI_2) * df;
+    double y = pow(d * P, 2.0 / df);
+    if (y > 0.05 + a) { /* Cornish-Fisher-like expansion about the normal */
+        double x = mcstat__norm_quantile(p, 0); /* negative */
+        y = x * x;
+        if (df < 5.0)
+            c += 0.3 * (df - 4.5) * (x + 0.6);
+        c = (((0.05 * d * x - 5.0) * x - 7.0) * x - 2.0) * x + b + c;
+        y = (((((0.4 * y + 6.3) * y + 36.0) * y + 94.5) / c - y - 3.0) / b + 1.0) * x;
+        y = expm1(a * y * y);
+    } else {            /* the power-law tail */
+        y = ((1.0 / (((df + 6.0) / (df * y) - 0.089 * d - 0.822) * (df + 2.0) * 3.0) + 0.5 / (df + 4.0)) * y - 1.0) *
+                (df + 1.0) / (df + 2.0) + 1.0 / y;
+    }
+    return sqrt(df * y);
+}
+
 /* u > 0 with P[T > u] = p, p in (0, 1/2). */
 static int t_upper_quantile(double p, double df, double *u)
 {
     dist_ctx d = {0, df, 0.0};
     double logp = log(p);
+    /* Fast path: Hill's start and one Halley step on L(z) = log T(e^z) - log p
+     * (cubic convergence: a step below 1e-6 leaves an error near 1e-18),
+     * with L' = -s, s = x f(x) / T, and L'' = -s (g' + s), g' = d log(x f)/dz
+     * = 1 - (df+1) x^2/(df+x^2).  One tail and one density instead of the
+     * ~6 of the general solver; anything else falls through to it. */
+    if (df >= 1.0) {
+        double h = t_hill(p, df);
+        if (h > 1e-8 && h < 1e150) {
+            double z = log(h), L, dL;
+            if (eval_L(&d, z, 1, logp, &L, &dL) == MCSTAT_OK && isfinite(L) && isfinite(dL) && dL < 0.0) {
+                double h2 = h * h, g1 = 1.0 - (df + 1.0) * h2 / (df + h2);
+                double d2L = dL * (g1 - dL);
+                double step = 2.0 * L * dL / (2.0 * dL * dL - L * d2L);
+                if (fabs(step) <= 1e-6) {
+                    *u = h * exp(-step);
+                    return MCSTAT_OK;
+                }
+            }
+        }
+    }
     /* Cornish-Fisher about the normal quantile, and the power-law tail. */
     double z = mcstat__norm_quantile(p, 1), z2 = z * z;
     double cf = z + z * (z2 + 1.0) / (4.0 * df) + z * ((5.0 * z2 + 16.0) * z2 + 3.0) / (96.0 * df * df);

@@ -82,6 +82,12 @@ static inline mcstat_dd dd_div_d(mcstat_dd a, double b)
     return dd_fast_two_sum(q1, q2);
 }
 
+/* x * 2^e; the common e == 0 costs nothing (ldexp is a libm call). */
+static inline double scale2(double x, int e)
+{
+    return e ? ldexp(x, e) : x;
+}
+
 /* ---- argument checks ---------------------------------------------------- */
 static inline int valid_alternative(int alt)
 {
@@ -99,16 +105,24 @@ static inline int valid_alpha(double alpha)
 typedef struct {
     double p, q;       /* lower and upper tail, p + q = 1 */
     double logp, logq; /* their logarithms, finite where p or q underflow */
+    double logk;       /* special.c: log of the prefactor x^a y^b / B(a,b) or
+                        * x^a e^-x / Gamma(a+1); dist.c: log(x f(x)), the density
+                        * at x times x, which is that prefactor (times a for chi2) */
 } mcstat_tails;
 
 /* Regularized incomplete beta I_x(a, b) for a, b > 0, with x + y = 1 both
  * given so that neither needs to be formed as 1 - the other. */
 MCSTAT_HIDDEN int mcstat__beta_inc(double a, double b, double x, double y, mcstat_tails *t);
+/* The same with the deviations from the centre given by the caller:
+ * ux = x (a+b)/a - 1, uy = y (a+b)/b - 1 (see special.c). */
+MCSTAT_HIDDEN int mcstat__beta_inc_u(double a, double b, double x, double y, double ux, double uy,
+                                     mcstat_tails *t);
 /* Regularized incomplete gamma P(a, x), Q(a, x) for a > 0, x >= 0. */
 MCSTAT_HIDDEN int mcstat__gamma_inc(double a, double x, mcstat_tails *t);
 /* log of x^a y^b / B(a, b) (x + y = 1) and of x^a e^-x / Gamma(a+1): the
  * densities below are these over x (see dist.c). */
 MCSTAT_HIDDEN double mcstat__log_beta_prefactor(double a, double b, double x, double y);
+MCSTAT_HIDDEN double mcstat__log_beta_prefactor_u(double a, double b, double x, double y, double ux, double uy);
 MCSTAT_HIDDEN double mcstat__log_gamma_prefactor(double a, double x);
 /* log of the Stirling remainder Gamma*(a) = Gamma(a) / (sqrt(2 pi) a^(a-1/2) e^-a). */
 MCSTAT_HIDDEN double mcstat__log_gammastar(double a);
@@ -138,5 +152,33 @@ typedef int (*mcstat_quantile_fn)(double p, int upper, const void *ctx, double *
 MCSTAT_HIDDEN int mcstat__finish(mcstat_result *r, const mcstat_tails *tails,
                                  mcstat_quantile_fn quantile, const void *ctx);
 MCSTAT_HIDDEN void mcstat__result_clear(mcstat_result *r);
+
+/* ---- quantile reuse (t_test.c, var_test.c, batch.c) -----------------------
+ * The critical values depend only on alpha, the alternative and the degrees
+ * of freedom, so rows of equal sizes share them.  A cache holds the last two
+ * quantiles of one distribution; mcstat__qcache_quantile is a
+ * mcstat_quantile_fn over it.  Results are bit for bit those of a fresh
+ * solve (the solvers are deterministic; the t is symmetric bit for bit). */
+enum { MCSTAT_Q_T = 1, MCSTAT_Q_CHISQ = 2, MCSTAT_Q_F = 3 };
+typedef struct {
+    int kind, n, next;
+    double df1, df2;
+    struct { double p, x; int upper; } e[2];
+} mcstat_qcache;
+MCSTAT_HIDDEN void mcstat__qcache_init(mcstat_qcache *c);
+/* Selects the distribution; forgets the entries when it changed. */
+MCSTAT_HIDDEN void mcstat__qcache_use(mcstat_qcache *c, int kind, double df1, double df2);
+MCSTAT_HIDDEN int mcstat__qcache_quantile(double p, int upper, const void *ctx, double *x);
+
+/* The tests on accumulators with a caller's cache; qc == NULL skips the
+ * critical values and the confidence interval (left NaN). */
+MCSTAT_HIDDEN int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, double alpha,
+                                   mcstat_qcache *qc, mcstat_result *out);
+MCSTAT_HIDDEN int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0,
+                                   int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
+MCSTAT_HIDDEN int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, double alpha,
+                                     mcstat_qcache *qc, mcstat_result *out);
+MCSTAT_HIDDEN int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double ratio,
+                                     int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
 
 #endif /* MCSTAT_INTERNAL_H */

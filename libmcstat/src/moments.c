@@ -3,11 +3,12 @@
  *
  * Arrays are cut into blocks of BLOCK values (16 KiB, resident in L1).  Each
  * block is summed once from memory as shifted power sums S_k = sum (x - c)^k,
- * with c the previous block's mean (the "pilot"); the central sums follow by
- * the shift formulas.  Their rounding error grows with rho = n (mean - c)^2 /
- * M2, so a block whose pilot was poor (rho > 1/16: the first block, or data
- * that drift) is summed again about its own mean, which costs an L1 pass, not
- * a memory pass.  This is the two-pass algorithm where it matters and a
+ * with c the previous block's mean (the "pilot"; for the first block the mean
+ * of 8 spread samples); the central sums follow by the shift formulas.  Their
+ * rounding error is about (1 + 2 rho) eps with rho = n (mean - c)^2 / M2, so
+ * a block whose pilot was poor (rho > 1: data that drift, outliers among the
+ * samples) is summed again about its own mean, which costs an L1 pass, not a
+ * memory pass.  This is the two-pass algorithm where it matters and a
  * one-pass one where it does not.
  *
  * Blocks are merged by Chan et al.'s / Pebay's formulas in a pairwise tree,
@@ -33,49 +34,37 @@
 #define OMIT_BLOCK 512 /* bounce buffer for NaN omission: 4 KiB of stack */
 
 /* ---- the block kernel ------------------------------------------------------
- * Eight independent lanes (GCC/Clang vector extension); on x86-64 Linux the
- * function is also compiled for AVX2 and AVX-512 and picked at load time.
- * Lanes are reduced in a fixed order, and -ffp-contract=off keeps FMA out,
- * so every variant returns bit-identical sums. */
-typedef double v8d __attribute__((vector_size(64)));
-typedef long long v8l __attribute__((vector_size(64)));
-
-#if defined(__x86_64__) && defined(__linux__) && defined(__GNUC__) && !defined(__clang__) && \
-    !defined(MCSTAT_NO_TARGET_CLONES)
-#define KERNEL_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#else
-#define KERNEL_CLONES
-#endif
-
+ * Shifted power sums, min and max in eight independent lanes (lane k takes
+ * x[i] with i = k mod 8), reduced in a fixed order.  The AVX2 version (two
+ * 4-wide registers per sum) and the portable one perform the same IEEE
+ * operations lane by lane, and -ffp-contract=off keeps FMA out, so every
+ * machine returns bit-identical sums.  min/max ignore NaN (x < m ? x : m,
+ * vminpd(x, m)); a NaN or Inf shows up in the sums instead. */
 typedef struct {
     double s1, s2, s3, s4, min, max;
 } block_sums;
 
-static inline double lanes_sum(v8d v)
+static void reduce_lanes(const double l1[8], const double l2[8], const double l3[8], const double l4[8],
+                         const double mn[8], const double mx[8], double t1, double t2, double t3, double t4,
+                         double tmin, double tmax, block_sums *out)
 {
-    return ((v[0] + v[4]) + (v[2] + v[6])) + ((v[1] + v[5]) + (v[3] + v[7]));
+#define LANES_SUM(v) ((((v)[0] + (v)[4]) + ((v)[2] + (v)[6])) + (((v)[1] + (v)[5]) + ((v)[3] + (v)[7])))
+    out->s1 = LANES_SUM(l1) + t1;
+    out->s2 = LANES_SUM(l2) + t2;
+    out->s3 = LANES_SUM(l3) + t3;
+    out->s4 = LANES_SUM(l4) + t4;
+#undef LANES_SUM
+    for (int k = 0; k < 8; k++) {
+        tmin = mn[k] < tmin ? mn[k] : tmin;
+        tmax = mx[k] > tmax ? mx[k] : tmax;
+    }
+    out->min = tmin;
+    out->max = tmax;
 }
 
-KERNEL_CLONES
-static void kernel(const double *x, size_t n, double c, block_sums *out)
+/* The scalar tail (n mod 8 values), the same in every variant. */
+static void kernel_tail(const double *x, size_t i, size_t n, double c, double t[6])
 {
-    const v8d vc = {c, c, c, c, c, c, c, c};
-    v8d s1 = {0}, s2 = {0}, s3 = {0}, s4 = {0};
-    v8d vmin = {INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY};
-    v8d vmax = -vmin;
-    size_t i = 0;
-    for (; i + 8 <= n; i += 8) {
-        v8d xv;
-        memcpy(&xv, x + i, sizeof xv);
-        v8d d = xv - vc, d2 = d * d;
-        s1 += d;
-        s2 += d2;
-        s3 += d2 * d;
-        s4 += d2 * d2;
-        v8l lt = xv < vmin, gt = xv > vmax; /* NaN compares false: caught by the sums */
-        vmin = (v8d)((lt & (v8l)xv) | (~lt & (v8l)vmin));
-        vmax = (v8d)((gt & (v8l)xv) | (~gt & (v8l)vmax));
-    }
     double t1 = 0, t2 = 0, t3 = 0, t4 = 0, mn = INFINITY, mx = -INFINITY;
     for (; i < n; i++) {
         double d = x[i] - c, d2 = d * d;
@@ -86,16 +75,81 @@ static void kernel(const double *x, size_t n, double c, block_sums *out)
         mn = x[i] < mn ? x[i] : mn;
         mx = x[i] > mx ? x[i] : mx;
     }
+    t[0] = t1; t[1] = t2; t[2] = t3; t[3] = t4; t[4] = mn; t[5] = mx;
+}
+
+static void kernel_portable(const double *x, size_t n, double c, block_sums *out)
+{
+    double l1[8] = {0}, l2[8] = {0}, l3[8] = {0}, l4[8] = {0}, mn[8], mx[8], t[6];
     for (int k = 0; k < 8; k++) {
-        mn = vmin[k] < mn ? vmin[k] : mn;
-        mx = vmax[k] > mx ? vmax[k] : mx;
+        mn[k] = INFINITY;
+        mx[k] = -INFINITY;
     }
-    out->s1 = lanes_sum(s1) + t1;
-    out->s2 = lanes_sum(s2) + t2;
-    out->s3 = lanes_sum(s3) + t3;
-    out->s4 = lanes_sum(s4) + t4;
-    out->min = mn;
-    out->max = mx;
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        for (int k = 0; k < 8; k++) {
+            double v = x[i + k], d = v - c, d2 = d * d;
+            l1[k] += d;
+            l2[k] += d2;
+            l3[k] += d2 * d;
+            l4[k] += d2 * d2;
+            mn[k] = v < mn[k] ? v : mn[k];
+            mx[k] = v > mx[k] ? v : mx[k];
+        }
+    }
+    kernel_tail(x, i, n, c, t);
+    reduce_lanes(l1, l2, l3, l4, mn, mx, t[0], t[1], t[2], t[3], t[4], t[5], out);
+}
+
+#if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__)) && \
+    !defined(MCSTAT_NO_AVX2)
+#include <immintrin.h>
+#define MCSTAT_HAVE_AVX2_KERNEL 1
+
+__attribute__((target("avx2"))) static void kernel_avx2(const double *x, size_t n, double c, block_sums *out)
+{
+    const __m256d vc = _mm256_set1_pd(c);
+    __m256d s1a = _mm256_setzero_pd(), s1b = s1a, s2a = s1a, s2b = s1a, s3a = s1a, s3b = s1a, s4a = s1a, s4b = s1a;
+    __m256d mna = _mm256_set1_pd(INFINITY), mnb = mna, mxa = _mm256_set1_pd(-INFINITY), mxb = mxa;
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        __m256d xa = _mm256_loadu_pd(x + i), xb = _mm256_loadu_pd(x + i + 4);
+        __m256d da = _mm256_sub_pd(xa, vc), db = _mm256_sub_pd(xb, vc);
+        __m256d qa = _mm256_mul_pd(da, da), qb = _mm256_mul_pd(db, db);
+        s1a = _mm256_add_pd(s1a, da);
+        s1b = _mm256_add_pd(s1b, db);
+        s2a = _mm256_add_pd(s2a, qa);
+        s2b = _mm256_add_pd(s2b, qb);
+        s3a = _mm256_add_pd(s3a, _mm256_mul_pd(qa, da));
+        s3b = _mm256_add_pd(s3b, _mm256_mul_pd(qb, db));
+        s4a = _mm256_add_pd(s4a, _mm256_mul_pd(qa, qa));
+        s4b = _mm256_add_pd(s4b, _mm256_mul_pd(qb, qb));
+        mna = _mm256_min_pd(xa, mna); /* NaN in x: keeps mna, like x < m ? x : m */
+        mnb = _mm256_min_pd(xb, mnb);
+        mxa = _mm256_max_pd(xa, mxa);
+        mxb = _mm256_max_pd(xb, mxb);
+    }
+    double l1[8], l2[8], l3[8], l4[8], mn[8], mx[8], t[6];
+    _mm256_storeu_pd(l1, s1a); _mm256_storeu_pd(l1 + 4, s1b);
+    _mm256_storeu_pd(l2, s2a); _mm256_storeu_pd(l2 + 4, s2b);
+    _mm256_storeu_pd(l3, s3a); _mm256_storeu_pd(l3 + 4, s3b);
+    _mm256_storeu_pd(l4, s4a); _mm256_storeu_pd(l4 + 4, s4b);
+    _mm256_storeu_pd(mn, mna); _mm256_storeu_pd(mn + 4, mnb);
+    _mm256_storeu_pd(mx, mxa); _mm256_storeu_pd(mx + 4, mxb);
+    kernel_tail(x, i, n, c, t);
+    reduce_lanes(l1, l2, l3, l4, mn, mx, t[0], t[1], t[2], t[3], t[4], t[5], out);
+}
+#endif
+
+static void kernel(const double *x, size_t n, double c, block_sums *out)
+{
+#ifdef MCSTAT_HAVE_AVX2_KERNEL
+    if (n >= 16 && __builtin_cpu_supports("avx2")) {
+        kernel_avx2(x, n, c, out);
+        return;
+    }
+#endif
+    kernel_portable(x, n, c, out);
 }
 
 /* The scaled variant for extreme magnitudes: d = x 2^-e - c. Rare; scalar. */
@@ -103,7 +157,7 @@ static void kernel_scaled(const double *x, size_t n, int e, double c, block_sums
 {
     double t1 = 0, t2 = 0, t3 = 0, t4 = 0, mn = INFINITY, mx = -INFINITY;
     for (size_t i = 0; i < n; i++) {
-        double d = ldexp(x[i], -e) - c, d2 = d * d;
+        double d = scale2(x[i], -e) - c, d2 = d * d;
         t1 += d;
         t2 += d2;
         t3 += d2 * d;
@@ -126,14 +180,18 @@ static int scale_for(double amax)
 /* Central sums from shifted sums about c (all in units of 2^e). Returns rho. */
 static double central_from_shifted(const block_sums *s, double n, double c, int e, mcstat_moments *m)
 {
-    double delta = s->s1 / n;
+    /* delta = S1/n in double-double: the mean is c + delta, and rounding the
+     * division would cost eps |delta| (delta ~ sd unless c was the mean) */
+    mcstat_dd delta_dd = dd_div_d((mcstat_dd){s->s1, 0.0}, n);
+    double delta = delta_dd.hi;
     double m2 = s->s2 - delta * s->s1;
     double m3 = s->s3 - 3.0 * delta * s->s2 + 2.0 * n * delta * delta * delta;
     double d2 = delta * delta;
     double m4 = s->s4 - 4.0 * delta * s->s3 + 6.0 * d2 * s->s2 - 3.0 * n * d2 * d2;
-    mcstat_dd mean = dd_two_sum(c, delta);
-    m->mean = ldexp(mean.hi, e);
-    m->mean_lo = ldexp(mean.lo, e);
+    mcstat_dd cc = {c, 0.0};
+    mcstat_dd mean = dd_add(cc, delta_dd);
+    m->mean = e ? scale2(mean.hi, e) : mean.hi;
+    m->mean_lo = e ? scale2(mean.lo, e) : mean.lo;
     m->m2 = m2 > 0.0 ? m2 : 0.0;
     m->m3 = m3;
     m->m4 = m4 > 0.0 ? m4 : 0.0;
@@ -161,8 +219,13 @@ static int block_moments(const double *x, size_t n, double pilot, mcstat_moments
     memset(m, 0, sizeof *m);
     m->version = MCSTAT_MOMENTS_VERSION;
     m->n = n;
-    if (!(fabs(pilot) <= FAST_HI))
-        pilot = x[0];
+    if (!(fabs(pilot) <= FAST_HI)) { /* no previous block: the mean of 8 spread samples */
+        size_t step = n >= 8 ? n / 8 : 1, k = 0;
+        double sum = 0.0;
+        for (size_t i = 0; i < n && k < 8; i += step, k++)
+            sum += x[i];
+        pilot = sum / (double)k;
+    }
     if (!(fabs(pilot) <= FAST_HI))
         pilot = 0.0;
     kernel(x, n, pilot, &s);
@@ -170,7 +233,7 @@ static int block_moments(const double *x, size_t n, double pilot, mcstat_moments
     if (isfinite(s.s1) && isfinite(s.s2) && isfinite(s.s3) && isfinite(s.s4) &&
         (amax == 0.0 || (amax >= FAST_LO && amax <= FAST_HI))) {
         double rho = central_from_shifted(&s, dn, pilot, 0, m);
-        if (rho > 0.0625) { /* poor pilot: sum again about this block's mean */
+        if (rho > 1.0) { /* poor pilot: sum again about this block's mean */
             double c = m->mean;
             kernel(x, n, c, &s);
             central_from_shifted(&s, dn, c, 0, m);
@@ -183,12 +246,12 @@ static int block_moments(const double *x, size_t n, double pilot, mcstat_moments
     int e = scale_for(amax);
     double c = 0.0;
     for (size_t i = 0; i < n; i++)
-        c += ldexp(x[i], -e);
+        c += scale2(x[i], -e);
     c /= dn;
     kernel_scaled(x, n, e, c, &s);
     double rho = central_from_shifted(&s, dn, c, e, m);
     if (rho > 0.0625) {
-        c = ldexp(m->mean, -e) + ldexp(m->mean_lo, -e);
+        c = scale2(m->mean, -e) + scale2(m->mean_lo, -e);
         kernel_scaled(x, n, e, c, &s);
         central_from_shifted(&s, dn, c, e, m);
     }
@@ -202,9 +265,9 @@ static void rescale(mcstat_moments *m, int e)
     int k = m->scale - e;
     if (k == 0)
         return;
-    m->m2 = ldexp(m->m2, 2 * k);
-    m->m3 = ldexp(m->m3, 3 * k);
-    m->m4 = ldexp(m->m4, 4 * k);
+    m->m2 = scale2(m->m2, 2 * k);
+    m->m3 = scale2(m->m3, 3 * k);
+    m->m4 = scale2(m->m4, 4 * k);
     m->scale = e;
 }
 
@@ -225,7 +288,7 @@ static void merge_into(mcstat_moments *a, const mcstat_moments *b)
     double fa = na / n, fb = nb / n;
     mcstat_dd ma = {a->mean, a->mean_lo}, mb = {B.mean, B.mean_lo};
     mcstat_dd delta = dd_add(mb, dd_neg(ma));
-    double ds = ldexp(delta.hi, -e) + ldexp(delta.lo, -e);
+    double ds = scale2(delta.hi, -e) + scale2(delta.lo, -e);
     double ds2 = ds * ds;
     double m2 = a->m2 + B.m2 + ds2 * n * fa * fb;
     double m3 = a->m3 + B.m3 + ds2 * ds * n * fa * fb * (fa - fb) + 3.0 * ds * (fa * B.m2 - fb * a->m2);
@@ -367,14 +430,14 @@ double mcstat_moments_var(const mcstat_moments *m)
 {
     if (!is_valid(m) || m->n < 2)
         return NAN;
-    return ldexp(m->m2 / (double)(m->n - 1), 2 * m->scale);
+    return scale2(m->m2 / (double)(m->n - 1), 2 * m->scale);
 }
 
 double mcstat_moments_sd(const mcstat_moments *m)
 {
     if (!is_valid(m) || m->n < 2)
         return NAN;
-    return ldexp(sqrt(m->m2 / (double)(m->n - 1)), m->scale);
+    return scale2(sqrt(m->m2 / (double)(m->n - 1)), m->scale);
 }
 
 double mcstat_moments_skewness(const mcstat_moments *m)
@@ -419,7 +482,7 @@ int mcstat__moments_check(const mcstat_moments *m)
      * 1e9 +- 3e-4 have se < 10 eps 1e9); the spread is what says whether
      * the values differ by more than their last digits. */
     double sd = sqrt(m->m2 / (double)(m->n - 1));
-    if (!(sd > 0.0) || sd < 10.0 * DBL_EPSILON * ldexp(fabs(m->mean), -m->scale))
+    if (!(sd > 0.0) || sd < 10.0 * DBL_EPSILON * scale2(fabs(m->mean), -m->scale))
         return MCSTAT_EDEGENERATE;
     return MCSTAT_OK;
 }

@@ -12,15 +12,10 @@
 
 #include <float.h>
 
-static int t_quantile_cb(double p, int upper, const void *ctx, double *x)
-{
-    return mcstat_t_quantile(p, *(const double *)ctx, upper, x);
-}
-
 /* (hi + lo) scaled by 2^-e, rounded to double. */
 static double dd_scaled(mcstat_dd d, int e)
 {
-    return ldexp(d.hi, -e) + ldexp(d.lo, -e);
+    return scale2(d.hi, -e) + scale2(d.lo, -e);
 }
 
 /* est - c * se in units of 2^e, est a double-double already in those units. */
@@ -30,7 +25,7 @@ static double ci_bound(mcstat_dd est, double c, double se, int e)
         return c > 0 ? -INFINITY : INFINITY;
     mcstat_dd p = dd_two_prod(-c, se);
     mcstat_dd b = dd_add(est, p);
-    return ldexp(b.hi + b.lo, e);
+    return scale2(b.hi + b.lo, e);
 }
 
 static int check_args(double mu0, int alternative, double alpha, const mcstat_result *out)
@@ -38,8 +33,8 @@ static int check_args(double mu0, int alternative, double alpha, const mcstat_re
     return out && isfinite(mu0) && valid_alternative(alternative) && valid_alpha(alpha);
 }
 
-int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative, double alpha,
-                            mcstat_result *out)
+int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, double alpha, mcstat_qcache *qc,
+                     mcstat_result *out)
 {
     if (!x || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
@@ -65,20 +60,27 @@ int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative
     r.statistic = diff / se;
     r.df[0] = df;
     r.estimate[0] = x->mean;
-    r.std_error = ldexp(se, e);
+    r.std_error = scale2(se, e);
 
     mcstat_tails t;
-    if ((st = mcstat__t_tails(r.statistic, df, &t)) || (st = mcstat__finish(&r, &t, t_quantile_cb, &df)))
+    if (qc)
+        mcstat__qcache_use(qc, MCSTAT_Q_T, df, 0.0);
+    if ((st = mcstat__t_tails(r.statistic, df, &t)) ||
+        (st = mcstat__finish(&r, &t, qc ? mcstat__qcache_quantile : NULL, qc)))
         return st;
-    mcstat_dd ms = {ldexp(mean.hi, -e), ldexp(mean.lo, -e)};
+    if (!qc) { /* no intervals asked for */
+        *out = r;
+        return MCSTAT_OK;
+    }
+    mcstat_dd ms = {scale2(mean.hi, -e), scale2(mean.lo, -e)};
     r.conf_int[0] = ci_bound(ms, r.critical[1], se, e);
     r.conf_int[1] = ci_bound(ms, r.critical[0], se, e);
     *out = r;
     return MCSTAT_OK;
 }
 
-int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double mu0,
-                            int alternative, double alpha, mcstat_result *out)
+int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
+                     double alpha, mcstat_qcache *qc, mcstat_result *out)
 {
     if (!x || !y || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
@@ -107,15 +109,15 @@ int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, do
     mcstat__moments_var_scaled(x, &vx, &ex);
     mcstat__moments_var_scaled(y, &vy, &ey);
     int e = ex > ey ? ex : ey;
-    double a = ldexp(vx / nx, 2 * (ex - e)), b = ldexp(vy / ny, 2 * (ey - e));
+    double a = scale2(vx / nx, 2 * (ex - e)), b = scale2(vy / ny, 2 * (ey - e));
     double se = sqrt(a + b); /* units of 2^e */
     mcstat_dd mx = mcstat__moments_mean_dd(x), my = mcstat__moments_mean_dd(y);
     mcstat_dd diff = dd_add(mx, dd_neg(my));
     /* Both samples constant to within rounding (one constant sample is fine,
      * as in R): the larger standard deviation below 10 eps max|mean|. */
-    double sdmax = sqrt(fmax(ldexp(vx, 2 * (ex - e)), ldexp(vy, 2 * (ey - e))));
+    double sdmax = sqrt(fmax(scale2(vx, 2 * (ex - e)), scale2(vy, 2 * (ey - e))));
     double mmax = fmax(fabs(x->mean), fabs(y->mean));
-    if (!(se > 0.0) || sdmax < 10.0 * DBL_EPSILON * ldexp(mmax, -e))
+    if (!(se > 0.0) || sdmax < 10.0 * DBL_EPSILON * scale2(mmax, -e))
         return MCSTAT_EDEGENERATE;
     mcstat_dd mu = {-mu0, 0.0};
     r.statistic = dd_scaled(dd_add(diff, mu), e) / se;
@@ -126,17 +128,42 @@ int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, do
     r.df[0] = df;
     r.estimate[0] = x->mean;
     r.estimate[1] = y->mean;
-    r.std_error = ldexp(se, e);
+    r.std_error = scale2(se, e);
 
     mcstat_tails t;
-    if ((st = mcstat__t_tails(r.statistic, df, &t)) || (st = mcstat__finish(&r, &t, t_quantile_cb, &df)))
+    if (qc)
+        mcstat__qcache_use(qc, MCSTAT_Q_T, df, 0.0);
+    if ((st = mcstat__t_tails(r.statistic, df, &t)) ||
+        (st = mcstat__finish(&r, &t, qc ? mcstat__qcache_quantile : NULL, qc)))
         return st;
-    mcstat_dd ds = {ldexp(diff.hi, -e), ldexp(diff.lo, -e)};
+    if (!qc) {
+        *out = r;
+        return MCSTAT_OK;
+    }
+    mcstat_dd ds = {scale2(diff.hi, -e), scale2(diff.lo, -e)};
     ds = dd_fast_two_sum(ds.hi, ds.lo);
     r.conf_int[0] = ci_bound(ds, r.critical[1], se, e);
     r.conf_int[1] = ci_bound(ds, r.critical[0], se, e);
     *out = r;
     return MCSTAT_OK;
+}
+
+/* The public calls: a fresh cache, which still answers the second
+ * two-sided critical value of a t from the first (c and -c). */
+int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative, double alpha,
+                            mcstat_result *out)
+{
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    return mcstat__t_test_1(x, mu0, alternative, alpha, &qc, out);
+}
+
+int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double mu0,
+                            int alternative, double alpha, mcstat_result *out)
+{
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    return mcstat__t_test_2(x, y, mu0, alternative, alpha, &qc, out);
 }
 
 int mcstat_t_test_1(const double *x, size_t n, double mu0, int alternative, double alpha, mcstat_result *out)

@@ -11,31 +11,16 @@
  */
 #include "internal.h"
 
-typedef struct {
-    double df1, df2;
-} df_pair;
-
-static int chisq_quantile_cb(double p, int upper, const void *ctx, double *x)
-{
-    return mcstat_chisq_quantile(p, ((const df_pair *)ctx)->df1, upper, x);
-}
-
-static int f_quantile_cb(double p, int upper, const void *ctx, double *x)
-{
-    const df_pair *d = ctx;
-    return mcstat_f_quantile(p, d->df1, d->df2, upper, x);
-}
-
 /* num * 2^k / den, den > 0 finite, without intermediate over/underflow. */
 static double ratio_pow2(double num, int k, double den)
 {
     int kd;
     double fd = frexp(den, &kd);
-    return ldexp(num / fd, k - kd);
+    return scale2(num / fd, k - kd);
 }
 
-int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2, int alternative, double alpha,
-                              mcstat_result *out)
+int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, double alpha,
+                       mcstat_qcache *qc, mcstat_result *out)
 {
     if (!x || !out || !(sigma2 > 0.0) || !isfinite(sigma2) || !valid_alternative(alternative) ||
         !valid_alpha(alpha))
@@ -52,24 +37,31 @@ int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2, int altern
     r.null_value = sigma2;
     r.n[0] = x->n;
 
-    df_pair d = {(double)(x->n - 1), NAN};
+    double df = (double)(x->n - 1);
     /* X^2 = (n-1) s^2 / sigma2 = M2 / sigma2 */
     r.statistic = ratio_pow2(x->m2, 2 * x->scale, sigma2);
-    r.df[0] = d.df1;
+    r.df[0] = df;
     r.estimate[0] = mcstat_moments_var(x);
 
     mcstat_tails t;
-    if ((st = mcstat__chisq_tails(r.statistic, d.df1, &t)) || (st = mcstat__finish(&r, &t, chisq_quantile_cb, &d)))
+    if (qc)
+        mcstat__qcache_use(qc, MCSTAT_Q_CHISQ, df, 0.0);
+    if ((st = mcstat__chisq_tails(r.statistic, df, &t)) ||
+        (st = mcstat__finish(&r, &t, qc ? mcstat__qcache_quantile : NULL, qc)))
         return st;
+    if (!qc) {
+        *out = r;
+        return MCSTAT_OK;
+    }
     /* {sigma^2 : c0 <= M2 / sigma^2 <= c1} */
-    r.conf_int[0] = ldexp(x->m2 / r.critical[1], 2 * x->scale);
-    r.conf_int[1] = ldexp(x->m2 / r.critical[0], 2 * x->scale);
+    r.conf_int[0] = scale2(x->m2 / r.critical[1], 2 * x->scale);
+    r.conf_int[1] = scale2(x->m2 / r.critical[0], 2 * x->scale);
     *out = r;
     return MCSTAT_OK;
 }
 
-int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double ratio,
-                              int alternative, double alpha, mcstat_result *out)
+int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double ratio, int alternative,
+                       double alpha, mcstat_qcache *qc, mcstat_result *out)
 {
     if (!x || !y || !out || !(ratio > 0.0) || !isfinite(ratio) || !valid_alternative(alternative) ||
         !valid_alpha(alpha))
@@ -89,26 +81,49 @@ int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, 
     r.n[0] = x->n;
     r.n[1] = y->n;
 
-    df_pair d = {(double)(x->n - 1), (double)(y->n - 1)};
+    const double df1 = (double)(x->n - 1), df2 = (double)(y->n - 1);
     double vx, vy;
     int ex, ey;
     mcstat__moments_var_scaled(x, &vx, &ex);
     mcstat__moments_var_scaled(y, &vy, &ey);
     int k = 2 * (ex - ey);
-    double est = ldexp(vx / vy, k); /* s_x^2 / s_y^2, as R reports it */
+    double est = scale2(vx / vy, k); /* s_x^2 / s_y^2, as R reports it */
     r.statistic = ratio_pow2(vx / vy, k, ratio);
-    r.df[0] = d.df1;
-    r.df[1] = d.df2;
+    r.df[0] = df1;
+    r.df[1] = df2;
     r.estimate[0] = est;
 
     mcstat_tails t;
-    if ((st = mcstat__f_tails(r.statistic, d.df1, d.df2, &t)) || (st = mcstat__finish(&r, &t, f_quantile_cb, &d)))
+    if (qc)
+        mcstat__qcache_use(qc, MCSTAT_Q_F, df1, df2);
+    if ((st = mcstat__f_tails(r.statistic, df1, df2, &t)) ||
+        (st = mcstat__finish(&r, &t, qc ? mcstat__qcache_quantile : NULL, qc)))
         return st;
+    if (!qc) {
+        *out = r;
+        return MCSTAT_OK;
+    }
     /* {rho : c0 <= est / rho <= c1} */
-    r.conf_int[0] = ldexp((vx / vy) / r.critical[1], k);
-    r.conf_int[1] = ldexp((vx / vy) / r.critical[0], k);
+    r.conf_int[0] = scale2((vx / vy) / r.critical[1], k);
+    r.conf_int[1] = scale2((vx / vy) / r.critical[0], k);
     *out = r;
     return MCSTAT_OK;
+}
+
+int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2, int alternative, double alpha,
+                              mcstat_result *out)
+{
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    return mcstat__var_test_1(x, sigma2, alternative, alpha, &qc, out);
+}
+
+int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double ratio,
+                              int alternative, double alpha, mcstat_result *out)
+{
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    return mcstat__var_test_2(x, y, ratio, alternative, alpha, &qc, out);
 }
 
 int mcstat_var_test_1(const double *x, size_t n, double sigma2, int alternative, double alpha,

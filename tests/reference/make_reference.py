@@ -366,7 +366,24 @@ def main():
                 continue
             x = df + z * math.sqrt(2 * df)
             pts.append(("q" if df > 1e11 else "c", x, df, 0, z > 0))
+    # F with both df >= 1e14 (the beta's uniform expansion), against
+    # quadrature, which is first checked against the continued fraction.
+    for z in [-5, 0.5, 4]:
+        x = math.exp(z * math.sqrt(4 / 1e6))
+        P, Q = mpref.f_tails(x, 1e6, 1e6)
+        with mp.workdps(40):
+            qd = mpref.f_tail_quad(x, 1e6, 1e6, z > 0)
+        assert abs(qd / (Q if z > 0 else P) - 1) < 1e-25, "F quadrature disagrees with the fraction"
+    for d1, d2 in [(1e14, 1e14), (1e14, 3e15), (2e16, 5e14), (1e20, 1e19)]:
+        for z in [-5, -0.5, 0.5, 5]:
+            x = math.exp(z * math.sqrt(2 / d1 + 2 / d2))
+            pts.append(("fq", x, d1, d2, z > 0))
     for kind, x, d1, d2, up in pts:
+        if kind == "fq":
+            with mp.workdps(40):
+                lp = mp.log(mpref.f_tail_quad(x, d1, d2, up))
+            out.append(f"    {{'f', {float(x).hex()}, {d1!r}, {d2!r}, {int(up)}, {fmt(lp)}}},")
+            continue
         if kind == "q":
             with mp.workdps(45):
                 lp = mp.log(mpref.chisq_tail_quad(x, d1, up))

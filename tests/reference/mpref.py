@@ -167,3 +167,24 @@ def chisq_tail_quad(x, df, upper):
         pts = [g - d for d in near if g - d > 0] + [a - k * s for k in (80, 40, 20, 10, 5) if 0 < a - k * s < g - near[-1]]
         pts = [mp.mpf(0)] + sorted(set(pts)) + [g]
     return mp.quad(f, pts)
+
+
+def f_tail_quad(f, df1, df2, upper):
+    """An F tail by quadrature of the beta density of x = df1 f/(df1 f + df2),
+    with break points on the standard-deviation scale: independent of the
+    continued fraction and of the asymptotic expansion.  For |z| <= 5."""
+    a, b = mp.mpf(df1) / 2, mp.mpf(df2) / 2
+    f = mp.mpf(f)
+    x = df1 * f / (df1 * f + df2)
+    r = a + b
+    xi = a / r
+    sd = mp.sqrt(xi * (1 - xi) / r)
+    lb = mp.loggamma(a) + mp.loggamma(b) - mp.loggamma(r)
+    dens = lambda t: mp.exp((a - 1) * mp.log(t) + (b - 1) * mp.log1p(-t) - lb)
+    ks = [k / mp.mpf(4) for k in range(-160, 161)]
+    grid = [xi + k * sd for k in ks if 0 < xi + k * sd < 1]
+    if upper:
+        pts = [x] + [g for g in grid if g > x] + [mp.mpf(1)]
+    else:
+        pts = [mp.mpf(0)] + [g for g in grid if g < x] + [x]
+    return mp.quad(dens, pts)

@@ -1,0 +1,75 @@
+# Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+"""mcstat: statistical hypothesis tests for Monte Carlo estimators.
+
+The tests of Subr & Arvo, "Statistical Hypothesis Testing for Assessing
+Monte Carlo Estimators", over libmcstat (C):
+
+=================  ==========================================  ======================
+question           test                                        call
+=================  ==========================================  ======================
+unbiased?          one-sample t, mean vs mu                    ``t_test(x, mu=...)``
+variance below?    one-sample chi-squared on the variance      ``var_test(x, sigma2=...)``
+two agree?         Welch two-sample t                          ``t_test(x, y)``
+which varies less  two-sample F                                ``var_test(x, y)``
+=================  ==========================================  ======================
+
+Each returns a `TestResult` (``str()`` prints R's layout plus the paper's
+less / equal / greater decision), or a `BatchResult` of arrays for N-D
+input (one test per row, e.g. per pixel).  `Moments` accumulates samples
+in streams and merges across threads and machines; `batch_means` makes
+secondary estimates.  Errors are `ValueError` subclasses (see
+`mcstat._errors`).
+
+Importing mcstat turns GSL's abort-on-error handler off if, and only if,
+no other handler was installed in the process (``gsl_handler_was_default``
+says whether it did); libmcstat itself never reaches GSL's handler.
+"""
+from ._errors import (
+    BufferSizeError,
+    CorruptDataError,
+    DegenerateDataError,
+    InvalidArgumentError,
+    McstatError,
+    NonFiniteError,
+    NumericalError,
+    OutOfMemoryError,
+    TooFewObservationsError,
+)
+from ._core import (  # noqa: E402  (the extension looks the errors up at import)
+    Moments,
+    TestResult,
+    __libmcstat_version__,
+    batch_means,
+    get_num_threads,
+    gsl_handler_was_default,
+    set_num_threads,
+    t_test,
+    var_test,
+)
+from ._result import BatchResult
+
+# Reserved for later: ks_test (two-sample Kolmogorov-Smirnov, issue 4) will
+# join t_test and var_test here, and the reference estimators will live in
+# the subpackage mcstat.estimators.
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "t_test",
+    "var_test",
+    "Moments",
+    "batch_means",
+    "TestResult",
+    "BatchResult",
+    "set_num_threads",
+    "get_num_threads",
+    "McstatError",
+    "InvalidArgumentError",
+    "TooFewObservationsError",
+    "NonFiniteError",
+    "DegenerateDataError",
+    "OutOfMemoryError",
+    "NumericalError",
+    "BufferSizeError",
+    "CorruptDataError",
+]

@@ -1,0 +1,158 @@
+# Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+"""BatchResult: the fields of row-wise tests as arrays."""
+from __future__ import annotations
+
+from typing import Any, Dict, Tuple
+
+import numpy as np
+
+from ._errors import _BY_STATUS, McstatError
+
+_METHODS = {
+    "t_1": "One Sample t-test",
+    "t_2": "Welch Two Sample t-test",
+    "var_1": "One Sample Chi-squared test on variance",
+    "var_2": "F test to compare two variances",
+}
+_ALTERNATIVES = ("two-sided", "less", "greater")
+_DECISIONS = np.array(["less", "equal", "greater"])
+_SHOW_ROWS = 5  # failed rows named in an error message
+
+
+class BatchResult:
+    """The outcome of one test per row (2-D or N-D input with ``axis``).
+
+    Each field of :class:`TestResult` is an array over the rows: shape
+    ``s`` = the input's shape without ``axis``, or ``s + (2,)`` for pairs
+    (``conf_int``, ``critical_values``, Welch's ``estimate``, the F test's
+    ``df``, two-sample ``nobs``).
+
+    Attributes
+    ----------
+    statistic, pvalue, std_error : ndarray of float64
+    df, conf_int, estimate, critical_values : ndarray of float64
+    reject : ndarray of bool
+    decision : ndarray of str
+        ``"less"``, ``"equal"``, ``"greater"``; ``""`` for failed rows.
+    decision_code : ndarray of int8
+        -1, 0, +1 (0 for failed rows; see `ok`).
+    status : ndarray of int8
+        libmcstat's status per row (0 = success); with ``on_error="nan"``
+        failed rows have NaN fields and ``reject`` False.
+    ok : ndarray of bool
+        ``status == 0``.
+    nobs : ndarray of int64
+        Sizes used per row (after omitted NaNs); 0 for failed rows.
+    null_value, alpha : float
+    alternative, method : str
+    pvalue_se : ndarray of float64
+        Zeros (these p-values are exact).
+
+    Notes
+    -----
+    ``result[i]`` (or ``result[i, j]`` for higher dimensions) is the
+    :class:`TestResult` of one row, whose ``str()`` is the R-style block.
+    ``len(result)`` is the length of the first output dimension.
+    """
+
+    def __init__(self, kind: str, fields: Dict[str, np.ndarray], alternative: int, alpha: float,
+                 null_value: float, intervals: bool) -> None:
+        self._kind = kind
+        self._f = fields
+        self.alternative: str = _ALTERNATIVES[alternative]
+        self.alpha: float = alpha
+        self.null_value: float = null_value
+        self.method: str = _METHODS[kind]
+        self.intervals: bool = intervals
+        self._decision = None
+
+    # fields
+    statistic = property(lambda self: self._f["statistic"])
+    df = property(lambda self: self._f["df"])
+    pvalue = property(lambda self: self._f["pvalue"])
+    conf_int = property(lambda self: self._f["conf_int"])
+    estimate = property(lambda self: self._f["estimate"])
+    critical_values = property(lambda self: self._f["critical_values"])
+    std_error = property(lambda self: self._f["std_error"])
+    reject = property(lambda self: self._f["reject"])
+    decision_code = property(lambda self: self._f["decision_code"])
+    status = property(lambda self: self._f["status"])
+    nobs = property(lambda self: self._f["nobs"])
+
+    @property
+    def ok(self) -> np.ndarray:
+        return self._f["status"] == 0
+
+    @property
+    def pvalue_se(self) -> np.ndarray:
+        return np.zeros(self.shape)
+
+    @property
+    def decision(self) -> np.ndarray:
+        if self._decision is None:
+            d = _DECISIONS[self._f["decision_code"].astype(np.intp) + 1]
+            d[~self.ok] = ""
+            self._decision = d
+        return self._decision
+
+    @property
+    def shape(self) -> Tuple[int, ...]:
+        return self._f["statistic"].shape
+
+    def __len__(self) -> int:
+        return self.shape[0] if self.shape else 1
+
+    def __getitem__(self, index: Any):
+        from ._core import _result_from_fields  # the struct is rebuilt in C++
+
+        idx = index if isinstance(index, tuple) else (index,)
+        if len(idx) != len(self.shape) or not all(isinstance(i, (int, np.integer)) for i in idx):
+            raise IndexError("index one row with as many integers as the result has dimensions "
+                             f"({len(self.shape)}), got {index!r}")
+        if not self._f["status"][idx] == 0:
+            raise _BY_STATUS.get(int(self._f["status"][idx]), McstatError)(
+                f"row {index} failed: status {int(self._f['status'][idx])}")
+        return _result_from_fields(self._kind, self.alternative, self.alpha, self.null_value,
+                                   {k: v[idx] for k, v in self._f.items()})
+
+    def __repr__(self) -> str:
+        return (f"<BatchResult {self.method}: {self.shape} rows, {int(self.reject.sum())} rejected at "
+                f"alpha={self.alpha:g} ({self.alternative}), {int((~self.ok).sum())} failed>")
+
+    def __str__(self) -> str:
+        n = self.statistic.size
+        dc = self._f["decision_code"][self.ok]
+        return (f"{self.method}, one test per row: {self.shape} rows\n"
+                f"alternative: {self.alternative}, null value {self.null_value:g}, alpha = {self.alpha:g}\n"
+                f"decisions: {int((dc < 0).sum())} less, {int((dc == 0).sum())} equal, "
+                f"{int((dc > 0).sum())} greater; {n - dc.size} failed\n")
+
+
+def _describe_rows(bad: np.ndarray, shape: Tuple[int, ...]) -> Tuple[np.ndarray, str]:
+    flat = np.flatnonzero(bad)
+    if len(shape) == 1:
+        rows = flat
+        shown = ", ".join(str(int(i)) for i in flat[:_SHOW_ROWS])
+    else:
+        rows = np.stack(np.unravel_index(flat, shape), axis=-1)
+        shown = ", ".join(str(tuple(int(v) for v in r)) for r in rows[:_SHOW_ROWS])
+    more = f" and {flat.size - _SHOW_ROWS} more" if flat.size > _SHOW_ROWS else ""
+    return rows, shown + more
+
+
+def _make_batch(kind: str, fields: Dict[str, np.ndarray], alternative: int, alpha: float, null_value: float,
+                axis: int, errors_as_nan: bool, intervals: bool) -> BatchResult:
+    status = fields["status"]
+    if not errors_as_nan and status.size and status.any():
+        bad = status != 0
+        first = int(status.flat[np.argmax(bad)])
+        cls = _BY_STATUS.get(first, McstatError)
+        from ._core import strerror
+
+        rows, shown = _describe_rows(bad, status.shape)
+        nbad = int(bad.sum())
+        others = int((bad & (status != first)).sum())
+        extra = f"; {others} of them failed for another reason" if others else ""
+        raise cls(f"{strerror(first)}: {nbad} of {status.size} rows failed (rows {shown}){extra}; "
+                  "pass on_error='nan' to get NaN for failed rows instead", rows=rows)
+    return BatchResult(kind, fields, alternative, alpha, null_value, intervals)

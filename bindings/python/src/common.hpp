@@ -1,0 +1,84 @@
+// common.hpp - shared declarations of the mcstat._core extension.
+//
+// The binding is thin on purpose: numerics, decisions and the R-style text
+// are libmcstat's; this layer converts NumPy arrays and Python arguments,
+// maps status codes to exceptions, and runs rows on threads.
+//
+// Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <string>
+
+#include "mcstat.h"
+
+namespace py = pybind11;
+
+namespace mcs {
+
+// ---- errors (errors.cpp) ---------------------------------------------------
+// The exception classes live in mcstat/_errors.py (documented there); the
+// module looks them up once at import.
+void init_errors();
+// The exception class for a status (McstatError for unknown codes).
+py::handle error_class(int status);
+// Raises the class of `status` with "<mcstat_strerror(status)>: <detail>".
+[[noreturn]] void throw_status(int status, const std::string &detail = std::string());
+// Invalid argument with a message of its own (InvalidArgumentError).
+[[noreturn]] void throw_invalid(const std::string &message);
+
+// ---- input arrays (tests.cpp) ---------------------------------------------
+// obj as a float64 array: the same object when it already is one (any
+// layout), else converted once; NumPy's own error when it cannot be.
+py::array as_float_array(py::handle obj);
+// The same, C-contiguous (a copy only when obj is not).
+py::array as_contiguous_array(py::handle obj);
+
+// ---- accumulators (moments.cpp) ---------------------------------------------
+struct Moments {
+    mcstat_moments m;
+};
+void register_moments(py::module_ &mod);
+// The accumulator inside a Python Moments, or nullptr if obj is not one.
+const mcstat_moments *as_moments(py::handle obj);
+
+// ---- results (result.cpp) -----------------------------------------------------
+struct Result {
+    mcstat_result r;
+};
+void register_result(py::module_ &mod);
+void register_result_helpers(py::module_ &mod);
+py::object make_result(const mcstat_result &r);
+
+// ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
+void register_tests(py::module_ &mod);
+
+enum class Kind { T1, T2, V1, V2 };
+
+struct TestArgs {
+    Kind kind;
+    double null_value; // mu, sigma2 or ratio
+    int alternative;
+    double alpha;
+    int axis;
+    bool omit_nan;
+    bool intervals;
+    bool errors_as_nan;
+};
+
+// One test per row of N-D arrays (axis moved last); returns the
+// BatchResult built by mcstat._result (which also raises for bad rows).
+py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two);
+
+// Worker threads for row-wise work (mcstat.set_num_threads).
+int num_threads();
+void set_num_threads(int n);
+
+// Arrays below this many values are processed without releasing the GIL:
+// releasing and re-taking it costs more than the loop (measured, see
+// bench/RESULTS_python.md); every longer loop over data runs without it.
+constexpr size_t GIL_RELEASE_MIN = 4096;
+
+} // namespace mcs

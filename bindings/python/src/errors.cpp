@@ -1,0 +1,47 @@
+// errors.cpp - status codes to the exception classes of mcstat/_errors.py.
+//
+// Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+#include "common.hpp"
+
+namespace mcs {
+
+namespace {
+py::handle g_classes[9];
+py::handle g_base;
+} // namespace
+
+void init_errors()
+{
+    py::module_ errors = py::module_::import("mcstat._errors");
+    py::dict by_status = errors.attr("_BY_STATUS");
+    g_base = py::object(errors.attr("McstatError")).release();
+    for (int s = 0; s < 9; s++) {
+        py::int_ key(s);
+        g_classes[s] = by_status.contains(key) ? py::object(by_status[key]).release() : g_base;
+    }
+}
+
+py::handle error_class(int status)
+{
+    if (status >= 0 && status < 9 && g_classes[status])
+        return g_classes[status];
+    return g_base;
+}
+
+void throw_status(int status, const std::string &detail)
+{
+    std::string msg = mcstat_strerror(status);
+    if (!detail.empty())
+        msg += " (" + detail + ")";
+    PyErr_SetString(error_class(status).ptr(), msg.c_str());
+    throw py::error_already_set();
+}
+
+void throw_invalid(const std::string &message)
+{
+    std::string msg = std::string(mcstat_strerror(MCSTAT_EINVAL)) + ": " + message;
+    PyErr_SetString(error_class(MCSTAT_EINVAL).ptr(), msg.c_str());
+    throw py::error_already_set();
+}
+
+} // namespace mcs

@@ -1,0 +1,216 @@
+// result.cpp - TestResult: one test's mcstat_result, read through properties.
+//
+// Creating it copies the 224-byte struct and nothing else; tuples, strings
+// and the R-style text are made only when asked for, so a call that wants
+// only `pvalue` pays for nothing more.
+//
+// Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+#include "common.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+namespace mcs {
+
+namespace {
+
+const char *method_name(int test)
+{
+    switch (test) {
+    case MCSTAT_TEST_T_1: return "One Sample t-test";
+    case MCSTAT_TEST_T_2: return "Welch Two Sample t-test";
+    case MCSTAT_TEST_VAR_1: return "One Sample Chi-squared test on variance";
+    case MCSTAT_TEST_VAR_2: return "F test to compare two variances";
+    default: return "unknown";
+    }
+}
+
+bool two_estimates(const mcstat_result &r) { return r.test == MCSTAT_TEST_T_2; }
+bool two_df(const mcstat_result &r) { return r.test == MCSTAT_TEST_VAR_2; }
+bool two_samples(const mcstat_result &r) { return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_VAR_2; }
+
+std::string format(const mcstat_result &r, const char *x_name, const char *y_name)
+{
+    char buf[1024];
+    size_t len = 0;
+    int st = mcstat_result_format(&r, x_name, y_name, buf, sizeof buf, &len);
+    if (st == MCSTAT_OK)
+        return std::string(buf, len);
+    if (st != MCSTAT_EBUFSIZE)
+        throw_status(st, "formatting a result");
+    std::vector<char> big(len + 1);
+    st = mcstat_result_format(&r, x_name, y_name, big.data(), big.size(), &len);
+    if (st)
+        throw_status(st, "formatting a result");
+    return std::string(big.data(), len);
+}
+
+py::object pair(double a, double b) { return py::make_tuple(a, b); }
+
+std::string short_num(double v)
+{
+    char b[40];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+}
+
+} // namespace
+
+py::object make_result(const mcstat_result &r)
+{
+    return py::cast(Result{r});
+}
+
+void register_result(py::module_ &mod)
+{
+    py::class_<Result>(mod, "TestResult", R"doc(
+The outcome of one hypothesis test (returned by `t_test` and `var_test`).
+
+Attributes
+----------
+statistic : float
+    t, X-squared or F.
+df : float or tuple of float
+    Degrees of freedom; ``(num, denom)`` for the F test.
+pvalue : float
+    p-value for `alternative`.
+conf_int : tuple of float
+    ``(low, high)`` confidence interval at level ``1 - alpha`` for the
+    tested parameter (mean, difference in means, variance or ratio of
+    variances); one-sided alternatives have an infinite end.  NaN when the
+    test ran with ``intervals=False``.
+estimate : float or tuple of float
+    Mean of x; ``(mean of x, mean of y)`` for Welch; variance of x;
+    ratio of variances.
+null_value : float
+    mu, sigma2 or ratio under H0.
+alternative : str
+    ``"two-sided"``, ``"less"`` or ``"greater"``.
+method : str
+    The test's name as R prints it, e.g. ``"Welch Two Sample t-test"``.
+alpha : float
+    Significance level used for `reject`, `decision`, `critical_values`
+    and `conf_int`.
+reject : bool
+    H0 rejected at level `alpha` against `alternative`.
+decision : str
+    The paper's three-way outcome: ``"less"``, ``"equal"`` or ``"greater"``.
+critical_values : tuple of float
+    Reject when `statistic` is below the first or above the second.
+pvalue_se : float
+    Monte Carlo standard error of `pvalue` (0.0: these p-values are exact).
+std_error : float
+    Standard error of the estimate (t tests; NaN otherwise).
+nobs : int or tuple of int
+    Sample size(s) used (after NaNs were omitted).
+
+Notes
+-----
+``str(result)`` is the R-style block (R's ``print.htest`` layout plus a
+decision line) with data names "x" and "y"; ``result.format(x_name,
+y_name)`` names them.
+)doc")
+        .def_property_readonly("statistic", [](const Result &s) { return s.r.statistic; })
+        .def_property_readonly("df", [](const Result &s) -> py::object {
+            return two_df(s.r) ? pair(s.r.df[0], s.r.df[1]) : py::float_(s.r.df[0]);
+        })
+        .def_property_readonly("pvalue", [](const Result &s) { return s.r.p_value; })
+        .def_property_readonly("conf_int", [](const Result &s) { return pair(s.r.conf_int[0], s.r.conf_int[1]); })
+        .def_property_readonly("estimate", [](const Result &s) -> py::object {
+            return two_estimates(s.r) ? pair(s.r.estimate[0], s.r.estimate[1]) : py::float_(s.r.estimate[0]);
+        })
+        .def_property_readonly("null_value", [](const Result &s) { return s.r.null_value; })
+        .def_property_readonly("alternative",
+                               [](const Result &s) { return py::str(mcstat_alternative_name(s.r.alternative)); })
+        .def_property_readonly("method", [](const Result &s) { return py::str(method_name(s.r.test)); })
+        .def_property_readonly("alpha", [](const Result &s) { return s.r.alpha; })
+        .def_property_readonly("reject", [](const Result &s) { return s.r.reject != 0; })
+        .def_property_readonly("decision", [](const Result &s) { return py::str(mcstat_decision_name(s.r.decision)); })
+        .def_property_readonly("critical_values",
+                               [](const Result &s) { return pair(s.r.critical[0], s.r.critical[1]); })
+        .def_property_readonly("pvalue_se", [](const Result &s) { return s.r.p_value_se; })
+        .def_property_readonly("std_error", [](const Result &s) { return s.r.std_error; })
+        .def_property_readonly("nobs", [](const Result &s) -> py::object {
+            if (two_samples(s.r))
+                return py::make_tuple(s.r.n[0], s.r.n[1]);
+            return py::int_(s.r.n[0]);
+        })
+        .def(
+            "format",
+            [](const Result &s, const std::string &x_name, const std::string &y_name) {
+                return format(s.r, x_name.c_str(), y_name.c_str());
+            },
+            py::arg("x_name") = "x", py::arg("y_name") = "y",
+            "The R-style text block with the data named `x_name` (and `y_name`).")
+        .def("__str__", [](const Result &s) { return format(s.r, nullptr, nullptr); })
+        .def("__repr__", [](const Result &s) {
+            const mcstat_result &r = s.r;
+            std::string df = short_num(r.df[0]);
+            if (two_df(r))
+                df = "(" + df + ", " + short_num(r.df[1]) + ")";
+            return std::string("<TestResult ") + method_name(r.test) + ": statistic=" + short_num(r.statistic) +
+                   ", df=" + df + ", pvalue=" + short_num(r.p_value) + ", alternative='" +
+                   mcstat_alternative_name(r.alternative) + "', decision='" + mcstat_decision_name(r.decision) +
+                   "' at alpha=" + short_num(r.alpha) + ">";
+        })
+        .def("__reduce__", [](py::object self) {
+            const Result &s = self.cast<const Result &>();
+            return py::make_tuple(py::module_::import("mcstat._core").attr("_result_from_bytes"),
+                                  py::make_tuple(py::bytes(reinterpret_cast<const char *>(&s.r), sizeof s.r)));
+        })
+        .def("_raw", [](const Result &s) {
+            return py::bytes(reinterpret_cast<const char *>(&s.r), sizeof s.r);
+        }, "The mcstat_result struct's bytes (for tests).");
+}
+
+void register_result_helpers(py::module_ &mod)
+{
+    // One row of a BatchResult as a TestResult (mcstat._result.BatchResult.__getitem__).
+    mod.def("_result_from_fields", [](const std::string &kind, const std::string &alternative, double alpha,
+                                      double null_value, py::dict f) {
+        mcstat_result r;
+        std::memset(&r, 0, sizeof r);
+        r.test = kind == "t_1" ? MCSTAT_TEST_T_1 : kind == "t_2" ? MCSTAT_TEST_T_2
+               : kind == "var_1" ? MCSTAT_TEST_VAR_1 : MCSTAT_TEST_VAR_2;
+        r.method = MCSTAT_METHOD_ANALYTIC;
+        if (mcstat_alternative_parse(alternative.c_str(), &r.alternative))
+            throw_invalid("alternative");
+        r.alpha = alpha;
+        r.null_value = null_value;
+        auto vec = [&](const char *k) {
+            py::array_t<double, py::array::forcecast> a(f[k]);
+            return std::vector<double>(a.data(), a.data() + a.size());
+        };
+        std::vector<double> df = vec("df"), ci = vec("conf_int"), est = vec("estimate"), cr = vec("critical_values");
+        r.statistic = f["statistic"].cast<double>();
+        r.df[0] = df[0];
+        r.df[1] = df.size() > 1 ? df[1] : NAN;
+        r.p_value = f["pvalue"].cast<double>();
+        r.p_value_se = 0.0;
+        r.conf_int[0] = ci[0];
+        r.conf_int[1] = ci[1];
+        r.estimate[0] = est[0];
+        r.estimate[1] = est.size() > 1 ? est[1] : NAN;
+        r.critical[0] = cr[0];
+        r.critical[1] = cr[1];
+        r.std_error = f["std_error"].cast<double>();
+        r.reject = f["reject"].cast<bool>() ? 1 : 0;
+        r.decision = f["decision_code"].cast<int>();
+        py::array_t<int64_t, py::array::forcecast> n(f["nobs"]);
+        r.n[0] = static_cast<uint64_t>(n.data()[0]);
+        r.n[1] = n.size() > 1 ? static_cast<uint64_t>(n.data()[1]) : 0;
+        return make_result(r);
+    });
+    mod.def("_result_from_bytes", [](py::bytes b) {
+        std::string s = b;
+        if (s.size() != sizeof(mcstat_result))
+            throw_status(MCSTAT_ECORRUPT, "a pickled TestResult from another build of mcstat");
+        mcstat_result r;
+        std::memcpy(&r, s.data(), sizeof r);
+        return make_result(r);
+    });
+}
+
+} // namespace mcs

@@ -1,0 +1,297 @@
+// rows.cpp - one test per row of N-D input (the per-pixel case).
+//
+// The test axis is moved last (a view, no copy).  When every row is then a
+// contiguous run of float64 at a constant stride (C-contiguous input with
+// axis=-1), libmcstat reads the rows in place; otherwise each chunk of rows
+// is gathered into a small per-thread buffer.  Rows are split into one
+// contiguous range per thread, each row computed by libmcstat's
+// mcstat_*_rows exactly as by the one-test call, so the results do not
+// depend on the number of threads.
+//
+// Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+#include "common.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <thread>
+#include <vector>
+
+namespace mcs {
+
+namespace {
+
+std::atomic<int> g_threads{0};
+
+int default_threads()
+{
+    if (const char *e = std::getenv("MCSTAT_NUM_THREADS")) {
+        int v = std::atoi(e);
+        if (v > 0)
+            return v;
+    }
+    unsigned h = std::thread::hardware_concurrency();
+    return h ? static_cast<int>(h) : 1;
+}
+
+// Where the rows of one operand are: base pointer, byte offset of each row
+// (or a constant stride), the byte stride between a row's values.
+struct Layout {
+    const char *base = nullptr;
+    size_t n = 0;
+    ptrdiff_t inner = 0;          // bytes between consecutive values of a row
+    bool uniform = false;         // rows at base + i * row_stride, values contiguous
+    ptrdiff_t row_stride = 0;     // bytes (uniform only)
+    std::vector<ptrdiff_t> offs;  // bytes, one per row (otherwise)
+};
+
+Layout layout_of(const py::array &a, size_t rows)
+{
+    Layout L;
+    int nd = static_cast<int>(a.ndim());
+    L.base = static_cast<const char *>(a.data());
+    L.n = static_cast<size_t>(a.shape(nd - 1));
+    L.inner = a.strides(nd - 1);
+    // Offsets of the rows over the outer dimensions, in C order.
+    L.offs.assign(rows, 0);
+    std::vector<py::ssize_t> idx(static_cast<size_t>(std::max(nd - 1, 0)), 0);
+    ptrdiff_t off = 0;
+    for (size_t r = 0; r < rows; r++) {
+        L.offs[r] = off;
+        for (int d = nd - 2; d >= 0; d--) {
+            if (++idx[static_cast<size_t>(d)] < a.shape(d)) {
+                off += a.strides(d);
+                break;
+            }
+            off -= a.strides(d) * (a.shape(d) - 1);
+            idx[static_cast<size_t>(d)] = 0;
+        }
+    }
+    bool aligned = reinterpret_cast<uintptr_t>(L.base) % sizeof(double) == 0;
+    bool contiguous_rows = (L.inner == static_cast<ptrdiff_t>(sizeof(double)) || L.n <= 1) && aligned;
+    ptrdiff_t s = rows > 1 ? L.offs[1] - L.offs[0] : 0;
+    bool progression = s >= 0 && s % static_cast<ptrdiff_t>(sizeof(double)) == 0;
+    for (size_t r = 0; progression && r < rows; r++)
+        progression = L.offs[r] == static_cast<ptrdiff_t>(r) * s;
+    if (contiguous_rows && progression) {
+        L.uniform = true;
+        L.row_stride = s;
+        L.offs.clear();
+        L.offs.shrink_to_fit();
+    }
+    return L;
+}
+
+// Rows [r0, r0 + k) of an operand as (pointer, stride in elements): in
+// place when uniform, else gathered into buf (k * n doubles).
+const double *rows_at(const Layout &L, size_t r0, size_t k, std::vector<double> &buf, size_t *stride)
+{
+    if (L.uniform) {
+        *stride = static_cast<size_t>(L.row_stride) / sizeof(double);
+        return reinterpret_cast<const double *>(L.base + static_cast<ptrdiff_t>(r0) * L.row_stride);
+    }
+    buf.resize(k * L.n);
+    for (size_t i = 0; i < k; i++) {
+        const char *p = L.base + L.offs[r0 + i];
+        for (size_t j = 0; j < L.n; j++)
+            std::memcpy(&buf[i * L.n + j], p + static_cast<ptrdiff_t>(j) * L.inner, sizeof(double));
+    }
+    *stride = L.n;
+    return buf.data();
+}
+
+struct Outputs {
+    double *statistic, *df, *pvalue, *conf_int, *estimate, *critical, *std_error;
+    bool *reject;
+    int8_t *decision, *status;
+    int64_t *nobs;
+    int ndf, nest, nobs_per_row;
+};
+
+void scatter(const mcstat_result *res, const int32_t *st, size_t r0, size_t k, const Outputs &o)
+{
+    for (size_t i = 0; i < k; i++) {
+        const mcstat_result &r = res[i];
+        size_t j = r0 + i;
+        o.statistic[j] = r.statistic;
+        for (int d = 0; d < o.ndf; d++)
+            o.df[j * o.ndf + d] = r.df[d];
+        o.pvalue[j] = r.p_value;
+        o.conf_int[2 * j] = r.conf_int[0];
+        o.conf_int[2 * j + 1] = r.conf_int[1];
+        for (int e = 0; e < o.nest; e++)
+            o.estimate[j * o.nest + e] = r.estimate[e];
+        o.critical[2 * j] = r.critical[0];
+        o.critical[2 * j + 1] = r.critical[1];
+        o.std_error[j] = r.std_error;
+        o.reject[j] = st[i] == 0 && r.reject;
+        o.decision[j] = static_cast<int8_t>(st[i] == 0 ? r.decision : 0);
+        o.status[j] = static_cast<int8_t>(st[i]);
+        for (int s = 0; s < o.nobs_per_row; s++)
+            o.nobs[j * o.nobs_per_row + s] = st[i] == 0 ? static_cast<int64_t>(r.n[s]) : 0;
+    }
+}
+
+void run_range(const TestArgs &a, const Layout &X, const Layout &Y, bool two, size_t begin, size_t end,
+               const Outputs &o)
+{
+    unsigned flags = (a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (a.omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
+    // Chunks bound the result buffer and, when gathering, the copy (~1 MiB).
+    size_t per_row = X.n + (two ? Y.n : 0);
+    size_t chunk = std::max<size_t>(1, std::min<size_t>(256, (size_t(1) << 17) / std::max<size_t>(per_row, 1)));
+    std::vector<mcstat_result> res(chunk);
+    std::vector<int32_t> st(chunk);
+    std::vector<double> bx, by;
+    for (size_t r0 = begin; r0 < end; r0 += chunk) {
+        size_t k = std::min(chunk, end - r0), sx = 0, sy = 0;
+        const double *px = rows_at(X, r0, k, bx, &sx);
+        const double *py_ = two ? rows_at(Y, r0, k, by, &sy) : nullptr;
+        switch (a.kind) {
+        case Kind::T1:
+            mcstat_t_test_1_rows(px, k, X.n, sx, a.null_value, a.alternative, a.alpha, flags, res.data(), st.data());
+            break;
+        case Kind::T2:
+            mcstat_t_test_2_rows(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
+                                 res.data(), st.data());
+            break;
+        case Kind::V1:
+            mcstat_var_test_1_rows(px, k, X.n, sx, a.null_value, a.alternative, a.alpha, flags, res.data(),
+                                   st.data());
+            break;
+        case Kind::V2:
+            mcstat_var_test_2_rows(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
+                                   res.data(), st.data());
+            break;
+        }
+        scatter(res.data(), st.data(), r0, k, o);
+    }
+}
+
+const char *kind_name(Kind k)
+{
+    switch (k) {
+    case Kind::T1: return "t_1";
+    case Kind::T2: return "t_2";
+    case Kind::V1: return "var_1";
+    default: return "var_2";
+    }
+}
+
+} // namespace
+
+int num_threads()
+{
+    int t = g_threads.load();
+    return t > 0 ? t : default_threads();
+}
+
+void set_num_threads(int n)
+{
+    g_threads.store(n > 0 ? n : 0);
+}
+
+py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
+{
+    int nd = static_cast<int>(x.ndim());
+    if (two && y.ndim() != nd)
+        throw_invalid("x and y must have the same number of dimensions for row-wise tests, got " +
+                      std::to_string(nd) + "-D and " + std::to_string(y.ndim()) + "-D");
+    int axis = a.axis;
+    if (axis < -nd || axis >= nd)
+        throw_invalid("axis " + std::to_string(axis) + " is out of range for " + std::to_string(nd) + "-D input");
+    if (axis < 0)
+        axis += nd;
+    if (two) {
+        for (int d = 0; d < nd; d++) {
+            if (d != axis && x.shape(d) != y.shape(d)) {
+                auto shape_str = [nd](const py::array &v) {
+                    std::string out = "(";
+                    for (int k = 0; k < nd; k++)
+                        out += std::to_string(v.shape(k)) + (k + 1 < nd || nd == 1 ? "," : "") + (k + 1 < nd ? " " : "");
+                    return out + ")";
+                };
+                std::string sx = shape_str(x), sy = shape_str(y);
+                throw_invalid("x and y must have the same shape except along axis " + std::to_string(axis) +
+                              ", got " + sx + " and " + sy);
+            }
+        }
+    }
+    py::module_ np = py::module_::import("numpy");
+    py::array xv = np.attr("moveaxis")(x, axis, -1);
+    py::array yv = two ? py::array(np.attr("moveaxis")(y, axis, -1)) : py::array();
+    std::vector<py::ssize_t> outer(xv.shape(), xv.shape() + nd - 1);
+    size_t rows = 1;
+    for (auto s : outer)
+        rows *= static_cast<size_t>(s);
+
+    Layout X = layout_of(xv, rows), Y;
+    if (two)
+        Y = layout_of(yv, rows);
+
+    bool t2 = a.kind == Kind::T2, v2 = a.kind == Kind::V2;
+    auto with = [&](int k) {
+        std::vector<py::ssize_t> s = outer;
+        if (k > 1)
+            s.push_back(k);
+        return s;
+    };
+    Outputs o;
+    o.ndf = v2 ? 2 : 1;
+    o.nest = t2 ? 2 : 1;
+    o.nobs_per_row = two ? 2 : 1;
+    py::array_t<double> statistic(with(1)), df(with(o.ndf)), pvalue(with(1)), conf_int(with(2)),
+        estimate(with(o.nest)), critical(with(2)), std_error(with(1));
+    py::array_t<bool> reject(with(1));
+    py::array_t<int8_t> decision(with(1)), status(with(1));
+    py::array_t<int64_t> nobs(with(o.nobs_per_row));
+    o.statistic = statistic.mutable_data();
+    o.df = df.mutable_data();
+    o.pvalue = pvalue.mutable_data();
+    o.conf_int = conf_int.mutable_data();
+    o.estimate = estimate.mutable_data();
+    o.critical = critical.mutable_data();
+    o.std_error = std_error.mutable_data();
+    o.reject = reject.mutable_data();
+    o.decision = decision.mutable_data();
+    o.status = status.mutable_data();
+    o.nobs = nobs.mutable_data();
+
+    {
+        py::gil_scoped_release nogil;
+        // At least ~1000 rows per thread: below that a thread costs more than it saves.
+        size_t nt = std::min<size_t>(static_cast<size_t>(num_threads()), std::max<size_t>(1, rows / 1024));
+        if (nt <= 1) {
+            run_range(a, X, Y, two, 0, rows, o);
+        } else {
+            std::vector<std::thread> pool;
+            size_t per = (rows + nt - 1) / nt;
+            for (size_t t = 1; t < nt; t++) {
+                size_t b = t * per, e = std::min(rows, b + per);
+                if (b < e)
+                    pool.emplace_back([&, b, e] { run_range(a, X, Y, two, b, e, o); });
+            }
+            run_range(a, X, Y, two, 0, std::min(rows, per), o);
+            for (auto &th : pool)
+                th.join();
+        }
+    }
+    py::dict fields;
+    fields["statistic"] = statistic;
+    fields["df"] = df;
+    fields["pvalue"] = pvalue;
+    fields["conf_int"] = conf_int;
+    fields["estimate"] = estimate;
+    fields["critical_values"] = critical;
+    fields["std_error"] = std_error;
+    fields["reject"] = reject;
+    fields["decision_code"] = decision;
+    fields["status"] = status;
+    fields["nobs"] = nobs;
+    static py::object make = py::module_::import("mcstat._result").attr("_make_batch");
+    return make(kind_name(a.kind), fields, a.alternative, a.alpha, a.null_value, a.axis, a.errors_as_nan,
+                a.intervals);
+}
+
+} // namespace mcs

@@ -1,0 +1,358 @@
+// tests.cpp - t_test and var_test: argument parsing and the one-test path.
+//
+// These two are the calls people make in loops, so they are vectorcall
+// (METH_FASTCALL) functions that parse their own arguments: a Welch test on
+// 2 x 50 values spends about as long in this file as in libmcstat.
+//
+// Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+#include "common.hpp"
+#include "docs.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace mcs {
+
+namespace {
+
+using carray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using farray = py::array_t<double, py::array::forcecast>;
+
+struct Parsed {
+    PyObject *x = nullptr, *y = nullptr;
+    PyObject *null_value = nullptr; // mu / sigma2
+    PyObject *ratio = nullptr;      // var_test only
+    PyObject *alternative = nullptr, *alpha = nullptr, *axis = nullptr, *nan_policy = nullptr;
+    PyObject *intervals = nullptr, *on_error = nullptr;
+};
+
+std::string repr(PyObject *o)
+{
+    py::str s = py::repr(o);
+    return s;
+}
+
+double get_double(PyObject *o, const char *name)
+{
+    double v = PyFloat_AsDouble(o);
+    if (v == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        throw py::type_error(std::string(name) + " must be a real number, got " + repr(o));
+    }
+    return v;
+}
+
+const char *get_str(PyObject *o, const char *name)
+{
+    if (!PyUnicode_Check(o))
+        throw py::type_error(std::string(name) + " must be a str, got " + repr(o));
+    const char *s = PyUnicode_AsUTF8(o);
+    if (!s)
+        throw py::error_already_set();
+    return s;
+}
+
+bool match(PyObject *name, const char *s)
+{
+    return PyUnicode_CompareWithASCIIString(name, s) == 0;
+}
+
+void parse(const char *fname, bool is_var, PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames,
+           Parsed &p)
+{
+    if (nargs > 2)
+        throw py::type_error(std::string(fname) + "() takes at most 2 positional arguments (x, y), " +
+                             std::to_string(nargs) + " given");
+    if (nargs > 0)
+        p.x = args[0];
+    if (nargs > 1)
+        p.y = args[1];
+    Py_ssize_t nk = kwnames ? PyTuple_GET_SIZE(kwnames) : 0;
+    for (Py_ssize_t i = 0; i < nk; i++) {
+        PyObject *k = PyTuple_GET_ITEM(kwnames, i), *v = args[nargs + i];
+        PyObject **slot = nullptr;
+        if (match(k, "alternative"))
+            slot = &p.alternative;
+        else if (match(k, "alpha"))
+            slot = &p.alpha;
+        else if (!is_var && match(k, "mu"))
+            slot = &p.null_value;
+        else if (is_var && match(k, "sigma2"))
+            slot = &p.null_value;
+        else if (is_var && match(k, "ratio"))
+            slot = &p.ratio;
+        else if (match(k, "axis"))
+            slot = &p.axis;
+        else if (match(k, "nan_policy"))
+            slot = &p.nan_policy;
+        else if (match(k, "intervals"))
+            slot = &p.intervals;
+        else if (match(k, "on_error"))
+            slot = &p.on_error;
+        else if (match(k, "x"))
+            slot = &p.x;
+        else if (match(k, "y"))
+            slot = &p.y;
+        else
+            throw py::type_error(std::string(fname) + "() got an unexpected keyword argument " + repr(k));
+        if (*slot)
+            throw py::type_error(std::string(fname) + "() got multiple values for argument " + repr(k));
+        *slot = v;
+    }
+    if (!p.x)
+        throw py::type_error(std::string(fname) + "() missing required argument 'x'");
+    if (p.x == Py_None)
+        throw py::type_error(std::string(fname) + "(): x must be array-like or an mcstat.Moments, not None");
+    if (p.y == Py_None)
+        p.y = nullptr;
+}
+
+void common_args(const Parsed &p, TestArgs &a)
+{
+    a.alternative = MCSTAT_TWO_SIDED;
+    if (p.alternative) {
+        const char *s = get_str(p.alternative, "alternative");
+        if (mcstat_alternative_parse(s, &a.alternative) != MCSTAT_OK)
+            throw_invalid(std::string("alternative must be 'two-sided', 'less' or 'greater', got '") + s + "'");
+    }
+    a.alpha = p.alpha ? get_double(p.alpha, "alpha") : 0.05;
+    if (!(a.alpha > 0.0 && a.alpha < 1.0))
+        throw_invalid("alpha must be in (0, 1), got " + repr(p.alpha));
+    a.axis = -1;
+    if (p.axis) {
+        long v = PyLong_AsLong(p.axis);
+        if (v == -1 && PyErr_Occurred()) {
+            PyErr_Clear();
+            throw py::type_error("axis must be an int, got " + repr(p.axis));
+        }
+        a.axis = static_cast<int>(v);
+    }
+    a.omit_nan = false;
+    if (p.nan_policy) {
+        const char *s = get_str(p.nan_policy, "nan_policy");
+        if (!std::strcmp(s, "omit"))
+            a.omit_nan = true;
+        else if (std::strcmp(s, "raise"))
+            throw_invalid(std::string("nan_policy must be 'raise' or 'omit', got '") + s + "'");
+    }
+    a.intervals = true;
+    if (p.intervals) {
+        int t = PyObject_IsTrue(p.intervals);
+        if (t < 0)
+            throw py::error_already_set();
+        a.intervals = t != 0;
+    }
+    a.errors_as_nan = false;
+    if (p.on_error) {
+        const char *s = get_str(p.on_error, "on_error");
+        if (!std::strcmp(s, "nan"))
+            a.errors_as_nan = true;
+        else if (std::strcmp(s, "raise"))
+            throw_invalid(std::string("on_error must be 'raise' or 'nan', got '") + s + "'");
+    }
+}
+
+// Moments of a 1-D array-like (for a test that mixes an accumulator and an array).
+mcstat_moments moments_of(py::handle obj, bool omit)
+{
+    carray a = as_contiguous_array(obj);
+    if (a.ndim() != 1)
+        throw_invalid("an array tested against an mcstat.Moments must be 1-D, got " + std::to_string(a.ndim()) +
+                      "-D");
+    mcstat_moments m;
+    mcstat_moments_init(&m);
+    size_t n = static_cast<size_t>(a.size());
+    int st;
+    if (n >= GIL_RELEASE_MIN) {
+        py::gil_scoped_release nogil;
+        st = omit ? mcstat_moments_add_array_omit_nan(&m, a.data(), n, nullptr) : mcstat_moments_add_array(&m, a.data(), n);
+    } else {
+        st = omit ? mcstat_moments_add_array_omit_nan(&m, a.data(), n, nullptr) : mcstat_moments_add_array(&m, a.data(), n);
+    }
+    if (st)
+        throw_status(st);
+    return m;
+}
+
+std::string sizes_detail(const TestArgs &a, size_t nx, size_t ny)
+{
+    bool two = a.kind == Kind::T2 || a.kind == Kind::V2;
+    return two ? "x has " + std::to_string(nx) + " values, y has " + std::to_string(ny)
+               : "x has " + std::to_string(nx) + " values";
+}
+
+int call_moments(const TestArgs &a, const mcstat_moments *mx, const mcstat_moments *my, mcstat_result *r)
+{
+    switch (a.kind) {
+    case Kind::T1: return mcstat_t_test_1_moments(mx, a.null_value, a.alternative, a.alpha, r);
+    case Kind::T2: return mcstat_t_test_2_moments(mx, my, a.null_value, a.alternative, a.alpha, r);
+    case Kind::V1: return mcstat_var_test_1_moments(mx, a.null_value, a.alternative, a.alpha, r);
+    default: return mcstat_var_test_2_moments(mx, my, a.null_value, a.alternative, a.alpha, r);
+    }
+}
+
+int call_arrays(const TestArgs &a, const double *x, size_t nx, const double *y, size_t ny, mcstat_result *r)
+{
+    unsigned flags = (a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (a.omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
+    switch (a.kind) {
+    case Kind::T1: return mcstat_t_test_1_rows(x, 1, nx, 0, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+    case Kind::T2:
+        return mcstat_t_test_2_rows(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+    case Kind::V1:
+        return mcstat_var_test_1_rows(x, 1, nx, 0, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+    default:
+        return mcstat_var_test_2_rows(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r,
+                                      nullptr);
+    }
+}
+
+py::object run(const Parsed &p, TestArgs &a)
+{
+    bool two = p.y != nullptr;
+    const mcstat_moments *mx = as_moments(p.x), *my = two ? as_moments(p.y) : nullptr;
+    mcstat_result r;
+    if (mx || my) { // accumulators (an array beside one is turned into moments)
+        mcstat_moments bx, by;
+        if (!mx) {
+            bx = moments_of(p.x, a.omit_nan);
+            mx = &bx;
+        }
+        if (two && !my) {
+            by = moments_of(p.y, a.omit_nan);
+            my = &by;
+        }
+        int st = call_moments(a, mx, my, &r);
+        if (st)
+            throw_status(st, st == MCSTAT_ETOOFEW ? sizes_detail(a, mx->n, my ? my->n : 0) : "");
+        return make_result(r);
+    }
+    py::array xa = as_float_array(p.x), ya;
+    if (two)
+        ya = as_float_array(p.y);
+    int nd = static_cast<int>(xa.ndim());
+    if (nd == 0 || (two && ya.ndim() == 0))
+        throw_invalid("x and y must be at least 1-D arrays (got a scalar)");
+    if (nd > 1 || (two && ya.ndim() > 1))
+        return run_rows(a, xa, ya, two);
+    if (a.axis != 0 && a.axis != -1)
+        throw_invalid("axis " + std::to_string(a.axis) + " is out of range for 1-D input");
+    // One test: contiguous float64 is read in place, anything else converted once.
+    if (!(xa.flags() & py::array::c_style))
+        xa = as_contiguous_array(xa);
+    if (two && !(ya.flags() & py::array::c_style))
+        ya = as_contiguous_array(ya);
+    const double *x = static_cast<const double *>(xa.data()), *y = two ? static_cast<const double *>(ya.data()) : nullptr;
+    size_t nx = static_cast<size_t>(xa.size()), ny = two ? static_cast<size_t>(ya.size()) : 0;
+    int st;
+    if (nx + ny >= GIL_RELEASE_MIN) {
+        py::gil_scoped_release nogil;
+        st = call_arrays(a, x, nx, y, ny, &r);
+    } else {
+        st = call_arrays(a, x, nx, y, ny, &r);
+    }
+    if (st)
+        throw_status(st, st == MCSTAT_ETOOFEW ? sizes_detail(a, nx, ny) : "");
+    return make_result(r);
+}
+
+template <typename F> PyObject *guarded(F f)
+{
+    try {
+        return f().release().ptr();
+    } catch (py::error_already_set &e) {
+        e.restore();
+    } catch (py::builtin_exception &e) {
+        e.set_error();
+    } catch (std::bad_alloc &) {
+        PyErr_SetString(error_class(MCSTAT_ENOMEM).ptr(), mcstat_strerror(MCSTAT_ENOMEM));
+    } catch (std::exception &e) {
+        PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+    return nullptr;
+}
+
+PyObject *t_test(PyObject *, PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames)
+{
+    return guarded([&]() {
+        Parsed p;
+        parse("t_test", false, args, nargs, kwnames, p);
+        TestArgs a;
+        common_args(p, a);
+        a.kind = p.y ? Kind::T2 : Kind::T1;
+        a.null_value = p.null_value ? get_double(p.null_value, "mu") : 0.0;
+        if (!std::isfinite(a.null_value))
+            throw_invalid("mu must be finite, got " + repr(p.null_value));
+        return run(p, a);
+    });
+}
+
+PyObject *var_test(PyObject *, PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames)
+{
+    return guarded([&]() {
+        Parsed p;
+        parse("var_test", true, args, nargs, kwnames, p);
+        TestArgs a;
+        common_args(p, a);
+        if (p.y) {
+            a.kind = Kind::V2;
+            if (p.null_value && p.null_value != Py_None)
+                throw_invalid("sigma2 is for the one-sample test; the two-sample F test takes ratio");
+            a.null_value = p.ratio ? get_double(p.ratio, "ratio") : 1.0;
+            if (!(a.null_value > 0.0 && std::isfinite(a.null_value)))
+                throw_invalid("ratio must be positive and finite, got " + repr(p.ratio));
+        } else {
+            a.kind = Kind::V1;
+            if (p.ratio)
+                throw_invalid("ratio is for the two-sample F test; the one-sample test takes sigma2");
+            if (!p.null_value || p.null_value == Py_None)
+                throw_invalid("the one-sample variance test needs sigma2 (the variance under H0)");
+            a.null_value = get_double(p.null_value, "sigma2");
+            if (!(a.null_value > 0.0 && std::isfinite(a.null_value)))
+                throw_invalid("sigma2 must be positive and finite, got " + repr(p.null_value));
+        }
+        return run(p, a);
+    });
+}
+
+PyMethodDef methods[] = {
+    {"t_test", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)(void)>(t_test)),
+     METH_FASTCALL | METH_KEYWORDS, T_TEST_DOC},
+    {"var_test", reinterpret_cast<PyCFunction>(reinterpret_cast<void (*)(void)>(var_test)),
+     METH_FASTCALL | METH_KEYWORDS, VAR_TEST_DOC},
+    {nullptr, nullptr, 0, nullptr}};
+
+} // namespace
+
+py::array as_float_array(py::handle obj)
+{
+    py::array a = farray::ensure(obj);
+    if (!a) // pybind11 swallowed NumPy's error: let NumPy raise it again
+        py::module_::import("numpy").attr("asarray")(obj, "float64");
+    if (!a)
+        throw py::type_error("cannot convert " + repr(obj.ptr()) + " to a float64 array");
+    return a;
+}
+
+py::array as_contiguous_array(py::handle obj)
+{
+    py::array a = carray::ensure(obj);
+    if (!a)
+        py::module_::import("numpy").attr("ascontiguousarray")(obj, "float64");
+    if (!a)
+        throw py::type_error("cannot convert " + repr(obj.ptr()) + " to a float64 array");
+    return a;
+}
+
+void register_tests(py::module_ &mod)
+{
+    for (PyMethodDef *d = methods; d->ml_name; d++) {
+        // self = the module, as for any module function (inspect then drops $module)
+        PyObject *f = PyCFunction_NewEx(d, mod.ptr(), mod.attr("__name__").ptr());
+        if (!f)
+            throw py::error_already_set();
+        mod.add_object(d->ml_name, py::reinterpret_steal<py::object>(f));
+    }
+}
+
+} // namespace mcs

@@ -1,0 +1,132 @@
+/*
+ * batch.c - one test per row of a matrix: the per-pixel case (an image whose
+ * every pixel holds k secondary estimates).
+ *
+ * Each row goes through exactly the code of the single-sample call, so row i
+ * of a batch is bit for bit mcstat_*_test_* on row i.  What a batch adds:
+ * critical values are reused between rows of equal degrees of freedom (a
+ * t_1 or var test over rows of equal length solves its quantiles once, not
+ * once per row), and MCSTAT_ROWS_NO_INTERVALS skips them altogether.
+ * Nothing allocates: the moments live on the stack, the caller owns out[]
+ * and status[], and disjoint row ranges may run on different threads.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "internal.h"
+
+static int check_rows(const double *x, size_t rows, unsigned flags, const mcstat_result *out,
+                      const int32_t *status)
+{
+    (void)status;
+    if (rows > 0 && (!x || !out))
+        return MCSTAT_EINVAL;
+    if (flags & ~(unsigned)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN))
+        return MCSTAT_EINVAL;
+    return MCSTAT_OK;
+}
+
+static int row_moments(const double *x, size_t n, unsigned flags, mcstat_moments *m)
+{
+    mcstat_moments_init(m);
+    if (flags & MCSTAT_ROWS_OMIT_NAN)
+        return mcstat_moments_add_array_omit_nan(m, x, n, NULL);
+    return mcstat_moments_add_array(m, x, n);
+}
+
+/* Records row i's status; a failed row's result is cleared (NaN fields). */
+static void finish_row(int st, size_t i, mcstat_result *out, int32_t *status, int *first)
+{
+    if (st) {
+        mcstat__result_clear(&out[i]);
+        if (*first == MCSTAT_OK)
+            *first = st;
+    }
+    if (status)
+        status[i] = st;
+}
+
+int mcstat_t_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double mu0, int alternative,
+                         double alpha, unsigned flags, mcstat_result *out, int32_t *status)
+{
+    int st = check_rows(x, rows, flags, out, status);
+    if (st)
+        return st;
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
+    int first = MCSTAT_OK;
+    for (size_t i = 0; i < rows; i++) {
+        mcstat_moments m;
+        st = row_moments(x + i * x_stride, n, flags, &m);
+        if (!st)
+            st = mcstat__t_test_1(&m, mu0, alternative, alpha, q, &out[i]);
+        finish_row(st, i, out, status, &first);
+    }
+    return first;
+}
+
+int mcstat_t_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
+                         size_t y_stride, size_t rows, double mu0, int alternative, double alpha, unsigned flags,
+                         mcstat_result *out, int32_t *status)
+{
+    int st = check_rows(x, rows, flags, out, status);
+    if (st || (rows > 0 && !y))
+        return st ? st : MCSTAT_EINVAL;
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
+    int first = MCSTAT_OK;
+    for (size_t i = 0; i < rows; i++) {
+        mcstat_moments mx, my;
+        st = row_moments(x + i * x_stride, nx, flags, &mx);
+        if (!st)
+            st = row_moments(y + i * y_stride, ny, flags, &my);
+        if (!st)
+            st = mcstat__t_test_2(&mx, &my, mu0, alternative, alpha, q, &out[i]);
+        finish_row(st, i, out, status, &first);
+    }
+    return first;
+}
+
+int mcstat_var_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double sigma2,
+                           int alternative, double alpha, unsigned flags, mcstat_result *out, int32_t *status)
+{
+    int st = check_rows(x, rows, flags, out, status);
+    if (st)
+        return st;
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
+    int first = MCSTAT_OK;
+    for (size_t i = 0; i < rows; i++) {
+        mcstat_moments m;
+        st = row_moments(x + i * x_stride, n, flags, &m);
+        if (!st)
+            st = mcstat__var_test_1(&m, sigma2, alternative, alpha, q, &out[i]);
+        finish_row(st, i, out, status, &first);
+    }
+    return first;
+}
+
+int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
+                           size_t y_stride, size_t rows, double ratio, int alternative, double alpha,
+                           unsigned flags, mcstat_result *out, int32_t *status)
+{
+    int st = check_rows(x, rows, flags, out, status);
+    if (st || (rows > 0 && !y))
+        return st ? st : MCSTAT_EINVAL;
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
+    int first = MCSTAT_OK;
+    for (size_t i = 0; i < rows; i++) {
+        mcstat_moments mx, my;
+        st = row_moments(x + i * x_stride, nx, flags, &mx);
+        if (!st)
+            st = row_moments(y + i * y_stride, ny, flags, &my);
+        if (!st)
+            st = mcstat__var_test_2(&mx, &my, ratio, alternative, alpha, q, &out[i]);
+        finish_row(st, i, out, status, &first);
+    }
+    return first;
+}

@@ -1,0 +1,102 @@
+"""Package-level behaviour: zero-copy input, the GIL, GSL's handler, typing."""
+import os
+import subprocess
+import sys
+import threading
+import time
+import tracemalloc
+
+import numpy as np
+import pytest
+
+import mcstat
+
+
+def peak_bytes(f):
+    tracemalloc.start()
+    try:
+        f()
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_contiguous_float64_is_not_copied():
+    x = np.random.default_rng(1).normal(size=2_000_000)  # 16 MB
+    y = x[::-1].copy()
+    assert peak_bytes(lambda: mcstat.t_test(x, y)) < 100_000
+    assert peak_bytes(lambda: mcstat.Moments(x)) < 100_000
+    # other input is converted exactly once (NumPy's allocations are traced)
+    x32 = x.astype(np.float32)
+    assert 16_000_000 <= peak_bytes(lambda: mcstat.t_test(x32)) < 2 * 16_000_000
+    assert 16_000_000 <= peak_bytes(lambda: mcstat.t_test(x[::2].copy()[::1], x[1::2])) < 2 * 16_000_000
+
+
+def test_rows_read_in_place():
+    X = np.random.default_rng(2).normal(size=(20000, 64))  # 10 MB
+    out = 20000 * 8 * 16  # the result arrays
+    assert peak_bytes(lambda: mcstat.t_test(X)) < out + 1_000_000
+
+
+def test_gil_is_released_for_long_loops():
+    x = np.random.default_rng(3).normal(size=20_000_000)
+    ticks = []
+    stop = threading.Event()
+
+    def ticker():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    th = threading.Thread(target=ticker)
+    th.start()
+    time.sleep(0.01)
+    t0 = time.perf_counter()
+    mcstat.t_test(x)
+    t1 = time.perf_counter()
+    stop.set()
+    th.join()
+    during = [t for t in ticks if t0 < t < t1]
+    # the other thread kept running while libmcstat summed 160 MB
+    assert (t1 - t0) < 0.02 or len(during) >= 3
+
+
+def test_gsl_handler_only_turned_off_when_default():
+    code = "import mcstat; print(mcstat.gsl_handler_was_default)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "True"
+    # a process that installed its own handler keeps it
+    code = """
+import ctypes, ctypes.util
+gsl = ctypes.CDLL("libgsl.so.27") if ctypes.util.find_library("gsl") is None else ctypes.CDLL(ctypes.util.find_library("gsl"))
+HANDLER = ctypes.CFUNCTYPE(None, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int, ctypes.c_int)
+h = HANDLER(lambda *a: None)
+gsl.gsl_set_error_handler.restype = ctypes.c_void_p
+gsl.gsl_set_error_handler(h)
+import mcstat
+prev = gsl.gsl_set_error_handler(None)
+print(mcstat.gsl_handler_was_default, prev == ctypes.cast(h, ctypes.c_void_p).value)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["False", "True"]
+
+
+def test_package_surface():
+    for name in ["t_test", "var_test", "Moments", "batch_means", "TestResult", "BatchResult",
+                 "DegenerateDataError", "NonFiniteError", "TooFewObservationsError"]:
+        assert name in mcstat.__all__ and hasattr(mcstat, name)
+    assert mcstat.__libmcstat_version__ == "0.1.0"
+    pkg = os.path.dirname(mcstat.__file__)
+    assert os.path.exists(os.path.join(pkg, "py.typed")) and os.path.exists(os.path.join(pkg, "_core.pyi"))
+    assert "Welch" in mcstat.t_test.__doc__ and "Parameters" in mcstat.var_test.__doc__
+    import inspect
+    sig = inspect.signature(mcstat.t_test)
+    assert list(sig.parameters)[:3] == ["x", "y", "mu"]
+    assert sig.parameters["alternative"].kind is inspect.Parameter.KEYWORD_ONLY
+
+
+def test_result_pickles():
+    import pickle
+    r = mcstat.t_test([1.0, 2.0, 4.0], [3.0, 5.0, 4.5, 7.0])
+    r2 = pickle.loads(pickle.dumps(r))
+    assert r2._raw() == r._raw() and str(r2) == str(r)
