@@ -13,7 +13,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps system-deps python-deps build test ctest python pytest demo bench bench-python references clean
+.PHONY: all deps system-deps python-deps build test ctest python pytest demo bench bench-python bench-estimators references clean
 
 all: build
 
@@ -65,6 +65,12 @@ bench: deps
 
 bench-python: python
 	$(PY) bench/bench_python.py
+
+# C estimators against their NumPy twins; rewrites bench/RESULTS_estimators.md.
+bench-estimators: python-deps
+	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DMCSTAT_BUILD_BENCH=ON -DMCSTAT_BUILD_TESTS=OFF
+	cmake --build $(BUILD)-bench -j $(JOBS) --target bench_estimators
+	$(PY) bench/bench_estimators_numpy.py --c $(BUILD)-bench/bench/bench_estimators --write
 
 # Regenerates the committed reference numbers (needs R for the formatting).
 references: python-deps
