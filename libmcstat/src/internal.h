@@ -255,8 +255,16 @@ MCSTAT_HIDDEN int mcstat__ks_exact_critical(const mcstat__ks_data *d, double alp
 /* Simulation (ks_simulate.c): n_sim keys of the null distribution, sorted. */
 MCSTAT_HIDDEN int mcstat__ks_simulate(const mcstat__ks_data *d, int64_t n_sim, uint64_t seed,
                                       int threads, double *keys);
-/* The same with a chosen generator (the benchmark compares them). */
-enum { MCSTAT__KS_RNG_TAUS2 = 0, MCSTAT__KS_RNG_XOSHIRO = 1, MCSTAT__KS_RNG_DEFAULT = 1 };
+/* The same with a chosen generator and kernel (the benchmark compares them;
+ * the tests check that the two xoshiro kernels give bit-identical keys):
+ * TAUS2 GSL's taus2, scalar; XOSHIRO xoshiro256++, the AVX2 kernel where it
+ * applies; XOSHIRO_SCALAR the same numbers by the scalar kernel. */
+enum {
+    MCSTAT__KS_RNG_TAUS2 = 0,
+    MCSTAT__KS_RNG_XOSHIRO = 1,
+    MCSTAT__KS_RNG_XOSHIRO_SCALAR = 2,
+    MCSTAT__KS_RNG_DEFAULT = 1
+};
 MCSTAT_HIDDEN int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t seed,
                                           int threads, int rng, double *keys);
 
