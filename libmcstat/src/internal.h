@@ -203,6 +203,9 @@ static inline double mcstat__key_double(uint64_t k)
 }
 /* Sorts a[0..n) ascending; tmp has room for n keys.  MCSTAT_ENOMEM. */
 MCSTAT_HIDDEN int mcstat__radix_sort_u64(uint64_t *a, size_t n, uint64_t *tmp);
+/* keys[0..n) <- the order keys of x, sorted; tmp has room for n keys.
+ * MCSTAT_ENONFINITE (keys unspecified) if x holds a NaN. */
+MCSTAT_HIDDEN int mcstat__sort_double_keys(const double *x, size_t n, uint64_t *keys, uint64_t *tmp);
 
 /* ---- two-sample Kolmogorov-Smirnov (ks_*.c) --------------------------------
  * mcstat's alternatives are claims about the first sample (API.md, ERRATA 4):

@@ -147,6 +147,28 @@ def test_asymptotic_against_scipy(nx, ny):
     assert mcstat.ks_test(x[:500], y[:500], weight="none").pvalue_method == "exact"
 
 
+def test_big_unweighted_threads_and_direct():
+    """Above 65536 values the samples are sorted, and the merged pass made,
+    on two threads: the same bits as one thread, the statistic and the
+    direction of the supremum as the definition gives them (with and
+    without ties)."""
+    rng = np.random.default_rng(77)
+    x, y = rng.standard_normal(120001), rng.standard_normal(99999) + 0.01
+    for xx, yy in [(x, y), (np.round(x, 2), np.round(y, 2)), (y, x)]:
+        for alt in ("two-sided", "less", "greater"):
+            kw = dict(weight="none", alternative=alt, method="simulate" if has_ties(xx, yy) else "asymptotic",
+                      n_sim=50, seed=1)
+            one, two = mcstat.ks_test(xx, yy, threads=1, **kw), mcstat.ks_test(xx, yy, threads=2, **kw)
+            assert one._raw() == two._raw()
+            assert rel_err(one.statistic, direct_statistic(xx, yy, "none", alt)) < 1e-12
+            if one.reject and alt == "two-sided":
+                xs, ys = np.sort(xx), np.sort(yy)
+                t = np.unique(np.concatenate([xs, ys]))
+                dev = np.searchsorted(xs, t, side="right") / xs.size - np.searchsorted(ys, t, side="right") / ys.size
+                first = dev[np.argmax(np.abs(dev) == np.abs(dev).max())]
+                assert one.decision == ("less" if first > 0 else "greater")
+
+
 # ---------------------------------------------------------------------------
 # R's cases, the exact values, the direct statistic
 # ---------------------------------------------------------------------------
@@ -408,8 +430,18 @@ def test_bad_data():
         mcstat.ks_test(GOOD, np.array([]))
     with pytest.raises(mcstat.NonFiniteError, match="NaN"):
         mcstat.ks_test(GOOD, [1.0, np.nan])
+    neg_nan = np.copysign(np.nan, -1.0)
+    big = np.random.default_rng(1).standard_normal(70000)
+    for bad in ([neg_nan, 1.0], np.append(big, np.nan), np.append(big, neg_nan)):  # small and radix-sorted
+        with pytest.raises(mcstat.NonFiniteError):
+            mcstat.ks_test(bad, GOOD, weight="none")
+        with pytest.raises(mcstat.NonFiniteError):
+            mcstat.ks_test(GOOD, bad)
     r = mcstat.ks_test([1.0], [np.inf, -np.inf, 0.5])  # infinities are ordinary values; one value is enough
     assert 0 < r.pvalue <= 1
+    r = mcstat.ks_test([np.inf, np.inf, 1.0], [-np.inf, 0.0, -0.0, np.inf], weight="none", method="exact")
+    assert r.statistic == direct_statistic(np.array([np.inf, np.inf, 1.0]), np.array([-np.inf, 0.0, -0.0, np.inf]),
+                                           "none", "two-sided")
     with pytest.raises(mcstat.InvalidArgumentError, match="1-D"):
         mcstat.ks_test(np.ones((2, 3)), GOOD)
     with pytest.raises(mcstat.InvalidArgumentError, match="1-D"):
