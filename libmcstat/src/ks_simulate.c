@@ -53,10 +53,10 @@ typedef struct {
     int rng;             /* MCSTAT__KS_RNG_* */
     int simd;            /* the AVX2 kernel applies */
     double *keys;
-    const double *w;     /* Canner: 1/(s (N - s)) at tie-block ends with 0 < s < N, else 0 */
+    const double *w;     /* Canner: sg/(s (N - s)) at tie-block ends with 0 < s < N, else 0, where
+                            sg = -1 for LESS (the claimed deviation is -u), else +1 */
     const int64_t *mask; /* -1 at block ends with 0 < s < N, else 0 */
     const int32_t *mask32;
-    double sg;           /* Canner, one-sided: the sign making the claimed deviation positive */
     pthread_mutex_t lock;
     int64_t next_block, n_blocks;
     int status;
@@ -158,7 +158,7 @@ static double replicate_scalar(const sim_job *job, source *src)
         }
         return finish_none(d, umax, umin);
     }
-    const double *w = job->w, sg = job->sg;
+    const double *w = job->w;
     const int two = d->alternative == MCSTAT_TWO_SIDED;
     double best = 0.0;
     int64_t best_u = 0;
@@ -168,7 +168,8 @@ static double replicate_scalar(const sim_job *job, source *src)
         const uint64_t isx = (((v & 0xffffffffu) * (N - s + 1)) >> 32) < left;
         left -= isx;
         u += (int64_t)isx * NN - n1;
-        const double du = (double)u * sg;
+        /* (sg u) |sg u| w = (u |u|)(sg w) exactly: a sign change is exact */
+        const double du = (double)u;
         const double key = (two ? du * du : du * fabs(du)) * w[s];
         if (key > best) {
             best = key;
@@ -265,10 +266,11 @@ static AVX2 void group_avx2(const sim_job *job, int64_t k0, double *out)
     } else {
         const double *w = job->w;
         const int two = d->alternative == MCSTAT_TWO_SIDED;
-        const __m256d sgv = _mm256_set1_pd(job->sg), absmask = _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX));
+        const __m256d absmask = _mm256_castsi256_pd(_mm256_set1_epi64x(INT64_MAX));
         __m256d best_lo = _mm256_setzero_pd(), best_hi = _mm256_setzero_pd();
-        __m256d bs_lo = _mm256_set1_pd(1.0), bs_hi = _mm256_set1_pd(1.0);
-        for (int32_t s = 1; s < N; s++) {
+        __m256d bs_lo = _mm256_set1_pd(1.0), bs_hi = _mm256_set1_pd(1.0), sv = _mm256_set1_pd(1.0);
+        const __m256d one = _mm256_set1_pd(1.0);
+        for (int32_t s = 1; s < N; s++, sv = _mm256_add_pd(sv, one)) { /* sv = s, exactly */
             __m256i r;
             if (s & 1) {
                 XO_STEP(a0, a1, a2, a3, ra);
@@ -279,10 +281,9 @@ static AVX2 void group_avx2(const sim_job *job, int64_t k0, double *out)
             }
             LABEL_STEP(r, _mm256_set1_epi32(N - s + 1), left, isx);
             u = _mm256_add_epi32(u, _mm256_sub_epi32(_mm256_and_si256(isx, _mm256_add_epi32(n2v, n1v)), n1v));
-            const __m256d wv = _mm256_set1_pd(w[s]), sv = _mm256_set1_pd((double)s);
-            const __m256d ulo = _mm256_cvtepi32_pd(_mm256_castsi256_si128(u));
-            const __m256d uhi = _mm256_cvtepi32_pd(_mm256_extracti128_si256(u, 1));
-            const __m256d dlo = _mm256_mul_pd(ulo, sgv), dhi = _mm256_mul_pd(uhi, sgv);
+            const __m256d wv = _mm256_set1_pd(w[s]);
+            const __m256d dlo = _mm256_cvtepi32_pd(_mm256_castsi256_si128(u));
+            const __m256d dhi = _mm256_cvtepi32_pd(_mm256_extracti128_si256(u, 1));
             /* (du * du or du * |du|) * w, the scalar kernel's products in its order */
             const __m256d klo = _mm256_mul_pd(_mm256_mul_pd(dlo, two ? dlo : _mm256_and_pd(dlo, absmask)), wv);
             const __m256d khi = _mm256_mul_pd(_mm256_mul_pd(dhi, two ? dhi : _mm256_and_pd(dhi, absmask)), wv);
@@ -372,7 +373,6 @@ int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t se
     job.next_block = 0;
     job.n_blocks = (n_sim + BLOCK - 1) / BLOCK;
     job.status = MCSTAT_OK;
-    job.sg = d->alternative == MCSTAT_LESS ? -1.0 : 1.0;
     /* the AVX2 kernel keeps u = i n2 - j n1 and N in int32 lanes */
     job.simd = 0;
 #if MCSTAT_KS_AVX2
@@ -396,7 +396,7 @@ int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t se
     for (uint64_t s = 0; s <= N; s++) {
         mask32[s] = (int32_t)mask[s];
         if (mask[s])
-            w[s] = 1.0 / ((double)s * (double)(N - s));
+            w[s] = (d->alternative == MCSTAT_LESS ? -1.0 : 1.0) / ((double)s * (double)(N - s));
     }
     job.w = w;
     job.mask = mask;
