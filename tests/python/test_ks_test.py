@@ -377,7 +377,7 @@ def test_gil_released():
     t = threading.Thread(target=tick)
     t.start()
     try:
-        mcstat.ks_test(x, y, method="simulate", n_sim=40000, seed=1, threads=1)
+        mcstat.ks_test(x, y, method="simulate", n_sim=100000, seed=1, threads=1)  # ~0.1 s
     finally:
         stop.set()
         t.join()
