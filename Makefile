@@ -58,7 +58,7 @@ test: deps ctest pytest
 demo: build
 	$(BUILD)/examples/c/mcstat_demo
 
-bench: deps
+bench: python
 	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DMCSTAT_BUILD_BENCH=ON -DMCSTAT_BUILD_TESTS=OFF
 	cmake --build $(BUILD)-bench -j $(JOBS)
 	$(PY) bench/run.py --build $(BUILD)-bench

@@ -45,8 +45,14 @@ static void finish_row(int st, size_t i, mcstat_result *out, int32_t *status, in
         status[i] = st;
 }
 
-int mcstat_t_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double mu0, int alternative,
-                         double alpha, unsigned flags, mcstat_result *out, int32_t *status)
+/* The tests on accumulators, as batch.c drives them (internal.h). */
+typedef int (*test_1_fn)(const mcstat_moments *x, double null_value, int alternative, double alpha,
+                         mcstat_qcache *qc, mcstat_result *out);
+typedef int (*test_2_fn)(const mcstat_moments *x, const mcstat_moments *y, double null_value, int alternative,
+                         double alpha, mcstat_qcache *qc, mcstat_result *out);
+
+static int rows_1(test_1_fn test, const double *x, size_t rows, size_t n, size_t x_stride, double null_value,
+                  int alternative, double alpha, unsigned flags, mcstat_result *out, int32_t *status)
 {
     int st = check_rows(x, rows, flags, out, status);
     if (st)
@@ -59,74 +65,59 @@ int mcstat_t_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride
         mcstat_moments m;
         st = row_moments(x + i * x_stride, n, flags, &m);
         if (!st)
-            st = mcstat__t_test_1(&m, mu0, alternative, alpha, q, &out[i]);
+            st = test(&m, null_value, alternative, alpha, q, &out[i]);
         finish_row(st, i, out, status, &first);
     }
     return first;
+}
+
+static int rows_2(test_2_fn test, const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
+                  size_t y_stride, size_t rows, double null_value, int alternative, double alpha, unsigned flags,
+                  mcstat_result *out, int32_t *status)
+{
+    int st = check_rows(x, rows, flags, out, status);
+    if (st || (rows > 0 && !y))
+        return st ? st : MCSTAT_EINVAL;
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
+    int first = MCSTAT_OK;
+    for (size_t i = 0; i < rows; i++) {
+        mcstat_moments mx, my;
+        st = row_moments(x + i * x_stride, nx, flags, &mx);
+        if (!st)
+            st = row_moments(y + i * y_stride, ny, flags, &my);
+        if (!st)
+            st = test(&mx, &my, null_value, alternative, alpha, q, &out[i]);
+        finish_row(st, i, out, status, &first);
+    }
+    return first;
+}
+
+int mcstat_t_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double mu0, int alternative,
+                         double alpha, unsigned flags, mcstat_result *out, int32_t *status)
+{
+    return rows_1(mcstat__t_test_1, x, rows, n, x_stride, mu0, alternative, alpha, flags, out, status);
+}
+
+int mcstat_var_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double sigma2,
+                           int alternative, double alpha, unsigned flags, mcstat_result *out, int32_t *status)
+{
+    return rows_1(mcstat__var_test_1, x, rows, n, x_stride, sigma2, alternative, alpha, flags, out, status);
 }
 
 int mcstat_t_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
                          size_t y_stride, size_t rows, double mu0, int alternative, double alpha, unsigned flags,
                          mcstat_result *out, int32_t *status)
 {
-    int st = check_rows(x, rows, flags, out, status);
-    if (st || (rows > 0 && !y))
-        return st ? st : MCSTAT_EINVAL;
-    mcstat_qcache qc;
-    mcstat__qcache_init(&qc);
-    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
-    int first = MCSTAT_OK;
-    for (size_t i = 0; i < rows; i++) {
-        mcstat_moments mx, my;
-        st = row_moments(x + i * x_stride, nx, flags, &mx);
-        if (!st)
-            st = row_moments(y + i * y_stride, ny, flags, &my);
-        if (!st)
-            st = mcstat__t_test_2(&mx, &my, mu0, alternative, alpha, q, &out[i]);
-        finish_row(st, i, out, status, &first);
-    }
-    return first;
-}
-
-int mcstat_var_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double sigma2,
-                           int alternative, double alpha, unsigned flags, mcstat_result *out, int32_t *status)
-{
-    int st = check_rows(x, rows, flags, out, status);
-    if (st)
-        return st;
-    mcstat_qcache qc;
-    mcstat__qcache_init(&qc);
-    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
-    int first = MCSTAT_OK;
-    for (size_t i = 0; i < rows; i++) {
-        mcstat_moments m;
-        st = row_moments(x + i * x_stride, n, flags, &m);
-        if (!st)
-            st = mcstat__var_test_1(&m, sigma2, alternative, alpha, q, &out[i]);
-        finish_row(st, i, out, status, &first);
-    }
-    return first;
+    return rows_2(mcstat__t_test_2, x, nx, x_stride, y, ny, y_stride, rows, mu0, alternative, alpha, flags, out,
+                  status);
 }
 
 int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
                            size_t y_stride, size_t rows, double ratio, int alternative, double alpha,
                            unsigned flags, mcstat_result *out, int32_t *status)
 {
-    int st = check_rows(x, rows, flags, out, status);
-    if (st || (rows > 0 && !y))
-        return st ? st : MCSTAT_EINVAL;
-    mcstat_qcache qc;
-    mcstat__qcache_init(&qc);
-    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
-    int first = MCSTAT_OK;
-    for (size_t i = 0; i < rows; i++) {
-        mcstat_moments mx, my;
-        st = row_moments(x + i * x_stride, nx, flags, &mx);
-        if (!st)
-            st = row_moments(y + i * y_stride, ny, flags, &my);
-        if (!st)
-            st = mcstat__var_test_2(&mx, &my, ratio, alternative, alpha, q, &out[i]);
-        finish_row(st, i, out, status, &first);
-    }
-    return first;
+    return rows_2(mcstat__var_test_2, x, nx, x_stride, y, ny, y_stride, rows, ratio, alternative, alpha, flags,
+                  out, status);
 }
