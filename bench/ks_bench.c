@@ -88,8 +88,10 @@ static void bench_exact(void)
 static void bench_rng(void)
 {
     printf("\n## Simulation: time per replicate, n1 = n2 = 1000, 20000 replicates\n\n");
-    printf("| generator | threads | weight | us / replicate | ns / label |\n|---|---|---|---|---|\n");
-    for (int g = 0; g < 2; g++)
+    printf("| generator, kernel | threads | weight | us / replicate | ns / label |\n|---|---|---|---|---|\n");
+    static const char *names[] = {"GSL taus2 (gsl_rng_get), scalar", "xoshiro256++, AVX2 kernel (8 lanes)",
+                                  "xoshiro256++, scalar kernel"};
+    for (int g = 0; g < 3; g++)
         for (int th = 1; th <= 2; th++)
             for (int w = 1; w >= 0; w--) {
                 mcstat__ks_data d = {0};
@@ -106,7 +108,7 @@ static void bench_rng(void)
                     double t = now() - t0;
                     best = t < best ? t : best;
                 }
-                printf("| %s | %d | %s | %.2f | %.2f |\n", g ? "xoshiro256++ (inline)" : "GSL taus2 (gsl_rng_get)", th,
+                printf("| %s | %d | %s | %.2f | %.2f |\n", names[g], th,
                        w ? "Canner" : "none", 1e6 * best / B, 1e9 * best / B / 2000);
                 free(keys);
             }

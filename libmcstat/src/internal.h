@@ -203,6 +203,9 @@ static inline double mcstat__key_double(uint64_t k)
 }
 /* Sorts a[0..n) ascending; tmp has room for n keys.  MCSTAT_ENOMEM. */
 MCSTAT_HIDDEN int mcstat__radix_sort_u64(uint64_t *a, size_t n, uint64_t *tmp);
+/* keys[0..n) <- the order keys of x, sorted; tmp has room for n keys.
+ * MCSTAT_ENONFINITE (keys unspecified) if x holds a NaN. */
+MCSTAT_HIDDEN int mcstat__sort_double_keys(const double *x, size_t n, uint64_t *keys, uint64_t *tmp);
 
 /* ---- two-sample Kolmogorov-Smirnov (ks_*.c) --------------------------------
  * mcstat's alternatives are claims about the first sample (API.md, ERRATA 4):
@@ -255,8 +258,16 @@ MCSTAT_HIDDEN int mcstat__ks_exact_critical(const mcstat__ks_data *d, double alp
 /* Simulation (ks_simulate.c): n_sim keys of the null distribution, sorted. */
 MCSTAT_HIDDEN int mcstat__ks_simulate(const mcstat__ks_data *d, int64_t n_sim, uint64_t seed,
                                       int threads, double *keys);
-/* The same with a chosen generator (the benchmark compares them). */
-enum { MCSTAT__KS_RNG_TAUS2 = 0, MCSTAT__KS_RNG_XOSHIRO = 1, MCSTAT__KS_RNG_DEFAULT = 1 };
+/* The same with a chosen generator and kernel (the benchmark compares them;
+ * the tests check that the two xoshiro kernels give bit-identical keys):
+ * TAUS2 GSL's taus2, scalar; XOSHIRO xoshiro256++, the AVX2 kernel where it
+ * applies; XOSHIRO_SCALAR the same numbers by the scalar kernel. */
+enum {
+    MCSTAT__KS_RNG_TAUS2 = 0,
+    MCSTAT__KS_RNG_XOSHIRO = 1,
+    MCSTAT__KS_RNG_XOSHIRO_SCALAR = 2,
+    MCSTAT__KS_RNG_DEFAULT = 1
+};
 MCSTAT_HIDDEN int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t seed,
                                           int threads, int rng, double *keys);
 

@@ -100,3 +100,22 @@ def test_result_pickles():
     r = mcstat.t_test([1.0, 2.0, 4.0], [3.0, 5.0, 4.5, 7.0])
     r2 = pickle.loads(pickle.dumps(r))
     assert r2._raw() == r._raw() and str(r2) == str(r)
+
+
+def test_ks_and_estimators_surface():
+    import inspect
+    for name in ["ks_test", "KSCache", "TooBigError"]:
+        assert name in mcstat.__all__ and hasattr(mcstat, name)
+    sig = inspect.signature(mcstat.ks_test)
+    assert list(sig.parameters) == ["x", "y", "weight", "alternative", "alpha", "method", "n_sim", "seed",
+                                    "threads", "cache", "critical"]
+    assert sig.parameters["weight"].default == "canner" and sig.parameters["method"].default == "auto"
+    assert sig.parameters["weight"].kind is inspect.Parameter.KEYWORD_ONLY
+    assert "OPPOSITE of SciPy" in mcstat.ks_test.__doc__
+    from mcstat import estimators as est
+    pkg = os.path.dirname(mcstat.__file__)
+    assert os.path.exists(os.path.join(pkg, "_estimators.pyi"))
+    for name in est.__all__:
+        assert hasattr(est, name), name
+    assert est.__libmcest_version__ == "0.1.0"
+    assert "Parameters" in est.irradiance.__doc__ and "first_index" in est.irradiance.__doc__

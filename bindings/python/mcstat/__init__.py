@@ -11,14 +11,21 @@ unbiased?          one-sample t, mean vs mu                    ``t_test(x, mu=..
 variance below?    one-sample chi-squared on the variance      ``var_test(x, sigma2=...)``
 two agree?         Welch two-sample t                          ``t_test(x, y)``
 which varies less  two-sample F                                ``var_test(x, y)``
+same distribution  two-sample Kolmogorov-Smirnov (Canner)      ``ks_test(x, y)``
 =================  ==========================================  ======================
 
 Each returns a `TestResult` (``str()`` prints R's layout plus the paper's
 less / equal / greater decision), or a `BatchResult` of arrays for N-D
 input (one test per row, e.g. per pixel).  `Moments` accumulates samples
 in streams and merges across threads and machines; `batch_means` makes
-secondary estimates.  Errors are `ValueError` subclasses (see
-`mcstat._errors`).
+secondary estimates; `KSCache` shares simulated K-S null distributions
+across a battery of tests.  Errors are `ValueError` subclasses (see
+`mcstat._errors`).  The reference estimators of the paper's case studies
+are in the subpackage `mcstat.estimators`.
+
+One-sided alternatives are claims about the first sample in every test:
+``ks_test(x, y, alternative="less")`` means x tends to be smaller, which
+SciPy's ``ks_2samp`` and R's ``ks.test`` call "greater".
 
 Importing mcstat turns GSL's abort-on-error handler off if, and only if,
 no other handler was installed in the process (``gsl_handler_was_default``
@@ -33,30 +40,31 @@ from ._errors import (
     NonFiniteError,
     NumericalError,
     OutOfMemoryError,
+    TooBigError,
     TooFewObservationsError,
 )
 from ._core import (  # noqa: E402  (the extension looks the errors up at import)
+    KSCache,
     Moments,
     TestResult,
     __libmcstat_version__,
     batch_means,
     get_num_threads,
     gsl_handler_was_default,
+    ks_test,
     set_num_threads,
     t_test,
     var_test,
 )
 from ._result import BatchResult
 
-# Reserved for later: ks_test (two-sample Kolmogorov-Smirnov, issue 4) will
-# join t_test and var_test here, and the reference estimators will live in
-# the subpackage mcstat.estimators.
-
 __version__ = "0.1.0"
 
 __all__ = [
     "t_test",
     "var_test",
+    "ks_test",
+    "KSCache",
     "Moments",
     "batch_means",
     "TestResult",
@@ -72,4 +80,5 @@ __all__ = [
     "NumericalError",
     "BufferSizeError",
     "CorruptDataError",
+    "TooBigError",
 ]

@@ -24,6 +24,7 @@ __all__ = [
     "NumericalError",
     "BufferSizeError",
     "CorruptDataError",
+    "TooBigError",
 ]
 
 
@@ -102,6 +103,16 @@ class CorruptDataError(McstatError):
     status = 8
 
 
+class TooBigError(McstatError):
+    """The sizes are too large for the requested method (MCSTAT_ETOOBIG):
+    an exact K-S p-value whose lattice would take too long (more than
+    ``(min(nx, ny) + 1) * (nx + ny + 1) = 2e11`` cells), or ``nx * ny``
+    beyond 2**62.  Choose another method (``"simulate"`` or, unweighted,
+    ``"asymptotic"``)."""
+
+    status = 9
+
+
 _BY_STATUS = {
     cls.status: cls
     for cls in (
@@ -113,5 +124,6 @@ _BY_STATUS = {
         NumericalError,
         BufferSizeError,
         CorruptDataError,
+        TooBigError,
     )
 }

@@ -29,6 +29,34 @@ py::handle error_class(int status);
 // Invalid argument with a message of its own (InvalidArgumentError).
 [[noreturn]] void throw_invalid(const std::string &message);
 
+// ---- argument parsing (tests.cpp) -------------------------------------------
+// repr() of a Python object, for messages.
+std::string repr(PyObject *o);
+// A real number (TypeError naming `name` otherwise).
+double get_double(PyObject *o, const char *name);
+// A str's UTF-8 text (TypeError naming `name` otherwise).
+const char *get_str(PyObject *o, const char *name);
+// Whether the keyword `name` (a str) equals s.
+bool match(PyObject *name, const char *s);
+
+// The body of a METH_FASTCALL function: runs f, turning C++ exceptions
+// into the Python error they stand for.
+template <typename F> PyObject *guarded(F f)
+{
+    try {
+        return f().release().ptr();
+    } catch (py::error_already_set &e) {
+        e.restore();
+    } catch (py::builtin_exception &e) {
+        e.set_error();
+    } catch (std::bad_alloc &) {
+        PyErr_SetString(error_class(MCSTAT_ENOMEM).ptr(), mcstat_strerror(MCSTAT_ENOMEM));
+    } catch (std::exception &e) {
+        PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+    return nullptr;
+}
+
 // ---- input arrays (tests.cpp) ---------------------------------------------
 // obj as a float64 array: the same object when it already is one (any
 // layout), else converted once; NumPy's own error when it cannot be.
@@ -47,10 +75,16 @@ const mcstat_moments *as_moments(py::handle obj);
 // ---- results (result.cpp) -----------------------------------------------------
 struct Result {
     mcstat_result r;
+    uint64_t seed = 0;     // the simulation's seed (K-S, when has_seed)
+    bool has_seed = false; // the p-value was simulated from `seed`
 };
 void register_result(py::module_ &mod);
 void register_result_helpers(py::module_ &mod);
 py::object make_result(const mcstat_result &r);
+py::object make_result(const Result &r);
+
+// ---- the K-S test (ks.cpp) ---------------------------------------------------
+void register_ks(py::module_ &mod);
 
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);

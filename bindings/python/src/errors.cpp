@@ -6,7 +6,8 @@
 namespace mcs {
 
 namespace {
-py::handle g_classes[9];
+constexpr int N_STATUS = 10; // MCSTAT_OK .. MCSTAT_ETOOBIG
+py::handle g_classes[N_STATUS];
 py::handle g_base;
 } // namespace
 
@@ -15,7 +16,7 @@ void init_errors()
     py::module_ errors = py::module_::import("mcstat._errors");
     py::dict by_status = errors.attr("_BY_STATUS");
     g_base = py::object(errors.attr("McstatError")).release();
-    for (int s = 0; s < 9; s++) {
+    for (int s = 0; s < N_STATUS; s++) {
         py::int_ key(s);
         g_classes[s] = by_status.contains(key) ? py::object(by_status[key]).release() : g_base;
     }
@@ -23,7 +24,7 @@ void init_errors()
 
 py::handle error_class(int status)
 {
-    if (status >= 0 && status < 9 && g_classes[status])
+    if (status >= 0 && status < N_STATUS && g_classes[status])
         return g_classes[status];
     return g_base;
 }

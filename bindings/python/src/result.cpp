@@ -16,20 +16,48 @@ namespace mcs {
 
 namespace {
 
-const char *method_name(int test)
+bool is_ks(const mcstat_result &r) { return r.test == MCSTAT_TEST_KS_2; }
+
+// The test's name as the first line of the R-style block has it.
+std::string method_name(const mcstat_result &r)
 {
-    switch (test) {
+    switch (r.test) {
     case MCSTAT_TEST_T_1: return "One Sample t-test";
     case MCSTAT_TEST_T_2: return "Welch Two Sample t-test";
     case MCSTAT_TEST_VAR_1: return "One Sample Chi-squared test on variance";
     case MCSTAT_TEST_VAR_2: return "F test to compare two variances";
+    case MCSTAT_TEST_KS_2: {
+        // libmcstat's formatter owns the wording: take its title line
+        char buf[256];
+        size_t len = 0;
+        int st = mcstat_result_format(&r, "x", "y", buf, sizeof buf, &len);
+        if (st != MCSTAT_OK && st != MCSTAT_EBUFSIZE)
+            return "two-sample Kolmogorov-Smirnov test";
+        std::string t(buf);
+        size_t a = t.find('\t'), b = t.find('\n', a == std::string::npos ? 0 : a);
+        return a == std::string::npos ? t : t.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
+    }
+    default: return "unknown";
+    }
+}
+
+const char *pvalue_method_name(int method)
+{
+    switch (method) {
+    case MCSTAT_METHOD_ANALYTIC: return "analytic";
+    case MCSTAT_METHOD_EXACT: return "exact";
+    case MCSTAT_METHOD_SIMULATE: return "simulate";
+    case MCSTAT_METHOD_ASYMPTOTIC: return "asymptotic";
     default: return "unknown";
     }
 }
 
 bool two_estimates(const mcstat_result &r) { return r.test == MCSTAT_TEST_T_2; }
 bool two_df(const mcstat_result &r) { return r.test == MCSTAT_TEST_VAR_2; }
-bool two_samples(const mcstat_result &r) { return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_VAR_2; }
+bool two_samples(const mcstat_result &r)
+{
+    return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_VAR_2 || r.test == MCSTAT_TEST_KS_2;
+}
 
 std::string format(const mcstat_result &r, const char *x_name, const char *y_name)
 {
@@ -60,18 +88,28 @@ std::string short_num(double v)
 
 py::object make_result(const mcstat_result &r)
 {
-    return py::cast(Result{r});
+    Result s;
+    s.r = r;
+    return py::cast(s);
+}
+
+py::object make_result(const Result &r)
+{
+    return py::cast(r);
 }
 
 void register_result(py::module_ &mod)
 {
     py::class_<Result>(mod, "TestResult", R"doc(
-The outcome of one hypothesis test (returned by `t_test` and `var_test`).
+The outcome of one hypothesis test (returned by `t_test`, `var_test` and
+`ks_test`).
 
 Attributes
 ----------
 statistic : float
-    t, X-squared or F.
+    t, X-squared or F; for `ks_test` D = sup |F - G| (weight "none") or
+    Canner's D2 (weight "canner"), one-sided versions for "less" and
+    "greater".
 df : float or tuple of float
     Degrees of freedom; ``(num, denom)`` for the F test.
 pvalue : float
@@ -89,7 +127,12 @@ null_value : float
 alternative : str
     ``"two-sided"``, ``"less"`` or ``"greater"``.
 method : str
-    The test's name as R prints it, e.g. ``"Welch Two Sample t-test"``.
+    The test's name as R prints it, e.g. ``"Welch Two Sample t-test"``
+    or ``"Monte-Carlo two-sample Kolmogorov-Smirnov test with Canner's
+    weight"``.
+pvalue_method : str
+    How the p-value was obtained: ``"analytic"`` (t, chi-squared, F),
+    ``"exact"``, ``"simulate"`` or ``"asymptotic"`` (K-S).
 alpha : float
     Significance level used for `reject`, `decision`, `critical_values`
     and `conf_int`.
@@ -98,9 +141,20 @@ reject : bool
 decision : str
     The paper's three-way outcome: ``"less"``, ``"equal"`` or ``"greater"``.
 critical_values : tuple of float
-    Reject when `statistic` is below the first or above the second.
+    Reject when `statistic` is below the first or above the second (K-S:
+    ``(-inf, c)``; NaN when the test ran with ``critical=False``).
+critical_se : float
+    Monte Carlo standard error of the upper critical value when it was
+    simulated (K-S "simulate"), else 0.0.
 pvalue_se : float
-    Monte Carlo standard error of `pvalue` (0.0: these p-values are exact).
+    Monte Carlo standard error of `pvalue` when it was simulated, else 0.0.
+n_sim : int
+    Replicates simulated (0 unless the p-value was simulated).
+seed : int or None
+    The seed the simulation used (None unless the p-value was
+    simulated): passing it back as ``seed=`` reproduces the result.
+weight : str or None
+    K-S: ``"none"`` or ``"canner"``; None for the other tests.
 std_error : float
     Standard error of the estimate (t tests; NaN otherwise).
 nobs : int or tuple of int
@@ -124,7 +178,21 @@ y_name)`` names them.
         .def_property_readonly("null_value", [](const Result &s) { return s.r.null_value; })
         .def_property_readonly("alternative",
                                [](const Result &s) { return py::str(mcstat_alternative_name(s.r.alternative)); })
-        .def_property_readonly("method", [](const Result &s) { return py::str(method_name(s.r.test)); })
+        .def_property_readonly("method", [](const Result &s) { return py::str(method_name(s.r)); })
+        .def_property_readonly("pvalue_method", [](const Result &s) { return py::str(pvalue_method_name(s.r.method)); })
+        .def_property_readonly("critical_se",
+                               [](const Result &s) { return is_ks(s.r) ? MCSTAT_RESULT_CRITICAL_SE(&s.r) : 0.0; })
+        .def_property_readonly("n_sim", [](const Result &s) {
+            return is_ks(s.r) ? static_cast<int64_t>(MCSTAT_RESULT_N_SIM(&s.r)) : int64_t{0};
+        })
+        .def_property_readonly("seed", [](const Result &s) -> py::object {
+            return s.has_seed ? py::object(py::int_(s.seed)) : py::object(py::none());
+        })
+        .def_property_readonly("weight", [](const Result &s) -> py::object {
+            if (!is_ks(s.r))
+                return py::none();
+            return py::str(MCSTAT_RESULT_KS_WEIGHT(&s.r) == MCSTAT_KS_WEIGHT_CANNER ? "canner" : "none");
+        })
         .def_property_readonly("alpha", [](const Result &s) { return s.r.alpha; })
         .def_property_readonly("reject", [](const Result &s) { return s.r.reject != 0; })
         .def_property_readonly("decision", [](const Result &s) { return py::str(mcstat_decision_name(s.r.decision)); })
@@ -150,15 +218,24 @@ y_name)`` names them.
             std::string df = short_num(r.df[0]);
             if (two_df(r))
                 df = "(" + df + ", " + short_num(r.df[1]) + ")";
-            return std::string("<TestResult ") + method_name(r.test) + ": statistic=" + short_num(r.statistic) +
+            if (is_ks(r)) {
+                std::string t = std::string("<TestResult ") + method_name(r) + ": statistic=" + short_num(r.statistic) +
+                                ", pvalue=" + short_num(r.p_value);
+                if (r.method == MCSTAT_METHOD_SIMULATE)
+                    t += " (se " + short_num(r.p_value_se) + ", n_sim=" + short_num(MCSTAT_RESULT_N_SIM(&r)) + ")";
+                return t + ", alternative='" + mcstat_alternative_name(r.alternative) + "', decision='" +
+                       mcstat_decision_name(r.decision) + "' at alpha=" + short_num(r.alpha) + ">";
+            }
+            return std::string("<TestResult ") + method_name(r) + ": statistic=" + short_num(r.statistic) +
                    ", df=" + df + ", pvalue=" + short_num(r.p_value) + ", alternative='" +
                    mcstat_alternative_name(r.alternative) + "', decision='" + mcstat_decision_name(r.decision) +
                    "' at alpha=" + short_num(r.alpha) + ">";
         })
         .def("__reduce__", [](py::object self) {
             const Result &s = self.cast<const Result &>();
+            py::object seed = s.has_seed ? py::object(py::int_(s.seed)) : py::object(py::none());
             return py::make_tuple(py::module_::import("mcstat._core").attr("_result_from_bytes"),
-                                  py::make_tuple(py::bytes(reinterpret_cast<const char *>(&s.r), sizeof s.r)));
+                                  py::make_tuple(py::bytes(reinterpret_cast<const char *>(&s.r), sizeof s.r), seed));
         })
         .def("_raw", [](const Result &s) {
             return py::bytes(reinterpret_cast<const char *>(&s.r), sizeof s.r);
@@ -203,14 +280,18 @@ void register_result_helpers(py::module_ &mod)
         r.n[1] = n.size() > 1 ? static_cast<uint64_t>(n.data()[1]) : 0;
         return make_result(r);
     });
-    mod.def("_result_from_bytes", [](py::bytes b) {
+    mod.def("_result_from_bytes", [](py::bytes b, py::object seed) {
         std::string s = b;
         if (s.size() != sizeof(mcstat_result))
             throw_status(MCSTAT_ECORRUPT, "a pickled TestResult from another build of mcstat");
-        mcstat_result r;
-        std::memcpy(&r, s.data(), sizeof r);
-        return make_result(r);
-    });
+        Result res;
+        std::memcpy(&res.r, s.data(), sizeof res.r);
+        if (!seed.is_none()) {
+            res.seed = seed.cast<uint64_t>();
+            res.has_seed = true;
+        }
+        return make_result(res);
+    }, py::arg("raw"), py::arg("seed") = py::none());
 }
 
 } // namespace mcs

@@ -27,37 +27,6 @@ struct Parsed {
     PyObject *intervals = nullptr, *on_error = nullptr;
 };
 
-std::string repr(PyObject *o)
-{
-    py::str s = py::repr(o);
-    return s;
-}
-
-double get_double(PyObject *o, const char *name)
-{
-    double v = PyFloat_AsDouble(o);
-    if (v == -1.0 && PyErr_Occurred()) {
-        PyErr_Clear();
-        throw py::type_error(std::string(name) + " must be a real number, got " + repr(o));
-    }
-    return v;
-}
-
-const char *get_str(PyObject *o, const char *name)
-{
-    if (!PyUnicode_Check(o))
-        throw py::type_error(std::string(name) + " must be a str, got " + repr(o));
-    const char *s = PyUnicode_AsUTF8(o);
-    if (!s)
-        throw py::error_already_set();
-    return s;
-}
-
-bool match(PyObject *name, const char *s)
-{
-    return PyUnicode_CompareWithASCIIString(name, s) == 0;
-}
-
 void parse(const char *fname, bool is_var, PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames,
            Parsed &p)
 {
@@ -256,22 +225,6 @@ py::object run(const Parsed &p, TestArgs &a)
     return make_result(r);
 }
 
-template <typename F> PyObject *guarded(F f)
-{
-    try {
-        return f().release().ptr();
-    } catch (py::error_already_set &e) {
-        e.restore();
-    } catch (py::builtin_exception &e) {
-        e.set_error();
-    } catch (std::bad_alloc &) {
-        PyErr_SetString(error_class(MCSTAT_ENOMEM).ptr(), mcstat_strerror(MCSTAT_ENOMEM));
-    } catch (std::exception &e) {
-        PyErr_SetString(PyExc_RuntimeError, e.what());
-    }
-    return nullptr;
-}
-
 PyObject *t_test(PyObject *, PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames)
 {
     return guarded([&]() {
@@ -323,6 +276,37 @@ PyMethodDef methods[] = {
     {nullptr, nullptr, 0, nullptr}};
 
 } // namespace
+
+std::string repr(PyObject *o)
+{
+    py::str s = py::repr(o);
+    return s;
+}
+
+double get_double(PyObject *o, const char *name)
+{
+    double v = PyFloat_AsDouble(o);
+    if (v == -1.0 && PyErr_Occurred()) {
+        PyErr_Clear();
+        throw py::type_error(std::string(name) + " must be a real number, got " + repr(o));
+    }
+    return v;
+}
+
+const char *get_str(PyObject *o, const char *name)
+{
+    if (!PyUnicode_Check(o))
+        throw py::type_error(std::string(name) + " must be a str, got " + repr(o));
+    const char *s = PyUnicode_AsUTF8(o);
+    if (!s)
+        throw py::error_already_set();
+    return s;
+}
+
+bool match(PyObject *name, const char *s)
+{
+    return PyUnicode_CompareWithASCIIString(name, s) == 0;
+}
 
 py::array as_float_array(py::handle obj)
 {
