@@ -106,6 +106,18 @@ static inline double norm3(const double *a)
     return sqrt(dot3(a, a));
 }
 
+/* |a| without overflow or underflow, scaled by the largest component: for
+ * vectors users give at any scale (the receiver normal of length 1e-200 or
+ * 1e200 is as good as a unit one).  Inner loops use norm3. */
+static inline double norm3_scaled(const double *a)
+{
+    double m = fmax(fabs(a[0]), fmax(fabs(a[1]), fabs(a[2])));
+    if (!(m > 0.0) || isinf(m))
+        return m; /* 0, Inf or NaN: the caller rejects it */
+    double x = a[0] / m, y = a[1] / m, z = a[2] / m;
+    return m * sqrt(x * x + y * y + z * z);
+}
+
 static inline int finite3(const double *a)
 {
     return isfinite(a[0]) && isfinite(a[1]) && isfinite(a[2]);

@@ -178,7 +178,7 @@ static int scene_valid(const mcest_scene *s)
             return 0;
     if (!finite3(s->point) || !finite3(s->normal) || !isfinite(s->radiance) || s->radiance < 0.0)
         return 0;
-    double nn = norm3(s->normal);
+    double nn = norm3_scaled(s->normal);
     return nn > 0.0 && isfinite(nn);
 }
 
@@ -194,9 +194,13 @@ int mcest_irradiance_plan_init(const mcest_scene *scene, mcest_irradiance_plan *
     P.radiance = scene->radiance;
 
     double n[3], t[3], b[3];
-    double ln = norm3(scene->normal);
+    /* normalise in two steps: by the largest component, then by the length */
+    double big = fmax(fabs(scene->normal[0]), fmax(fabs(scene->normal[1]), fabs(scene->normal[2])));
     for (int i = 0; i < 3; i++)
-        n[i] = scene->normal[i] / ln;
+        n[i] = scene->normal[i] / big;
+    double ln = norm3(n);
+    for (int i = 0; i < 3; i++)
+        n[i] /= ln;
     frame(n, t, b);
     const double *p = scene->triangle;
     /* Translate first (p_k - x), then rotate.  Edges from the inputs. */
