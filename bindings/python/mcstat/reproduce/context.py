@@ -53,6 +53,7 @@ class Context:
         self.threads = threads
         self.out = out if out is not None else sys.stdout
         self.seeds: Dict[str, int] = {}
+        self.transcript: list = []  # everything printed, for the report
         self._progress = progress
         self._tqdm: Optional[Callable[..., Any]] = None
         if progress is not False:
@@ -84,5 +85,12 @@ class Context:
         self.print(text.rstrip("\n"))
 
     def print(self, text: str = "") -> None:
+        self.transcript.append(text)
         self.out.write(text + "\n")
         self.out.flush()
+
+    def mark(self) -> int:
+        return len(self.transcript)
+
+    def since(self, mark: int) -> str:
+        return "\n".join(self.transcript[mark:])

@@ -74,11 +74,11 @@ class Plan:
                                        visible=any(e > 0 for e in exact),
                                        lambert=exact[0] if scene.n_emitters == 1 else None))
         self._irradiance()
-        self._bugs()
         self._brdf_study("sampling", "K-S tests (Canner's weight) of the sampler against exact rejection "
                                      "sampling on Morton keys, a power curve and 2-D histograms")
         self._brdf_study("radiance", "Welch tests of BRDF sampling against rejection sampling at many "
                                      "outgoing directions, and a binomial test of the fraction of equal means")
+        self._bugs()
         self._timing()
 
     # -- helpers ---------------------------------------------------------------
@@ -227,7 +227,8 @@ class Plan:
                  f"{', '.join(sc.estimators)} (trusted {sc.trusted}), "
                  + (f"BRDFs {', '.join(b['name'] for b in sc.brdfs)}" if sc.brdfs else "no BRDFs")]
         if self.quick:
-            lines.append("quick mode: " + ("; ".join(self.quick_changes) if self.quick_changes else "no budget changed"))
+            lines.append("quick mode: " + ("\n  ".join([""] + self.quick_changes) if self.quick_changes
+                                           else "no budget changed"))
         lines.append("will run:")
         for s in self.steps:
             lines.append(f"  [{s['section']}] {s['target']}: {s['what']}")

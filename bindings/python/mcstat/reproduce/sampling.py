@@ -34,7 +34,7 @@ from .context import Context
 from .plan import Plan
 from .results import columns, decision_counts
 
-HIST_BINS = (45, 90)  # polar (0..90 degrees) x azimuth (0..360 degrees)
+HIST_BINS = (48, 96)  # polar angle x azimuth, over the window holding the lobes
 
 
 def sampler_directions(bp: Any, n: int, seed: int, first: int, keep: bool, threads) -> Tuple[np.ndarray, int, int]:
@@ -58,10 +58,30 @@ def sampler_directions(bp: Any, n: int, seed: int, first: int, keep: bool, threa
     return np.concatenate(parts)[:n], drawn, below
 
 
-def angles_histogram(w: np.ndarray) -> np.ndarray:
+def _angles(w: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
     theta = np.degrees(np.arccos(np.clip(w[:, 2], -1.0, 1.0)))
     phi = np.degrees(np.arctan2(w[:, 1], w[:, 0])) % 360.0
-    h, _, _ = np.histogram2d(theta, phi, bins=HIST_BINS, range=[[0.0, 90.0], [0.0, 360.0]])
+    return theta, phi
+
+
+def histogram_window(*samples: np.ndarray) -> Dict[str, float]:
+    """The (polar, azimuth) window, in degrees, holding 99.8% of both samples
+    plus a margin: figure 6 zooms on the lobes.  Azimuths are measured from
+    the samples' circular mean, so a lobe across phi = 0 stays whole."""
+    theta, phi = _angles(np.concatenate(samples))
+    c = float(np.degrees(np.arctan2(np.sin(np.radians(phi)).mean(), np.cos(np.radians(phi)).mean())) % 360.0)
+    d = (phi - c + 180.0) % 360.0 - 180.0
+    t0, t1 = np.quantile(theta, [0.001, 0.999])
+    d0, d1 = np.quantile(d, [0.001, 0.999])
+    mt, md = 0.1 * (t1 - t0) + 0.5, 0.1 * (d1 - d0) + 0.5
+    return dict(theta=[float(max(0.0, t0 - mt)), float(min(90.0, t1 + mt))],
+                phi_center=c, dphi=[float(max(-180.0, d0 - md)), float(min(180.0, d1 + md))])
+
+
+def angles_histogram(w: np.ndarray, win: Dict[str, float]) -> np.ndarray:
+    theta, phi = _angles(w)
+    d = (phi - win["phi_center"] + 180.0) % 360.0 - 180.0
+    h, _, _ = np.histogram2d(theta, d, bins=HIST_BINS, range=[win["theta"], win["dphi"]])
     return h.astype(np.int64)
 
 
@@ -125,10 +145,12 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
         below = int((raw.directions[:, 2] <= 0).sum())
         w, _, _ = sampler_directions(bp, hs, s_seed, hfirst, keep, ctx.threads)
         xw = bp.sample_exact(hs, seed=x_seed, first_index=hfirst, threads=ctx.threads)
+        win = histogram_window(w, xw.directions)
         res = dict(name=name, model=b["model"], params=list(b["params"]), wo=b["wo"], description=_describe(b),
                    seeds=dict(sampler=s_seed, exact=x_seed, ks=k_seed),
                    below_horizon=dict(count=below, of=hs, fraction=below / hs, ci95=list(clopper_pearson(below, hs))),
-                   sizes=rows, histogram=dict(sampler=angles_histogram(w), exact=angles_histogram(xw.directions)),
+                   sizes=rows, histogram=dict(window=win, sampler=angles_histogram(w, win),
+                                              exact=angles_histogram(xw.directions, win)),
                    acceptance_exact=hs / xw.trials)
         ctx.print(f"{'n':>8}  {'rejected':>9}  {'rate [95% CI]':>22}  {'median p':>9}  p-value   verdict")
         for row in rows:
