@@ -76,8 +76,8 @@ def _test(a: argparse.Namespace) -> int:
     elif a.test == "var":
         if y is None and a.sigma2 is None:
             raise SystemExit("mcstat test: error: --test var on one sample needs --sigma2 (the variance under H0)")
-        r = mcstat.var_test(x, y, sigma2=a.sigma2, ratio=a.ratio, alternative=a.alternative, alpha=a.alpha,
-                            nan_policy=a.nan)
+        null = dict(sigma2=a.sigma2) if y is None else dict(ratio=a.ratio)
+        r = mcstat.var_test(x, y, **null, alternative=a.alternative, alpha=a.alpha, nan_policy=a.nan)
     else:
         if y is None:
             raise SystemExit("mcstat test: error: --test ks compares two samples: give X and Y")

@@ -51,7 +51,8 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
           "`results.json` beside this file holds every test's fields; the same seed gives the same "
           "results.json apart from the wall-clock fields and the timing study.", ""]
     L += ["## Findings", ""]
-    L += [f"- {f}" for f in results["findings"]] or ["- (no study ran)"]
+    all_findings = results["findings"] + results.get("timing", {}).get("findings", [])
+    L += [f"- {f}" for f in all_findings] or ["- (no study ran)"]
     L += ["", "These sentences are computed from the runs (see each section); a rate is a count of rejections among "
               "repeated tests, given with its exact 95% (Clopper-Pearson) interval, and 'consistent with alpha' means "
               "an exact binomial test of rate = alpha gives p >= 0.01.", ""]

@@ -168,22 +168,19 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
 def findings(res: Dict[str, Any]) -> List[str]:
     out = []
     for b in res["brdfs"]:
-        fails = [r["n"] for r in b["sizes"] if r["verdict"] == "fails"]
-        passes = [r for r in b["sizes"] if r["verdict"] == "passes"]
-        rate = ", ".join(f"n = {r['n']}: {r['rejections']}/{r['tests']}" for r in passes)
+        sizes = b["sizes"]
+        fails = [r["n"] for r in sizes if r["verdict"] == "fails"]
+        rates = lambda rows: ", ".join(f"{r['rejections']}/{r['tests']} at n = {r['n']}" for r in rows)
+        passes = [r for r in sizes if r["verdict"] == "passes"]
         if not fails:
-            text = f"passes at every size tested ({rate})"
+            text = f"passes at every size tested (rejected in {rates(passes)})"
         elif not passes:
             text = f"fails at every size tested, n = {fails[0]} to {fails[-1]}"
-        elif len(fails) == 1:
-            text = f"fails at n = {fails[0]} only; passes at {rate}"
+        elif all(r["verdict"] == "fails" for r in sizes if r["n"] >= fails[0]):
+            text = (f"passes at small sizes (rejected in {rates(passes)}) and fails from n = {fails[0]} on "
+                    f"(up to the largest size tested, {sizes[-1]['n']})")
         else:
-            # fails from some size on, or a mixed pattern
-            first = fails[0]
-            monotone = all(r["verdict"] == "fails" for r in b["sizes"] if r["n"] >= first)
-            fail_text = (f"fails at every size from n = {first} to {fails[-1]}" if monotone
-                         else "fails at n = " + ", ".join(map(str, fails)))
-            text = f"{fail_text}; passes at {rate}"
-        out.append(f"3.2 {b['name']}: the sampler {text} (K-S with Canner's weight, alpha = {res['alpha']:g}; "
-                   f"'fails' = rejected in more than half of the {res['runs']} runs).")
+            text = f"fails at n = {', '.join(map(str, fails))} and passes at the other sizes (rejected in {rates(passes)})"
+        out.append(f"3.2 {b['name']}: the sampler {text}; K-S with Canner's weight at alpha = {res['alpha']:g}, "
+                   f"'fails' = rejected in more than half of the {res['runs']} runs.")
     return out
