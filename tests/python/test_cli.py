@@ -284,3 +284,28 @@ def test_entry_points():
         pytest.skip("no console script next to this interpreter (mcstat not pip-installed here)")
     p = subprocess.run([script, "plan", "--quick"], capture_output=True, text=True)
     assert p.returncode == 0 and "will run:" in p.stdout
+
+
+def test_degenerate_samples_do_not_stop_the_run(tmp_path):
+    """A tiny, distant emitter: U and C never hit it in a sample, so their
+    tests cannot run; the run goes on, counts them as failed (not as
+    rejections) and says so; a receiver facing away is left out."""
+    scene = {"name": "tiny",
+             "emitters": [{"vertices": [[100, 0, 50], [100.001, 0, 50], [100, 0.001, 50.0005]]}],
+             "receivers": [{"point": [0, 0, 0], "normal": [0, 0, 1]},
+                           {"name": "blind", "point": [0, 0, 0], "normal": [0, 0, -1]}],
+             "studies": {"irradiance": {"runs": 20, "primary": 200, "secondary": 10},
+                         "bugs": {"runs": 5, "budgets": [20, 200]}, "timing": {"enabled": False}}}
+    path = tmp_path / "tiny.json"
+    path.write_text(json.dumps(scene))
+    code, out, err = run_cli("reproduce", "--scene", str(path), "--out", str(tmp_path / "o"), "--no-progress")
+    assert code == 0, err
+    res = strict_json(tmp_path / "o" / "results.json")
+    rec = res["studies"]["irradiance"]["receivers"]
+    assert [r["name"] for r in rec] == ["receiver 0"]
+    u = rec[0]["one_sample"]["U"]
+    assert u["rate"] is None and u["failed"] == 20 and u["rejections"] == 0
+    assert rec[0]["one_sample"]["S"]["tests"] == 20
+    assert any("no test of U, C could run" in f for f in res["findings"])
+    assert any(s["target"] == "blind" and "horizon" in s["reason"] for s in res["plan"]["left_out"])
+    assert "DegenerateDataError" in out

@@ -101,7 +101,17 @@ def format_binom(res: Dict[str, float], x_name: str, n_name: str) -> str:
 
 def rate_summary(x: int, n: int, alpha: float) -> Dict[str, float]:
     """A count of rejections among n tests at level alpha: the rate, its 95%
-    Clopper-Pearson interval and the binomial test of rate = alpha."""
+    Clopper-Pearson interval and the binomial test of rate = alpha (None
+    for all three when no test succeeded)."""
+    if n == 0:
+        return dict(rejections=0, tests=0, rate=None, ci95=[None, None], alpha=alpha, binom_pvalue=None)
     t = binom_test(x, n, alpha)
     return dict(rejections=int(x), tests=int(n), rate=x / n, ci95=t["conf_int"], alpha=alpha,
                 binom_pvalue=t["pvalue"])
+
+
+def rate_of_counts(c: Dict[str, int], alpha: float) -> Dict[str, float]:
+    """rate_summary of decision counts (less / equal / greater / failed):
+    rejections among the tests that ran; failed tests are counted apart."""
+    return dict(rate_summary(c["less"] + c["greater"], c["less"] + c["equal"] + c["greater"], alpha),
+                failed=c["failed"])

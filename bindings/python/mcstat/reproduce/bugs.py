@@ -16,7 +16,7 @@ from __future__ import annotations
 from typing import Any, Dict, List
 
 import mcstat
-from .binomial import rate_summary
+from .binomial import rate_of_counts, rate_summary
 from .context import Context
 from .irradiance import ReceiverEstimators
 from .plan import Plan
@@ -46,15 +46,15 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
                     V = rec.secondary("A", runs, sec, k, first_index=first, bug=None if v == "none" else v)
                     bt = mcstat.t_test(V, T, alpha=alpha, on_error="nan")
                     c = decision_counts(bt.decision)
-                    row["variants"][v] = dict(counts=c, **rate_summary(runs - c["equal"] - c["failed"], runs, alpha),
+                    row["variants"][v] = dict(counts=c, **rate_of_counts(c, alpha),
                                               results=batch_columns(bt))
-                    if zi == len(budgets) - 1 and v != "none":
+                    if zi == len(budgets) - 1 and v != "none" and bt.ok[0]:
                         row["variants"][v]["example"] = bt[0].format(f"A with {v} (run 0)", sc.trusted)
                     bar.update()
                 rows.append(row)
         summary = {}
         for v in variants:
-            rates = [row["variants"][v]["rate"] for row in rows]
+            rates = [row["variants"][v]["rate"] or 0.0 for row in rows]
             from_budget = None
             for i in range(len(rows)):
                 if all(x >= DETECTED for x in rates[i:]):
@@ -65,7 +65,7 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
             summary[v] = dict(detected_from_budget=from_budget, rate_at_largest=rates[-1], direction=direction,
                               detected=rates[-1] >= DETECTED)
         control = sum(row["variants"]["none"]["rejections"] for row in rows)
-        summary["none"]["pooled"] = rate_summary(control, runs * len(rows), alpha)
+        summary["none"]["pooled"] = rate_summary(control, sum(row["variants"]["none"]["tests"] for row in rows), alpha)
         out["receivers"].append(dict(name=r["name"], budgets=rows, summary=summary))
         _print(ctx, sc, r, rows, variants, summary, alpha, runs, sec)
     return out
@@ -75,13 +75,17 @@ def _print(ctx, sc, r, rows, variants, summary, alpha, runs, sec) -> None:
     ctx.print(f"\n== 3.4 Planted bugs at {r['name']!r}: A against {sc.trusted}, Welch's t test at alpha = {alpha:g}, "
               f"{runs} runs per budget, {sec} secondary estimates per sample")
     for v in variants[1:]:
-        ctx.block(rows[-1]["variants"][v]["example"])
+        if "example" in rows[-1]["variants"][v]:
+            ctx.block(rows[-1]["variants"][v]["example"])
     ctx.print("\nrejections per budget (primary estimates per sample):")
     ctx.print(f"{'budget':>8} {'k':>5}" + "".join(f"{('A (no bug)' if v == 'none' else v):>14}" for v in variants))
     for row in rows:
         ctx.print(f"{row['budget']:>8} {row['k']:>5}"
-                  + "".join(f"{row['variants'][v]['rejections']:>9}/{runs:<4}" for v in variants))
+                  + "".join(f"{row['variants'][v]['rejections']:>9}/{row['variants'][v]['tests']:<4}" for v in variants))
     pooled = summary["none"]["pooled"]
+    if pooled["rate"] is None:
+        ctx.print("control (A without a bug): every test failed")
+        return
     ctx.print(f"control (A without a bug): rejected in {pooled['rejections']}/{pooled['tests']} tests = "
               f"{pooled['rate']:.4f} [{pooled['ci95'][0]:.4f}, {pooled['ci95'][1]:.4f}]; binomial test of rate = "
               f"alpha: p = {pooled['binom_pvalue']:.3g}")
@@ -100,7 +104,8 @@ def findings(res: Dict[str, Any]) -> List[str]:
                 parts.append(f"{v} NOT detected reliably: rejected in {s['rate_at_largest']:.0%} of runs at the "
                              f"largest budget")
         c = r["summary"]["none"]["pooled"]
-        out.append(f"3.4 at {r['name']}: " + "; ".join(parts) + f". The correct A was rejected in "
-                   f"{c['rejections']}/{c['tests']} tests ({c['rate']:.3f}; binomial test of rate = alpha: "
-                   f"p = {c['binom_pvalue']:.3g}).")
+        control = ("every test of the correct A failed" if c["rate"] is None else
+                   f"The correct A was rejected in {c['rejections']}/{c['tests']} tests ({c['rate']:.3f}; binomial "
+                   f"test of rate = alpha: p = {c['binom_pvalue']:.3g})")
+        out.append(f"3.4 at {r['name']}: " + "; ".join(parts) + f". {control}.")
     return out

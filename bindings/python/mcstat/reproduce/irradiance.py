@@ -27,7 +27,7 @@ import numpy as np
 
 import mcstat
 from .. import estimators as est
-from .binomial import rate_summary
+from .binomial import rate_of_counts
 from .context import Context
 from .plan import Plan
 from .results import batch_columns, decision_counts, test_fields
@@ -75,7 +75,10 @@ class ReceiverEstimators:
 
 
 def _rate_text(s: Dict[str, Any]) -> str:
-    return (f"{s['rejections']}/{s['tests']} = {s['rate']:.3f} [{s['ci95'][0]:.3f}, {s['ci95'][1]:.3f}]")
+    if s["rate"] is None:
+        return "no test ran"
+    failed = f" ({s['failed']} failed)" if s.get("failed") else ""
+    return (f"{s['rejections']}/{s['tests']} = {s['rate']:.3f} [{s['ci95'][0]:.3f}, {s['ci95'][1]:.3f}]{failed}")
 
 
 def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
@@ -119,15 +122,20 @@ def _tests(ctx: Context, sc, r: Dict[str, Any], X: Dict[str, np.ndarray], alpha:
         for m in ests:
             b = mcstat.t_test(X[m][:, 0, :], mu=E, alpha=alpha, on_error="nan")
             c = decision_counts(b.decision)
-            s = rate_summary(runs - c["equal"], runs, alpha)
+            s = rate_of_counts(c, alpha)
             one[m] = dict(counts=c, **s, results=batch_columns(b))
             ctx.print(f"{m:3}{c['less']:>6}{c['equal']:>7}{c['greater']:>8}   {_rate_text(s):31} "
-                      f"p = {s['binom_pvalue']:.3g}")
+                      + (f"p = {s['binom_pvalue']:.3g}" if s["rate"] is not None else ""))
         res["one_sample"] = one
         ctx.print(f"\nPooled over the runs ({runs * sec} secondary estimates each), against Lambert:")
         res["pooled_one_sample"] = {}
         for m in ests:
-            t = mcstat.t_test(pooled[m], mu=E, alpha=alpha)
+            try:
+                t = mcstat.t_test(pooled[m], mu=E, alpha=alpha)
+            except mcstat.McstatError as e:
+                res["pooled_one_sample"][m] = dict(error=f"{type(e).__name__}: {e}")
+                ctx.print(f"{m}: the test failed: {type(e).__name__}: {e}")
+                continue
             res["pooled_one_sample"][m] = test_fields(t)
             ctx.block(t.format(m))
     else:
@@ -168,13 +176,14 @@ def _tests(ctx: Context, sc, r: Dict[str, Any], X: Dict[str, np.ndarray], alpha:
             if m == sc.trusted:
                 continue
             c = mean_counts[a][jt]
-            vs[m] = dict(counts=c, **rate_summary(runs - c["equal"], runs, alpha))
+            vs[m] = dict(counts=c, **rate_of_counts(c, alpha))
         res["against_trusted"] = vs
         if E is None:
             ctx.print(f"\nWelch tests against the trusted estimator {sc.trusted}, one per run:")
             for m, s in vs.items():
-                ctx.print(f"{m} vs {sc.trusted}: equal means in {s['counts']['equal']}/{runs} runs; "
-                          f"rejected {_rate_text(s)}; binomial test of rate = alpha: p = {s['binom_pvalue']:.3g}")
+                ctx.print(f"{m} vs {sc.trusted}: equal means in {s['counts']['equal']}/{runs} runs; rejected "
+                          f"{_rate_text(s)}" + (f"; binomial test of rate = alpha: p = {s['binom_pvalue']:.3g}"
+                                                if s["rate"] is not None else ""))
 
     # variance ordering: adjacent pairs by sample variance, one-sided F tests on the pooled estimates
     sd = {m: float(np.std(pooled[m], ddof=1)) for m in ests}
@@ -187,7 +196,13 @@ def _tests(ctx: Context, sc, r: Dict[str, Any], X: Dict[str, np.ndarray], alpha:
         ctx.print(f"\nVariance ordering: one-sided F tests of adjacent estimators (by sample variance) on the "
                   f"pooled secondary estimates, alpha = {alpha:g}:")
     for a, b in zip(order, order[1:]):
-        t = mcstat.var_test(pooled[a], pooled[b], alternative="greater", alpha=alpha)
+        try:
+            t = mcstat.var_test(pooled[a], pooled[b], alternative="greater", alpha=alpha)
+        except mcstat.McstatError as e:  # e.g. an estimator whose every secondary estimate is 0
+            steps.append(dict(pair=[a, b], test=None, error=f"{type(e).__name__}: {e}", shown=False))
+            text += " ? " + GREEK[b]
+            ctx.print(f"{a} against {b}: the F test failed: {type(e).__name__}: {e}")
+            continue
         steps.append(dict(pair=[a, b], test=test_fields(t), shown=bool(t.reject)))
         text += (" > " if t.reject else " ~ ") + GREEK[b]
         ctx.block(t.format(a, b))
@@ -195,7 +210,8 @@ def _tests(ctx: Context, sc, r: Dict[str, Any], X: Dict[str, np.ndarray], alpha:
     majority = {f"{i} vs {j}": var_counts[a][b]["greater"] > runs / 2
                 for a, i in enumerate(ests) for b, j in enumerate(ests) if i != j}
     res["ordering"] = dict(order=order, text=text, steps=steps, majority_greater=majority,
-                           note="'>' where the one-sided F test rejects equal variances at alpha, '~' where not")
+                           note="'>' where the one-sided F test rejects equal variances at alpha, '~' where not, "
+                                "'?' where the test could not run")
     ctx.print(f"ordering found: {text}  (sample standard deviations of the secondary estimates: "
               + ", ".join(f"{m} {sd[m]:.4g}" for m in order) + ")")
 
@@ -214,25 +230,31 @@ def findings(res: Dict[str, Any]) -> List[str]:
     for r in res["receivers"]:
         where = f"3.1 at {r['name']}"
         if r["one_sample"] is not None:
-            parts, odd = [], []
-            for m, s in r["one_sample"].items():
-                parts.append(f"{m} {s['rejections']}/{s['tests']}")
+            summary, what = r["one_sample"], "means against Lambert's formula"
+        elif r.get("against_trusted"):
+            summary, what = r["against_trusted"], f"no analytic value; means against the trusted estimator {res['trusted']}"
+        else:
+            summary = None
+        if summary:
+            parts, odd, none = [], [], []
+            for m, s in summary.items():
+                if s["rate"] is None:
+                    none.append(m)
+                    continue
+                parts.append(f"{m} {s['rejections']}/{s['tests']}" + (f" ({s['failed']} failed)" if s["failed"] else ""))
                 if s["binom_pvalue"] < 0.01:
                     odd.append(f"{m} (rate {s['rate']:.3f}, binomial p = {s['binom_pvalue']:.2g})")
-            verdict = ("every rejection count is consistent with alpha (exact binomial tests, p >= 0.01)"
-                       if not odd else "NOT consistent with alpha for " + ", ".join(odd))
-            out.append(f"{where}: means against Lambert's formula rejected in {', '.join(parts)} runs at "
-                       f"alpha = {alpha:g}: {verdict}.")
-        elif r.get("against_trusted"):
-            parts, odd = [], []
-            for m, s in r["against_trusted"].items():
-                parts.append(f"{m} {s['rejections']}/{s['tests']}")
-                if s["binom_pvalue"] < 0.01:
-                    odd.append(m)
-            out.append(f"{where}: no analytic value; means against the trusted estimator {res['trusted']} "
-                       f"rejected in {', '.join(parts)} runs at alpha = {alpha:g}: "
-                       + ("consistent with alpha." if not odd else "NOT consistent with alpha for " + ", ".join(odd) + "."))
+            text = f"{where}: {what}"
+            if parts:
+                text += (f" rejected in {', '.join(parts)} runs at alpha = {alpha:g}: "
+                         + ("every rejection count is consistent with alpha (exact binomial tests, p >= 0.01)"
+                            if not odd else "NOT consistent with alpha for " + ", ".join(odd)))
+            if none:
+                text += (f"{'; ' if parts else ': '}no test of {', '.join(none)} could run (constant samples, e.g. "
+                         "no direction hit the emitter; see the R-style output)")
+            out.append(text + ".")
         if len(r["ordering"]["order"]) > 1:
             out.append(f"{where}: variance ordering {r['ordering']['text']} (one-sided F tests on pooled "
-                       f"secondary estimates; '~' = not resolved at alpha = {alpha:g}).")
+                       f"secondary estimates; '~' = not resolved at alpha = {alpha:g}"
+                       + ("; '?' = the test could not run" if "?" in r["ordering"]["text"] else "") + ").")
     return out

@@ -25,7 +25,18 @@ def _details(title: str, text: str) -> List[str]:
 
 
 def _ci(s: Dict[str, Any], digits: int = 3) -> str:
-    return f"{s['rate']:.{digits}f} [{s['ci95'][0]:.{digits}f}, {s['ci95'][1]:.{digits}f}]"
+    if s.get("rate") is None:
+        return "no test ran"
+    failed = f" ({s['failed']} failed)" if s.get("failed") else ""
+    return f"{s['rate']:.{digits}f} [{s['ci95'][0]:.{digits}f}, {s['ci95'][1]:.{digits}f}]{failed}"
+
+
+def _p(v: Any) -> str:
+    return "-" if v is None else f"p = {v:.3g}"
+
+
+def _g(v: Any, spec: str = ".3g") -> str:
+    return "-" if v is None else format(v, spec)
 
 
 def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) -> List[str]:
@@ -129,7 +140,7 @@ def _irradiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
                   "|---|---|---|---|---|---|"]
             for m, s in r["one_sample"].items():
                 c = s["counts"]
-                L += [f"| {m} | {c['less']} | {c['equal']} | {c['greater']} | {_ci(s)} | p = {s['binom_pvalue']:.3g} |"]
+                L += [f"| {m} | {c['less']} | {c['equal']} | {c['greater']} | {_ci(s)} | {_p(s['binom_pvalue'])} |"]
             L += [""]
         elif r.get("against_trusted"):
             L += [f"No analytic value (several triangles): Welch tests of each estimator against the trusted "
@@ -137,7 +148,7 @@ def _irradiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
                   "| estimator | equal means | rejection rate [95% CI] | binomial test of rate = alpha |",
                   "|---|---|---|---|"]
             for m, s in r["against_trusted"].items():
-                L += [f"| {m} | {s['counts']['equal']}/{s['tests']} | {_ci(s)} | p = {s['binom_pvalue']:.3g} |"]
+                L += [f"| {m} | {s['counts']['equal']}/{s['tests']} | {_ci(s)} | {_p(s['binom_pvalue'])} |"]
             L += [""]
         L += ["Figure 4: every pair, x (rows) against an independent sample of y (columns); bars count the runs "
               "whose decision was less / equal / greater, red for the means (Welch), blue for the variances (F). "
@@ -229,7 +240,7 @@ def _bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
                   + " | ".join(f"{row['variants'][v]['rejections']}/{row['variants'][v]['tests']}" for v in vs) + " |"]
         c = r["summary"]["none"]["pooled"]
         L += ["", f"Control over all budgets: {c['rejections']}/{c['tests']} rejected, {_ci(c, 4)}; binomial test "
-                  f"of rate = alpha: p = {c['binom_pvalue']:.3g}.", ""]
+                  f"of rate = alpha: {_p(c['binom_pvalue'])}.", ""]
     L += _details("R-style output of 3.4", transcript)
     return L
 
@@ -245,7 +256,8 @@ def _timing(res: Dict[str, Any], fig, transcript: str) -> List[str]:
               f"{what} of the mean of n primary estimates against the median wall time of one such estimate, "
               f"n = {', '.join(str(r['n']) for r in next(iter(irr['estimators'].values()))['rows'])}, "
               f"{res['reps']} estimates each. Dashed: sigma sqrt(t1 / T), the ideal slope -1/2 of an unbiased "
-              "estimator with sigma and t1 (time per primary estimate) measured at the largest n.", "",
+              "estimator with sigma and t1 (time per primary estimate) measured at the largest n; where points lie "
+              "right of it, a fixed cost per call (Python, thread start) dominates.", "",
               fig("error_time.png", plots.error_time, irr), "",
               "| estimator | sigma per primary | time per primary (ns) | efficiency 1/(sigma^2 t1) (1/s) | "
               f"{what} at the largest n |", "|---|---|---|---|---|"]
@@ -253,7 +265,7 @@ def _timing(res: Dict[str, Any], fig, transcript: str) -> List[str]:
             last = e["rows"][-1]
             err = last["rmse"] if irr["lambert"] is not None else last["se_estimated"]
             L += [f"| {m} | {e['sigma_primary']:.4g} | {e['wall_per_primary'] * 1e9:.3g} | "
-                  f"{e['efficiency']:.3g} | {err:.3g} |"]
+                  f"{_g(e['efficiency'])} | {_g(err)} |"]
         L += [""]
     ks = res.get("ks")
     if ks:
