@@ -236,7 +236,7 @@ def test_plan_scene_schema():
     code, out, _ = run_cli("plan", os.path.join(SCENES, "minimal.json"))
     assert code == 0 and "[3.2] all: BRDF sampling (3.2): the scene has no BRDFs" in out
     code, out, _ = run_cli("scene")
-    assert code == 0 and json.loads(out)["studies"]["sampling"]["runs"] == 40
+    assert code == 0 and json.loads(out)["studies"]["sampling"]["runs"] == 100
     code, out, _ = run_cli("schema")
     assert code == 0 and json.loads(out)["title"] == "mcstat reproduce: scene"
     code, _, _ = run_cli()

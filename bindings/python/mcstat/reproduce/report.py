@@ -185,13 +185,16 @@ def _sampling(res: Dict[str, Any], fig, transcript: str) -> List[str]:
          "the horizon (f = 0 there) are "
          + ("discarded before the test (the fraction is reported)" if res["below_horizon"] == "discard"
             else "kept in the test") + ".", "",
+         "Verdict per size: *passes* where the number of rejections is consistent with alpha (exact binomial "
+         "test, p >= 0.01), *fails* where most runs reject, *sometimes* in between.", "",
          fig("power_curve.png", plots.power_curve, res), ""]
     for b in res["brdfs"]:
         bh = b["below_horizon"]
         L += [f"### {b['name']}", "", f"{b['description']}.", "",
-              "| n | rejected | rate [95% CI] | median p | p-value | verdict |", "|---|---|---|---|---|---|"]
+              "| n | rejected | rate [95% CI] | median p (≤: every simulated p at its floor 1/(n_sim+1)) | p-value | verdict |", "|---|---|---|---|---|---|"]
         for r in b["sizes"]:
-            L += [f"| {r['n']} | {r['rejections']}/{r['tests']} | {_ci(r, 2)} | {r['median_pvalue']:.3g} | "
+            L += [f"| {r['n']} | {r['rejections']}/{r['tests']} | {_ci(r, 2)} | "
+                  f"{'≤ ' if r['pvalue_floor'] else ''}{r['median_pvalue']:.3g} | "
                   f"{'/'.join(r['pvalue_method'])} | {r['verdict']} |"]
         L += ["", f"Below the horizon: {bh['count']}/{bh['of']} = {bh['fraction']:.4f} "
                   f"[{bh['ci95'][0]:.4f}, {bh['ci95'][1]:.4f}] of the sampler's directions (rejection sampling: none). "
