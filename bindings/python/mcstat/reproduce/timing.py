@@ -33,6 +33,7 @@ import mcstat
 from .context import Context
 from .irradiance import ReceiverEstimators
 from .plan import Plan
+from .results import columns
 
 
 def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
@@ -116,7 +117,7 @@ def _ks(ctx: Context, plan: Plan, p: Dict[str, Any]) -> Dict[str, Any]:
     res: Dict[str, Any] = dict(brdf=name, size=n, pair=j, exact_pvalue=pe, rows=[])
     with ctx.bar(len(p["ks_n_sim"]) * p["ks_reps"], "timing K-S") as bar:
         for si, ns in enumerate(p["ks_n_sim"]):
-            errs, ses, times, seeds = [], [], [], []
+            errs, ses, times, seeds, tests = [], [], [], [], []
             for rep in range(p["ks_reps"]):
                 s = ctx.stream("timing", 101, si, rep, label=f"timing/K-S simulation/n_sim {ns}/rep {rep}")
                 t0 = time.perf_counter()
@@ -126,11 +127,12 @@ def _ks(ctx: Context, plan: Plan, p: Dict[str, Any]) -> Dict[str, Any]:
                 errs.append(r.pvalue - pe)
                 ses.append(r.pvalue_se)
                 seeds.append(s)
+                tests.append(r)
                 bar.update()
             res["rows"].append(dict(n_sim=ns, errors=errs, rms_error=float(np.sqrt(np.mean(np.square(errs)))),
                                     mean_reported_se=float(np.mean(ses)),
                                     predicted_se=math.sqrt(pe * (1 - pe) / ns), wall_times=times,
-                                    wall_median=float(np.median(times)), seeds=seeds))
+                                    wall_median=float(np.median(times)), seeds=seeds, results=columns(tests)))
     ctx.print(f"\nSimulated K-S p-values ({n} + {n} directions of {name}, exact p = {pe:.4g}):")
     ctx.print(f"{'n_sim':>8}{'RMS error':>12}{'sqrt(p(1-p)/n_sim)':>20}{'mean reported s.e.':>20}{'ms per test':>13}")
     for row in res["rows"]:
