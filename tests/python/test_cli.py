@@ -167,6 +167,15 @@ def test_another_seed_other_numbers(tmp_path):
                                "--no-report", "--no-progress")
         assert code == 0, err
         got.append(strict_json(tmp_path / seed / "results.json"))
+    # without matplotlib and tqdm (None in sys.modules makes their import fail): --no-report works,
+    # and a report is refused with the command that installs them
+    blocked = "import sys; sys.modules['matplotlib'] = sys.modules['tqdm'] = None; from mcstat.cli import main; "
+    for extra, status in (["--no-report"], 0), ([], 2):
+        argv = ["reproduce", "--scene", str(path), "--out", str(tmp_path / f"b{status}")] + extra
+        p = subprocess.run([sys.executable, "-c", blocked + f"sys.exit(main({argv!r}))"], capture_output=True, text=True)
+        assert p.returncode == status, p.stderr[-500:]
+    assert "pip install 'mcstat[report]'" in p.stderr and "matplotlib and tqdm" in p.stderr
+    assert (tmp_path / "b0" / "results.json").exists() and not (tmp_path / "b2").exists()
     p1 = got[0]["studies"]["irradiance"]["receivers"][0]["one_sample"]["S"]["results"]["pvalue"]
     p2 = got[1]["studies"]["irradiance"]["receivers"][0]["one_sample"]["S"]["results"]["pvalue"]
     assert p1 != p2 and got[0]["seeds"] != got[1]["seeds"]

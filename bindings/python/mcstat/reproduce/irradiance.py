@@ -116,7 +116,7 @@ def _tests(ctx: Context, sc, r: Dict[str, Any], X: Dict[str, np.ndarray], alpha:
     # one-sample tests against Lambert, per run
     if E is not None:
         one: Dict[str, Any] = {}
-        ctx.print(f"\nOne-sample t tests against Lambert's formula, one per run:")
+        ctx.print("\nOne-sample t tests against Lambert's formula, one per run:")
         ctx.print(f"{'':3}{'less':>6}{'equal':>7}{'greater':>8}   rejected (rate [95% CI])        "
                   f"binomial test of rate = alpha")
         for m in ests:

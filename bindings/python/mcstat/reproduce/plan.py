@@ -23,7 +23,7 @@ what it changed.
 from __future__ import annotations
 
 import copy
-from typing import Any, Dict, List
+from typing import Any, Dict, List, Optional
 
 from .. import estimators as est
 from .scene import Scene
@@ -104,7 +104,7 @@ class Plan:
     def _leave(self, study: str, target: str, what: str, reason: str) -> None:
         self.left_out.append(dict(study=study, section=SECTIONS[study], target=target, what=what, reason=reason))
 
-    def runs(self, study: str, target: str = None) -> bool:
+    def runs(self, study: str, target: Optional[str] = None) -> bool:
         return any(s["study"] == study and (target is None or s["target"] == target) for s in self.steps)
 
     def visible_receivers(self) -> List[Dict[str, Any]]:

@@ -9,8 +9,6 @@ from __future__ import annotations
 import os
 from typing import Any, Dict, List
 
-import numpy as np
-
 from . import plots
 
 

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import sys
 import time
 from typing import Any, Dict, List, Optional, TextIO
 
@@ -77,7 +76,8 @@ def reproduce(scene_path: Optional[str], out_dir: str, seed: int, quick: bool = 
     res["wall_threads"] = threads or mcstat.get_num_threads()
     res["wall_seconds"] = time.perf_counter() - t_start
     if report:
-        report_mod = __import__(f"{__package__}.report", fromlist=["write"])
+        from . import report as report_mod  # imports matplotlib: only when a report is wanted
+
         report_mod.write(out_dir, res, transcripts)
         res["wall_seconds"] = time.perf_counter() - t_start
     results.write(os.path.join(out_dir, "results.json"), res)

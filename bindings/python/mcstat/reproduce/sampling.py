@@ -127,16 +127,15 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
         rows = []
         with ctx.bar(len(sizes) * runs, f"3.2 {name}") as bar:
             for zi, n in enumerate(sizes):
-                tests, drawn_n = [], 0
+                tests = []
                 for r in range(runs):
                     first = (zi * runs + r) << 32  # disjoint counter ranges per (size, run)
-                    w, drawn, _ = sampler_directions(bp, n, s_seed, first, keep, ctx.threads)
+                    w, _, _ = sampler_directions(bp, n, s_seed, first, keep, ctx.threads)
                     x = bp.sample_exact(n, seed=x_seed, first_index=first, threads=ctx.threads)
                     keys_a = est.direction_keys(w).astype(float)
                     t = mcstat.ks_test(keys_a, x.keys.astype(float), weight="canner", alpha=alpha, n_sim=n_sim,
                                        seed=k_seed, cache=cache, threads=ctx.threads)
                     tests.append(t)
-                    drawn_n += drawn
                     bar.update()
                 c = decision_counts(t.decision for t in tests)
                 rejections = sum(t.reject for t in tests)

@@ -37,7 +37,7 @@ from .results import columns
 
 
 def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
-    sc, p = plan.scene, plan.params["timing"]
+    p = plan.params["timing"]
     out: Dict[str, Any] = dict(threads=ctx.threads or mcstat.get_num_threads(), budgets=p["budgets"], reps=p["reps"])
     if plan.runs("timing", "estimators"):
         out["irradiance"] = _irradiance(ctx, plan, p)
