@@ -13,7 +13,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps system-deps python-deps build test ctest python pytest demo bench bench-python bench-estimators references clean
+.PHONY: all deps system-deps python-deps build test ctest python pytest demo bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -62,6 +62,12 @@ bench: deps
 	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DMCSTAT_BUILD_BENCH=ON -DMCSTAT_BUILD_TESTS=OFF
 	cmake --build $(BUILD)-bench -j $(JOBS)
 	$(PY) bench/run.py --build $(BUILD)-bench
+
+# Cost per sample of an embedded check (mcstat_stream); see bench/RESULTS_check.md.
+bench-check: system-deps
+	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DMCSTAT_BUILD_BENCH=ON -DMCSTAT_BUILD_TESTS=OFF
+	cmake --build $(BUILD)-bench -j $(JOBS) --target bench_check
+	$(BUILD)-bench/bench/bench_check
 
 bench-python: python
 	$(PY) bench/bench_python.py
