@@ -13,7 +13,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps system-deps python-deps build test ctest python pytest demo bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test demo bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -53,7 +53,19 @@ python: system-deps python-deps
 pytest: python
 	$(PY) -m pytest -q tests/python
 
-test: deps ctest pytest
+# The installed package (cmake --install into $(BUILD)/stage) and what is
+# built against it: CMake and pkg-config consumers, shared and static; then
+# every FFI: ctypes (standard library only), Rust, Go, and a real renderer.
+STAGE := $(abspath $(BUILD))/stage
+STAGE_PC := $(STAGE)/lib/pkgconfig
+
+install-test: build
+	tests/install/test_install.sh $(BUILD)
+
+ctypes-test: install-test
+	python3 examples/ctypes/test_ctypes.py $(STAGE)/lib/libmcstat.so
+
+test: deps ctest pytest install-test ctypes-test
 
 demo: build
 	$(BUILD)/examples/c/mcstat_demo
