@@ -18,7 +18,7 @@ class TestOneSample:
             func(np.array([1.0, -np.inf, 3.0]), nan_policy="omit")
 
     def test_too_few(self, func):
-        with pytest.raises(mcstat.TooFewObservationsError, match=r"at least 2 \(x has 0 values\)"):
+        with pytest.raises(mcstat.TooFewObservationsError, match=r"at least 2 .*\(x has 0 values\)"):
             func(np.array([]))
         with pytest.raises(mcstat.TooFewObservationsError, match="x has 1 values"):
             func([1.0])
