@@ -14,7 +14,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps system-deps python-deps build test ctest python pytest demo demo-quick demo-c bench bench-python bench-estimators references clean
+.PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -54,7 +54,53 @@ python: system-deps python-deps
 pytest: python
 	$(PY) -m pytest -q tests/python
 
-test: deps ctest pytest
+# The installed package (cmake --install into $(BUILD)/stage) and what is
+# built against it: CMake and pkg-config consumers, shared and static; then
+# every FFI: ctypes (standard library only), Rust, Go, and a real renderer.
+STAGE := $(abspath $(BUILD))/stage
+STAGE_PC := $(STAGE)/lib/pkgconfig
+
+install-test: build
+	tests/install/test_install.sh $(BUILD)
+
+ctypes-test: install-test
+	python3 examples/ctypes/test_ctypes.py $(STAGE)/lib/libmcstat.so
+
+# Toolchains: the machine's (rustup's ~/.cargo/bin, /usr/local/go) when
+# present, else Debian's cargo/rustc and golang-go through apt-get.
+TOOL_PATH := $(HOME)/.cargo/bin:/usr/local/go/bin:$(PATH)
+rust-deps:
+	@export PATH="$(TOOL_PATH)"; command -v cargo > /dev/null || { echo "installing cargo and rustc (Debian)"; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq cargo rustc; }
+
+go-deps:
+	@export PATH="$(TOOL_PATH)"; command -v go > /dev/null || { echo "installing Go (Debian)"; \
+	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq golang-go; }
+
+# Rust: against the staged libmcstat.so, then linked statically (no
+# LD_LIBRARY_PATH: the static feature must not need the shared library).
+rust-test: install-test rust-deps
+	cd bindings/rust && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) LD_LIBRARY_PATH=$(STAGE)/lib \
+	  cargo test --locked -j $(JOBS)
+	cd bindings/rust && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) \
+	  cargo test --locked -j $(JOBS) -p mcstat --features static
+
+go-test: install-test go-deps
+	cd bindings/go && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) LD_LIBRARY_PATH=$(STAGE)/lib \
+	  go test -count=1 -v .
+
+# Mitsuba 3 from PyPI (examples/mitsuba/requirements.txt).  Only when pip
+# cannot install the wheel do the tests skip, and they say pip's reason.
+mitsuba-test: install-test python-deps
+	@if $(PY) -m pip install -q -r examples/mitsuba/requirements.txt > $(BUILD)/mitsuba-pip.log 2>&1; then \
+	  MCSTAT_LIBDIR=$(STAGE)/lib $(PY) -m pytest -q -p no:cacheprovider examples/mitsuba; \
+	else \
+	  cat $(BUILD)/mitsuba-pip.log; \
+	  MCSTAT_MITSUBA_UNAVAILABLE="$$(tail -1 $(BUILD)/mitsuba-pip.log)" MCSTAT_LIBDIR=$(STAGE)/lib \
+	    $(PY) -m pytest -q -rs -p no:cacheprovider examples/mitsuba; \
+	fi
+
+test: deps ctest pytest install-test ctypes-test rust-test go-test mitsuba-test
 
 # The main job: the paper's case studies on its scene (full budgets, about
 # 20-40 s on 2 cores), into $(REPORT)/.
@@ -74,6 +120,12 @@ bench: python
 	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DMCSTAT_BUILD_BENCH=ON -DMCSTAT_BUILD_TESTS=OFF
 	cmake --build $(BUILD)-bench -j $(JOBS)
 	$(PY) bench/run.py --build $(BUILD)-bench
+
+# Cost per sample of an embedded check (mcstat_stream); see bench/RESULTS_check.md.
+bench-check: system-deps
+	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DMCSTAT_BUILD_BENCH=ON -DMCSTAT_BUILD_TESTS=OFF
+	cmake --build $(BUILD)-bench -j $(JOBS) --target bench_check
+	$(BUILD)-bench/bench/bench_check
 
 bench-python: python
 	$(PY) bench/bench_python.py

@@ -445,6 +445,85 @@ MCSTAT_API int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_strid
                                       int alternative, double alpha, unsigned flags, mcstat_result *out,
                                       int32_t *status);
 
+
+/* ------------------------------------------------------------------------ */
+/* Buffered per-thread accumulator: checks inside a renderer.                */
+/* mcstat_moments_add merges one value exactly (double-double mean), which   */
+/* costs tens of ns.  A renderer that checks its estimates in production    */
+/* keeps one mcstat_stream per thread instead: a fixed-size plain struct of  */
+/* MCSTAT_STREAM_BYTES (4096) bytes the caller owns, holding an             */
+/* mcstat_moments and an inline buffer of MCSTAT_STREAM_CAPACITY doubles.   */
+/* mcstat_stream_add (inline, below) stores the value and bumps a counter;   */
+/* when the buffer is full it is flushed into the moments with               */
+/* mcstat_moments_add_array, so the moments are exactly what add_array      */
+/* gives on the same values (about 0.5 ns per value; bench/RESULTS_check.md)*/
+/* No allocation, no lock, no global state: one stream per thread, merged   */
+/* (mcstat_stream_merge) by one thread at the end of a frame, then checked. */
+/* NaN and +-Inf values are not added: they are counted in n_nonfinite, and */
+/* a check on a stream that has seen one returns MCSTAT_ENONFINITE.          */
+/* mcstat_check.h wraps all this in macros that compile to nothing when     */
+/* checks are off.                                                           */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_STREAM_VERSION 1u
+#define MCSTAT_STREAM_BYTES 4096u
+#define MCSTAT_STREAM_CAPACITY 492u /* (4096 - 128 - 32) / 8 */
+
+typedef struct mcstat_stream {
+    mcstat_moments moments;  /* every value flushed so far */
+    uint32_t count;          /* values waiting in buf (< MCSTAT_STREAM_CAPACITY) */
+    uint32_t version;        /* MCSTAT_STREAM_VERSION once initialised */
+    uint64_t n_nonfinite;    /* NaN and +-Inf values seen (and left out) */
+    uint64_t reserved[2];    /* zero */
+    double buf[MCSTAT_STREAM_CAPACITY];
+} mcstat_stream;
+
+/* Empties s.  MCSTAT_EINVAL for NULL. */
+MCSTAT_API int mcstat_stream_init(mcstat_stream *s);
+/* Adds the buffered values to s->moments and empties the buffer (non-finite
+ * values are counted in n_nonfinite instead).  MCSTAT_EINVAL for NULL or an
+ * uninitialised stream. */
+MCSTAT_API int mcstat_stream_flush(mcstat_stream *s);
+/* dst <- dst merged with src: its moments, its buffered values and its
+ * non-finite count; src is not modified (it may equal dst).  Merging a
+ * thread's stream into a frame total and re-initialising the thread's
+ * stream is the end-of-frame step.  MCSTAT_EINVAL. */
+MCSTAT_API int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src);
+/* *out <- the moments of every value s has seen (flushed or buffered),
+ * without modifying s.  MCSTAT_EINVAL. */
+MCSTAT_API int mcstat_stream_moments(const mcstat_stream *s, mcstat_moments *out);
+
+/* Adds one value: a store and a counter in the common case, a flush once
+ * every MCSTAT_STREAM_CAPACITY values.  s must have been initialised.  FFI
+ * callers that cannot inline this may do the same through the struct. */
+static inline void mcstat_stream_add(mcstat_stream *s, double x)
+{
+    s->buf[s->count] = x;
+    if (++s->count == MCSTAT_STREAM_CAPACITY)
+        (void)mcstat_stream_flush(s);
+}
+
+/* Check that the mean of the values is `reference` to within `tolerance`
+ * (>= 0, finite), at level alpha, without storing the values.
+ *   tolerance == 0: the two-sided one-sample t test of mean == reference.
+ *   tolerance > 0: H0 |mean - reference| <= tolerance against H1 |mean -
+ *   reference| > tolerance, as two one-sided t tests at alpha/2 each (mean >
+ *   reference + tolerance, mean < reference - tolerance); *out is the one
+ *   with the smaller p-value (its alpha field is alpha/2), so its R-style
+ *   block names the bound that was crossed.  A tolerance covers a reference
+ *   that is itself approximate, which enough samples would otherwise detect.
+ * out->reject == 1 means the check failed.  Statuses as mcstat_t_test_1,
+ * plus MCSTAT_ENONFINITE when the stream has seen a NaN or an infinity. */
+MCSTAT_API int mcstat_stream_check_mean(const mcstat_stream *s, double reference, double tolerance,
+                                        double alpha, mcstat_result *out);
+/* Check that the variance of the values is below `bound` (> 0): the
+ * one-sample chi-squared test of var == bound against var > bound at level
+ * alpha; out->reject == 1 (the variance is significantly above the bound)
+ * means the check failed.  Statuses as mcstat_var_test_1, plus
+ * MCSTAT_ENONFINITE as above. */
+MCSTAT_API int mcstat_stream_check_var(const mcstat_stream *s, double bound, double alpha,
+                                       mcstat_result *out);
+MCSTAT_API size_t mcstat_sizeof_stream(void);
+
 #ifdef __cplusplus
 }
 #endif

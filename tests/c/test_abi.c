@@ -26,6 +26,11 @@ int main(void)
     CHECK_INT(offsetof(mcstat_moments, max), 64);
     CHECK_INT(offsetof(mcstat_result, n), 32);
     CHECK_INT(offsetof(mcstat_result, statistic), 48);
+    /* the embedded-check accumulator: a fixed 4096-byte layout */
+    CHECK_INT(mcstat_sizeof_stream(), sizeof(mcstat_stream));
+    CHECK_INT(sizeof(mcstat_stream), MCSTAT_STREAM_BYTES);
+    CHECK_INT(offsetof(mcstat_stream, count), 128);
+    CHECK_INT(offsetof(mcstat_stream, buf), 160);
     /* enum values are part of the ABI */
     CHECK_INT(MCSTAT_TWO_SIDED, 0);
     CHECK_INT(MCSTAT_LESS, 1);

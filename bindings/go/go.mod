@@ -1,0 +1,3 @@
+module mcstat/bindings/go
+
+go 1.19

@@ -1,0 +1,456 @@
+// Package mcstat binds libmcstat, statistical hypothesis tests for Monte
+// Carlo estimators, through cgo.  The library is found with pkg-config
+// (mcstat.pc; set PKG_CONFIG_PATH for a non-system prefix).
+//
+// The numbers, decisions and R-style text are computed by libmcstat; this
+// package converts types and errors.  Errors are *Error values carrying the
+// C status and its sentence; compare with errors.Is against the Err*
+// sentinels:
+//
+//	r, err := mcstat.TTest2(newEst, trusted, 0, mcstat.TwoSided, 0.05)
+//	if errors.Is(err, mcstat.ErrDegenerate) { ... }
+//	fmt.Print(r)                          // R's print.htest block + the decision
+//	fmt.Print(r.Format("new", "trusted"))
+package mcstat
+
+// #cgo pkg-config: mcstat
+// #include <stdlib.h>
+// #include <mcstat.h>
+import "C"
+
+import (
+	"fmt"
+	"unsafe"
+)
+
+// ---- errors --------------------------------------------------------------------
+
+// Error is a non-zero libmcstat status with mcstat_strerror's sentence.
+type Error struct {
+	Status  int
+	Message string
+}
+
+func (e *Error) Error() string { return fmt.Sprintf("mcstat: %s (status %d)", e.Message, e.Status) }
+
+// Is makes errors.Is(err, ErrX) compare statuses.
+func (e *Error) Is(target error) bool {
+	t, ok := target.(*Error)
+	return ok && t.Status == e.Status
+}
+
+func newError(status C.int) *Error {
+	return &Error{Status: int(status), Message: C.GoString(C.mcstat_strerror(status))}
+}
+
+// Sentinels, one per status (match them with errors.Is).
+var (
+	ErrInvalidArgument = newError(C.MCSTAT_EINVAL)
+	ErrTooFew          = newError(C.MCSTAT_ETOOFEW)
+	ErrNonFinite       = newError(C.MCSTAT_ENONFINITE)
+	ErrDegenerate      = newError(C.MCSTAT_EDEGENERATE)
+	ErrNoMemory        = newError(C.MCSTAT_ENOMEM)
+	ErrNumeric         = newError(C.MCSTAT_ENUMERIC)
+	ErrBufferSize      = newError(C.MCSTAT_EBUFSIZE)
+	ErrCorrupt         = newError(C.MCSTAT_ECORRUPT)
+	ErrTooBig          = newError(C.MCSTAT_ETOOBIG)
+)
+
+func check(status C.int) error {
+	if status == C.MCSTAT_OK {
+		return nil
+	}
+	return newError(status)
+}
+
+// Version of the linked library, "MAJOR.MINOR.PATCH".
+func Version() string { return C.GoString(C.mcstat_version()) }
+
+// ---- enums ---------------------------------------------------------------------
+
+// Alternative is a claim about the first sample: Less means mean(x) < mu0
+// (or var(x) < sigma2, mean(x) < mean(y), ...; for K-S, x tends to be smaller).
+type Alternative int
+
+const (
+	TwoSided Alternative = C.MCSTAT_TWO_SIDED
+	Less     Alternative = C.MCSTAT_LESS
+	Greater  Alternative = C.MCSTAT_GREATER
+)
+
+// ParseAlternative accepts "two-sided" (also "two.sided", "two_sided"), "less", "greater".
+func ParseAlternative(name string) (Alternative, error) {
+	cs := C.CString(name)
+	defer C.free(unsafe.Pointer(cs))
+	var v C.int
+	if err := check(C.mcstat_alternative_parse(cs, &v)); err != nil {
+		return TwoSided, err
+	}
+	return Alternative(v), nil
+}
+
+func (a Alternative) String() string {
+	if s := C.mcstat_alternative_name(C.int(a)); s != nil {
+		return C.GoString(s)
+	}
+	return fmt.Sprintf("Alternative(%d)", int(a))
+}
+
+// Decision is the paper's three-way outcome.
+type Decision int
+
+const (
+	DecisionLess    Decision = -1
+	DecisionEqual   Decision = 0
+	DecisionGreater Decision = 1
+)
+
+func (d Decision) String() string { return C.GoString(C.mcstat_decision_name(C.int(d))) }
+
+// Test identifies the test that produced a Result.
+type Test int
+
+const (
+	TestT1   Test = C.MCSTAT_TEST_T_1
+	TestT2   Test = C.MCSTAT_TEST_T_2
+	TestVar1 Test = C.MCSTAT_TEST_VAR_1
+	TestVar2 Test = C.MCSTAT_TEST_VAR_2
+	TestKS2  Test = C.MCSTAT_TEST_KS_2
+)
+
+// Method says how a p-value was obtained (Auto only as a K-S option).
+type Method int
+
+const (
+	MethodAnalytic   Method = C.MCSTAT_METHOD_ANALYTIC
+	MethodAuto       Method = C.MCSTAT_METHOD_AUTO
+	MethodExact      Method = C.MCSTAT_METHOD_EXACT
+	MethodSimulate   Method = C.MCSTAT_METHOD_SIMULATE
+	MethodAsymptotic Method = C.MCSTAT_METHOD_ASYMPTOTIC
+)
+
+// KSWeight is the K-S statistic's weight.
+type KSWeight int
+
+const (
+	KSWeightNone   KSWeight = C.MCSTAT_KS_WEIGHT_NONE   // Smirnov's D = sup |F - G|
+	KSWeightCanner KSWeight = C.MCSTAT_KS_WEIGHT_CANNER // the paper's D2
+)
+
+// ---- results -------------------------------------------------------------------
+
+// Result is a copy of libmcstat's mcstat_result.  String() is the R-style
+// block with the data named "x" and "y"; Format names them.
+type Result struct {
+	Test        Test
+	Method      Method
+	Alternative Alternative
+	Reject      bool
+	Decision    Decision
+	N           [2]uint64
+	Statistic   float64
+	DF          [2]float64 // DF[1] is NaN except for F
+	PValue      float64
+	PValueSE    float64 // Monte Carlo standard error of a simulated p-value; 0 when exact
+	ConfInt     [2]float64
+	Estimate    [2]float64
+	NullValue   float64
+	Alpha       float64
+	Critical    [2]float64 // reject when Statistic < Critical[0] or > Critical[1]
+	StdError    float64
+	raw         C.mcstat_result
+}
+
+func fromC(r *C.mcstat_result) *Result {
+	return &Result{
+		Test: Test(r.test), Method: Method(r.method), Alternative: Alternative(r.alternative),
+		Reject: r.reject != 0, Decision: Decision(r.decision),
+		N:         [2]uint64{uint64(r.n[0]), uint64(r.n[1])},
+		Statistic: float64(r.statistic), DF: [2]float64{float64(r.df[0]), float64(r.df[1])},
+		PValue: float64(r.p_value), PValueSE: float64(r.p_value_se),
+		ConfInt:   [2]float64{float64(r.conf_int[0]), float64(r.conf_int[1])},
+		Estimate:  [2]float64{float64(r.estimate[0]), float64(r.estimate[1])},
+		NullValue: float64(r.null_value), Alpha: float64(r.alpha),
+		Critical: [2]float64{float64(r.critical[0]), float64(r.critical[1])},
+		StdError: float64(r.std_error), raw: *r,
+	}
+}
+
+// Format returns the R-style block (R's print.htest plus a "decision at
+// alpha" line) with the data named xName and yName.
+func (r *Result) Format(xName, yName string) string {
+	xn, yn := C.CString(xName), C.CString(yName)
+	defer C.free(unsafe.Pointer(xn))
+	defer C.free(unsafe.Pointer(yn))
+	var n C.size_t
+	st := C.mcstat_result_format(&r.raw, xn, yn, nil, 0, &n)
+	if st != C.MCSTAT_OK && st != C.MCSTAT_EBUFSIZE {
+		return "<mcstat result: " + newError(st).Message + ">"
+	}
+	buf := (*C.char)(C.malloc(n + 1))
+	defer C.free(unsafe.Pointer(buf))
+	if st = C.mcstat_result_format(&r.raw, xn, yn, buf, n+1, nil); st != C.MCSTAT_OK {
+		return "<mcstat result: " + newError(st).Message + ">"
+	}
+	return C.GoStringN(buf, C.int(n))
+}
+
+func (r *Result) String() string { return r.Format("x", "y") }
+
+func ptr(x []float64) *C.double {
+	if len(x) == 0 {
+		return nil
+	}
+	return (*C.double)(unsafe.Pointer(&x[0]))
+}
+
+func run(f func(out *C.mcstat_result) C.int) (*Result, error) {
+	var out C.mcstat_result
+	if err := check(f(&out)); err != nil {
+		return nil, err
+	}
+	return fromC(&out), nil
+}
+
+// ---- the tests on slices -------------------------------------------------------
+
+// TTest1 is the one-sample t test of mean(x) against mu0.
+func TTest1(x []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.mcstat_result) C.int {
+		return C.mcstat_t_test_1(ptr(x), C.size_t(len(x)), C.double(mu0), C.int(alt), C.double(alpha), o)
+	})
+}
+
+// TTest2 is Welch's two-sample t test of mean(x) - mean(y) against mu0.
+func TTest2(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.mcstat_result) C.int {
+		return C.mcstat_t_test_2(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.double(mu0), C.int(alt),
+			C.double(alpha), o)
+	})
+}
+
+// VarTest1 is the one-sample chi-squared test of var(x) against sigma2.
+func VarTest1(x []float64, sigma2 float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.mcstat_result) C.int {
+		return C.mcstat_var_test_1(ptr(x), C.size_t(len(x)), C.double(sigma2), C.int(alt), C.double(alpha), o)
+	})
+}
+
+// VarTest2 is the F test of var(x)/var(y) against ratio.
+func VarTest2(x, y []float64, ratio float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.mcstat_result) C.int {
+		return C.mcstat_var_test_2(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.double(ratio), C.int(alt),
+			C.double(alpha), o)
+	})
+}
+
+// ---- accumulators --------------------------------------------------------------
+
+// Moments is a streaming, mergeable accumulator (mcstat_moments, 128 bytes).
+// The zero value is not ready: use NewMoments.
+type Moments struct{ raw C.mcstat_moments }
+
+// NewMoments returns an empty accumulator.
+func NewMoments() *Moments {
+	m := &Moments{}
+	C.mcstat_moments_init(&m.raw)
+	return m
+}
+
+// Add adds one value (ErrNonFinite for NaN or Inf; m unchanged).
+func (m *Moments) Add(x float64) error { return check(C.mcstat_moments_add(&m.raw, C.double(x))) }
+
+// AddSlice adds values (ErrNonFinite if any is NaN or Inf; m unchanged).
+func (m *Moments) AddSlice(x []float64) error {
+	return check(C.mcstat_moments_add_array(&m.raw, ptr(x), C.size_t(len(x))))
+}
+
+// Merge merges other into m exactly.
+func (m *Moments) Merge(other *Moments) error {
+	return check(C.mcstat_moments_merge(&m.raw, &other.raw))
+}
+
+func (m *Moments) N() uint64         { return uint64(m.raw.n) }
+func (m *Moments) Mean() float64     { return float64(C.mcstat_moments_mean(&m.raw)) }
+func (m *Moments) Var() float64      { return float64(C.mcstat_moments_var(&m.raw)) }
+func (m *Moments) SD() float64       { return float64(C.mcstat_moments_sd(&m.raw)) }
+func (m *Moments) Skewness() float64 { return float64(C.mcstat_moments_skewness(&m.raw)) }
+func (m *Moments) Kurtosis() float64 { return float64(C.mcstat_moments_kurtosis(&m.raw)) }
+func (m *Moments) Min() float64      { return float64(m.raw.min) }
+func (m *Moments) Max() float64      { return float64(m.raw.max) }
+
+// MarshalBinary writes the portable, versioned, checksummed form (96 bytes).
+func (m *Moments) MarshalBinary() ([]byte, error) {
+	b := make([]byte, C.MCSTAT_MOMENTS_BYTES)
+	if err := check(C.mcstat_moments_to_bytes(&m.raw, (*C.uchar)(unsafe.Pointer(&b[0])), C.size_t(len(b)))); err != nil {
+		return nil, err
+	}
+	return b, nil
+}
+
+// UnmarshalBinary reads MarshalBinary's form (ErrCorrupt for damaged bytes; m unchanged).
+func (m *Moments) UnmarshalBinary(b []byte) error {
+	if len(b) == 0 {
+		return newError(C.MCSTAT_ECORRUPT)
+	}
+	var tmp C.mcstat_moments
+	if err := check(C.mcstat_moments_from_bytes((*C.uchar)(unsafe.Pointer(&b[0])), C.size_t(len(b)), &tmp)); err != nil {
+		return err
+	}
+	m.raw = tmp
+	return nil
+}
+
+// TTest1Moments is TTest1 on an accumulator.
+func TTest1Moments(x *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.mcstat_result) C.int {
+		return C.mcstat_t_test_1_moments(&x.raw, C.double(mu0), C.int(alt), C.double(alpha), o)
+	})
+}
+
+// TTest2Moments is TTest2 on accumulators.
+func TTest2Moments(x, y *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.mcstat_result) C.int {
+		return C.mcstat_t_test_2_moments(&x.raw, &y.raw, C.double(mu0), C.int(alt), C.double(alpha), o)
+	})
+}
+
+// VarTest1Moments is VarTest1 on an accumulator.
+func VarTest1Moments(x *Moments, sigma2 float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.mcstat_result) C.int {
+		return C.mcstat_var_test_1_moments(&x.raw, C.double(sigma2), C.int(alt), C.double(alpha), o)
+	})
+}
+
+// VarTest2Moments is VarTest2 on accumulators.
+func VarTest2Moments(x, y *Moments, ratio float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.mcstat_result) C.int {
+		return C.mcstat_var_test_2_moments(&x.raw, &y.raw, C.double(ratio), C.int(alt), C.double(alpha), o)
+	})
+}
+
+// ---- Kolmogorov-Smirnov ---------------------------------------------------------
+
+// KSCache holds simulated null distributions shared by K-S tests (safe for
+// concurrent use: libmcstat locks it).  Close frees it.
+type KSCache struct{ raw *C.mcstat_ks_cache }
+
+// NewKSCache makes a cache of at most maxBytes (least recently used dropped).
+func NewKSCache(maxBytes int) (*KSCache, error) {
+	c := &KSCache{}
+	if err := check(C.mcstat_ks_cache_new(C.size_t(maxBytes), &c.raw)); err != nil {
+		return nil, err
+	}
+	return c, nil
+}
+
+// Close frees the cache; no test may be using it.
+func (c *KSCache) Close() {
+	C.mcstat_ks_cache_free(c.raw)
+	c.raw = nil
+}
+
+// Stats returns the lookups that hit, those that missed, and the entries held.
+func (c *KSCache) Stats() (hits, misses, entries uint64) {
+	var h, m, e C.uint64_t
+	C.mcstat_ks_cache_stats(c.raw, &h, &m, &e)
+	return uint64(h), uint64(m), uint64(e)
+}
+
+// KSOptions are the K-S test's options; start from DefaultKSOptions.
+type KSOptions struct {
+	Weight   KSWeight
+	Method   Method
+	Threads  int
+	NSim     int64
+	Seed     uint64
+	Critical bool // compute Critical[1]
+	Cache    *KSCache
+}
+
+// DefaultKSOptions returns libmcstat's defaults (Canner's weight, method
+// auto, 2 threads, 10000 simulations, seed 0, critical value computed).
+func DefaultKSOptions() KSOptions {
+	var o C.mcstat_ks_options
+	C.mcstat_ks_options_init(&o)
+	return KSOptions{Weight: KSWeight(o.weight), Method: Method(o.method), Threads: int(o.threads),
+		NSim: int64(o.n_sim), Seed: uint64(o.seed), Critical: o.critical != 0}
+}
+
+// KSTest2 is the two-sample Kolmogorov-Smirnov test of x against y; opt nil
+// means DefaultKSOptions().
+func KSTest2(x, y []float64, alt Alternative, alpha float64, opt *KSOptions) (*Result, error) {
+	var o C.mcstat_ks_options
+	C.mcstat_ks_options_init(&o)
+	if opt != nil {
+		o.weight = C.int32_t(opt.Weight)
+		o.method = C.int32_t(opt.Method)
+		o.threads = C.int32_t(opt.Threads)
+		o.n_sim = C.int64_t(opt.NSim)
+		o.seed = C.uint64_t(opt.Seed)
+		o.critical = 0
+		if opt.Critical {
+			o.critical = 1
+		}
+		if opt.Cache != nil {
+			o.cache = opt.Cache.raw
+		}
+	}
+	return run(func(r *C.mcstat_result) C.int {
+		return C.mcstat_ks_test_2(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.int(alt), C.double(alpha),
+			&o, r)
+	})
+}
+
+// ---- distributions -------------------------------------------------------------
+// upper selects the tail: false gives P[X <= x], true P[X > x]; a quantile
+// solves that tail's probability = p.
+
+func b2i(b bool) C.int {
+	if b {
+		return 1
+	}
+	return 0
+}
+
+func dist(f func(out *C.double) C.int) (float64, error) {
+	var v C.double
+	if err := check(f(&v)); err != nil {
+		return 0, err
+	}
+	return float64(v), nil
+}
+
+func TCDF(x, df float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int { return C.mcstat_t_cdf(C.double(x), C.double(df), b2i(upper), o) })
+}
+func TLogCDF(x, df float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int { return C.mcstat_t_logcdf(C.double(x), C.double(df), b2i(upper), o) })
+}
+func TQuantile(p, df float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int { return C.mcstat_t_quantile(C.double(p), C.double(df), b2i(upper), o) })
+}
+func ChisqCDF(x, df float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int { return C.mcstat_chisq_cdf(C.double(x), C.double(df), b2i(upper), o) })
+}
+func ChisqLogCDF(x, df float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int { return C.mcstat_chisq_logcdf(C.double(x), C.double(df), b2i(upper), o) })
+}
+func ChisqQuantile(p, df float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int { return C.mcstat_chisq_quantile(C.double(p), C.double(df), b2i(upper), o) })
+}
+func FCDF(x, df1, df2 float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int {
+		return C.mcstat_f_cdf(C.double(x), C.double(df1), C.double(df2), b2i(upper), o)
+	})
+}
+func FLogCDF(x, df1, df2 float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int {
+		return C.mcstat_f_logcdf(C.double(x), C.double(df1), C.double(df2), b2i(upper), o)
+	})
+}
+func FQuantile(p, df1, df2 float64, upper bool) (float64, error) {
+	return dist(func(o *C.double) C.int {
+		return C.mcstat_f_quantile(C.double(p), C.double(df1), C.double(df2), b2i(upper), o)
+	})
+}

@@ -1,0 +1,113 @@
+/*
+ * mcstat_check.h - statistical checks embedded in a renderer, compiled in or
+ * out with one switch, like assert().
+ *
+ * A renderer keeps one mcstat_stream per thread (a 4 KiB plain struct: no
+ * allocation, no lock), adds each estimate to it in its hot loop (a store and
+ * a counter), merges the threads' streams at the end of a frame and checks
+ * expectations on the merged one, without storing samples:
+ *
+ *     #define MCSTAT_CHECKS 1          // or -DMCSTAT_CHECKS=1; default 0: off
+ *     #include <mcstat_check.h>
+ *
+ *     MCSTAT_CHECK_ONLY(mcstat_stream acc[NTHREADS]; mcstat_stream frame;)
+ *     ...  MCSTAT_CHECK_INIT(acc[t]);                   // each thread
+ *     ...  MCSTAT_CHECK_ADD(acc[t], estimate);          // per sample
+ *     ...  MCSTAT_CHECK_MERGE(frame, acc[t]);           // end of frame
+ *     if (MCSTAT_CHECK_MEAN(frame, reference, tolerance, 0.001)) ...  // failed
+ *     if (MCSTAT_CHECK_VAR_BELOW(frame, bound, 0.001)) ...            // failed
+ *
+ * With MCSTAT_CHECKS undefined or 0 every macro expands to nothing (or to
+ * the constant 0 for the checks) and NONE OF ITS ARGUMENTS IS EVALUATED, as
+ * with assert(): keep side effects out of them.  MCSTAT_CHECK_ONLY(...)
+ * keeps its argument (declarations, statements) only when checks are on.
+ *
+ * A check macro evaluates to 1 when the check failed (the test rejected its
+ * H0 at level alpha, or the stream saw a NaN or an infinity, or the check
+ * could not be computed, e.g. fewer than two values) and 0 when it passed.
+ * On failure it first calls MCSTAT_CHECK_ON_FAILURE(what, file, line, status,
+ * result), which by default prints the location, the status and the R-style
+ * block of the test to stderr; define it before including this header to log,
+ * count or abort instead (result is NULL when status != MCSTAT_OK).
+ *
+ * The functions behind the macros (mcstat_stream_*) are in mcstat.h; use
+ * them directly to keep the mcstat_result.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#ifndef MCSTAT_CHECK_H
+#define MCSTAT_CHECK_H
+
+#ifndef MCSTAT_CHECKS
+#define MCSTAT_CHECKS 0
+#endif
+
+#if MCSTAT_CHECKS
+
+#include "mcstat.h"
+
+#include <stdio.h>
+
+#ifndef MCSTAT_CHECK_ON_FAILURE
+#define MCSTAT_CHECK_ON_FAILURE(what, file, line, status, result) \
+    mcstat_check_print_failure_((what), (file), (line), (status), (result))
+#endif
+
+/* The default failure report (static inline: the header needs no extra
+ * library symbol). */
+static inline void mcstat_check_print_failure_(const char *what, const char *file, int line, int status,
+                                               const mcstat_result *r)
+{
+    fprintf(stderr, "%s:%d: mcstat check failed: %s\n", file, line, what);
+    if (status != MCSTAT_OK) {
+        fprintf(stderr, "  %s\n", mcstat_strerror(status));
+        return;
+    }
+    char text[2048];
+    if (mcstat_result_format(r, "samples", NULL, text, sizeof text, NULL) == MCSTAT_OK)
+        fputs(text, stderr);
+}
+
+static inline int mcstat_check_mean_at_(const mcstat_stream *s, double reference, double tolerance,
+                                        double alpha, const char *what, const char *file, int line)
+{
+    mcstat_result r;
+    int st = mcstat_stream_check_mean(s, reference, tolerance, alpha, &r);
+    if (st == MCSTAT_OK && !r.reject)
+        return 0;
+    MCSTAT_CHECK_ON_FAILURE(what, file, line, st, st == MCSTAT_OK ? &r : (const mcstat_result *)0);
+    return 1;
+}
+
+static inline int mcstat_check_var_at_(const mcstat_stream *s, double bound, double alpha, const char *what,
+                                       const char *file, int line)
+{
+    mcstat_result r;
+    int st = mcstat_stream_check_var(s, bound, alpha, &r);
+    if (st == MCSTAT_OK && !r.reject)
+        return 0;
+    MCSTAT_CHECK_ON_FAILURE(what, file, line, st, st == MCSTAT_OK ? &r : (const mcstat_result *)0);
+    return 1;
+}
+
+#define MCSTAT_CHECK_ONLY(...) __VA_ARGS__
+#define MCSTAT_CHECK_INIT(s) ((void)mcstat_stream_init(&(s)))
+#define MCSTAT_CHECK_ADD(s, x) mcstat_stream_add(&(s), (x))
+#define MCSTAT_CHECK_MERGE(dst, src) ((void)mcstat_stream_merge(&(dst), &(src)))
+#define MCSTAT_CHECK_MEAN(s, reference, tolerance, alpha)                                       \
+    mcstat_check_mean_at_(&(s), (reference), (tolerance), (alpha),                              \
+                          "mean of " #s " == " #reference " +- " #tolerance, __FILE__, __LINE__)
+#define MCSTAT_CHECK_VAR_BELOW(s, bound, alpha) \
+    mcstat_check_var_at_(&(s), (bound), (alpha), "variance of " #s " <= " #bound, __FILE__, __LINE__)
+
+#else /* checks off: nothing at all, arguments not evaluated */
+
+#define MCSTAT_CHECK_ONLY(...)
+#define MCSTAT_CHECK_INIT(s) ((void)0)
+#define MCSTAT_CHECK_ADD(s, x) ((void)0)
+#define MCSTAT_CHECK_MERGE(dst, src) ((void)0)
+#define MCSTAT_CHECK_MEAN(s, reference, tolerance, alpha) (0)
+#define MCSTAT_CHECK_VAR_BELOW(s, bound, alpha) (0)
+
+#endif
+#endif /* MCSTAT_CHECK_H */

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# The installed package, as an outside project sees it: cmake --install into
+# a staging prefix, then build consumers against it with
+#   1. find_package(mcstat) -> mcstat::mcstat (shared) and mcstat::mcstat_static,
+#      including the checks example through the installed mcstat_check.h;
+#   2. pkg-config mcstat (shared), and pkg-config --static for a fully static
+#      executable (Requires.private: gsl, Libs.private: -lm -pthread);
+# and run each.  usage: tests/install/test_install.sh BUILD_DIR
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+build=$(cd "${1:-build}" && pwd)
+stage="$build/stage"
+work="$build/install-test"
+rm -rf "$stage" "$work"
+mkdir -p "$work"
+cmake --install "$build" --prefix "$stage" > "$work/install.log"
+
+fail() { echo "install test FAILED: $*" >&2; exit 1; }
+for f in include/mcstat.h include/mcstat_check.h; do [ -f "$stage/$f" ] || fail "missing $f"; done
+libdir=$(dirname "$(find "$stage" -name libmcstat.a | head -1)")
+[ -f "$libdir/libmcstat.a" ] || fail "no static library"
+ls "$libdir"/libmcstat.so.* > /dev/null || fail "no versioned shared library"
+for f in cmake/mcstat/mcstatConfig.cmake cmake/mcstat/mcstatConfigVersion.cmake cmake/mcstat/mcstatTargets.cmake \
+         pkgconfig/mcstat.pc; do
+    [ -f "$libdir/$f" ] || fail "missing $libdir/$f"
+done
+
+check_demo() { # every question the demo asks gets its R-style block with a decision
+    local out; out=$("$@") || fail "$* exited $?"
+    local asked answered
+    asked=$(grep -c '^==> ' <<< "$out"); answered=$(grep -c '^decision at alpha = 0.05: ' <<< "$out")
+    [ "$asked" -ge 5 ] && [ "$asked" = "$answered" ] || fail "$*: $asked questions, $answered decisions"
+}
+
+# 1. CMake package
+cmake -S examples/c -B "$work/cmake" -DCMAKE_PREFIX_PATH="$stage" -DCMAKE_BUILD_TYPE=Release > "$work/cmake.log"
+cmake --build "$work/cmake" -j 2 > "$work/cmake-build.log" || { cat "$work/cmake-build.log"; fail "cmake consumer"; }
+check_demo "$work/cmake/mcstat_demo"
+check_demo "$work/cmake/mcstat_demo_static"
+if ldd "$work/cmake/mcstat_demo_static" | grep -q libmcstat; then fail "static demo links libmcstat.so"; fi
+ldd "$work/cmake/mcstat_demo" | grep -q "$stage" || fail "shared demo does not use the staged libmcstat.so"
+"$work/cmake/mcstat_integrator" --samples 200000 --frames 1 > "$work/integrator.log" || fail "integrator checks"
+"$work/cmake/mcstat_integrator" --samples 200000 --frames 1 --bug bias --expect-failure mean \
+    > "$work/integrator-bug.log" 2>&1 || fail "integrator did not catch its bug"
+grep -q "checks on" "$work/integrator.log" || fail "integrator built without checks"
+
+# 2. pkg-config
+export PKG_CONFIG_PATH="$libdir/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
+[ "$(pkg-config --modversion mcstat)" = "$(sed -n 's/^project(mcstat VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)" ] \
+    || fail "pkg-config version"
+cc=${CC:-cc}
+# shellcheck disable=SC2046
+$cc -O2 -o "$work/demo-pc" examples/c/demo.c $(pkg-config --cflags --libs mcstat) -Wl,-rpath,"$libdir" -lm
+check_demo "$work/demo-pc"
+# shellcheck disable=SC2046
+$cc -O2 -static -o "$work/demo-pc-static" examples/c/demo.c $(pkg-config --static --cflags --libs mcstat) \
+    2> "$work/static.log" || { cat "$work/static.log"; fail "static link through pkg-config --static"; }
+if readelf -d "$work/demo-pc-static" | grep -q NEEDED; then fail "not a static executable"; fi
+check_demo "$work/demo-pc-static"
+echo "install test: headers, shared + static libraries, CMake package (shared, static, checks) and"
+echo "pkg-config (shared, fully static) consumers built from $stage and run"
+echo "1 passed, 0 failed"
