@@ -1,5 +1,6 @@
 # The two commands of the README, on a fresh Debian machine:
-#   make demo   runs the main job
+#   make demo   runs the main job: `mcstat reproduce` on the paper's scene,
+#               writing report/report.md (figures) and report/results.json
 #   make test   builds everything and passes the tests
 # Each first installs what it needs: Debian packages through apt-get (only
 # those missing), Python packages through pip into ./.venv.
@@ -13,7 +14,7 @@ SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -101,7 +102,18 @@ mitsuba-test: install-test python-deps
 
 test: deps ctest pytest install-test ctypes-test rust-test go-test mitsuba-test
 
-demo: build
+# The main job: the paper's case studies on its scene (full budgets, about
+# 20-40 s on 2 cores), into $(REPORT)/.
+REPORT ?= report
+demo: python
+	$(VENV)/bin/mcstat reproduce --out $(REPORT)
+
+# The same with the reduced budgets that CI uses.
+demo-quick: python
+	$(VENV)/bin/mcstat reproduce --quick --out $(REPORT)
+
+# The C library's own demo: the five tests on generated estimates.
+demo-c: build
 	$(BUILD)/examples/c/mcstat_demo
 
 bench: python

@@ -1,0 +1,241 @@
+# Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+"""The planner: which studies and tests a scene calls for, and why not the others.
+
+Rules (the issue's, in code):
+
+- Section 3.1 runs at every receiver that sees an emitter.  One-sample
+  tests against Lambert's formula only where an analytic value exists: a
+  scene of exactly one (hence unoccluded) triangle.  With several triangles
+  each estimator is run per triangle and summed, and the estimators are
+  compared with the trusted one (two-sample tests) instead.  The figure-4
+  matrix compares every pair of the listed estimators.
+- Section 3.4 needs estimator A (where the bugs are planted) and a trusted
+  estimator other than A.
+- Sections 3.2 and 3.3 need BRDFs (those listed for each study).
+- The timing study times the listed estimators at the first receiver that
+  sees an emitter (RMSE against Lambert with one triangle, else the
+  estimated standard error), and the K-S simulation when 3.2 runs.
+- ``enabled = false`` leaves a study out.
+
+``--quick`` caps the expensive budgets (see :data:`QUICK`); the plan says
+what it changed.
+"""
+from __future__ import annotations
+
+import copy
+from typing import Any, Dict, List, Optional
+
+from .. import estimators as est
+from .scene import Scene
+
+SECTIONS = {"irradiance": "3.1", "sampling": "3.2", "radiance": "3.3", "bugs": "3.4", "timing": "time"}
+TITLES = {
+    "irradiance": "Irradiance estimators (3.1)",
+    "sampling": "BRDF sampling (3.2)",
+    "radiance": "Reflected radiance (3.3)",
+    "bugs": "Planted bugs (3.4)",
+    "timing": "Error against run time",
+}
+
+#: --quick: (study, field, cap); list fields keep the values <= cap (at least the first).
+QUICK = [
+    ("sampling", "sizes", 10000),
+    ("sampling", "runs", 10),
+    ("sampling", "histogram_size", 20000),
+    ("radiance", "directions", 200),
+    ("bugs", "runs", 40),
+    ("timing", "budgets", 100000),
+    ("timing", "reps", 6),
+    ("timing", "ks_n_sim", 9999),
+    ("timing", "ks_reps", 5),
+]
+
+
+class Plan:
+    """What a run will do: ``steps`` and ``left_out`` (each a dict with
+    study, section, target, what [, reason]), the effective study
+    parameters ``params`` (quick caps applied) and per receiver the exact
+    irradiance of each triangle."""
+
+    def __init__(self, scene: Scene, quick: bool = False) -> None:
+        self.scene = scene
+        self.quick = quick
+        self.params: Dict[str, Dict[str, Any]] = copy.deepcopy(scene.studies)
+        self.quick_changes: List[str] = []
+        if quick:
+            self._apply_quick()
+        self.steps: List[Dict[str, Any]] = []
+        self.left_out: List[Dict[str, Any]] = []
+        self.receivers: List[Dict[str, Any]] = []
+        for i, r in enumerate(scene.receivers):
+            exact = [est.irradiance_exact(triangle=t, point=r["point"], normal=r["normal"], radiance=float(L))
+                     for t, L in zip(scene.triangles, scene.radiances)]
+            self.receivers.append(dict(index=i, name=r["name"], exact_per_triangle=exact,
+                                       visible=any(e > 0 for e in exact),
+                                       lambert=exact[0] if scene.n_emitters == 1 else None))
+        self._irradiance()
+        self._brdf_study("sampling", "K-S tests (Canner's weight) of the sampler against exact rejection "
+                                     "sampling on Morton keys, a power curve and 2-D histograms")
+        self._brdf_study("radiance", "Welch tests of BRDF sampling against rejection sampling at many "
+                                     "outgoing directions, and a binomial test of the fraction of equal means")
+        self._bugs()
+        self._timing()
+
+    # -- helpers ---------------------------------------------------------------
+    def _apply_quick(self) -> None:
+        for study, field, cap in QUICK:
+            p = self.params[study]
+            old = p[field]
+            if isinstance(old, list):
+                new = [x for x in old if x <= cap] or old[:1]
+                if new != old:
+                    dropped = [x for x in old if x not in new]
+                    self.quick_changes.append(f"studies.{study}.{field}: {', '.join(map(str, dropped))} dropped "
+                                              f"(quick keeps values <= {cap})")
+            else:
+                new = min(old, cap)
+                if new != old:
+                    self.quick_changes.append(f"studies.{study}.{field}: {old} -> {new}")
+            p[field] = new
+
+    def _add(self, study: str, target: str, what: str) -> None:
+        self.steps.append(dict(study=study, section=SECTIONS[study], target=target, what=what))
+
+    def _leave(self, study: str, target: str, what: str, reason: str) -> None:
+        self.left_out.append(dict(study=study, section=SECTIONS[study], target=target, what=what, reason=reason))
+
+    def runs(self, study: str, target: Optional[str] = None) -> bool:
+        return any(s["study"] == study and (target is None or s["target"] == target) for s in self.steps)
+
+    def visible_receivers(self) -> List[Dict[str, Any]]:
+        return [r for r in self.receivers if r["visible"]]
+
+    def brdfs_for(self, study: str) -> List[str]:
+        return [s["target"] for s in self.steps if s["study"] == study]
+
+    # -- the rules -------------------------------------------------------------
+    def _disabled(self, study: str) -> bool:
+        if not self.params[study]["enabled"]:
+            self._leave(study, "all", TITLES[study], f"disabled in the scene (studies.{study}.enabled = false)")
+            return True
+        return False
+
+    def _irradiance(self) -> None:
+        if self._disabled("irradiance"):
+            return
+        sc, p = self.scene, self.params["irradiance"]
+        ests = ", ".join(sc.estimators)
+        k = p["primary"] // p["secondary"]
+        for r in self.receivers:
+            if not r["visible"]:
+                self._leave("irradiance", r["name"], "all irradiance tests",
+                            "no emitter is above this receiver's horizon (Lambert's formula gives 0 for every "
+                            "triangle): every estimator returns 0 and there is nothing to test")
+                continue
+            if sc.n_emitters == 1:
+                self._add("irradiance", r["name"],
+                          f"one-sample t tests of {ests} against Lambert's formula (E = {r['lambert']:.6g}); "
+                          f"{p['runs']} runs of {p['secondary']} secondary estimates (means of k = {k})")
+            else:
+                self._leave("irradiance", r["name"], "one-sample tests against Lambert's formula",
+                            f"the scene has {sc.n_emitters} emitter triangles: Lambert's formula is exact for one "
+                            "unoccluded triangle, and nothing here checks that the triangles do not occlude one "
+                            f"another, so no analytic value is trusted; the estimators are compared with the "
+                            f"trusted estimator {sc.trusted} (each run per triangle and summed) instead")
+            if len(sc.estimators) >= 2:
+                self._add("irradiance", r["name"],
+                          f"figure-4 matrix: Welch and F tests of every pair of {ests}, {p['runs']} runs; "
+                          "histograms of the secondary estimates; the variance ordering"
+                          + ("" if sc.n_emitters == 1 else f"; equal means with the trusted {sc.trusted}"))
+            else:
+                self._add("irradiance", r["name"],
+                          f"figure-4 matrix of {ests} against itself (the scene lists one estimator); histograms")
+                self._leave("irradiance", r["name"], "comparisons between estimators and their variance ordering",
+                            "the scene lists only one estimator")
+
+    def _bugs(self) -> None:
+        if self._disabled("bugs"):
+            return
+        sc = self.scene
+        if "A" not in sc.estimators:
+            self._leave("bugs", "all", TITLES["bugs"],
+                        "the scene does not list estimator A, in which the paper plants the three bugs")
+            return
+        if sc.trusted == "A":
+            self._leave("bugs", "all", TITLES["bugs"],
+                        "the trusted estimator is A itself; list another estimator (S in the paper) as `trusted`")
+            return
+        p = self.params["bugs"]
+        for r in self.receivers:
+            if not r["visible"]:
+                self._leave("bugs", r["name"], TITLES["bugs"], "no emitter is above this receiver's horizon")
+                continue
+            self._add("bugs", r["name"],
+                      f"A with {', '.join(p['bugs'])} (and without, as a control) against {sc.trusted}: "
+                      f"Welch tests at budgets {p['budgets'][0]}..{p['budgets'][-1]}, {p['runs']} runs each")
+
+    def _brdf_study(self, study: str, what: str) -> None:
+        if self._disabled(study):
+            return
+        sc = self.scene
+        if not sc.brdfs:
+            self._leave(study, "all", TITLES[study], "the scene has no BRDFs")
+            return
+        listed = self.params[study]["brdfs"]
+        for b in sc.brdfs:
+            if b["name"] in listed:
+                self._add(study, b["name"], what)
+            else:
+                self._leave(study, b["name"], TITLES[study], f"not listed in studies.{study}.brdfs")
+
+    def _timing(self) -> None:
+        if self._disabled("timing"):
+            return
+        sc = self.scene
+        vis = self.visible_receivers()
+        if not vis:
+            self._leave("timing", "estimators", "error of the irradiance estimators against run time",
+                        "no receiver sees an emitter")
+        elif sc.n_emitters == 1:
+            self._add("timing", "estimators", f"RMSE against Lambert's formula against wall time, at "
+                                              f"{vis[0]['name']}: {', '.join(sc.estimators)}")
+        else:
+            self._add("timing", "estimators", f"estimated standard error against wall time, at {vis[0]['name']}: "
+                                              f"{', '.join(sc.estimators)}")
+            self._leave("timing", "estimators", "RMSE against Lambert's formula",
+                        f"the scene has {sc.n_emitters} triangles and so no trusted analytic value; the standard "
+                        "error estimated from the samples is shown instead")
+        if self.runs("sampling"):
+            self._add("timing", "ks", f"simulated K-S p-value error against run time, {self.params['timing']['ks_size']}"
+                                      f" + {self.params['timing']['ks_size']} directions of "
+                                      f"{self.brdfs_for('sampling')[0]}")
+        else:
+            self._leave("timing", "ks", "simulated K-S p-value error against run time",
+                        "section 3.2 does not run, so there are no direction samples to test")
+
+    # -- output ----------------------------------------------------------------
+    def to_dict(self) -> Dict[str, Any]:
+        return dict(quick=self.quick, quick_changes=self.quick_changes, params=self.params, steps=self.steps,
+                    left_out=self.left_out,
+                    receivers=[dict(index=r["index"], name=r["name"], visible=r["visible"], lambert=r["lambert"],
+                                    exact_per_triangle=r["exact_per_triangle"]) for r in self.receivers])
+
+    def text(self) -> str:
+        sc = self.scene
+        lines = [f"scene {sc.name!r} ({sc.source}): {sc.n_emitters} emitter triangle{'s' * (sc.n_emitters != 1)}, "
+                 f"{len(sc.receivers)} receiver{'s' * (len(sc.receivers) != 1)}, estimators "
+                 f"{', '.join(sc.estimators)} (trusted {sc.trusted}), "
+                 + (f"BRDFs {', '.join(b['name'] for b in sc.brdfs)}" if sc.brdfs else "no BRDFs")]
+        if self.quick:
+            lines.append("quick mode: " + ("\n  ".join([""] + self.quick_changes) if self.quick_changes
+                                           else "no budget changed"))
+        lines.append("will run:")
+        for s in self.steps:
+            lines.append(f"  [{s['section']}] {s['target']}: {s['what']}")
+        if self.left_out:
+            lines.append("left out:")
+            for s in self.left_out:
+                lines.append(f"  [{s['section']}] {s['target']}: {s['what']}: {s['reason']}")
+        else:
+            lines.append("left out: nothing")
+        return "\n".join(lines)

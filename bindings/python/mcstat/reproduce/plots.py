@@ -1,0 +1,174 @@
+# Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+"""The report's figures (matplotlib, Agg backend: no display needed).
+
+Each function takes the part of results.json it draws and a file path, and
+writes one PNG.  Only bookkeeping here: every number drawn was computed by
+the studies.
+"""
+from __future__ import annotations
+
+import math
+from typing import Any, Dict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+DPI = 100
+DECISIONS = ("less", "equal", "greater")
+
+
+def _save(fig, path: str) -> None:
+    fig.savefig(path, dpi=DPI, bbox_inches="tight", metadata={"Software": None})
+    plt.close(fig)
+
+
+def figure4(rec: Dict[str, Any], runs: int, path: str) -> None:
+    ests = rec["matrix"]["estimators"]
+    n = len(ests)
+    fig, axes = plt.subplots(n, n, figsize=(1.9 * n + 0.6, 1.5 * n + 0.6), sharex=True, sharey=True, squeeze=False)
+    x = np.arange(3)
+    for a, i in enumerate(ests):
+        for b, j in enumerate(ests):
+            ax = axes[a][b]
+            mc = rec["matrix"]["mean"][a][b]
+            vc = rec["matrix"]["variance"][a][b]
+            ax.bar(x - 0.2, [mc[d] for d in DECISIONS], 0.4, color="tab:red", label="mean (Welch)")
+            ax.bar(x + 0.2, [vc[d] for d in DECISIONS], 0.4, color="tab:blue", label="variance (F)")
+            ax.set_ylim(0, runs)
+            ax.set_xticks(x, ["<", "=", ">"])
+            if a == 0:
+                ax.set_title(f"y = {j}")
+            if b == 0:
+                ax.set_ylabel(f"x = {i}")
+    axes[0][0].legend(loc="upper left", fontsize=6, frameon=False)
+    fig.suptitle(f"Figure 4 at {rec['name']}: decisions over {runs} runs (x against y)", fontsize=10)
+    _save(fig, path)
+
+
+def figure5(rec: Dict[str, Any], path: str) -> None:
+    hs = rec["histograms"]
+    n = len(hs)
+    fig, axes = plt.subplots(1, n, figsize=(3.0 * n, 2.6), squeeze=False)
+    for ax, (m, h) in zip(axes[0], hs.items()):
+        edges = np.array(h["edges"])
+        counts = np.array(h["counts"])
+        w = np.diff(edges)
+        ax.bar(edges[:-1], counts, w, align="edge", color="0.6", edgecolor="0.3", linewidth=0.3)
+        xs = np.linspace(edges[0], edges[-1], 200)
+        if h["sd"] > 0:
+            pdf = np.exp(-0.5 * ((xs - h["mean"]) / h["sd"]) ** 2) / (h["sd"] * math.sqrt(2 * math.pi))
+            ax.plot(xs, pdf * h["n"] * w.mean(), color="k", lw=1, label="normal, same mean and s.d.")
+        if rec["lambert"] is not None:
+            ax.axvline(rec["lambert"], color="tab:red", lw=1, ls="--", label="Lambert")
+        ax.set_title(f"{m}: s.d. {h['sd']:.3g}", fontsize=9)
+        ax.tick_params(labelsize=7)
+        ax.set_xlabel("secondary estimate", fontsize=8)
+    axes[0][0].set_ylabel("count")
+    axes[0][-1].legend(fontsize=6, frameon=False, loc="upper right")
+    fig.suptitle(f"Figure 5 at {rec['name']}: secondary estimates (each panel on its own scale)", fontsize=10,
+                 y=1.04)
+    _save(fig, path)
+
+
+def power_curve(res: Dict[str, Any], path: str) -> None:
+    fig, ax = plt.subplots(figsize=(5.5, 3.4))
+    for b in res["brdfs"]:
+        n = np.array([r["n"] for r in b["sizes"]])
+        rate = np.array([r["rate"] for r in b["sizes"]])
+        lo = np.array([r["ci95"][0] for r in b["sizes"]])
+        hi = np.array([r["ci95"][1] for r in b["sizes"]])
+        ax.errorbar(n, rate, yerr=[rate - lo, hi - rate], marker="o", capsize=3, label=b["name"])
+    ax.axhline(res["alpha"], color="0.5", ls="--", lw=1, label=f"alpha = {res['alpha']:g}")
+    ax.set_xscale("log")
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_xlabel("sample size n (each sample)")
+    ax.set_ylabel(f"rejection rate ({res['runs']} runs)")
+    ax.set_title("K-S (Canner) of each sampler against rejection sampling", fontsize=10)
+    ax.legend(fontsize=8)
+    _save(fig, path)
+
+
+def figure6(b: Dict[str, Any], path: str) -> None:
+    hs, hx = np.array(b["histogram"]["sampler"]), np.array(b["histogram"]["exact"])
+    win = b["histogram"]["window"]
+    c = win["phi_center"]
+    extent = (c + win["dphi"][0], c + win["dphi"][1], win["theta"][1], win["theta"][0])
+    vmax = max(hs.max(), hx.max(), 1)
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.2))
+    for ax, h, title in ((axes[0], hs, "the BRDF's sampler"), (axes[1], hx, "rejection sampling (f cos)")):
+        ax.imshow(h, cmap="gray", vmin=0, vmax=vmax, extent=extent, aspect="auto", interpolation="nearest")
+        ax.set_title(f"{b['name']}: {title}", fontsize=9)
+        ax.set_xlabel("azimuth (degrees)")
+        ax.set_ylabel("polar angle (degrees)")
+    _save(fig, path)
+
+
+def radiance_pvalues(b: Dict[str, Any], alpha: float, path: str) -> None:
+    p = np.array([v for v in b["results"]["pvalue"] if v is not None])
+    fig, ax = plt.subplots(figsize=(5, 3))
+    ax.hist(p, bins=20, range=(0, 1), color="0.6", edgecolor="0.3")
+    ax.axhline(p.size / 20, color="k", ls="--", lw=1, label="uniform (both unbiased)")
+    ax.set_xlabel("Welch p-value")
+    ax.set_ylabel("directions")
+    ax.set_title(f"3.3 {b['name']}: {b['counts']['equal']}/{b['tests_ok']} equal at alpha = {alpha:g}", fontsize=10)
+    ax.legend(fontsize=8)
+    _save(fig, path)
+
+
+def bug_detection(rec: Dict[str, Any], res: Dict[str, Any], path: str) -> None:
+    fig, ax = plt.subplots(figsize=(5.5, 3.4))
+    budgets = np.array([r["budget"] for r in rec["budgets"]])
+    for v in ["none"] + res["bugs"]:
+        rate = np.array([r["variants"][v]["rate"] for r in rec["budgets"]])
+        lo = np.array([r["variants"][v]["ci95"][0] for r in rec["budgets"]])
+        hi = np.array([r["variants"][v]["ci95"][1] for r in rec["budgets"]])
+        ax.errorbar(budgets, rate, yerr=[rate - lo, hi - rate], marker="o", capsize=3,
+                    label="A, no bug (control)" if v == "none" else v, ls=":" if v == "none" else "-")
+    ax.axhline(res["alpha"], color="0.5", ls="--", lw=1, label=f"alpha = {res['alpha']:g}")
+    ax.set_xscale("log")
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_xlabel("primary estimates per sample")
+    ax.set_ylabel(f"rejection rate ({res['runs']} runs)")
+    ax.set_title(f"3.4 at {rec['name']}: A against {res['trusted']} (Welch)", fontsize=10)
+    ax.legend(fontsize=7)
+    _save(fig, path)
+
+
+def error_time(irr: Dict[str, Any], path: str) -> None:
+    fig, ax = plt.subplots(figsize=(5.5, 3.8))
+    key = "rmse" if irr["lambert"] is not None else "se_estimated"
+    for m, e in irr["estimators"].items():
+        t = np.array([r["wall_median"] for r in e["rows"]])
+        err = np.array([r[key] for r in e["rows"]])
+        line = ax.plot(t, err, marker="o", label=m)[0]
+        tt = np.geomspace(t.min(), t.max(), 20)
+        ax.plot(tt, e["sigma_primary"] * np.sqrt(e["wall_per_primary"] / tt), ls="--", lw=1, color=line.get_color())
+    ax.plot([], [], ls="--", color="0.3", label="sigma sqrt(t1/T): slope -1/2")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time per estimate T (s)")
+    ax.set_ylabel("RMSE against Lambert" if key == "rmse" else "estimated standard error")
+    ax.set_title(f"Error against run time at {irr['receiver']}", fontsize=10)
+    ax.legend(fontsize=7)
+    _save(fig, path)
+
+
+def ks_error_time(ks: Dict[str, Any], path: str) -> None:
+    fig, ax = plt.subplots(figsize=(5.5, 3.6))
+    t = np.array([r["wall_median"] for r in ks["rows"]])
+    err = np.array([r["rms_error"] for r in ks["rows"]])
+    pred = np.array([r["predicted_se"] for r in ks["rows"]])
+    ax.plot(t, err, marker="o", label="RMS error of the simulated p-value")
+    ax.plot(t, pred, ls="--", color="0.3", label="sqrt(p(1-p)/n_sim)")
+    for r, x, y in zip(ks["rows"], t, err):
+        ax.annotate(f"{r['n_sim']}", (x, y), fontsize=7, xytext=(3, 3), textcoords="offset points")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time per test (s)")
+    ax.set_ylabel("error")
+    ax.set_title(f"K-S simulation, {ks['size']} + {ks['size']} (exact p = {ks['exact_pvalue']:.3g})", fontsize=10)
+    ax.legend(fontsize=7)
+    _save(fig, path)

@@ -1,0 +1,293 @@
+# Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+"""report.md and its figures, from the results of a run.
+
+Every sentence that states an outcome is built from the numbers in
+results.json (the studies' ``findings``); nothing is written in advance.
+"""
+from __future__ import annotations
+
+import os
+from typing import Any, Dict, List
+
+from . import plots
+
+
+def _fmt_vec(v: Any) -> str:
+    return "(" + ", ".join(f"{x:g}" for x in v) + ")"
+
+
+def _outgoing(o: Any) -> str:
+    if isinstance(o, dict):
+        return f"theta {o['theta']:g}°, phi {o.get('phi', 0):g}°"
+    return _fmt_vec(o)
+
+
+def _details(title: str, text: str) -> List[str]:
+    if not text.strip():
+        return []
+    return ["", f"<details><summary>{title}</summary>", "", "```", text.strip("\n"), "```", "", "</details>", ""]
+
+
+def _ci(s: Dict[str, Any], digits: int = 3) -> str:
+    if s.get("rate") is None:
+        return "no test ran"
+    failed = f" ({s['failed']} failed)" if s.get("failed") else ""
+    return f"{s['rate']:.{digits}f} [{s['ci95'][0]:.{digits}f}, {s['ci95'][1]:.{digits}f}]{failed}"
+
+
+def _p(v: Any) -> str:
+    return "-" if v is None else f"p = {v:.3g}"
+
+
+def _g(v: Any, spec: str = ".3g") -> str:
+    return "-" if v is None else format(v, spec)
+
+
+def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) -> List[str]:
+    """Write report.md and the PNGs into out_dir; returns the files written."""
+    files: List[str] = []
+
+    def fig(name: str, draw, *args) -> str:
+        path = os.path.join(out_dir, name)
+        draw(*args, path)
+        files.append(path)
+        return f"![{name}]({name})"
+
+    L: List[str] = []
+    sc = results["scene"]
+    st = results["studies"]
+    L += [f"# mcstat reproduce: scene \"{sc['name']}\"", ""]
+    L += [f"Statistical hypothesis tests of Monte Carlo estimators, the case studies of Subr and Arvo's section 3, "
+          f"run by `{results['command']}` with mcstat {results['versions']['mcstat']} (libmcstat "
+          f"{results['versions']['libmcstat']}, libmcest {results['versions']['libmcest']}, NumPy "
+          f"{results['versions']['numpy']}). Seed {results['seed']}"
+          + (", **quick mode** (reduced budgets, see the plan)" if results["quick"] else "")
+          + f"; wall time {results['wall_seconds']:.1f} s on {results['wall_threads']} thread(s). "
+          "`results.json` beside this file holds every test's fields; the same seed gives the same "
+          "results.json apart from the wall-clock fields and the timing study.", ""]
+    L += ["## Findings", ""]
+    all_findings = results["findings"] + results.get("timing", {}).get("findings", [])
+    L += [f"- {f}" for f in all_findings] or ["- (no study ran)"]
+    L += ["", "These sentences are computed from the runs (see each section); a rate is a count of rejections among "
+              "repeated tests, given with its exact 95% (Clopper-Pearson) interval, and 'consistent with alpha' means "
+              "an exact binomial test of rate = alpha gives p >= 0.01.", ""]
+
+    # plan
+    plan = results["plan"]
+    L += ["## What ran, and what was left out", ""]
+    L += ["| section | target | what |", "|---|---|---|"]
+    L += [f"| {s['section']} | {s['target']} | {s['what']} |" for s in plan["steps"]]
+    L += [""]
+    if plan["left_out"]:
+        L += ["Left out:", "", "| section | target | what | why |", "|---|---|---|---|"]
+        L += [f"| {s['section']} | {s['target']} | {s['what']} | {s['reason']} |" for s in plan["left_out"]]
+    else:
+        L += ["Nothing was left out."]
+    if plan["quick"]:
+        L += ["", "Quick mode changed: " + ("; ".join(plan["quick_changes"]) or "nothing") + "."]
+    L += [""]
+
+    # scene
+    L += ["## Scene", "", sc["description"] or "(no description)", ""]
+    L += ["| emitter | vertices | radiance |", "|---|---|---|"]
+    L += [f"| {i} | {', '.join(_fmt_vec(v) for v in e['vertices'])} | {e['radiance']:g} |"
+          for i, e in enumerate(sc["emitters"])]
+    L += ["", "| receiver | point | normal | Lambert's formula per triangle |", "|---|---|---|---|"]
+    for r, pr in zip(sc["receivers"], plan["receivers"]):
+        L += [f"| {r['name']} | {_fmt_vec(r['point'])} | {_fmt_vec(r['normal'])} | "
+              f"{', '.join(f'{e:.9g}' for e in pr['exact_per_triangle'])} |"]
+    if sc["brdfs"]:
+        L += ["", "| BRDF | model | parameters | outgoing direction |", "|---|---|---|---|"]
+        for b in sc["brdfs"]:
+            params = {k: v for k, v in b.items() if k not in ("name", "model", "outgoing")}
+            L += [f"| {b['name']} | {b['model']} | {', '.join(f'{k} {v:g}' for k, v in params.items())} | "
+                  f"{_outgoing(b['outgoing'])} |"]
+    L += ["", f"Estimators: {', '.join(sc['estimators'])}; trusted: {sc['trusted']}. The full scene, with "
+              "every default filled in, is `scene` in results.json.", ""]
+
+    if "irradiance" in st:
+        L += _irradiance(st["irradiance"], fig, transcripts.get("irradiance", ""))
+    if "sampling" in st:
+        L += _sampling(st["sampling"], fig, transcripts.get("sampling", ""))
+    if "radiance" in st:
+        L += _radiance(st["radiance"], fig, transcripts.get("radiance", ""))
+    if "bugs" in st:
+        L += _bugs(st["bugs"], fig, transcripts.get("bugs", ""))
+    if "timing" in results:
+        L += _timing(results["timing"], fig, transcripts.get("timing", ""))
+
+    L += ["## Reproducing this run", "",
+          f"`{results['command']}` again gives the same results.json except for the fields named `wall_*` and the "
+          "`timing` study. Every random stream is derived from the seed by `numpy.random.SeedSequence(seed, "
+          "spawn_key=(study, ...))` (libmcest's counter-based generator then makes estimate i a pure function of "
+          "its seed and i, whatever the number of threads); the seeds used are listed under `seeds` in results.json.",
+          ""]
+    path = os.path.join(out_dir, "report.md")
+    with open(path, "w", encoding="utf-8") as f:
+        f.write("\n".join(L))
+    files.append(path)
+    return files
+
+
+def _irradiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+    L = ["## 3.1 Irradiance estimators", "",
+         f"Each observation is a secondary estimate, the mean of k = {res['k']} primary estimates (ERRATA 7); "
+         f"each sample has {res['secondary']} of them, and every test is repeated in {res['runs']} runs at "
+         f"alpha = {res['alpha']:g}. U samples the hemisphere uniformly, C cosine-weighted, A the triangle's area, "
+         "S its solid angle.", ""]
+    for r in res["receivers"]:
+        slug = r["name"].replace(" ", "_")
+        L += [f"### Receiver {r['name']}", ""]
+        if r["one_sample"] is not None:
+            L += [f"One-sample t tests against Lambert's formula (E = {r['lambert']:.9g}), one per run:", "",
+                  "| estimator | less | equal | greater | rejection rate [95% CI] | binomial test of rate = alpha |",
+                  "|---|---|---|---|---|---|"]
+            for m, s in r["one_sample"].items():
+                c = s["counts"]
+                L += [f"| {m} | {c['less']} | {c['equal']} | {c['greater']} | {_ci(s)} | {_p(s['binom_pvalue'])} |"]
+            L += [""]
+        elif r.get("against_trusted"):
+            L += [f"No analytic value (several triangles): Welch tests of each estimator against the trusted "
+                  f"{res['trusted']}, one per run:", "",
+                  "| estimator | equal means | rejection rate [95% CI] | binomial test of rate = alpha |",
+                  "|---|---|---|---|"]
+            for m, s in r["against_trusted"].items():
+                L += [f"| {m} | {s['counts']['equal']}/{s['tests']} | {_ci(s)} | {_p(s['binom_pvalue'])} |"]
+            L += [""]
+        L += ["Figure 4: every pair, x (rows) against an independent sample of y (columns); bars count the runs "
+              "whose decision was less / equal / greater, red for the means (Welch), blue for the variances (F). "
+              "The diagonal tests an estimator against itself.", "",
+              fig(f"fig4_{slug}.png", plots.figure4, r, res["runs"]), "",
+              "| x \\ y | " + " | ".join(r["matrix"]["estimators"]) + " |",
+              "|---|" + "---|" * len(r["matrix"]["estimators"])]
+        for a, i in enumerate(r["matrix"]["estimators"]):
+            cells = []
+            for b_, _ in enumerate(r["matrix"]["estimators"]):
+                mc, vc = r["matrix"]["mean"][a][b_], r["matrix"]["variance"][a][b_]
+                cells.append(f"{mc['less']}/{mc['equal']}/{mc['greater']} · {vc['less']}/{vc['equal']}/{vc['greater']}")
+            L += [f"| {i} | " + " | ".join(cells) + " |"]
+        L += ["", "(each cell: mean test less/equal/greater · variance test less/equal/greater)", ""]
+        L += ["Figure 5: the secondary estimates of all runs, with a normal density of the same mean and standard "
+              "deviation" + (" and Lambert's value (dashed)" if r["lambert"] is not None else "") + ".", "",
+              fig(f"fig5_{slug}.png", plots.figure5, r), ""]
+        o = r["ordering"]
+        if len(o["order"]) > 1:
+            L += [f"Variance ordering found: **{o['text']}** ('>' where the one-sided F test on the pooled secondary "
+                  f"estimates rejects equal variances at alpha = {res['alpha']:g}, '~' where it does not). Standard "
+                  "deviation of one primary estimate, estimated as s.d.(secondary) x sqrt(k): "
+                  + ", ".join(f"{m} {r['sd_primary_estimated'][m]:.4g}" for m in o["order"]) + ".", ""]
+    L += _details("R-style output of 3.1", transcript)
+    return L
+
+
+def _sampling(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+    L = ["## 3.2 BRDF sampling", "",
+         f"For each BRDF at its outgoing direction, n directions from the model's own sampler against n from exact "
+         f"rejection sampling of f cos / albedo, by the two-sample K-S test with Canner's weight (two-sided, alpha = "
+         f"{res['alpha']:g}) on the directions' Morton keys, {res['runs']} runs per size. p-values are exact up to "
+         f"about 2800 + 2800 and simulated beyond ({res['n_sim']} replicates). Directions the sampler puts below "
+         "the horizon (f = 0 there) are "
+         + ("discarded before the test (the fraction is reported)" if res["below_horizon"] == "discard"
+            else "kept in the test") + ".", "",
+         "(The paper reports that Ward's sampler failed at every size and Ashikhmin-Shirley's passed at alpha = "
+         "0.005 below 100 directions and failed above.) "
+         "Verdict per size: *passes* where the number of rejections is consistent with alpha (exact binomial "
+         "test, p >= 0.01), *fails* where most runs reject, *sometimes* in between.", "",
+         fig("power_curve.png", plots.power_curve, res), ""]
+    for b in res["brdfs"]:
+        bh = b["below_horizon"]
+        L += [f"### {b['name']}", "", f"{b['description']}.", "",
+              "| n | rejected | rate [95% CI] | median p (≤: every simulated p at its floor 1/(n_sim+1)) | p-value | verdict |", "|---|---|---|---|---|---|"]
+        for r in b["sizes"]:
+            L += [f"| {r['n']} | {r['rejections']}/{r['tests']} | {_ci(r, 2)} | "
+                  f"{'≤ ' if r['pvalue_floor'] else ''}{r['median_pvalue']:.3g} | "
+                  f"{'/'.join(r['pvalue_method'])} | {r['verdict']} |"]
+        L += ["", f"Below the horizon: {bh['count']}/{bh['of']} = {bh['fraction']:.4f} "
+                  f"[{bh['ci95'][0]:.4f}, {bh['ci95'][1]:.4f}] of the sampler's directions (rejection sampling: none). "
+                  f"Exact sampler acceptance {b['acceptance_exact']:.3f}.", "",
+              f"Figure 6: {res['histogram_size']} directions of each, by polar angle (rows) and azimuth (columns), "
+              "on one grey scale, zoomed on the window that holds 99.8% of both samples.", "",
+              fig(f"fig6_{b['name']}.png", plots.figure6, b), ""]
+    L += _details("R-style output of 3.2", transcript)
+    return L
+
+
+def _radiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+    L = ["## 3.3 Reflected radiance", "",
+         f"At {res['directions']} outgoing directions spread evenly over the hemisphere, m = {res['m']} estimates of "
+         "the reflected radiance under libmcest's analytic environment from BRDF sampling (weighted by the "
+         "sampler's true density) and from exact rejection sampling (albedo by cubature to a relative "
+         f"{res['albedo_rel_tol']:g}), compared by Welch's test at alpha = {res['alpha']:g}. If both are "
+         "unbiased, the number of rejections is binomial with rate about alpha. (The paper reports 98.6% equal means "
+         "over 1000 directions at alpha = 0.01, without saying whether that is consistent with alpha.)", ""]
+    for b in res["brdfs"]:
+        bt = b["binomial"]
+        L += [f"### {b['name']}", ""]
+        if bt is not None:
+            L += [f"Equal means in {b['counts']['equal']}/{b['tests_ok']} = {b['equal_fraction']:.2%} of the tests "
+                  f"(less {b['counts']['less']}, greater {b['counts']['greater']}). Rejection rate "
+                  f"{bt['estimate']:.4f}, 95% CI [{bt['conf_int'][0]:.4f}, {bt['conf_int'][1]:.4f}]; exact binomial "
+                  f"test of rate = {res['alpha']:g}: p = {bt['pvalue']:.3g}.", ""]
+        L += [fig(f"radiance_{b['name']}.png", plots.radiance_pvalues, b, res["alpha"]), ""]
+    L += _details("R-style output of 3.3", transcript)
+    return L
+
+
+def _bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+    L = ["## 3.4 Planted bugs", "",
+         f"Estimator A with each of the paper's three bugs, and without (the control), against {res['trusted']}: "
+         f"Welch's test at alpha = {res['alpha']:g} on {res['secondary']} secondary estimates per sample, "
+         f"{res['runs']} runs per budget. A bug counts as detected from the smallest budget at which it, and every "
+         f"larger budget, was rejected in at least {res['detected_threshold']:.0%} of the runs.", ""]
+    for r in res["receivers"]:
+        slug = r["name"].replace(" ", "_")
+        vs = ["none"] + res["bugs"]
+        L += [f"### Receiver {r['name']}", "", fig(f"bugs_{slug}.png", plots.bug_detection, r, res), "",
+              "| budget | k | " + " | ".join("A (control)" if v == "none" else v for v in vs) + " |",
+              "|---|---|" + "---|" * len(vs)]
+        for row in r["budgets"]:
+            L += [f"| {row['budget']} | {row['k']} | "
+                  + " | ".join(f"{row['variants'][v]['rejections']}/{row['variants'][v]['tests']}" for v in vs) + " |"]
+        c = r["summary"]["none"]["pooled"]
+        L += ["", f"Control over all budgets: {c['rejections']}/{c['tests']} rejected, {_ci(c, 4)}; binomial test "
+                  f"of rate = alpha: {_p(c['binom_pvalue'])}.", ""]
+    L += _details("R-style output of 3.4", transcript)
+    return L
+
+
+def _timing(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+    L = ["## Error against run time", "",
+         f"Wall-clock times on {res['threads']} thread(s) of the machine that ran this report; on a shared machine "
+         "they can be off by tens of percent. The errors themselves are reproducible.", ""]
+    irr = res.get("irradiance")
+    if irr:
+        what = "RMSE against Lambert's formula" if irr["lambert"] is not None else "estimated standard error"
+        L += [f"### Irradiance estimators at {irr['receiver']}", "",
+              f"{what} of the mean of n primary estimates against the median wall time of one such estimate, "
+              f"n = {', '.join(str(r['n']) for r in next(iter(irr['estimators'].values()))['rows'])}, "
+              f"{res['reps']} estimates each. Dashed: sigma sqrt(t1 / T), the ideal slope -1/2 of an unbiased "
+              "estimator with sigma and t1 (time per primary estimate) measured at the largest n; where points lie "
+              "right of it, a fixed cost per call (Python, thread start) dominates.", "",
+              fig("error_time.png", plots.error_time, irr), "",
+              "| estimator | sigma per primary | time per primary (ns) | efficiency 1/(sigma^2 t1) (1/s) | "
+              f"{what} at the largest n |", "|---|---|---|---|---|"]
+        for m, e in irr["estimators"].items():
+            last = e["rows"][-1]
+            err = last["rmse"] if irr["lambert"] is not None else last["se_estimated"]
+            L += [f"| {m} | {e['sigma_primary']:.4g} | {e['wall_per_primary'] * 1e9:.3g} | "
+                  f"{_g(e['efficiency'])} | {_g(err)} |"]
+        L += [""]
+    ks = res.get("ks")
+    if ks:
+        L += ["### Simulated K-S p-values", "",
+              f"{ks['size']} + {ks['size']} directions from {ks['brdf']}'s exact sampler (so H0 holds), exact "
+              f"p-value {ks['exact_pvalue']:.4g}; each row repeats the simulation with fresh seeds.", "",
+              fig("ks_error_time.png", plots.ks_error_time, ks), "",
+              "| n_sim | RMS error | sqrt(p(1-p)/n_sim) | mean reported s.e. | time per test (ms) |",
+              "|---|---|---|---|---|"]
+        for r in ks["rows"]:
+            L += [f"| {r['n_sim']} | {r['rms_error']:.3g} | {r['predicted_se']:.3g} | {r['mean_reported_se']:.3g} | "
+                  f"{r['wall_median'] * 1e3:.3g} |"]
+        L += [""]
+    L += _details("Text output of the timing study", transcript)
+    return L
