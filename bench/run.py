@@ -66,9 +66,17 @@ def main():
                  "memory read bandwidth (target: at least 50%), and the accuracy of the variance against a "
                  "long-double two-pass reference.\n\n" + moments)
 
+    check = os.path.join(build, "bench", "bench_check")
+    if os.path.exists(check):
+        out = sh([check])
+        parts.append("## Embedded checks: cost per sample (issue 7)\n\n"
+                     f"`{args.build}/bench/bench_check` (one thread, best of 7; target: < 2 ns per added "
+                     "sample; bench/RESULTS_check.md explains the measurement):\n\n```\n" + out.strip() + "\n```")
+
     py = sys.executable
     if not args.quick:
         sh([py, "bench/bench_python.py"])
+        sh([py, "bench/bench_ks_python.py", "--write"])  # its section of RESULTS_ks.md
     est = os.path.join(build, "bench", "bench_estimators")
     if os.path.exists(est) and not args.quick:
         sh([py, "bench/bench_estimators_numpy.py", "--c", est, "--write"])
