@@ -8,28 +8,12 @@
 #include "harness.h"
 #include "internal.h"
 #include "mcest.h"
-#include "ref_irradiance.h"
+#include "ref_scene.h"
 
 #include <float.h>
 #include <string.h>
 
-static const ref_scene *find(const char *name)
-{
-    for (int i = 0; i < N_REF_SCENES; i++)
-        if (!strcmp(ref_scenes[i].name, name))
-            return &ref_scenes[i];
-    return NULL;
-}
 
-static mcest_scene scene_of(const ref_scene *r)
-{
-    mcest_scene s;
-    memcpy(s.triangle, r->tri, sizeof s.triangle);
-    memcpy(s.point, r->point, sizeof s.point);
-    memcpy(s.normal, r->normal, sizeof s.normal);
-    s.radiance = r->radiance;
-    return s;
-}
 
 /* Cancellation in Lambert's sum: kappa = sum |Theta_k gamma_k.z| /
  * |sum Theta_k gamma_k.z| (computed here in plain double: only its size

@@ -9,7 +9,7 @@
 #include "harness.h"
 #include "internal.h"
 #include "mcest.h"
-#include "ref_irradiance.h"
+#include "ref_scene.h"
 
 #include <pthread.h>
 #include <stdlib.h>
@@ -19,23 +19,7 @@
 
 static double buf[N_MC], buf2[N_MC], bm1[N_MC / 100], bm2[N_MC / 100];
 
-static mcest_scene scene_of(const ref_scene *r)
-{
-    mcest_scene s;
-    memcpy(s.triangle, r->tri, sizeof s.triangle);
-    memcpy(s.point, r->point, sizeof s.point);
-    memcpy(s.normal, r->normal, sizeof s.normal);
-    s.radiance = r->radiance;
-    return s;
-}
 
-static const ref_scene *find(const char *name)
-{
-    for (int i = 0; i < N_REF_SCENES; i++)
-        if (!strcmp(ref_scenes[i].name, name))
-            return &ref_scenes[i];
-    return NULL;
-}
 
 /* Each estimator's mean within 5 standard errors of Lambert, where a
  * sample of N_MC can say anything: U and C need enough hits (expected

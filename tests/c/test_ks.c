@@ -22,20 +22,7 @@
 #include <string.h>
 
 static uint64_t rng_state = 20261124;
-
-static double unif(void) /* splitmix64, 53 bits, in (0, 1) */
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return ((double)(z >> 11) + 0.5) * 0x1p-53;
-}
-
-static double normal(void)
-{
-    return sqrt(-2.0 * log(unif())) * cos(2.0 * M_PI * unif());
-}
+#include "test_rng.h"
 
 static mcstat_ks_options opts(int weight, int method)
 {

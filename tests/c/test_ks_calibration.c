@@ -13,20 +13,7 @@
 #include <stdlib.h>
 
 static uint64_t rng_state = 777;
-
-static double unif(void)
-{
-    uint64_t z = (rng_state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return ((double)(z >> 11) + 0.5) * 0x1p-53;
-}
-
-static double normal(void)
-{
-    return sqrt(-2.0 * log(unif())) * cos(2.0 * M_PI * unif());
-}
+#include "test_rng.h"
 
 static double student3(void)
 {

@@ -31,6 +31,7 @@ Importing mcstat turns GSL's abort-on-error handler off if, and only if,
 no other handler was installed in the process (``gsl_handler_was_default``
 says whether it did); libmcstat itself never reaches GSL's handler.
 """
+from . import _errors
 from ._errors import (
     BufferSizeError,
     CorruptDataError,
@@ -71,14 +72,5 @@ __all__ = [
     "BatchResult",
     "set_num_threads",
     "get_num_threads",
-    "McstatError",
-    "InvalidArgumentError",
-    "TooFewObservationsError",
-    "NonFiniteError",
-    "DegenerateDataError",
-    "OutOfMemoryError",
-    "NumericalError",
-    "BufferSizeError",
-    "CorruptDataError",
-    "TooBigError",
+    *_errors.__all__,
 ]
