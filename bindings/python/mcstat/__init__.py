@@ -59,6 +59,9 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
 )
 from ._result import BatchResult
 
+# Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
+from ._core import MomentsArray  # noqa: E402
+
 __version__ = "0.1.0"
 
 __all__ = [
@@ -70,6 +73,7 @@ __all__ = [
     "batch_means",
     "TestResult",
     "BatchResult",
+    "MomentsArray",
     "set_num_threads",
     "get_num_threads",
     *_errors.__all__,
