@@ -2,8 +2,8 @@
 // render-farm case), over libmcstat's mcstat_moments_*_rows.
 //
 // The accumulators live in one std::vector<mcstat_moments> in C order of
-// `shape`.  Every operation that can fail works on a scratch array first
-// and touches the accumulators only on success, as Moments.push does.
+// `shape`.  Every operation that can fail checks its input first and
+// touches the accumulators only on success, as Moments.push does.
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
@@ -114,34 +114,33 @@ void push(MomentsArray &s, py::handle images, bool omit)
     carray rows = pixel_rows(s, images, &k);
     const double *x = rows.data();
     size_t P = s.m.size();
-    std::vector<mcstat_moments> fresh(P);
-    std::vector<int32_t> status(P);
-    int st;
+    // The values are checked first (one pass), so that add_rows cannot fail
+    // and the accumulators change only on success, as Moments.push does,
+    // without a scratch copy of the accumulators.
+    size_t bad = 0, where = 0;
     {
         py::gil_scoped_release nogil;
-        mcstat_moments_init_rows(fresh.data(), P);
-        // fresh[i] = add_array on an empty accumulator; merged below, that is
-        // exactly mcstat_moments_add_rows on s.m (see mcstat.h).
-        std::atomic<int> first{MCSTAT_OK};
+        for (size_t i = 0; i < P * k; i++) {
+            if (!std::isfinite(x[i]) && !(omit && std::isnan(x[i])) && !bad++)
+                where = i / k;
+        }
+    }
+    if (bad)
+        throw_status(MCSTAT_ENONFINITE, std::to_string(bad) + " value(s), the first at flat pixel index " +
+                                            std::to_string(where) + "; the accumulators are unchanged");
+    std::atomic<int> first{MCSTAT_OK};
+    {
+        py::gil_scoped_release nogil;
         parallel_rows(P, [&](size_t b, size_t e) {
-            int r = mcstat_moments_add_rows(fresh.data() + b, e - b, x + b * k, k, k,
-                                            omit ? MCSTAT_ROWS_OMIT_NAN : 0u, status.data() + b);
+            int r = mcstat_moments_add_rows(s.m.data() + b, e - b, x + b * k, k, k,
+                                            omit ? MCSTAT_ROWS_OMIT_NAN : 0u, nullptr);
             int ok = MCSTAT_OK;
             if (r)
                 first.compare_exchange_strong(ok, r);
         });
-        st = first.load();
-        if (!st)
-            st = mcstat_moments_merge_rows(s.m.data(), fresh.data(), P);
     }
-    if (st) {
-        size_t bad = 0, where = 0;
-        for (size_t i = 0; i < P; i++)
-            if (status[i] && !bad++)
-                where = i;
-        throw_status(st, std::to_string(bad) + " of " + std::to_string(P) + " pixels (the first at flat index " +
-                             std::to_string(where) + "); the accumulators are unchanged");
-    }
+    if (first.load()) // not reached: the values and the accumulators were checked
+        throw_status(first.load());
 }
 
 void check_same_shape(const MomentsArray &a, const MomentsArray &b, const char *what)
