@@ -211,3 +211,26 @@ def test_bad_input():
         mcstat.t_test(acc, alpha=1.5)
     with pytest.raises(mcstat.DegenerateDataError):  # every pixel constant
         mcstat.t_test(acc)
+
+
+@pytest.mark.parametrize("func,kw", [(mcstat.t_test, {"mu": 1.0}), (mcstat.t_test, {}),
+                                     (mcstat.var_test, {"sigma2": 4.0}), (mcstat.var_test, {})])
+def test_merged_arrays_are_calibrated(func, kw):
+    """Under H0, pixels whose samples were pushed on four "machines" and
+    merged reject at rate alpha (99.9% binomial bounds over 4000 pixels)."""
+    rng = np.random.default_rng(99)
+    shape, alpha = (40, 100), 0.05
+    two = not kw
+
+    def farm():
+        parts = [mcstat.MomentsArray(shape).push(rng.normal(1.0, 2.0, size=(int(k),) + shape)) for k in (3, 5, 4, 6)]
+        return (parts[0] + parts[1]) + (parts[2] + parts[3])
+
+    x = farm()
+    r = func(x, farm(), alpha=alpha) if two else func(x, alpha=alpha, **kw)
+    lo, hi = st.binom.ppf([0.0005, 0.9995], x.size, alpha)
+    assert lo <= r.reject.sum() <= hi, (int(r.reject.sum()), lo, hi)
+    # and a shifted mean / inflated variance is found (power)
+    y = mcstat.MomentsArray(shape).push(rng.normal(3.5, 4.0, size=(30,) + shape))
+    p = func(x, y, alpha=alpha) if two else func(y, alpha=alpha, **kw)
+    assert p.reject.mean() > 0.5
