@@ -447,6 +447,76 @@ MCSTAT_API int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_strid
 
 
 /* ------------------------------------------------------------------------ */
+/* Arrays of accumulators: one mcstat_moments per pixel.                     */
+/* A render farm keeps one accumulator per pixel (an array of `rows` structs */
+/* the caller owns, row i = pixel i), adds every rendered image or batch of  */
+/* images into it, ships it as bytes, merges arrays element-wise, and tests  */
+/* every pixel.  Adding a batch is "add_array on a fresh accumulator, then   */
+/* merge", so pushing batches A then B on one machine gives bit for bit what */
+/* pushing A and B on two machines and merging the second into the first    */
+/* gives: a fixed merge order reproduces a single-machine run exactly.      */
+/* No allocation; disjoint row ranges may run on different threads.          */
+/* ------------------------------------------------------------------------ */
+
+/* Empties m[0..rows).  MCSTAT_EINVAL for m NULL with rows > 0. */
+MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
+
+/* Adds n values to each of rows accumulators: row i's values are the n
+ * contiguous doubles at x + i * x_stride (strides in elements), and m[i]
+ * becomes exactly mcstat_moments_merge(m[i], A) where A is
+ * mcstat_moments_add_array on a fresh accumulator of those values.  One
+ * image with one value per pixel is n = 1, x_stride = 1; a stack of k
+ * images stored pixel-major (k values per pixel) is n = k, x_stride = k.
+ * flags: MCSTAT_ROWS_OMIT_NAN skips NaN values (+-Inf remains an error).
+ * status[i] (may be NULL) receives row i's status; a row that fails
+ * (MCSTAT_ENONFINITE) is left unchanged and the other rows are still added.
+ * Returns MCSTAT_OK, the status of the first row that failed, or
+ * MCSTAT_EINVAL (nothing changed) for NULL pointers, unknown flags or an
+ * uninitialised accumulator. */
+MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, size_t n,
+                                       size_t x_stride, unsigned flags, int32_t *status);
+
+/* dst[i] <- dst[i] merged with src[i], for i < rows (mcstat_moments_merge
+ * element-wise).  src may equal dst; the arrays must not otherwise overlap.
+ * MCSTAT_EINVAL (nothing changed) for NULL pointers or an uninitialised
+ * accumulator in either array. */
+MCSTAT_API int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows);
+
+/* The array as rows * MCSTAT_MOMENTS_BYTES bytes: the records of
+ * mcstat_moments_to_bytes concatenated in row order, no header (each record
+ * carries its own magic, version and checksum; the count is size / 96; the
+ * image's shape is the caller's).  MCSTAT_EBUFSIZE when size is smaller,
+ * MCSTAT_EINVAL for NULL pointers or an uninitialised accumulator. */
+MCSTAT_API int mcstat_moments_to_bytes_rows(const mcstat_moments *m, size_t rows, unsigned char *buf,
+                                            size_t size);
+/* Reads rows accumulators from exactly rows * MCSTAT_MOMENTS_BYTES bytes.
+ * MCSTAT_ECORRUPT (m unchanged) when size differs or any record is corrupt
+ * (see mcstat_moments_from_bytes); MCSTAT_EINVAL for NULL pointers. */
+MCSTAT_API int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t size, size_t rows,
+                                              mcstat_moments *m);
+
+/* The tests on arrays of accumulators: out[i] is bit for bit the
+ * mcstat_*_moments call on x[i] (and y[i]), status[i] (may be NULL) its
+ * status, with the conventions of the row-wise tests above: a failed row
+ * gets NaN fields and the others are still computed, critical values are
+ * solved once for rows of equal degrees of freedom, MCSTAT_ROWS_NO_INTERVALS
+ * skips critical values and confidence intervals.  MCSTAT_ROWS_OMIT_NAN has
+ * no meaning here and is MCSTAT_EINVAL.  Returns MCSTAT_OK when every row
+ * succeeded, else the first failing row's status; MCSTAT_EINVAL (nothing
+ * written) for NULL pointers or unknown flags. */
+MCSTAT_API int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative,
+                                            double alpha, unsigned flags, mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                                            double mu0, int alternative, double alpha, unsigned flags,
+                                            mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2,
+                                              int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                              int32_t *status);
+MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                                              double ratio, int alternative, double alpha, unsigned flags,
+                                              mcstat_result *out, int32_t *status);
+
+/* ------------------------------------------------------------------------ */
 /* Buffered per-thread accumulator: checks inside a renderer.                */
 /* mcstat_moments_add merges one value exactly (double-double mean), which   */
 /* costs tens of ns.  A renderer that checks its estimates in production    */

@@ -19,7 +19,9 @@ less / equal / greater decision), or a `BatchResult` of arrays for N-D
 input (one test per row, e.g. per pixel).  `Moments` accumulates samples
 in streams and merges across threads and machines; `batch_means` makes
 secondary estimates; `KSCache` shares simulated K-S null distributions
-across a battery of tests.  Errors are `ValueError` subclasses (see
+across a battery of tests.  `MomentsArray` keeps one accumulator per
+pixel (render farms: push images, ship bytes, merge, test per pixel).
+Errors are `ValueError` subclasses (see
 `mcstat._errors`).  The reference estimators of the paper's case studies
 are in the subpackage `mcstat.estimators`.
 
@@ -59,6 +61,9 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
 )
 from ._result import BatchResult
 
+# Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
+from ._core import MomentsArray  # noqa: E402
+
 __version__ = "0.1.0"
 
 __all__ = [
@@ -70,6 +75,7 @@ __all__ = [
     "batch_means",
     "TestResult",
     "BatchResult",
+    "MomentsArray",
     "set_num_threads",
     "get_num_threads",
     *_errors.__all__,
