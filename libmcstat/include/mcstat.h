@@ -355,7 +355,8 @@ enum mcstat_power_unknown {
     MCSTAT_POWER_SOLVE_ALPHA = 3
 };
 
-/* Grows by appending fields: always start from the initialiser. */
+/* Grows by appending fields: always start from the initialiser (n, effect
+ * and power start at 0: unset, invalid until given). */
 typedef struct mcstat_power_options {
     uint32_t size;       /* sizeof(mcstat_power_options): set by the initialiser */
     int32_t test;        /* enum mcstat_power_test; default T_1 */
@@ -371,8 +372,8 @@ typedef struct mcstat_power_options {
 } mcstat_power_options;
 
 #define MCSTAT_POWER_OPTIONS_INIT \
-    {sizeof(mcstat_power_options), MCSTAT_POWER_T_1, MCSTAT_TWO_SIDED, 1, NAN, 1.0, 1.0, NAN, \
-     0.05, NAN, {0.0, 0.0, 0.0, 0.0}}
+    {sizeof(mcstat_power_options), MCSTAT_POWER_T_1, MCSTAT_TWO_SIDED, 1, 0.0, 1.0, 1.0, 0.0, \
+     0.05, 0.0, {0.0, 0.0, 0.0, 0.0}}
 
 /* Sets *o to MCSTAT_POWER_OPTIONS_INIT.  MCSTAT_EINVAL for NULL. */
 MCSTAT_API int mcstat_power_options_init(mcstat_power_options *o);
