@@ -59,6 +59,17 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
 )
 from ._result import BatchResult
 
+# Equivalence (TOST), power and sample size (mcstat._power).
+from ._power import (  # noqa: E402
+    EquivalenceResult,
+    KSPowerResult,
+    PowerResult,
+    equivalence_test,
+    ks_power,
+    ks_sample_size,
+    power,
+)
+
 __version__ = "0.1.0"
 
 __all__ = [
@@ -73,4 +84,12 @@ __all__ = [
     "set_num_threads",
     "get_num_threads",
     *_errors.__all__,
+    # equivalence, power and sample size
+    "equivalence_test",
+    "EquivalenceResult",
+    "power",
+    "PowerResult",
+    "ks_power",
+    "ks_sample_size",
+    "KSPowerResult",
 ]
