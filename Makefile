@@ -143,6 +143,8 @@ references: python-deps
 	$(PY) tests/reference/make_reference.py
 	Rscript tests/reference/make_rformat.R
 	Rscript tests/reference/make_rblocks_python.R
+	# equivalence (TOST) and power: tests/data/{power,equivalence}_ref.tsv
+	Rscript tests/reference/make_power_ref.R
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-bench
