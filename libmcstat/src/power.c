@@ -165,6 +165,12 @@ static int solve_effect(const mcstat_power_options *o, double *effect)
 {
     double lo = 0.0, hi = 1.0, p;
     int st;
+    /* at the null (d = 0, rho = 1) the power is what alpha alone gives: a
+     * target at or below it needs no effect, and none is the answer */
+    if ((st = power_at(o, o->n, effect_of(o, 0.0), o->alpha, &p)))
+        return st;
+    if (p >= o->power)
+        return MCSTAT_EINVAL;
     for (;;) { /* bracket: power(hi) >= target */
         if ((st = power_at(o, o->n, effect_of(o, hi), o->alpha, &p)))
             return st;

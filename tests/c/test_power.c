@@ -233,8 +233,13 @@ static void test_statuses(void)
     CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_N, &r), MCSTAT_EINVAL);
     b.power = 0.9; b.effect = 0.0; /* no n detects a zero effect */
     CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_N, &r), MCSTAT_EINVAL);
-    b = o; b.power = 0.01; /* below alpha: no effect needed, none gives it */
+    b = o; b.power = 0.04; /* below alpha: what the null itself gives, no effect to solve for */
+    CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_EFFECT, &r), MCSTAT_EINVAL);
+    b.test = MCSTAT_POWER_VAR_1; b.alternative = MCSTAT_LESS; b.power = 0.05;
+    CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_EFFECT, &r), MCSTAT_EINVAL);
+    b.power = 0.5;
     CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_EFFECT, &r), MCSTAT_OK);
+    CHECK(r.effect < 1.0); /* LESS: a variance ratio below 1 */
     b.power = 0.9; b.n = NAN; b.effect = 0.5; /* the unknown's field is ignored */
     CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_N, &r), MCSTAT_OK);
     CHECK(r.n == 44.0); /* power.t.test(delta = .5, power = .9, type = "one.sample") n = 43.99 */

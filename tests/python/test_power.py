@@ -141,6 +141,8 @@ def test_errors():
     with pytest.raises(mcstat.InvalidArgumentError):
         mcstat.power("t", effect=0.0, power=0.9)  # no n detects nothing
     with pytest.raises(mcstat.InvalidArgumentError):
+        mcstat.power("t", n=20, effect=None, power=0.03)  # alpha alone gives more
+    with pytest.raises(mcstat.InvalidArgumentError):
         mcstat.power("t", n=10, effect=0.5, alternative="sideways")
     with pytest.raises(mcstat.InvalidArgumentError):
         mcstat.power("var", n=10, delta=0.5)
