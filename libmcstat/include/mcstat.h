@@ -337,8 +337,10 @@ MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const 
 /* noncentral t is R's pnt (libRmath), about 1e-12 absolute (not relative:  */
 /* a power below 1e-12 is noise), and for |ncp| > 37.62 or df > 4e5 it is  */
 /* Abramowitz & Stegun 26.7.10's normal approximation, whose error is      */
-/* O(1/df) (negligible at df > 4e5; at |ncp| > 37.62 the power is 1 to      */
-/* ~1e-10 unless df < ~3).  pnt is called so that it never prints (see     */
+/* O(1/df): negligible at df > 4e5; at |ncp| > 37.62 the power is 1 to     */
+/* double precision from df = 2 on (SciPy's nct: 1 - 2.5e-31 at df 2, ncp */
+/* 38), but at df = 1 (n = 2) it is off by 2e-3 (0.99918 for 0.99713).    */
+/* pnt is called so that it never prints (see                               */
 /* src/noncentral.c).                                                        */
 /* ------------------------------------------------------------------------ */
 enum mcstat_power_test {
