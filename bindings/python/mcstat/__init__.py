@@ -63,6 +63,16 @@ from ._result import BatchResult
 
 # Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
 from ._core import MomentsArray  # noqa: E402
+# Equivalence (TOST), power and sample size (mcstat._power).
+from ._power import (  # noqa: E402
+    EquivalenceResult,
+    KSPowerResult,
+    PowerResult,
+    equivalence_test,
+    ks_power,
+    ks_sample_size,
+    power,
+)
 
 __version__ = "0.1.0"
 
@@ -79,4 +89,12 @@ __all__ = [
     "set_num_threads",
     "get_num_threads",
     *_errors.__all__,
+    # equivalence, power and sample size
+    "equivalence_test",
+    "EquivalenceResult",
+    "power",
+    "PowerResult",
+    "ks_power",
+    "ks_sample_size",
+    "KSPowerResult",
 ]

@@ -87,6 +87,9 @@ py::object make_result(const Result &r);
 // ---- the K-S test (ks.cpp) ---------------------------------------------------
 void register_ks(py::module_ &mod);
 
+// ---- equivalence and power (power.cpp) -------------------------------------------
+void register_power(py::module_ &mod);
+
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);
 
