@@ -17,7 +17,7 @@ The size each count is compared with:
   12 + 7 values with a 7x variance ratio), computed by quadrature
   (``stats_oracle.welch_rejection``);
 - two-sample K-S, weight none and Canner, each alternative, methods exact,
-  simulate and (weight none) asymptotic, at 2+2 ... 20+15: the statistic is
+  simulate and (weight none) asymptotic, at 2+2 ... 40+40: the statistic is
   discrete, so the exact size of each procedure, computed from the exact
   permutation distribution by lattice-path counting (``stats_oracle.KSNull``;
   never above alpha for exact and simulate), at sizes where no p-value can
@@ -25,7 +25,7 @@ The size each count is compared with:
 
 The row-wise API (2-D input, one test per row) makes the t and variance
 tests cheap: 40000 replicates per call.  K-S has no row-wise call, so it
-gets 3000 replicates per configuration.  Confidence intervals are checked to
+gets 10000 replicates per configuration.  Confidence intervals are checked to
 be the inversion of the test (an interval misses the null value exactly in
 the rows that reject).
 """
@@ -40,7 +40,7 @@ from stats_oracle import BUDGET, KSNull, welch_rejection
 pytestmark = pytest.mark.stats
 
 ROWS = 40000
-KS_ROWS = 3000
+KS_ROWS = 10000
 ALPHAS = (0.05, 0.01)
 ALTS = ("two-sided", "less", "greater")
 
@@ -135,7 +135,7 @@ def test_welch_size_oracle_against_known_values():
 
 
 # ---- two-sample Kolmogorov-Smirnov ---------------------------------------------
-KS_SIZES = [(2, 2), (2, 3), (3, 3), (5, 7), (10, 10), (20, 15)]
+KS_SIZES = [(2, 2), (2, 3), (3, 3), (5, 7), (10, 10), (20, 15), (40, 40)]
 KS_ALPHA = 0.05
 N_SIM = 250  # alpha (n_sim + 1) = 12.55: no p-value sits on alpha
 
