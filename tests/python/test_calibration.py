@@ -125,9 +125,9 @@ def test_welch(n1, n2, sd1, sd2, alpha):
 
 def test_welch_size_oracle_against_known_values():
     """The quadrature reproduces the size that the previous version of this
-    file measured by 1e6 replicates (12 vs 7 values, sd 1.5 vs 4), and the
-    exact t test where Welch's df is exact (a 1-vs-n limit is not, but equal
-    sizes with a huge variance ratio approach the t with n - 1 df)."""
+    file measured by 1e6 replicates (12 vs 7 values, sd 1.5 vs 4), and alpha
+    where Welch's statistic is an exact t: as sd1 -> 0 it becomes the
+    one-sample t of y, with df n2 - 1."""
     assert abs(welch_rejection(12, 7, 1.5, 4.0, 0.0, "two-sided", 0.01) - 0.0122) < 3e-4
     assert abs(welch_rejection(12, 7, 1.5, 4.0, 0.0, "two-sided", 0.05) - 0.0528) < 6e-4
     # sd1 -> 0: T is the one-sample t of y with df -> n2 - 1, size -> alpha
