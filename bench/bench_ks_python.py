@@ -31,7 +31,7 @@ from scipy import stats
 import mcstat
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import fmt_bytes, machine, measure, peak_rss  # noqa: E402
+from common import fmt_bytes, measure, num, peak_rss  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BEGIN, END = "<!-- bench_ks_python begin -->", "<!-- bench_ks_python end -->"
@@ -81,7 +81,7 @@ def main():
     lines.append("|---|---:|---:|---:|---:|---:|---:|")
 
     def per(tm, k):  # median [range] per replicate, in us
-        return f"{1e6 * tm.median / k:.3g} [{1e6 * tm.lo / k:.3g}-{1e6 * tm.hi / k:.3g}]"
+        return f"{num(1e6 * tm.median / k)} [{num(1e6 * tm.lo / k)}-{num(1e6 * tm.hi / k)}]"
 
     for weight in ("canner", "none"):
         t_np = best(lambda: numpy_simulation(n, n, reps_np, rng, weight), rep)

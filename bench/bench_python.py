@@ -210,8 +210,7 @@ def write(rows, mem, image, threads, args):
     out.append("| case | mcstat | SciPy / NumPy | ratio | peak RSS mcstat | peak RSS SciPy | note |\n"
                "|---|---:|---:|---:|---:|---:|---|")
     for case, ours, theirs, ratio, note, m_o, m_t in rows:
-        unit = "us" if ours.median < 1e-3 else "ms"
-        out.append(f"| {case.strip()} | {ours.fmt(unit)} | {theirs.fmt(unit)} | {ratio:.1f}x | "
+        out.append(f"| {case.strip()} | {ours.fmt()} | {theirs.fmt()} | {ratio:.1f}x | "
                    f"{fmt_bytes(m_o)} | {fmt_bytes(m_t)} | {note} |")
     out.append("\n## Peak memory on top of the input (tracemalloc)\n")
     out.append("| call | peak |\n|---|---:|")

@@ -33,7 +33,16 @@ class Timing:
     def fmt(self, unit=None):
         """'1.23 us [1.20-1.40]': median [fastest-slowest round]."""
         scale, unit = _unit(self.median, unit)
-        return f"{self.median * scale:.3g} {unit} [{self.lo * scale:.3g}-{self.hi * scale:.3g}]"
+        return f"{num(self.median * scale)} {unit} [{num(self.lo * scale)}-{num(self.hi * scale)}]"
+
+
+def num(v):
+    """About three significant digits, never an exponent."""
+    if v >= 100:
+        return f"{v:.0f}"
+    if v >= 10:
+        return f"{v:.1f}"
+    return f"{v:.3g}"
 
 
 def _unit(t, unit=None):
