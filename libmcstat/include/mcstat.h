@@ -158,7 +158,8 @@ enum mcstat_test {
     MCSTAT_TEST_T_2 = 2,   /* Welch two-sample t */
     MCSTAT_TEST_VAR_1 = 3, /* one-sample chi-squared test on the variance */
     MCSTAT_TEST_VAR_2 = 4, /* two-sample F test on the ratio of variances */
-    MCSTAT_TEST_KS_2 = 5   /* two-sample Kolmogorov-Smirnov, unweighted or with Canner's weight */
+    MCSTAT_TEST_KS_2 = 5,  /* two-sample Kolmogorov-Smirnov, unweighted or with Canner's weight */
+    MCSTAT_TEST_BINOM = 6  /* exact binomial test (also the battery meta-test) */
 };
 
 enum mcstat_method {
@@ -366,6 +367,48 @@ MCSTAT_API size_t mcstat_sizeof_ks_options(void);
 MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny,
                                 int alternative, double alpha, const mcstat_ks_options *opt,
                                 mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Exact binomial test and the battery meta-test.                            */
+/* A battery of k tests at level `level` rejects about level * k times when  */
+/* every null hypothesis holds; whether an observed count is consistent with */
+/* that is R's binom.test of the count against level.  x successes in n     */
+/* trials against P(success) = p, p in [0, 1]:                               */
+/*   LESS       p-value P[X <= x];  GREATER  P[X >= x];                       */
+/*   TWO_SIDED  R's rule: the sum of P[X = i] over every i with P[X = i] <=   */
+/*              P[X = x] (1 + 1e-7); 1 when x == n p.                        */
+/* Tails come from the library's incomplete beta, accurate to ~1e-13        */
+/* relative down to the smallest normal double and, in log scale, far below */
+/* it; the densities are compared in log scale (R's dbinom underflows).     */
+/* Result fields: statistic = x, estimate[0] = x/n, null_value = p, n[0] =   */
+/* n, method EXACT, conf_int the Clopper-Pearson interval at level 1-alpha  */
+/* (one-sided for one-sided alternatives, as R), critical = the acceptance  */
+/* region of counts [critical[0], critical[1]] (reject iff x < critical[0]  */
+/* or x > critical[1]; -Inf / +Inf for the open side), decision the sign of */
+/* x - n p when rejected; df and std_error NaN.  Reserved field used:       */
+/*   MCSTAT_RESULT_LOG_P_VALUE(r)  reserved[2]: log(p_value), finite where   */
+/*                                 p_value underflows to 0                   */
+/* Statuses: MCSTAT_EINVAL (out NULL, bad enum, alpha outside (0,1), p      */
+/* outside [0,1] or NaN, x > n), MCSTAT_ETOOFEW (n == 0), MCSTAT_ETOOBIG     */
+/* (n > 2^53), MCSTAT_ENUMERIC.  Cost: O(log^2 n) incomplete-beta and       */
+/* density evaluations (the critical counts are bisections), ~0.1 ms.       */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_RESULT_LOG_P_VALUE(r) ((r)->reserved[2])
+
+MCSTAT_API int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha,
+                                 mcstat_result *out);
+/* The battery meta-test: `rejections` among k tests each at level `level`
+ * in (0, 1), tested against the rate `level` (mcstat_binom_test(rejections,
+ * k, level, ...)); reject == 1 means the count is not consistent with the
+ * level (GREATER: too many rejections, the usual question).  Statuses as
+ * mcstat_binom_test, plus MCSTAT_EINVAL for level outside (0, 1). */
+MCSTAT_API int mcstat_battery_test(uint64_t rejections, uint64_t k, double level, int alternative,
+                                   double alpha, mcstat_result *out);
+/* The same from the battery's k p-values: a test rejects when its p-value
+ * is <= level.  MCSTAT_ENONFINITE for a NaN p-value, MCSTAT_EINVAL for one
+ * outside [0, 1] (or p_values NULL with k > 0), MCSTAT_ETOOFEW for k == 0. */
+MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative,
+                                           double alpha, mcstat_result *out);
 
 /* ------------------------------------------------------------------------ */
 /* Distributions.                                                            */
