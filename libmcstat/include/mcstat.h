@@ -420,15 +420,16 @@ MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, dou
 /*           P[X > t] ~ t^-index, the variance is infinite when index <= 2  */
 /*           ("fireflies": rare huge estimates that the sample variance     */
 /*           misses until one arrives).  heavy_tail = 1 when the smaller    */
-/*           index is below tail_threshold (default 2.5).  Measured         */
-/*           (tests/python/test_diagnose.py, 200 replicates): U^-1/2         */
-/*           (index 2), Pareto 1.5, t_2 and Cauchy flagged in >= 96% of     */
-/*           samples at n = 1e4 (>= 99% at 1e3 except U^-1/2: 99%); uniform, */
-/*           normal, exponential, t_5 flagged in <= 2% at n = 1e3 and 0 at  */
-/*           n >= 1e4; gamma(1/2) 6.5% at n = 1e3, 0 at 1e4.  Tails between */
-/*           (lognormal, Pareto 3: finite variance, infinite or huge fourth  */
-/*           moment) are flagged often: their variance estimates are        */
-/*           unreliable too.                                                 */
+/*           index is below tail_threshold (default 2.5).  Measured       */
+/*           (tests/reference/diagnose_rates.py; 200 samples each at n = 1e3 */
+/*           / 1e4): flagged U^-1/2 (index 2) 99.5% / 100%, t_2 98% / 100%,  */
+/*           Pareto 1.5 and Cauchy 100%; false alarms: uniform, normal,      */
+/*           exponential 0 / 0, t_5 3.5% / 0, gamma(1/2) 6.5% / 0, the       */
+/*           paper's estimators U, C, A, S and Ward's reflected-radiance     */
+/*           estimators 0 / 0, Ashikhmin-Shirley's BRDF sampling 5.5% / 0.  */
+/*           Tails in between (lognormal(0,1) 72% / 14%, Pareto 3 88% / 66%: */
+/*           finite variance, infinite or huge fourth moment) are flagged   */
+/*           often: their variance estimates are unreliable too.            */
 /*   batch   the batch size k that makes the two-sided t test at alpha on m */
 /*           batch means of k primaries keep its level: the smallest k with */
 /*           each tail's rejection rate, by Hall's Edgeworth expansion of   */

@@ -59,6 +59,9 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
 )
 from ._result import BatchResult
 
+# issue 9: the binomial meta-test and estimator diagnostics
+from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
+
 __version__ = "0.1.0"
 
 __all__ = [
@@ -72,5 +75,9 @@ __all__ = [
     "BatchResult",
     "set_num_threads",
     "get_num_threads",
+    "binom_test",
+    "battery_test",
+    "diagnose",
+    "Diagnostics",
     *_errors.__all__,
 ]

@@ -86,6 +86,9 @@ py::object make_result(const Result &r);
 // ---- the K-S test (ks.cpp) ---------------------------------------------------
 void register_ks(py::module_ &mod);
 
+// ---- binomial test, battery meta-test, diagnostics (diagnostics.cpp) --------
+void register_diagnostics(py::module_ &mod);
+
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);
 
