@@ -416,20 +416,24 @@ MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, dou
 /*   shape   skewness g1 and excess kurtosis g2 (mcstat_moments) with their  */
 /*           standard errors under normality;                               */
 /*   tails   Hill's tail index of each tail, from the tail_k largest        */
-/*           excesses over the median (default max(10, floor(sqrt(n)))):    */
-/*           P[X > t] ~ t^-index, the variance is infinite when index <= 2  */
-/*           ("fireflies": rare huge estimates that the sample variance     */
-/*           misses until one arrives).  heavy_tail = 1 when the smaller    */
-/*           index is below tail_threshold (default 2.5).  Measured       */
+/*           excesses over the median (default max(10, min(4 sqrt(n),       */
+/*           n/25)); fewer when fewer values lie beyond the median, as for  */
+/*           an estimator that is mostly 0): P[X > t] ~ t^-index, the       */
+/*           variance is infinite when index <= 2 ("fireflies": rare huge   */
+/*           estimates that the sample variance misses until one arrives). */
+/*           heavy_tail = 1 when the smaller index is below tail_threshold  */
+/*           (default 2.2: index-2 tails scatter about 2).  Measured        */
 /*           (tests/reference/diagnose_rates.py; 200 samples each at n = 1e3 */
-/*           / 1e4): flagged U^-1/2 (index 2) 99.5% / 100%, t_2 98% / 100%,  */
-/*           Pareto 1.5 and Cauchy 100%; false alarms: uniform, normal,      */
-/*           exponential 0 / 0, t_5 3.5% / 0, gamma(1/2) 6.5% / 0, the       */
-/*           paper's estimators U, C, A, S and Ward's reflected-radiance     */
-/*           estimators 0 / 0, Ashikhmin-Shirley's BRDF sampling 5.5% / 0.  */
-/*           Tails in between (lognormal(0,1) 72% / 14%, Pareto 3 88% / 66%: */
-/*           finite variance, infinite or huge fourth moment) are flagged   */
-/*           often: their variance estimates are unreliable too.            */
+/*           / 1e4): flagged U^-1/2 (index 2) 99.5% / 100%, Pareto 1.5 and  */
+/*           Cauchy 100% / 100%, t_2 95.5% / 100%, 99% zeros + 1% U^-1/2     */
+/*           (10 or 100 nonzero values) 22% / 81.5%; false alarms: uniform,  */
+/*           normal, exponential, t_5 0 / 0, gamma(1/2) 0.5% / 0, the paper's */
+/*           irradiance estimators U, C, A, S 0 / 0, reflected radiance off */
+/*           Ward's and Ashikhmin-Shirley's BRDFs (sampling and rejection,   */
+/*           3 outgoing directions) at most 4% / 0.  Tails in between       */
+/*           (lognormal(0,1) 55% / 66%, Pareto 3 70% / 98.5%: finite         */
+/*           variance, infinite or huge fourth moment) are flagged often:   */
+/*           their variance estimates are unreliable too.                   */
 /*   batch   the batch size k that makes the two-sided t test at alpha on m */
 /*           batch means of k primaries keep its level: the smallest k with */
 /*           each tail's rejection rate, by Hall's Edgeworth expansion of   */
@@ -447,19 +451,19 @@ typedef struct mcstat_diag_options {
     int32_t reserved_i;    /* zero */
     uint64_t k;            /* the batch size in use (0: none; t_size is then for k = 1) */
     uint64_t m;            /* batch means the t test sees (0: n / k, or MCSTAT_DIAG_DEFAULT_M without k) */
-    uint64_t tail_k;       /* order statistics per tail in Hill's estimate (0: max(10, floor(sqrt(n)))) */
+    uint64_t tail_k;       /* order statistics per tail in Hill's estimate (0: max(10, min(4 sqrt(n), n/25))) */
     double alpha;          /* the t test's level; default 0.05 */
     double tolerance;      /* allowed relative error of each tail's rate, in (0, 1); default 0.2 */
-    double tail_threshold; /* heavy_tail when a tail index is below this (> 0); default 2.5 */
+    double tail_threshold; /* heavy_tail when a tail index is below this (> 0); default 2.2 */
     double reserved[4];    /* zero */
 } mcstat_diag_options;
 
 #define MCSTAT_DIAG_OPTIONS_INIT \
-    {sizeof(mcstat_diag_options), 0, 0u, 0u, 0u, 0.05, 0.2, 2.5, {0.0, 0.0, 0.0, 0.0}}
+    {sizeof(mcstat_diag_options), 0, 0u, 0u, 0u, 0.05, 0.2, 2.2, {0.0, 0.0, 0.0, 0.0}}
 
 typedef struct mcstat_diagnostics {
     uint64_t n;              /* primary estimates */
-    uint64_t tail_k;         /* order statistics per tail used by the tail index */
+    uint64_t tail_k;         /* order statistics per tail asked for (see tail_index_se) */
     uint64_t k, m;           /* batch size and number of batch means t_size is for */
     uint64_t recommended_k;  /* the batch size rule's k for m batch means */
     int32_t heavy_tail;      /* 1: a tail index is below tail_threshold */
@@ -468,7 +472,7 @@ typedef struct mcstat_diagnostics {
     double skewness, skewness_se;  /* g1 and sqrt(6n(n-1)/((n-2)(n+1)(n+3))) */
     double kurtosis, kurtosis_se;  /* excess g2 and its standard error under normality */
     double tail_index[2];    /* Hill: [0] lower tail, [1] upper tail (+Inf: no Pareto tail) */
-    double tail_index_se[2]; /* index / sqrt(tail_k) */
+    double tail_index_se[2]; /* index / sqrt(k) with the k actually used (NaN: none) */
     double max_share;        /* max_i (x_i - mean)^2 / sum_i (x_i - mean)^2 */
     double t_size[2];        /* predicted rejection rates of the lower / upper tail of the
                                 two-sided t test at alpha on m batch means of k (alpha/2 each

@@ -13,23 +13,34 @@
 
 /* ---- tails ---------------------------------------------------------------
  * Hill's estimator of the tail index alpha (P[X > t] ~ t^-alpha; the
- * variance is infinite when alpha <= 2) on each tail, from the tail_k
- * largest excesses over the median:
+ * variance is infinite when alpha <= 2) on each tail, from the k largest
+ * excesses over the median:
  *     1/alpha = (1/k) sum_{i<k} log(y_(i) / y_(k)),
  * y_(0) >= y_(1) >= ... the excesses x - median (upper tail) or median - x
  * (lower tail), in decreasing order.  The median makes it invariant under a
  * shift of the data (an estimator's offset says nothing about its tail);
- * it biases the estimate of a pure Pareto tail downwards (1.8-1.9 for
- * U^-1/2, whose index is 2, at n = 1e4..1e5), on the safe side.  Its
- * standard error is alpha / sqrt(k).  A tail whose k-th excess is not
- * positive (bounded data with many ties, an empty tail) has no Pareto part:
- * +Inf. */
-static double hill(const uint64_t *keys, size_t n, size_t k, double med, int upper)
+ * it biases the estimate of a pure Pareto tail downwards (about 1.6 for
+ * U^-1/2, whose index is 2, at the default k), on the safe side.  k: the
+ * default max(10, min(4 sqrt(n), n/25)) balances the estimate's scatter
+ * (alpha/sqrt(k)) against the bias of light tails, which look heavier the
+ * deeper k reaches (tests/reference/diagnose_rates.py measured both).  An
+ * estimator that is mostly constant (0 off the light source) with rare
+ * large values - the firefly pattern - has fewer than k + 1 values beyond
+ * its median: k is then reduced to their number minus one, if that leaves
+ * at least 10; a tail with fewer has no Pareto part to speak of: +Inf. */
+static double hill(const uint64_t *keys, size_t n, size_t k, double med, int upper, size_t *k_used)
 {
-    /* the (k+1) extreme values, from the sorted keys */
-    double ref = upper ? mcstat__key_double(keys[n - 1 - k]) - med : med - mcstat__key_double(keys[k]);
-    if (!(ref > 0.0))
+    /* values strictly beyond the median */
+    size_t beyond = 0;
+    while (beyond < n && (upper ? mcstat__key_double(keys[n - 1 - beyond]) > med
+                                : mcstat__key_double(keys[beyond]) < med))
+        beyond++;
+    if (beyond < k + 1)
+        k = beyond >= 11 ? beyond - 1 : 0;
+    *k_used = k;
+    if (k == 0)
         return INFINITY;
+    double ref = upper ? mcstat__key_double(keys[n - 1 - k]) - med : med - mcstat__key_double(keys[k]);
     double s = 0.0;
     for (size_t i = 0; i < k; i++) {
         double y = upper ? mcstat__key_double(keys[n - 1 - i]) - med : med - mcstat__key_double(keys[i]);
@@ -40,11 +51,11 @@ static double hill(const uint64_t *keys, size_t n, size_t k, double med, int upp
 
 static size_t default_tail_k(size_t n)
 {
-    size_t k = (size_t)floor(sqrt((double)n));
-    return k < 10 ? 10 : k;
+    double k = fmin(floor(4.0 * sqrt((double)n)), floor((double)n / 25.0));
+    return k < 10.0 ? 10 : (size_t)k;
 }
 
-static int tail_index(const double *x, size_t n, size_t k, double index[2], double *median)
+static int tail_index(const double *x, size_t n, size_t k, double index[2], size_t k_used[2])
 {
     if (!x || !index)
         return MCSTAT_EINVAL;
@@ -64,10 +75,11 @@ static int tail_index(const double *x, size_t n, size_t k, double index[2], doub
     if (st == MCSTAT_OK) {
         double med = n % 2 ? mcstat__key_double(keys[n / 2])
                            : 0.5 * mcstat__key_double(keys[n / 2 - 1]) + 0.5 * mcstat__key_double(keys[n / 2]);
-        index[0] = hill(keys, n, k, med, 0);
-        index[1] = hill(keys, n, k, med, 1);
-        if (median)
-            *median = med;
+        size_t ku[2];
+        index[0] = hill(keys, n, k, med, 0, &ku[0]);
+        index[1] = hill(keys, n, k, med, 1, &ku[1]);
+        if (k_used)
+            k_used[0] = ku[0], k_used[1] = ku[1];
     }
     free(keys);
     return st;
@@ -203,10 +215,11 @@ int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt, m
     d.max_share = dev * dev / (nn - 1.0);
 
     d.tail_k = tk;
-    if ((st = tail_index(x, n, tk, d.tail_index, NULL)))
+    size_t ku[2];
+    if ((st = tail_index(x, n, tk, d.tail_index, ku)))
         return st;
     for (int i = 0; i < 2; i++)
-        d.tail_index_se[i] = d.tail_index[i] / sqrt((double)tk);
+        d.tail_index_se[i] = ku[i] ? d.tail_index[i] / sqrt((double)ku[i]) : NAN;
     d.heavy_tail = fmin(d.tail_index[0], d.tail_index[1]) < o.tail_threshold;
 
     d.k = o.k ? o.k : 1;

@@ -123,7 +123,7 @@ class Diagnostics:
         their standard errors under normality
     tail_index : (lower, upper) Hill estimates from `tail_k` order
         statistics each (inf: no Pareto tail); tail_index_se their errors
-    heavy_tail : bool, a tail index below `tail_threshold` (2.5): infinite
+    heavy_tail : bool, a tail index below `tail_threshold` (2.2): infinite
         or nearly infinite variance ("fireflies")
     max_share : the largest single share of the sum of squares
     k, m : batch size and number of batch means `t_size` refers to
@@ -200,7 +200,7 @@ def _normality(x: np.ndarray, k: int) -> Tuple[int, Optional[float], Optional[fl
 
 
 def diagnose(x: Any, *, k: Optional[int] = None, m: Optional[int] = None, alpha: float = 0.05,
-             tolerance: float = 0.2, tail_k: Optional[int] = None, tail_threshold: float = 2.5,
+             tolerance: float = 0.2, tail_k: Optional[int] = None, tail_threshold: float = 2.2,
              normality: bool = True) -> Diagnostics:
     """Diagnostics of an estimator's primary estimates `x` (1-D).
 
@@ -227,7 +227,8 @@ def diagnose(x: Any, *, k: Optional[int] = None, m: Optional[int] = None, alpha:
         rejection rate (0.2: 0.025 +- 0.005 at alpha = 0.05).
     tail_k : int, optional
         Order statistics per tail for Hill's estimate (default
-        max(10, floor(sqrt(n)))).
+        max(10, min(4 sqrt(n), n // 25)); fewer when fewer values lie
+        beyond the median).
     tail_threshold : float
         heavy_tail below this tail index.
     normality : bool
