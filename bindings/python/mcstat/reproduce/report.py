@@ -113,6 +113,9 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
         L += _radiance(st["radiance"], fig, transcripts.get("radiance", ""))
     if "bugs" in st:
         L += _bugs(st["bugs"], fig, transcripts.get("bugs", ""))
+    if "diagnostics" in st:  # issue 9
+        from . import diagnose
+        L += diagnose.report(st["diagnostics"], transcripts.get("diagnostics", ""))
     if "timing" in results:
         L += _timing(results["timing"], fig, transcripts.get("timing", ""))
 
