@@ -141,6 +141,8 @@ references: python-deps
 	$(PY) tests/reference/make_reference.py
 	Rscript tests/reference/make_rformat.R
 	Rscript tests/reference/make_rblocks_python.R
+	# issue 9: R's binom.test for the binomial meta-test
+	Rscript tests/reference/make_binom_ref.R
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-bench
