@@ -168,6 +168,8 @@ def test_errors():
         mcstat.battery_test(np.array([True, False]), 0.0)
     with pytest.raises(TypeError):
         mcstat.battery_test(3)
+    with pytest.raises(TypeError):
+        mcstat.battery_test(np.array([0, 1, 1]), 0.05)  # flags or p-values?
 
 
 def test_battery_forms_agree():

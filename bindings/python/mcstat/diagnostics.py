@@ -93,6 +93,9 @@ def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, al
         if not (0.0 < alpha < 1.0):
             raise InvalidArgumentError(f"battery_test: alpha must be in (0, 1), got {alpha!r}")
         return binom_test(int(flags.sum()), flags.size, alpha, alternative=alternative, alpha=meta_alpha)
+    if a.dtype.kind in "iu":
+        # 0/1 integers are ambiguous: flags (1 = rejected) or p-values (0 = rejected)?
+        raise TypeError("battery_test: pass reject flags as bool and p-values as float, not integers")
     return _core._battery_test_pvalues(np.ascontiguousarray(a, dtype=float).ravel(), float(alpha), alternative,
                                        float(meta_alpha))
 
