@@ -391,7 +391,8 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
 /* Statuses: MCSTAT_EINVAL (out NULL, bad enum, alpha outside (0,1), p      */
 /* outside [0,1] or NaN, x > n), MCSTAT_ETOOFEW (n == 0), MCSTAT_ETOOBIG     */
 /* (n > 2^53), MCSTAT_ENUMERIC.  Cost: O(log^2 n) incomplete-beta and       */
-/* density evaluations (the critical counts are bisections), ~0.1 ms.       */
+/* density evaluations (the critical counts are bisections): measured       */
+/* 0.02 ms at n = 1e3, 0.1-0.8 ms at n = 1e9 (through Python).              */
 /* ------------------------------------------------------------------------ */
 #define MCSTAT_RESULT_LOG_P_VALUE(r) ((r)->reserved[2])
 
@@ -487,7 +488,7 @@ MCSTAT_API size_t mcstat_sizeof_diag_options(void);
 MCSTAT_API size_t mcstat_sizeof_diagnostics(void);
 
 /* All diagnostics of n primary estimates x; opt may be NULL (defaults).
- * Allocates 16 n bytes (a sort).  Statuses: MCSTAT_EINVAL (NULL x or out,
+ * Allocates 16 n bytes (a radix sort: ~0.15 s per 1e6 values).  Statuses: MCSTAT_EINVAL (NULL x or out,
  * an options size this library does not know, alpha outside (0,1),
  * tolerance outside (0,1), tail_threshold <= 0, k > n), MCSTAT_ETOOFEW
  * (n < 8, n < 2 tail_k + 2, or fewer than 2 batch means), MCSTAT_ENONFINITE,
