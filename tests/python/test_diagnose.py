@@ -184,3 +184,26 @@ def test_errors():
         batch_size_recommend(1.0, 1.0, 10, tolerance=0.0)
     with pytest.raises(mcstat.TooFewObservationsError):
         t_size_edgeworth(1.0, 1.0, 1, 1)
+
+
+def test_recommended_k_lognormal():
+    """Lognormal(0, 0.5) primaries (skewness 1.75), m = 30: the batch means
+    are simulated from the primaries themselves.  Measured: k = 33, tails
+    0.0297 / 0.0189 (the rule is a second-order expansion: slightly
+    optimistic here), against 0.057 / 0.009 at k = 1."""
+    rng = np.random.default_rng(7)
+    d = mcstat.diagnose(rng.lognormal(0, 0.5, 200000), m=30, normality=False)
+    k = d.recommended_k
+    assert 20 <= k <= 50
+    R, mu = 10000, math.exp(0.125)
+    se = math.sqrt(0.025 * 0.975 / R)
+
+    def rates(kk):
+        X = rng.lognormal(0, 0.5, (R, 30, kk)).mean(axis=2)
+        dec = np.asarray(mcstat.t_test(X, mu=mu).decision)
+        return np.mean(dec == "less"), np.mean(dec == "greater")
+
+    less, greater = rates(k)
+    assert abs(less - 0.025) <= 0.005 + 4 * se and abs(greater - 0.025) <= 0.005 + 4 * se
+    less1, _ = rates(1)
+    assert less1 > 0.025 + 0.02
