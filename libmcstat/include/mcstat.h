@@ -488,8 +488,9 @@ MCSTAT_API size_t mcstat_sizeof_diag_options(void);
 MCSTAT_API size_t mcstat_sizeof_diagnostics(void);
 
 /* All diagnostics of n primary estimates x; opt may be NULL (defaults).
- * Allocates 16 n bytes (a radix sort: ~0.15 s per 1e6 values).  Statuses: MCSTAT_EINVAL (NULL x or out,
- * an options size this library does not know, alpha outside (0,1),
+ * Allocates 16 n bytes (a radix sort: ~0.15 s per 1e6 values).  Statuses:
+ * MCSTAT_EINVAL (NULL x or out, an options size this library does not know,
+ * alpha outside (0,1),
  * tolerance outside (0,1), tail_threshold <= 0, k > n), MCSTAT_ETOOFEW
  * (n < 8, n < 2 tail_k + 2, or fewer than 2 batch means), MCSTAT_ENONFINITE,
  * MCSTAT_EDEGENERATE (constant data), MCSTAT_ENOMEM. */

@@ -23,6 +23,11 @@ across a battery of tests.  Errors are `ValueError` subclasses (see
 `mcstat._errors`).  The reference estimators of the paper's case studies
 are in the subpackage `mcstat.estimators`.
 
+Beyond the paper (issue 9): `binom_test` (R's exact binomial test),
+`battery_test` (is a battery's rejection count consistent with its level?)
+and `diagnose` (skewness, kurtosis, heavy tails, the batch size the t test
+needs) in `mcstat.diagnostics`.
+
 One-sided alternatives are claims about the first sample in every test:
 ``ks_test(x, y, alternative="less")`` means x tends to be smaller, which
 SciPy's ``ks_2samp`` and R's ``ks.test`` call "greater".
