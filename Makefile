@@ -12,6 +12,8 @@ PY := $(VENV)/bin/python
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
+# r-mathlib: libRmath (the noncentral t of mcstat_power_*), linked into libmcstat
+APT_PACKAGES += r-mathlib
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
 .PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
@@ -141,6 +143,8 @@ references: python-deps
 	$(PY) tests/reference/make_reference.py
 	Rscript tests/reference/make_rformat.R
 	Rscript tests/reference/make_rblocks_python.R
+	# equivalence (TOST) and power: tests/data/{power,equivalence}_ref.tsv
+	Rscript tests/reference/make_power_ref.R
 	# issue 9: R's binom.test for the binomial meta-test
 	Rscript tests/reference/make_binom_ref.R
 

@@ -159,7 +159,9 @@ enum mcstat_test {
     MCSTAT_TEST_VAR_1 = 3, /* one-sample chi-squared test on the variance */
     MCSTAT_TEST_VAR_2 = 4, /* two-sample F test on the ratio of variances */
     MCSTAT_TEST_KS_2 = 5,  /* two-sample Kolmogorov-Smirnov, unweighted or with Canner's weight */
-    MCSTAT_TEST_BINOM = 6  /* exact binomial test (also the battery meta-test) */
+    MCSTAT_TEST_EQUIV_1 = 6, /* one-sample equivalence (TOST), mcstat_equivalence_test_1 */
+    MCSTAT_TEST_EQUIV_2 = 7, /* Welch two-sample equivalence (TOST), mcstat_equivalence_test_2 */
+    MCSTAT_TEST_BINOM = 8    /* exact binomial test (also the battery meta-test) */
 };
 
 enum mcstat_method {
@@ -252,6 +254,150 @@ MCSTAT_API int mcstat_var_test_2(const double *x, size_t nx, const double *y, si
 MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
                                          double ratio, int alternative, double alpha,
                                          mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Equivalence: two one-sided tests (TOST, Schuirmann 1987).                 */
+/* H0: the mean lies outside the bounds, mean <= mu0 + lower or mean >=      */
+/* mu0 + upper (two-sample: the difference of means outside [lower, upper]); */
+/* H1: it lies strictly inside.  Each bound is tested by a one-sided t test */
+/* at level alpha (the one-sample t, or Welch's t with Welch-Satterthwaite  */
+/* df); equivalence is shown when both reject, i.e. when the 1 - 2 alpha    */
+/* confidence interval lies inside the bounds.  With lower = -eps, upper =  */
+/* eps and mu0 the exact value, "equivalent" is the evidence that the       */
+/* estimator's bias is smaller than eps in magnitude.                        */
+/* Result fields: statistic and p_value are those of the one-sided test     */
+/* with the larger p-value (the TOST p-value is max(p_lower, p_upper));      */
+/* df[0] the t's degrees of freedom; conf_int the 1 - 2 alpha interval;      */
+/* estimate, std_error, n as the t tests; null_value mu0 (0 for two         */
+/* samples); alternative MCSTAT_TWO_SIDED (unused); critical[1] = t(1-alpha, */
+/* df), critical[0] = -critical[1]: equivalent when t_lower > critical[1]   */
+/* and t_upper < critical[0].  reject == 1 means EQUIVALENT (H0 of a        */
+/* difference at least as large as the bounds is rejected); decision is 0   */
+/* then, else -1 when the lower bound's test is the one that failed (the   */
+/* mean may lie at or below the lower bound), +1 when the upper bound's did. */
+/* Reserved fields used:                                                     */
+/*   MCSTAT_RESULT_TOST_T_LOWER(r) reserved[0]  t for H1: mean > lower bound */
+/*   MCSTAT_RESULT_TOST_T_UPPER(r) reserved[1]  t for H1: mean < upper bound */
+/*   MCSTAT_RESULT_TOST_P_LOWER(r) reserved[2]  their one-sided p-values     */
+/*   MCSTAT_RESULT_TOST_P_UPPER(r) reserved[3]                               */
+/*   MCSTAT_RESULT_TOST_LOWER(r)   reserved[4]  the bounds: mu0 + lower and  */
+/*   MCSTAT_RESULT_TOST_UPPER(r)   reserved[5]  mu0 + upper (or lower, upper) */
+/* mcstat_result_format prints both one-sided tests and "equivalent" or     */
+/* "not equivalent" as the decision.                                         */
+/* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0, 0.5), bounds not finite */
+/* or lower >= upper, mu0 not finite), then those of mcstat_t_test_1 / _2.  */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_RESULT_TOST_T_LOWER(r) ((r)->reserved[0])
+#define MCSTAT_RESULT_TOST_T_UPPER(r) ((r)->reserved[1])
+#define MCSTAT_RESULT_TOST_P_LOWER(r) ((r)->reserved[2])
+#define MCSTAT_RESULT_TOST_P_UPPER(r) ((r)->reserved[3])
+#define MCSTAT_RESULT_TOST_LOWER(r) ((r)->reserved[4])
+#define MCSTAT_RESULT_TOST_UPPER(r) ((r)->reserved[5])
+
+/* Is mean(x) within [mu0 + lower, mu0 + upper]?  (lower < upper; typically
+ * lower = -margin < 0 < upper = margin.) */
+MCSTAT_API int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lower,
+                                         double upper, double alpha, mcstat_result *out);
+MCSTAT_API int mcstat_equivalence_test_1_moments(const mcstat_moments *x, double mu0,
+                                                 double lower, double upper, double alpha,
+                                                 mcstat_result *out);
+/* Is mean(x) - mean(y) within [lower, upper]?  (Welch: unequal variances.) */
+MCSTAT_API int mcstat_equivalence_test_2(const double *x, size_t nx, const double *y, size_t ny,
+                                         double lower, double upper, double alpha,
+                                         mcstat_result *out);
+MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
+                                                 double lower, double upper, double alpha,
+                                                 mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Power and sample size.                                                    */
+/* Given all but one of n, effect, alpha and power, mcstat_power_solve finds */
+/* the missing one (as R's power.t.test and statsmodels' solve_power); n is */
+/* the smallest integer whose power reaches the target.  The tests and what */
+/* `effect` means (the statistic's distribution under the alternative):     */
+/*   T_1    one-sample t: d = (mean - mu0)/sd; noncentral t, df n-1,         */
+/*          ncp sqrt(n) d                                                    */
+/*   T_2    two-sample t with n per group and a common sd (R's               */
+/*          power.t.test type = "two.sample"): d = (mean_x - mean_y)/sd;     */
+/*          noncentral t, df 2(n-1), ncp sqrt(n/2) d                          */
+/*   WELCH  Welch's t with nx = n, ny = n_ratio n, sd_y = sd_ratio sd_x:     */
+/*          d = (mean_x - mean_y)/sd_x; noncentral t with the Welch-         */
+/*          Satterthwaite df of the true variances, ncp d/sqrt(1/nx +        */
+/*          sd_ratio^2/ny) (an approximation, checked by simulation in the  */
+/*          tests; ny may be fractional: round it up)                        */
+/*   VAR_1  chi-squared test: rho = sigma^2/sigma0^2 > 0; exact, the         */
+/*          statistic is rho chi^2(n-1)                                      */
+/*   VAR_2  F test with nx = n, ny = n_ratio n: rho = (var_x/var_y)/ratio0;  */
+/*          exact, the statistic is rho F(nx-1, ny-1)                        */
+/* alternative as in the tests (LESS: the effect is negative, rho < 1).     */
+/* Two-sided: strict = 1 (default) counts rejections in both tails, the     */
+/* true rejection probability (R's strict = TRUE); strict = 0 only the tail */
+/* the effect points to (R's default).  Solving for the effect gives the    */
+/* solution on the side the alternative names (d > 0, rho > 1 when two-    */
+/* sided).  Accuracy: chi-squared and F power to ~1e-13 relative; the      */
+/* noncentral t is R's pnt (libRmath), about 1e-12 absolute (not relative:  */
+/* a power below 1e-12 is noise), and for |ncp| > 37.62 or df > 4e5 it is  */
+/* Abramowitz & Stegun 26.7.10's normal approximation, whose error is      */
+/* O(1/df): negligible at df > 4e5; at |ncp| > 37.62 the power is 1 to     */
+/* double precision from df = 2 on (SciPy's nct: 1 - 2.5e-31 at df 2, ncp */
+/* 38), but at df = 1 (n = 2) it is off by 2e-3 (0.99918 for 0.99713).    */
+/* pnt is called so that it never prints (see                               */
+/* src/noncentral.c).                                                        */
+/* ------------------------------------------------------------------------ */
+enum mcstat_power_test {
+    MCSTAT_POWER_T_1 = 1,
+    MCSTAT_POWER_T_2 = 2,
+    MCSTAT_POWER_WELCH = 3,
+    MCSTAT_POWER_VAR_1 = 4,
+    MCSTAT_POWER_VAR_2 = 5
+};
+enum mcstat_power_unknown {
+    MCSTAT_POWER_SOLVE_POWER = 0,
+    MCSTAT_POWER_SOLVE_N = 1,
+    MCSTAT_POWER_SOLVE_EFFECT = 2,
+    MCSTAT_POWER_SOLVE_ALPHA = 3
+};
+
+/* Grows by appending fields: always start from the initialiser (n, effect
+ * and power start at 0: unset, invalid until given). */
+typedef struct mcstat_power_options {
+    uint32_t size;       /* sizeof(mcstat_power_options): set by the initialiser */
+    int32_t test;        /* enum mcstat_power_test; default T_1 */
+    int32_t alternative; /* enum mcstat_alternative; default TWO_SIDED */
+    int32_t strict;      /* two-sided: 1 both tails (default), 0 the effect's tail */
+    double n;            /* observations (per group for T_2, of x for WELCH and VAR_2), >= 2 */
+    double n_ratio;      /* WELCH, VAR_2: ny = n_ratio n (ny >= 2); default 1 */
+    double sd_ratio;     /* WELCH: sd_y / sd_x > 0; default 1 */
+    double effect;       /* d (t tests, finite) or rho (variance tests, > 0) */
+    double alpha;        /* significance level in (0, 1); default 0.05 */
+    double power;        /* in (0, 1) */
+    double reserved[4];  /* zero */
+} mcstat_power_options;
+
+#define MCSTAT_POWER_OPTIONS_INIT \
+    {sizeof(mcstat_power_options), MCSTAT_POWER_T_1, MCSTAT_TWO_SIDED, 1, 0.0, 1.0, 1.0, 0.0, \
+     0.05, 0.0, {0.0, 0.0, 0.0, 0.0}}
+
+/* Sets *o to MCSTAT_POWER_OPTIONS_INIT.  MCSTAT_EINVAL for NULL. */
+MCSTAT_API int mcstat_power_options_init(mcstat_power_options *o);
+MCSTAT_API size_t mcstat_sizeof_power_options(void);
+/* *power <- the power at o->n, o->effect, o->alpha (o->power is ignored).
+ * MCSTAT_EINVAL (NULL, bad enum or size, n < 2, ny < 2, an effect out of
+ * its domain, alpha outside (0, 1)), MCSTAT_ENUMERIC. */
+MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power);
+/* *out <- *o with the field named by `unknown` (enum mcstat_power_unknown)
+ * solved for; the other three must be valid (the unknown's field is
+ * ignored).  Solving for n also sets out->power to the power at that n
+ * (>= the target).  MCSTAT_EINVAL as above, and when no value reaches the
+ * power (an effect of 0; a power at or below what alpha alone gives; n
+ * beyond 1e15); MCSTAT_ENUMERIC. */
+MCSTAT_API int mcstat_power_solve(const mcstat_power_options *o, int unknown,
+                                  mcstat_power_options *out);
+/* R's print.power.htest block ("Two-sample t test power calculation", the
+ * named values aligned, NOTE lines) for a solved *o, into buf as
+ * mcstat_result_format does.  MCSTAT_EINVAL, MCSTAT_EBUFSIZE. */
+MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, size_t size,
+                                   size_t *length);
 
 /* ------------------------------------------------------------------------ */
 /* Two-sample Kolmogorov-Smirnov test (section 2.5, ERRATA 1-3, 7).          */
@@ -592,6 +738,76 @@ MCSTAT_API int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_strid
                                       int alternative, double alpha, unsigned flags, mcstat_result *out,
                                       int32_t *status);
 
+
+/* ------------------------------------------------------------------------ */
+/* Arrays of accumulators: one mcstat_moments per pixel.                     */
+/* A render farm keeps one accumulator per pixel (an array of `rows` structs */
+/* the caller owns, row i = pixel i), adds every rendered image or batch of  */
+/* images into it, ships it as bytes, merges arrays element-wise, and tests  */
+/* every pixel.  Adding a batch is "add_array on a fresh accumulator, then   */
+/* merge", so pushing batches A then B on one machine gives bit for bit what */
+/* pushing A and B on two machines and merging the second into the first    */
+/* gives: a fixed merge order reproduces a single-machine run exactly.      */
+/* No allocation; disjoint row ranges may run on different threads.          */
+/* ------------------------------------------------------------------------ */
+
+/* Empties m[0..rows).  MCSTAT_EINVAL for m NULL with rows > 0. */
+MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
+
+/* Adds n values to each of rows accumulators: row i's values are the n
+ * contiguous doubles at x + i * x_stride (strides in elements), and m[i]
+ * becomes exactly mcstat_moments_merge(m[i], A) where A is
+ * mcstat_moments_add_array on a fresh accumulator of those values.  One
+ * image with one value per pixel is n = 1, x_stride = 1; a stack of k
+ * images stored pixel-major (k values per pixel) is n = k, x_stride = k.
+ * flags: MCSTAT_ROWS_OMIT_NAN skips NaN values (+-Inf remains an error).
+ * status[i] (may be NULL) receives row i's status; a row that fails
+ * (MCSTAT_ENONFINITE) is left unchanged and the other rows are still added.
+ * Returns MCSTAT_OK, the status of the first row that failed, or
+ * MCSTAT_EINVAL (nothing changed) for NULL pointers, unknown flags or an
+ * uninitialised accumulator. */
+MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, size_t n,
+                                       size_t x_stride, unsigned flags, int32_t *status);
+
+/* dst[i] <- dst[i] merged with src[i], for i < rows (mcstat_moments_merge
+ * element-wise).  src may equal dst; the arrays must not otherwise overlap.
+ * MCSTAT_EINVAL (nothing changed) for NULL pointers or an uninitialised
+ * accumulator in either array. */
+MCSTAT_API int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows);
+
+/* The array as rows * MCSTAT_MOMENTS_BYTES bytes: the records of
+ * mcstat_moments_to_bytes concatenated in row order, no header (each record
+ * carries its own magic, version and checksum; the count is size / 96; the
+ * image's shape is the caller's).  MCSTAT_EBUFSIZE when size is smaller,
+ * MCSTAT_EINVAL for NULL pointers or an uninitialised accumulator. */
+MCSTAT_API int mcstat_moments_to_bytes_rows(const mcstat_moments *m, size_t rows, unsigned char *buf,
+                                            size_t size);
+/* Reads rows accumulators from exactly rows * MCSTAT_MOMENTS_BYTES bytes.
+ * MCSTAT_ECORRUPT (m unchanged) when size differs or any record is corrupt
+ * (see mcstat_moments_from_bytes); MCSTAT_EINVAL for NULL pointers. */
+MCSTAT_API int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t size, size_t rows,
+                                              mcstat_moments *m);
+
+/* The tests on arrays of accumulators: out[i] is bit for bit the
+ * mcstat_*_moments call on x[i] (and y[i]), status[i] (may be NULL) its
+ * status, with the conventions of the row-wise tests above: a failed row
+ * gets NaN fields and the others are still computed, critical values are
+ * solved once for rows of equal degrees of freedom, MCSTAT_ROWS_NO_INTERVALS
+ * skips critical values and confidence intervals.  MCSTAT_ROWS_OMIT_NAN has
+ * no meaning here and is MCSTAT_EINVAL.  Returns MCSTAT_OK when every row
+ * succeeded, else the first failing row's status; MCSTAT_EINVAL (nothing
+ * written) for NULL pointers or unknown flags. */
+MCSTAT_API int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative,
+                                            double alpha, unsigned flags, mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                                            double mu0, int alternative, double alpha, unsigned flags,
+                                            mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2,
+                                              int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                              int32_t *status);
+MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                                              double ratio, int alternative, double alpha, unsigned flags,
+                                              mcstat_result *out, int32_t *status);
 
 /* ------------------------------------------------------------------------ */
 /* Buffered per-thread accumulator: checks inside a renderer.                */

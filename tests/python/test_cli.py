@@ -96,6 +96,33 @@ def test_paper_figure4_diagonal_and_fields(paper):
     assert cols["method"] == "Welch Two Sample t-test"
 
 
+def test_paper_equivalence_and_sample_size(paper):
+    """Beyond the paper: TOST against Lambert and the samples needed to see a bias."""
+    rec = paper["res"]["studies"]["irradiance"]["receivers"][0]
+    eq = rec["equivalence"]
+    E = rec["lambert"]
+    assert eq["margins"] == [0.01, 0.001] and eq["biases"] == [0.01, 0.001] and eq["power"] == 0.9
+    k = paper["res"]["studies"]["irradiance"]["k"]
+    for m in "UCAS":
+        e = eq["estimators"][m]
+        one = e["equivalence"][0]
+        # the decision is the interval inside the margin (TOST's duality), and it re-runs identically
+        lo, hi = one["conf_int"]
+        assert one["equivalent"] == (E * (1 - 0.01) < lo and hi < E * (1 + 0.01))
+        # n scales as 1/bias^2: a 10x smaller bias needs ~100x the samples
+        n1, n01 = (q["n_primary"] for q in e["sample_size"])
+        assert 95 < n01 / n1 < 105
+        assert e["sd_primary_estimated"] == pytest.approx(rec["sd_primary_estimated"][m], rel=1e-12)
+        assert e["n_primary"] == e["n_secondary"] * k
+    # S (the best estimator) is shown within 1% of E in the quick budget, and needs the fewest samples
+    assert eq["estimators"]["S"]["equivalence"][0]["equivalent"]
+    need = {m: eq["estimators"][m]["sample_size"][1]["n_primary"] for m in "UCAS"}
+    assert need["S"] < need["A"] < need["C"] < need["U"]
+    report = open(os.path.join(paper["dir"], "report.md"), encoding="utf-8").read()
+    assert "Is the bias small? Equivalence and sample size" in report
+    assert "Equivalence with Lambert's formula (TOST" in paper["out"]
+
+
 def test_paper_bugs_detected(paper):
     b = paper["res"]["studies"]["bugs"]["receivers"][0]["summary"]
     for bug in ("no_cosine", "barycentric", "no_jacobian"):
@@ -221,6 +248,7 @@ def test_two_triangle_scene(two_triangles):
     res = two_triangles["res"]
     rec = res["studies"]["irradiance"]["receivers"][0]
     assert rec["one_sample"] is None and rec["lambert"] is None
+    assert "equivalence" not in rec  # stated relative to an exact E, which this scene lacks
     assert rec["matrix"]["estimators"] == ["C", "A", "S"]  # only the listed estimators run
     assert set(rec["against_trusted"]) == {"C", "A"}
     assert all(s["binom_pvalue"] >= 0.001 for s in rec["against_trusted"].values())

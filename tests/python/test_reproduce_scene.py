@@ -162,12 +162,15 @@ def left(plan, study):
 
 def test_plan_of_the_paper_scene():
     p = Plan(load_scene(None))
-    assert [s["study"] for s in p.steps] == ["irradiance", "irradiance", "sampling", "sampling", "radiance", "bugs",
-                                             "timing", "timing", "diagnostics", "diagnostics"]
+    assert [s["study"] for s in p.steps] == ["irradiance", "irradiance", "irradiance", "sampling", "sampling",
+                                             "radiance", "bugs", "timing", "timing", "diagnostics", "diagnostics"]
     # diagnostics: the receiver's irradiance estimators and the BRDF 3.3 tests
     assert [s["target"] for s in steps(p, "diagnostics")] == ["origin", "ward"]
     assert [s["target"] for s in left(p, "diagnostics")] == ["ashikhmin_shirley"]
     assert "Lambert" in steps(p, "irradiance")[0]["what"]
+    # beyond the paper: equivalence and sample sizes against Lambert
+    assert "equivalence (TOST)" in steps(p, "irradiance")[1]["what"]
+    assert "0.1% bias at power 0.9" in steps(p, "irradiance")[1]["what"]
     # 3.3 on Ward only, as in the paper, and said so
     assert [s["target"] for s in left(p, "radiance")] == ["ashikhmin_shirley"]
     assert p.quick_changes == [] and not p.quick
@@ -189,6 +192,8 @@ def test_plan_rules():
     p = Plan(load_scene(os.path.join(SCENES, "two_triangles.toml")))
     assert all("Lambert" not in s["what"] for s in steps(p, "irradiance"))
     assert any("2 emitter triangles" in s["reason"] for s in left(p, "irradiance"))
+    assert any(s["what"].startswith("equivalence with Lambert") and "exact irradiance" in s["reason"]
+               for s in left(p, "irradiance"))
     assert all(r["lambert"] is None for r in p.receivers)
     # no A: no bugs; A trusted: no bugs
     p = Plan(parse_scene(scene_with(estimators=["U", "S"])))

@@ -19,7 +19,9 @@ less / equal / greater decision), or a `BatchResult` of arrays for N-D
 input (one test per row, e.g. per pixel).  `Moments` accumulates samples
 in streams and merges across threads and machines; `batch_means` makes
 secondary estimates; `KSCache` shares simulated K-S null distributions
-across a battery of tests.  Errors are `ValueError` subclasses (see
+across a battery of tests.  `MomentsArray` keeps one accumulator per
+pixel (render farms: push images, ship bytes, merge, test per pixel).
+Errors are `ValueError` subclasses (see
 `mcstat._errors`).  The reference estimators of the paper's case studies
 are in the subpackage `mcstat.estimators`.
 
@@ -64,6 +66,18 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
 )
 from ._result import BatchResult
 
+# Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
+from ._core import MomentsArray  # noqa: E402
+# Equivalence (TOST), power and sample size (mcstat._power).
+from ._power import (  # noqa: E402
+    EquivalenceResult,
+    KSPowerResult,
+    PowerResult,
+    equivalence_test,
+    ks_power,
+    ks_sample_size,
+    power,
+)
 # issue 9: the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 
@@ -78,6 +92,7 @@ __all__ = [
     "batch_means",
     "TestResult",
     "BatchResult",
+    "MomentsArray",
     "set_num_threads",
     "get_num_threads",
     "binom_test",
@@ -85,4 +100,12 @@ __all__ = [
     "diagnose",
     "Diagnostics",
     *_errors.__all__,
+    # equivalence, power and sample size
+    "equivalence_test",
+    "EquivalenceResult",
+    "power",
+    "PowerResult",
+    "ks_power",
+    "ks_sample_size",
+    "KSPowerResult",
 ]

@@ -28,6 +28,11 @@ from typing import Any, Dict, List, Optional
 from .. import estimators as est
 from .scene import Scene
 
+
+def equivalence_what() -> str:
+    from .equivalence import WHAT  # equivalence.py imports the package; plan.py stays light
+    return WHAT
+
 SECTIONS = {"irradiance": "3.1", "sampling": "3.2", "radiance": "3.3", "bugs": "3.4", "timing": "time"}
 SECTIONS["diagnostics"] = "diag"  # issue 9
 TITLES = {
@@ -140,12 +145,21 @@ class Plan:
                 self._add("irradiance", r["name"],
                           f"one-sample t tests of {ests} against Lambert's formula (E = {r['lambert']:.6g}); "
                           f"{p['runs']} runs of {p['secondary']} secondary estimates (means of k = {k})")
+                if p["alpha"] < 0.5:
+                    self._add("irradiance", r["name"], equivalence_what())
+                else:
+                    self._leave("irradiance", r["name"], "equivalence and sample sizes",
+                                f"alpha = {p['alpha']:g}: an equivalence test needs alpha < 0.5 (its interval has "
+                                "level 1 - 2 alpha)")
             else:
                 self._leave("irradiance", r["name"], "one-sample tests against Lambert's formula",
                             f"the scene has {sc.n_emitters} emitter triangles: Lambert's formula is exact for one "
                             "unoccluded triangle, and nothing here checks that the triangles do not occlude one "
                             f"another, so no analytic value is trusted; the estimators are compared with the "
                             f"trusted estimator {sc.trusted} (each run per triangle and summed) instead")
+                self._leave("irradiance", r["name"], "equivalence with Lambert's formula and sample sizes",
+                            "they are stated relative to the exact irradiance, which a scene of several triangles "
+                            "does not have")
             if len(sc.estimators) >= 2:
                 self._add("irradiance", r["name"],
                           f"figure-4 matrix: Welch and F tests of every pair of {ests}, {p['runs']} runs; "

@@ -180,7 +180,42 @@ def _irradiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
                   f"estimates rejects equal variances at alpha = {res['alpha']:g}, '~' where it does not). Standard "
                   "deviation of one primary estimate, estimated as s.d.(secondary) x sqrt(k): "
                   + ", ".join(f"{m} {r['sd_primary_estimated'][m]:.4g}" for m in o["order"]) + ".", ""]
+        if r.get("equivalence"):
+            L += _equivalence(r["equivalence"], r["lambert"])
     L += _details("R-style output of 3.1", transcript)
+    return L
+
+
+def _equivalence(eq: Dict[str, Any], E: float) -> List[str]:
+    """Beyond the paper: is the bias small (TOST), and how many samples would find a small one (power)."""
+    margins, biases = eq["margins"], eq["biases"]
+    L = ["#### Is the bias small? Equivalence and sample size (beyond the paper)", "",
+         "The t tests above can only fail to find a bias. An equivalence test (two one-sided t tests, TOST) turns "
+         f"the question round: H0 |bias| >= margin against H1 |bias| < margin, at alpha = {eq['alpha']:g}, on the "
+         "pooled secondary estimates; **yes** is evidence that the bias is smaller than the margin (the "
+         f"{1 - 2 * eq['alpha']:.0%} confidence interval of the mean, shown relative to E, lies inside "
+         "+-margin). The last columns give the number of primary estimates a one-sample t test needs to detect a "
+         f"bias of that size with probability {eq['power']:g} (`mcstat.power`), from the estimator's measured "
+         "variance.", "",
+         "| estimator | (mean - E)/E | " + " | ".join(f"bias < {m:.1%} of E? (p)" for m in margins) + " | "
+         + f"{1 - 2 * eq['alpha']:.0%} CI of (mean - E)/E | "
+         + " | ".join(f"n to detect {b:.1%}" for b in biases) + " |",
+         "|---|---|" + "---|" * len(margins) + "---|" + "---|" * len(biases)]
+    for m, e in eq["estimators"].items():
+        cells = []
+        ci = "-"
+        for q in e["equivalence"]:
+            if "error" in q:
+                cells.append("test failed")
+                continue
+            cells.append(f"{'**yes**' if q['equivalent'] else 'no'} ({_p(q['pvalue'])})")
+            ci = f"[{q['conf_int_relative'][0]:.2e}, {q['conf_int_relative'][1]:.2e}]"
+        ns = [f"{q['n_primary']:.3g}" if q["n_primary"] else "-" for q in e["sample_size"]]
+        L += [f"| {m} | {e['bias_relative']:.2e} | " + " | ".join(cells) + f" | {ci} | " + " | ".join(ns) + " |"]
+    first = next(iter(eq["estimators"].values()), None)
+    if first:
+        L += ["", f"Each estimator contributed {first['n_primary']} primary estimates ({first['n_secondary']} "
+                  "secondary ones) to these tests.", ""]
     return L
 
 
