@@ -145,6 +145,8 @@ references: python-deps
 	Rscript tests/reference/make_rblocks_python.R
 	# equivalence (TOST) and power: tests/data/{power,equivalence}_ref.tsv
 	Rscript tests/reference/make_power_ref.R
+	# issue 9: R's binom.test for the binomial meta-test
+	Rscript tests/reference/make_binom_ref.R
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-bench

@@ -101,6 +101,10 @@ static int describe(const mcstat_result *r, test_text *t)
         *t = (test_text){"F test to compare two variances", "F", {"num df", "denom df"}, "ratio of variances",
                          {"ratio of variances", NULL}, 1};
         return 1;
+    case MCSTAT_TEST_BINOM: /* R's binom.test: its parameter is n, not a df */
+        *t = (test_text){"Exact binomial test", "number of successes", {"number of trials", NULL},
+                         "probability of success", {"probability of success", NULL}, 1};
+        return 1;
     default:
         return 0;
     }
@@ -229,7 +233,7 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
     if (!x_name)
         x_name = "x";
     if (!y_name)
-        y_name = "y";
+        y_name = r->test == MCSTAT_TEST_BINOM ? "n" : "y";
     sbuf s = {buf, size, 0};
     if (size > 0)
         buf[0] = '\0';
@@ -247,7 +251,8 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
     mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
     ll += (size_t)snprintf(line + ll, sizeof line - ll, "%s = %s", tt.stat_name, a);
     for (int k = 0; k < 2 && tt.param_name[k]; k++) {
-        mcstat__rformat1(r->df[k], R_DIGITS - 2, a, sizeof a);
+        double par = r->test == MCSTAT_TEST_BINOM ? (double)r->n[0] : r->df[k];
+        mcstat__rformat1(par, R_DIGITS - 2, a, sizeof a);
         ll += (size_t)snprintf(line + ll, sizeof line - ll, ", %s = %s", tt.param_name[k], a);
     }
     mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);

@@ -155,6 +155,26 @@ def test_paper_radiance_counts(paper):
     assert b["binomial"]["x"] == b["rejections"] and b["binomial"]["p0"] == 0.01
 
 
+def test_paper_diagnostics(paper):
+    """Issue 9: every estimator the studies test is diagnosed; none of the
+    paper's has a heavy tail, the scene's k = 100 suffices for U, C, A, S,
+    and the report has the section."""
+    dg = paper["res"]["studies"]["diagnostics"]
+    rec = dg["receivers"][0]
+    assert list(rec["estimators"]) == ["U", "C", "A", "S"] and rec["k"] == 100 and rec["m"] == 50
+    for m, d in rec["estimators"].items():
+        assert not d["heavy_tail"] and d["study_k_ok"] and d["recommended_k"] <= 100, m
+        assert d["n"] == dg["n"] == 20000 and d["batch_k"] == 100 and d["batch_m"] == 200
+        assert 0 <= d["shapiro_pvalue"] <= 1 and d["skewness_se"] > 0
+    assert rec["estimators"]["U"]["skewness"] > 1  # U: a few large cosines, right-skewed
+    ward = dg["brdfs"][0]
+    assert ward["name"] == "ward" and list(ward["estimators"]) == ["sampling", "rejection"] and ward["alpha"] == 0.01
+    assert not any(d["heavy_tail"] for d in ward["estimators"].values())
+    report = open(os.path.join(paper["dir"], "report.md"), encoding="utf-8").read()
+    assert "## Estimator diagnostics" in report and "| rejection |" in report
+    assert sum(f.startswith("Diagnostics, ") for f in paper["res"]["findings"]) == 2
+
+
 def test_paper_outputs(paper):
     d, res, out = paper["dir"], paper["res"], paper["out"]
     report = open(os.path.join(d, "report.md"), encoding="utf-8").read()
@@ -212,11 +232,12 @@ def test_another_seed_other_numbers(tmp_path):
 
 def test_no_brdf_scene(no_brdf):
     res, out = no_brdf["res"], no_brdf["out"]
-    assert set(res["studies"]) == {"irradiance", "bugs"} and "ks" not in res["timing"]
+    assert set(res["studies"]) == {"irradiance", "bugs", "diagnostics"} and "ks" not in res["timing"]
     left = {(s["study"], s["reason"]) for s in res["plan"]["left_out"]}
     assert ("sampling", "the scene has no BRDFs") in left and ("radiance", "the scene has no BRDFs") in left
+    assert ("diagnostics", "the scene has no BRDFs") in left and res["studies"]["diagnostics"]["brdfs"] == []
     report = open(os.path.join(no_brdf["dir"], "report.md"), encoding="utf-8").read()
-    assert report.count("the scene has no BRDFs") == 2 and "BRDF sampling (3.2)" in report
+    assert report.count("the scene has no BRDFs") == 3 and "BRDF sampling (3.2)" in report
     assert "the scene has no BRDFs" in out
     assert [r["name"] for r in res["studies"]["irradiance"]["receivers"]] == ["floor", "wall"]
     for r in res["studies"]["irradiance"]["receivers"]:
@@ -344,5 +365,7 @@ def test_degenerate_samples_do_not_stop_the_run(tmp_path):
     assert u["rate"] is None and u["failed"] == 20 and u["rejections"] == 0
     assert rec[0]["one_sample"]["S"]["tests"] == 20
     assert any("no test of U, C could run" in f for f in res["findings"])
+    dg = res["studies"]["diagnostics"]["receivers"][0]["estimators"]
+    assert "constant" in dg["U"]["error"] and "error" not in dg["S"]  # recorded, and the run goes on
     assert any(s["target"] == "blind" and "horizon" in s["reason"] for s in res["plan"]["left_out"])
     assert "DegenerateDataError" in out

@@ -163,7 +163,10 @@ def left(plan, study):
 def test_plan_of_the_paper_scene():
     p = Plan(load_scene(None))
     assert [s["study"] for s in p.steps] == ["irradiance", "irradiance", "irradiance", "sampling", "sampling",
-                                             "radiance", "bugs", "timing", "timing"]
+                                             "radiance", "bugs", "timing", "timing", "diagnostics", "diagnostics"]
+    # diagnostics: the receiver's irradiance estimators and the BRDF 3.3 tests
+    assert [s["target"] for s in steps(p, "diagnostics")] == ["origin", "ward"]
+    assert [s["target"] for s in left(p, "diagnostics")] == ["ashikhmin_shirley"]
     assert "Lambert" in steps(p, "irradiance")[0]["what"]
     # beyond the paper: equivalence and sample sizes against Lambert
     assert "equivalence (TOST)" in steps(p, "irradiance")[1]["what"]
@@ -200,6 +203,14 @@ def test_plan_rules():
     # a receiver that sees nothing
     p = Plan(parse_scene(scene_with(receivers__0__normal=[0, 0, -1])))
     assert not steps(p, "irradiance") and "horizon" in left(p, "irradiance")[0]["reason"]
+    # diagnostics: no BRDF, a blind receiver, switched off
+    p = Plan(load_scene(os.path.join(SCENES, "minimal.json")))
+    assert [s["reason"] for s in left(p, "diagnostics")] == ["the scene has no BRDFs"]
+    p = Plan(parse_scene(scene_with(receivers__0__normal=[0, 0, -1])))
+    assert "horizon" in left(p, "diagnostics")[0]["reason"]
+    p = Plan(parse_scene(scene_with(studies__diagnostics__enabled=False)))
+    assert not steps(p, "diagnostics")
+    assert Plan(load_scene(None), quick=True).params["diagnostics"]["n"] == 20000
     # switched off
     p = Plan(parse_scene(scene_with(studies__bugs__enabled=False)))
     assert left(p, "bugs")[0]["reason"] == "disabled in the scene (studies.bugs.enabled = false)"

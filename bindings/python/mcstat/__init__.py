@@ -25,6 +25,11 @@ Errors are `ValueError` subclasses (see
 `mcstat._errors`).  The reference estimators of the paper's case studies
 are in the subpackage `mcstat.estimators`.
 
+Beyond the paper (issue 9): `binom_test` (R's exact binomial test),
+`battery_test` (is a battery's rejection count consistent with its level?)
+and `diagnose` (skewness, kurtosis, heavy tails, the batch size the t test
+needs) in `mcstat.diagnostics`.
+
 One-sided alternatives are claims about the first sample in every test:
 ``ks_test(x, y, alternative="less")`` means x tends to be smaller, which
 SciPy's ``ks_2samp`` and R's ``ks.test`` call "greater".
@@ -73,6 +78,8 @@ from ._power import (  # noqa: E402
     ks_sample_size,
     power,
 )
+# issue 9: the binomial meta-test and estimator diagnostics
+from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 
 __version__ = "0.1.0"
 
@@ -88,6 +95,10 @@ __all__ = [
     "MomentsArray",
     "set_num_threads",
     "get_num_threads",
+    "binom_test",
+    "battery_test",
+    "diagnose",
+    "Diagnostics",
     *_errors.__all__,
     # equivalence, power and sample size
     "equivalence_test",

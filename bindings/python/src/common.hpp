@@ -89,6 +89,8 @@ void register_ks(py::module_ &mod);
 
 // ---- equivalence and power (power.cpp) -------------------------------------------
 void register_power(py::module_ &mod);
+// ---- binomial test, battery meta-test, diagnostics (diagnostics.cpp) --------
+void register_diagnostics(py::module_ &mod);
 
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);

@@ -37,6 +37,7 @@ std::string method_name(const mcstat_result &r)
         size_t a = t.find('\t'), b = t.find('\n', a == std::string::npos ? 0 : a);
         return a == std::string::npos ? t : t.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
     }
+    case MCSTAT_TEST_BINOM: return "Exact binomial test";
     default: return "unknown";
     }
 }
@@ -109,11 +110,14 @@ Attributes
 statistic : float
     t, X-squared or F; for `ks_test` D = sup |F - G| (weight "none") or
     Canner's D2 (weight "canner"), one-sided versions for "less" and
-    "greater".
+    "greater"; for `binom_test` the number of successes.
 df : float or tuple of float
     Degrees of freedom; ``(num, denom)`` for the F test.
 pvalue : float
     p-value for `alternative`.
+log_pvalue : float
+    Its natural logarithm; `binom_test` computes it directly, so it stays
+    finite where `pvalue` underflows to 0.
 conf_int : tuple of float
     ``(low, high)`` confidence interval at level ``1 - alpha`` for the
     tested parameter (mean, difference in means, variance or ratio of
@@ -171,6 +175,10 @@ y_name)`` names them.
             return two_df(s.r) ? pair(s.r.df[0], s.r.df[1]) : py::float_(s.r.df[0]);
         })
         .def_property_readonly("pvalue", [](const Result &s) { return s.r.p_value; })
+        .def_property_readonly("log_pvalue", [](const Result &s) {
+            // the binomial test keeps it where the p-value underflows
+            return s.r.test == MCSTAT_TEST_BINOM ? MCSTAT_RESULT_LOG_P_VALUE(&s.r) : std::log(s.r.p_value);
+        })
         .def_property_readonly("conf_int", [](const Result &s) { return pair(s.r.conf_int[0], s.r.conf_int[1]); })
         .def_property_readonly("estimate", [](const Result &s) -> py::object {
             return two_estimates(s.r) ? pair(s.r.estimate[0], s.r.estimate[1]) : py::float_(s.r.estimate[0]);

@@ -34,12 +34,14 @@ def equivalence_what() -> str:
     return WHAT
 
 SECTIONS = {"irradiance": "3.1", "sampling": "3.2", "radiance": "3.3", "bugs": "3.4", "timing": "time"}
+SECTIONS["diagnostics"] = "diag"  # issue 9
 TITLES = {
     "irradiance": "Irradiance estimators (3.1)",
     "sampling": "BRDF sampling (3.2)",
     "radiance": "Reflected radiance (3.3)",
     "bugs": "Planted bugs (3.4)",
     "timing": "Error against run time",
+    "diagnostics": "Estimator diagnostics",
 }
 
 #: --quick: (study, field, cap); list fields keep the values <= cap (at least the first).
@@ -53,6 +55,7 @@ QUICK = [
     ("timing", "reps", 6),
     ("timing", "ks_n_sim", 9999),
     ("timing", "ks_reps", 5),
+    ("diagnostics", "n", 20000),
 ]
 
 
@@ -85,6 +88,7 @@ class Plan:
                                      "outgoing directions, and a binomial test of the fraction of equal means")
         self._bugs()
         self._timing()
+        self._diagnostics()
 
     # -- helpers ---------------------------------------------------------------
     def _apply_quick(self) -> None:
@@ -226,6 +230,34 @@ class Plan:
         else:
             self._leave("timing", "ks", "simulated K-S p-value error against run time",
                         "section 3.2 does not run, so there are no direction samples to test")
+
+    def _diagnostics(self) -> None:
+        """Issue 9: shape, tails and batch size of every estimator the other
+        studies test (irradiance at each receiver that sees an emitter; both
+        reflected-radiance estimators of the BRDFs section 3.3 tests)."""
+        if self._disabled("diagnostics"):
+            return
+        sc, n = self.scene, self.params["diagnostics"]["n"]
+        for r in self.receivers:
+            if not r["visible"]:
+                self._leave("diagnostics", r["name"], "diagnostics of the irradiance estimators",
+                            "no emitter is above this receiver's horizon: every estimator returns 0")
+                continue
+            self._add("diagnostics", r["name"], f"skewness, kurtosis, tail index, normality of batch means and "
+                                                f"recommended batch size of {', '.join(sc.estimators)} ({n} primary "
+                                                "estimates each)")
+        if not sc.brdfs:
+            self._leave("diagnostics", "BRDFs", "diagnostics of the reflected-radiance estimators",
+                        "the scene has no BRDFs")
+            return
+        tested = self.brdfs_for("radiance")
+        for b in sc.brdfs:
+            if b["name"] in tested:
+                self._add("diagnostics", b["name"], f"the same for BRDF sampling and rejection sampling of the "
+                                                    f"reflected radiance at the BRDF's outgoing direction ({n} each)")
+            else:
+                self._leave("diagnostics", b["name"], "diagnostics of the reflected-radiance estimators",
+                            "section 3.3 does not test this BRDF")
 
     # -- output ----------------------------------------------------------------
     def to_dict(self) -> Dict[str, Any]:

@@ -70,7 +70,8 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
     L += [f"- {f}" for f in all_findings] or ["- (no study ran)"]
     L += ["", "These sentences are computed from the runs (see each section); a rate is a count of rejections among "
               "repeated tests, given with its exact 95% (Clopper-Pearson) interval, and 'consistent with alpha' means "
-              "an exact binomial test of rate = alpha gives p >= 0.01.", ""]
+              "the battery meta-test (libmcstat's exact binomial test of rate = alpha, `mcstat.battery_test`) "
+              "gives p >= 0.01.", ""]
 
     # plan
     plan = results["plan"]
@@ -113,6 +114,9 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
         L += _radiance(st["radiance"], fig, transcripts.get("radiance", ""))
     if "bugs" in st:
         L += _bugs(st["bugs"], fig, transcripts.get("bugs", ""))
+    if "diagnostics" in st:  # issue 9
+        from . import diagnose
+        L += diagnose.report(st["diagnostics"], transcripts.get("diagnostics", ""))
     if "timing" in results:
         L += _timing(results["timing"], fig, transcripts.get("timing", ""))
 
