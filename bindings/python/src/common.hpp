@@ -86,6 +86,9 @@ py::object make_result(const Result &r);
 // ---- the K-S test (ks.cpp) ---------------------------------------------------
 void register_ks(py::module_ &mod);
 
+// ---- chi-squared goodness of fit (chisq.cpp) ------------------------------------
+void register_chisq(py::module_ &mod);
+
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);
 
