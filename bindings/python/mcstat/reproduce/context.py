@@ -21,7 +21,8 @@ from typing import Any, Callable, Dict, Optional, TextIO
 import numpy as np
 
 #: Fixed numbers of the studies in the streams' keys (never reuse one).
-STUDY_KEYS = {"irradiance": 1, "sampling": 2, "radiance": 3, "bugs": 4, "timing": 5}
+STUDY_KEYS = {"irradiance": 1, "sampling": 2, "radiance": 3, "bugs": 4, "timing": 5,
+              "sampler_bugs": 6}  # issue 9
 
 
 class _NoBar:
