@@ -440,13 +440,15 @@ MCEST_API int mcest_brdf_sample_bug(const mcest_brdf_plan *plan, int bug, uint64
 /* by adaptive cubature (7x7 against 4x4 Gauss-Legendre, splitting the worst */
 /* rectangle; a cell straddling the horizon in two parts, the cosine part of */
 /* a mixture jumping there) to max(rel_tol prob[c], 1e-3 rel_tol/2^depth);   */
-/* *err (may be NULL) receives the sum of the estimated errors.  The target */
-/* is not always reached: a half-vector sampler's density has an integrable */
-/* singularity at wi = -wo (half vectors perpendicular to wo) where the      */
-/* estimate stalls near 1e-7 in total (the error estimate |G7 - G4| itself   */
-/* overstates G7's error: the sum of the probabilities is 1 to 5e-10 there). */
-/* That bounds the relative bias of an expected count far below what 1e9    */
-/* directions could resolve.  The sum of the probabilities checks the        */
+/* *err (may be NULL) receives the sum of the estimated errors.  A half-     */
+/* vector sampler's density is singular at wi = -wo (like 1/|wi + wo|, with  */
+/* a jump through the point): the cell holding that point, or passing near  */
+/* it, is integrated as eight triangles fanning around it by the Duffy      */
+/* transform.  Measured on the paper scene's lobes: the probabilities sum   */
+/* to 1 within 3e-10 at depths 4-10 (Ward at 70 degrees: within 2e-7 at      */
+/* depths 8 and 12, where the error estimate says 4e-9: a kink next to the   */
+/* singular point), and 33 million sampled directions agree with every one  */
+/* of 4096 cells within 4.5 sd.  The sum of the probabilities checks the     */
 /* density's normalisation too.  work: the caller's                          */
 /* scratch of mcest_cells_work_size(depth) doubles (2^(depth+9); 16 MB at    */
 /* depth 12), so that nothing here allocates.                                */
