@@ -401,7 +401,8 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
 /* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0,1), bad option, an        */
 /* options size this library does not know, a negative count or            */
 /* expectation, a zero expectation without pooling, sums that do not match */
-/* without rescale), MCSTAT_ENONFINITE (NaN or Inf in either array),        */
+/* without rescale, totals that overflow), MCSTAT_ENONFINITE (NaN or Inf   */
+/* in either array),                                                         */
 /* MCSTAT_ETOOFEW (k < 2, N = 0, or df < 1 after pooling).                   */
 /* ------------------------------------------------------------------------ */
 enum mcstat_chisq_expected {

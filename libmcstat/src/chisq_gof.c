@@ -59,7 +59,7 @@ static inline double ksum_get(const ksum *a) { return a->s + a->c; }
 static inline double pearson_term(double o, double e)
 {
     double d = o - e;
-    return d * d / e;
+    return (d / e) * d; /* not d * d / e: counts near 1e300 would overflow */
 }
 
 int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
@@ -92,9 +92,11 @@ int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
         ksum_add(&se, expected[i]);
     }
     const double n = ksum_get(&sn), esum = ksum_get(&se);
+    if (!isfinite(esum) || !isfinite(n))
+        return MCSTAT_EINVAL; /* the totals overflow */
     if (!(n > 0.0))
         return MCSTAT_ETOOFEW;
-    if (!(esum > 0.0) || !isfinite(esum) || !isfinite(n))
+    if (!(esum > 0.0))
         return MCSTAT_EINVAL;
     const double target = o.expected == MCSTAT_CHISQ_PROBABILITIES ? 1.0 : n;
     if (!o.rescale && fabs(esum - target) > SUM_TOL * target)
@@ -145,7 +147,7 @@ int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
     r.method = MCSTAT_METHOD_ASYMPTOTIC;
     r.alternative = MCSTAT_GREATER;
     r.alpha = alpha;
-    r.n[0] = (uint64_t)llround(n);
+    r.n[0] = n < 0x1p63 ? (uint64_t)llround(n) : UINT64_MAX; /* llround overflows beyond */
     r.statistic = ksum_get(&stat);
     r.df[0] = df;
     MCSTAT_RESULT_CHISQ_CELLS(&r) = groups > INT32_MAX ? INT32_MAX : (int32_t)groups;

@@ -91,6 +91,11 @@ static void test_bad_input(void)
     CHECK_INT(mcstat_chisq_gof(x, psum, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
     o.rescale = 1;
     CHECK_INT(mcstat_chisq_gof(x, psum, 3, &o, 0.05, &r), MCSTAT_OK);
+    /* huge counts: finite statistic; totals that overflow: EINVAL */
+    const double big[] = {1e300, 1e300, 1e300}, huge[] = {1e308, 1e308, 1e308};
+    CHECK_INT(mcstat_chisq_gof(big, p, 3, NULL, 0.05, &r), MCSTAT_OK);
+    CHECK(isfinite(r.statistic) && r.p_value == 0.0 && r.reject);
+    CHECK_INT(mcstat_chisq_gof(huge, p, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
     const double zeros[] = {0, 0, 0};
     CHECK_INT(mcstat_chisq_gof(zeros, p, 3, NULL, 0.05, &r), MCSTAT_ETOOFEW);
     /* with the default pooling, 12 observations in 3 cells pool to 2: df 1; one
