@@ -161,7 +161,8 @@ enum mcstat_test {
     MCSTAT_TEST_KS_2 = 5,  /* two-sample Kolmogorov-Smirnov, unweighted or with Canner's weight */
     MCSTAT_TEST_EQUIV_1 = 6, /* one-sample equivalence (TOST), mcstat_equivalence_test_1 */
     MCSTAT_TEST_EQUIV_2 = 7, /* Welch two-sample equivalence (TOST), mcstat_equivalence_test_2 */
-    MCSTAT_TEST_BINOM = 8    /* exact binomial test (also the battery meta-test) */
+    MCSTAT_TEST_BINOM = 8,   /* exact binomial test (also the battery meta-test) */
+    MCSTAT_TEST_CHISQ_GOF = 9 /* Pearson's chi-squared goodness of fit of cell counts */
 };
 
 enum mcstat_method {
@@ -659,6 +660,80 @@ MCSTAT_API int mcstat_t_size_edgeworth(double skewness, double kurtosis, uint64_
  * MCSTAT_ETOOFEW (m < 2), MCSTAT_ETOOBIG (k beyond 2^53). */
 MCSTAT_API int mcstat_batch_size_recommend(double skewness, double kurtosis, uint64_t m, double alpha,
                                            double tolerance, uint64_t *k);
+/* Chi-squared goodness of fit (Pearson).                                    */
+/* Counts observed[i] of k cells against expected[i], given as probabilities */
+/* (summing to 1) or as counts (summing to the total N = sum observed), both */
+/* to within sqrt(DBL_EPSILON) relative as R's chisq.test requires, unless   */
+/* rescale = 1 (expected is then scaled to the right total).                 */
+/* Pooling (pool = 1, the default): walking the cells in the given order,    */
+/* consecutive cells are pooled into one until its expected count N p        */
+/* reaches min_expected (default 5, Cochran's rule); a short last group is   */
+/* pooled into the group before it.  Order the cells so that neighbours in   */
+/* the array are neighbours in space (mcest_brdf_cells does).  Cells of zero */
+/* expectation are allowed only with pooling.  pool = 0 is R's chisq.test.   */
+/*   X^2 = sum over pooled cells (O - E)^2 / E,                              */
+/*   df  = (cells after pooling) - 1 - n_estimated,                          */
+/* n_estimated the number of parameters of the expected probabilities that  */
+/* were estimated from these counts.  p = P[chi^2(df) > X^2], the upper tail */
+/* computed directly (relative accuracy ~1e-13 down to 1e-300 and below).    */
+/* Result: test MCSTAT_TEST_CHISQ_GOF, method MCSTAT_METHOD_ASYMPTOTIC (X^2 */
+/* is chi^2 only asymptotically), alternative MCSTAT_GREATER, n[0] = N      */
+/* (rounded), df[0]; critical[1] the upper alpha quantile of chi^2(df),      */
+/* critical[0] = -Inf; reject = p <= alpha; decision +1 when rejected (the   */
+/* counts stray further from expectation than chance allows), else 0.       */
+/* conf_int, estimate, null_value, std_error are NaN.  Reserved fields used: */
+/*   MCSTAT_RESULT_CHISQ_CELLS(r)        reserved_i[1]: cells after pooling  */
+/*   MCSTAT_RESULT_CHISQ_ESTIMATED(r)    reserved_i[2]: n_estimated          */
+/*   MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r)  reserved[2]: k                      */
+/*   MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r) reserved[3]: smallest expected      */
+/*                                       count after pooling                 */
+/*   MCSTAT_RESULT_CHISQ_POOL_BELOW(r)   reserved[4]: min_expected, 0 when   */
+/*                                       pooling was off                     */
+/* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0,1), bad option, an        */
+/* options size this library does not know, a negative count or            */
+/* expectation, a zero expectation without pooling, sums that do not match */
+/* without rescale, totals that overflow), MCSTAT_ENONFINITE (NaN or Inf   */
+/* in either array),                                                         */
+/* MCSTAT_ETOOFEW (k < 2, N = 0, or df < 1 after pooling).                   */
+/* ------------------------------------------------------------------------ */
+enum mcstat_chisq_expected {
+    MCSTAT_CHISQ_PROBABILITIES = 0, /* expected[i] are cell probabilities */
+    MCSTAT_CHISQ_COUNTS = 1         /* expected[i] are expected counts */
+};
+
+#define MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED 5.0
+
+#define MCSTAT_RESULT_CHISQ_CELLS(r) ((r)->reserved_i[1])
+#define MCSTAT_RESULT_CHISQ_ESTIMATED(r) ((r)->reserved_i[2])
+#define MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r) ((r)->reserved[2])
+#define MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r) ((r)->reserved[3])
+#define MCSTAT_RESULT_CHISQ_POOL_BELOW(r) ((r)->reserved[4])
+
+/* Options; grows by appending fields, so always start from the initialiser. */
+typedef struct mcstat_chisq_options {
+    uint32_t size;        /* sizeof(mcstat_chisq_options): set by the initialiser */
+    int32_t expected;     /* enum mcstat_chisq_expected; default PROBABILITIES */
+    int32_t pool;         /* 1 (default): pool cells of low expectation (above); 0: never */
+    int32_t rescale;      /* 1: scale expected to the right total; 0 (default): it must sum to it */
+    double min_expected;  /* pooling threshold on expected counts, >= 0; default 5 */
+    int32_t n_estimated;  /* parameters estimated from the counts, >= 0; default 0 */
+    int32_t reserved;     /* zero */
+} mcstat_chisq_options;
+
+#define MCSTAT_CHISQ_OPTIONS_INIT \
+    {sizeof(mcstat_chisq_options), MCSTAT_CHISQ_PROBABILITIES, 1, 0, \
+     MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED, 0, 0}
+
+/* Sets *opt to MCSTAT_CHISQ_OPTIONS_INIT (for callers that cannot use macros). */
+MCSTAT_API int mcstat_chisq_options_init(mcstat_chisq_options *opt);
+MCSTAT_API size_t mcstat_sizeof_chisq_options(void);
+MCSTAT_API double mcstat_chisq_default_min_expected(void);
+
+/* Pearson's test of observed[0..k) against expected[0..k) as above.  opt may
+ * be NULL (the defaults). */
+MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
+                                const mcstat_chisq_options *opt, double alpha,
+                                mcstat_result *out);
 
 /* ------------------------------------------------------------------------ */
 /* Distributions.                                                            */

@@ -139,6 +139,36 @@ static void format_ks(const mcstat_result *r, const char *x_name, const char *y_
     sb_printf(s, "decision at alpha = %s: %s\n\n", a, mcstat_decision_name(r->decision));
 }
 
+/* The chi-squared goodness-of-fit block: R's print of chisq.test(x, p = p),
+ * then a line on pooling when cells were pooled or parameters estimated. */
+static void format_chisq(const mcstat_result *r, const char *x_name, sbuf *s)
+{
+    sb_printf(s, "\n\tChi-squared test for given probabilities\n\n");
+    sb_printf(s, "data:  %s\n", x_name);
+    char a[64], b[64], line[512];
+    size_t ll = 0;
+    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, "X-squared = %s", a);
+    mcstat__rformat1(r->df[0], R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", df = %s", a);
+    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
+    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
+    sb_wrapped(s, line);
+    double given = MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r);
+    int cells = MCSTAT_RESULT_CHISQ_CELLS(r), est = MCSTAT_RESULT_CHISQ_ESTIMATED(r);
+    if ((double)cells != given || est > 0) {
+        mcstat__rformat1(MCSTAT_RESULT_CHISQ_POOL_BELOW(r), R_DIGITS, a, sizeof a);
+        mcstat__rformat1(MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r), 4, b, sizeof b);
+        ll = (size_t)snprintf(line, sizeof line, "cells: %.0f given, %d after pooling expected counts below %s "
+                              "(smallest expected count %s)", given, cells, a, b);
+        if (est > 0)
+            snprintf(line + ll, sizeof line - ll, "; %d estimated parameter%s", est, est == 1 ? "" : "s");
+        sb_wrapped(s, line);
+    }
+    mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
+    sb_printf(s, "decision at alpha = %s: %s\n\n", a, r->reject ? "reject" : "do not reject");
+}
+
 /* ---- equivalence (TOST) -------------------------------------------------------
  * No R function prints TOST; the block follows print.htest's layout, with
  * the two one-sided tests on lines of their own and the bounds in the
@@ -206,6 +236,17 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
                          size_t size, size_t *length)
 {
     test_text tt;
+    if (r && r->test == MCSTAT_TEST_CHISQ_GOF) {
+        if (!buf && size > 0)
+            return MCSTAT_EINVAL;
+        sbuf s = {buf, size, 0};
+        if (size > 0)
+            buf[0] = '\0';
+        format_chisq(r, x_name ? x_name : "x", &s);
+        if (length)
+            *length = s.len;
+        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+    }
     if (r && (r->test == MCSTAT_TEST_EQUIV_1 || r->test == MCSTAT_TEST_EQUIV_2)) {
         if (!buf && size > 0)
             return MCSTAT_EINVAL;

@@ -8,7 +8,7 @@ bad=$(printf '%s\n' "$syms" | grep -v '^mcstat_' || true)
 if [ -n "$bad" ]; then
     echo "symbols without the mcstat_ prefix:"; printf '%s\n' "$bad"; exit 1
 fi
-for s in mcstat_version mcstat_strerror mcstat_t_test_1 mcstat_t_test_2 mcstat_var_test_1 mcstat_var_test_2 \
+for s in mcstat_chisq_gof mcstat_version mcstat_strerror mcstat_t_test_1 mcstat_t_test_2 mcstat_var_test_1 mcstat_var_test_2 \
          mcstat_moments_init mcstat_moments_add mcstat_moments_merge mcstat_result_format \
          mcstat_stream_init mcstat_stream_flush mcstat_stream_merge mcstat_stream_check_mean mcstat_stream_check_var; do
     printf '%s\n' "$syms" | grep -qx "$s" || { echo "missing export: $s"; exit 1; }

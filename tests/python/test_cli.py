@@ -147,6 +147,29 @@ def test_paper_samplers(paper):
     assert len(ward[10]["results"]["pvalue"]) == 10 and ward[10]["results"]["weight"][0] == "canner"
 
 
+def test_paper_sampler_bugs(paper):
+    # 3.2+ (issue 9): every planted sampler bug caught by the chi-squared route at the largest quick size,
+    # the correct samplers rejected at about alpha by both routes, chi-squared never later than K-S
+    r = paper["res"]["studies"]["sampler_bugs"]
+    assert r["sizes"] == [100, 300, 1000, 3000] and r["runs"] == 20 and r["alpha"] == 0.01
+    assert [b["name"] for b in r["brdfs"]] == ["ward", "ashikhmin_shirley"]
+    for b in r["brdfs"]:
+        last = b["sizes"][-1]["variants"]
+        for bug in ("roughness", "axes_swapped", "phi_half", "jacobian"):
+            assert last[bug]["chisq"]["rate"] >= 0.9, (b["name"], bug)
+            d = b["summary"][bug]
+            assert d["chisq"]["detected_from"] is not None
+            assert d["ks"]["detected_from"] is None or d["chisq"]["detected_from"] <= d["ks"]["detected_from"]
+        for route in ("chisq", "ks"):
+            assert b["size_check"][route]["binom_pvalue"] >= 0.001, (b["name"], route)
+            assert b["size_check"][route]["tests"] == 80
+        assert all(abs(c["sum_minus_one"]) < 1e-5 for c in b["cells"])
+    assert any(f.startswith("3.2+ ward: planted sampler bugs") for f in paper["res"]["findings"])
+    report = open(os.path.join(paper["dir"], "report.md"), encoding="utf-8").read()
+    assert "## 3.2+ Planted sampler bugs" in report and "sampler_bugs_ward.png" in report
+    assert "Chi-squared test for given probabilities" in paper["out"]
+
+
 def test_paper_radiance_counts(paper):
     r = paper["res"]["studies"]["radiance"]
     b = r["brdfs"][0]
@@ -204,7 +227,7 @@ def test_same_seed_same_results(paper, tmp_path):
 
 def test_another_seed_other_numbers(tmp_path):
     scene = copy.deepcopy(PAPER_SCENE)
-    scene["studies"] = {s: {"enabled": False} for s in ("sampling", "radiance", "bugs", "timing")}
+    scene["studies"] = {s: {"enabled": False} for s in ("sampling", "radiance", "bugs", "timing", "sampler_bugs")}
     scene["studies"]["irradiance"] = {"runs": 5}
     path = tmp_path / "small.json"
     path.write_text(json.dumps(scene))
@@ -236,6 +259,7 @@ def test_no_brdf_scene(no_brdf):
     left = {(s["study"], s["reason"]) for s in res["plan"]["left_out"]}
     assert ("sampling", "the scene has no BRDFs") in left and ("radiance", "the scene has no BRDFs") in left
     assert ("diagnostics", "the scene has no BRDFs") in left and res["studies"]["diagnostics"]["brdfs"] == []
+    assert ("sampler_bugs", "the scene has no BRDFs") in left
     report = open(os.path.join(no_brdf["dir"], "report.md"), encoding="utf-8").read()
     assert report.count("the scene has no BRDFs") == 3 and "BRDF sampling (3.2)" in report
     assert "the scene has no BRDFs" in out

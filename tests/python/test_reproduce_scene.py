@@ -111,6 +111,9 @@ BAD = [
     (dict(studies__radiance__brdfs=["wadr"]), "scene.studies.radiance.brdfs[0]: expected the name of one of the scene's BRDFs ('ward', 'ashikhmin_shirley'), got 'wadr'"),
     (dict(studies__bugs__bugs=["typo"]), "scene.studies.bugs.bugs[0]: expected one of 'no_cosine', 'barycentric', 'no_jacobian'"),
     (dict(studies__timing__enabled="yes"), "scene.studies.timing.enabled: expected true or false, got 'yes'"),
+    (dict(studies__sampler_bugs__bugs=["typo"]), "scene.studies.sampler_bugs.bugs[0]: expected one of 'roughness', 'axes_swapped', 'phi_half', 'jacobian'"),
+    (dict(studies__sampler_bugs__sizes=[300, 100]), "scene.studies.sampler_bugs.sizes: expected increasing numbers, got [300, 100]"),
+    (dict(studies__sampler_bugs__brdfs=["nope"]), "scene.studies.sampler_bugs.brdfs[0]: expected the name of one of the scene's BRDFs ('ward', 'ashikhmin_shirley'), got 'nope'"),
     (dict(colour="red"), "scene.colour: unknown field; expected one of name, description, emitters"),
 ]
 
@@ -163,10 +166,12 @@ def left(plan, study):
 def test_plan_of_the_paper_scene():
     p = Plan(load_scene(None))
     assert [s["study"] for s in p.steps] == ["irradiance", "irradiance", "irradiance", "sampling", "sampling",
-                                             "radiance", "bugs", "timing", "timing", "diagnostics", "diagnostics"]
+                                             "radiance", "bugs", "sampler_bugs", "sampler_bugs", "timing", "timing",
+                                             "diagnostics", "diagnostics"]
     # diagnostics: the receiver's irradiance estimators and the BRDF 3.3 tests
     assert [s["target"] for s in steps(p, "diagnostics")] == ["origin", "ward"]
     assert [s["target"] for s in left(p, "diagnostics")] == ["ashikhmin_shirley"]
+    assert [s["section"] for s in steps(p, "sampler_bugs")] == ["3.2+", "3.2+"]
     assert "Lambert" in steps(p, "irradiance")[0]["what"]
     # beyond the paper: equivalence and sample sizes against Lambert
     assert "equivalence (TOST)" in steps(p, "irradiance")[1]["what"]
@@ -179,6 +184,7 @@ def test_plan_of_the_paper_scene():
 def test_plan_quick_caps():
     p = Plan(load_scene(None), quick=True)
     assert p.params["sampling"]["sizes"][-1] == 10000 and p.params["radiance"]["directions"] == 200
+    assert p.params["sampler_bugs"]["sizes"][-1] == 3000 and p.params["sampler_bugs"]["runs"] == 20
     assert any("sampling.sizes" in c for c in p.quick_changes)
     assert load_scene(None).studies["sampling"]["sizes"][-1] == 100000  # the scene itself is unchanged
 
@@ -186,8 +192,13 @@ def test_plan_quick_caps():
 def test_plan_rules():
     # no BRDF: 3.2 and 3.3 left out, with the reason
     p = Plan(load_scene(os.path.join(SCENES, "minimal.json")))
-    assert not steps(p, "sampling") and not steps(p, "radiance")
-    assert [s["reason"] for s in left(p, "sampling") + left(p, "radiance")] == ["the scene has no BRDFs"] * 2
+    assert not steps(p, "sampling") and not steps(p, "radiance") and not steps(p, "sampler_bugs")
+    assert [s["reason"] for s in left(p, "sampling") + left(p, "radiance") + left(p, "sampler_bugs")] == \
+        ["the scene has no BRDFs"] * 3
+    # 3.2+ on the listed BRDFs only, the others left out with the reason
+    p = Plan(parse_scene(scene_with(studies__sampler_bugs__brdfs=["ward"])))
+    assert [s["target"] for s in steps(p, "sampler_bugs")] == ["ward"]
+    assert left(p, "sampler_bugs")[0]["reason"] == "not listed in studies.sampler_bugs.brdfs"
     # two triangles: no one-sample test against Lambert
     p = Plan(load_scene(os.path.join(SCENES, "two_triangles.toml")))
     assert all("Lambert" not in s["what"] for s in steps(p, "irradiance"))

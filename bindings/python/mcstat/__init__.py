@@ -12,6 +12,7 @@ variance below?    one-sample chi-squared on the variance      ``var_test(x, sig
 two agree?         Welch two-sample t                          ``t_test(x, y)``
 which varies less  two-sample F                                ``var_test(x, y)``
 same distribution  two-sample Kolmogorov-Smirnov (Canner)      ``ks_test(x, y)``
+counts fit?        Pearson's chi-squared goodness of fit       ``chisq_gof(x, p)``
 =================  ==========================================  ======================
 
 Each returns a `TestResult` (``str()`` prints R's layout plus the paper's
@@ -64,6 +65,7 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
     t_test,
     var_test,
 )
+from ._core import chisq_gof  # noqa: E402  (chi-squared goodness of fit, issue 9)
 from ._result import BatchResult
 
 # Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
@@ -87,6 +89,7 @@ __all__ = [
     "t_test",
     "var_test",
     "ks_test",
+    "chisq_gof",
     "KSCache",
     "Moments",
     "batch_means",

@@ -59,6 +59,8 @@ class TestResult:
     def std_error(self) -> float: ...
     @property
     def nobs(self) -> Union[int, Tuple[int, int]]: ...
+    @property
+    def cells(self) -> Optional[int]: ...
     def format(self, x_name: str = "x", y_name: str = "y") -> str: ...
 
 class Moments:
@@ -141,6 +143,17 @@ def ks_test(
     threads: Optional[int] = None,
     cache: Optional[KSCache] = None,
     critical: bool = True,
+) -> TestResult: ...
+def chisq_gof(
+    observed: npt.ArrayLike,
+    expected: npt.ArrayLike,
+    *,
+    expected_kind: Literal["probabilities", "counts"] = "probabilities",
+    pool: bool = True,
+    min_expected: float = 5.0,
+    n_estimated: int = 0,
+    rescale: bool = False,
+    alpha: float = 0.05,
 ) -> TestResult: ...
 def batch_means(
     x: npt.ArrayLike, k: int, *, axis: int = -1, remainder: Literal["drop", "raise"] = "drop"

@@ -91,6 +91,8 @@ void register_ks(py::module_ &mod);
 void register_power(py::module_ &mod);
 // ---- binomial test, battery meta-test, diagnostics (diagnostics.cpp) --------
 void register_diagnostics(py::module_ &mod);
+// ---- chi-squared goodness of fit (chisq.cpp) ------------------------------------
+void register_chisq(py::module_ &mod);
 
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);

@@ -26,6 +26,7 @@ std::string method_name(const mcstat_result &r)
     case MCSTAT_TEST_T_2: return "Welch Two Sample t-test";
     case MCSTAT_TEST_VAR_1: return "One Sample Chi-squared test on variance";
     case MCSTAT_TEST_VAR_2: return "F test to compare two variances";
+    case MCSTAT_TEST_CHISQ_GOF: return "Chi-squared test for given probabilities";
     case MCSTAT_TEST_KS_2: {
         // libmcstat's formatter owns the wording: take its title line
         char buf[256];
@@ -136,7 +137,8 @@ method : str
     weight"``.
 pvalue_method : str
     How the p-value was obtained: ``"analytic"`` (t, chi-squared, F),
-    ``"exact"``, ``"simulate"`` or ``"asymptotic"`` (K-S).
+    ``"exact"``, ``"simulate"`` or ``"asymptotic"`` (K-S; Pearson's
+    X-squared in `chisq_gof`).
 alpha : float
     Significance level used for `reject`, `decision`, `critical_values`
     and `conf_int`.
@@ -159,6 +161,9 @@ seed : int or None
     simulated): passing it back as ``seed=`` reproduces the result.
 weight : str or None
     K-S: ``"none"`` or ``"canner"``; None for the other tests.
+cells : int or None
+    `chisq_gof`: the number of cells after pooling; None for the other
+    tests.
 std_error : float
     Standard error of the estimate (t tests; NaN otherwise).
 nobs : int or tuple of int
@@ -200,6 +205,12 @@ y_name)`` names them.
             if (!is_ks(s.r))
                 return py::none();
             return py::str(MCSTAT_RESULT_KS_WEIGHT(&s.r) == MCSTAT_KS_WEIGHT_CANNER ? "canner" : "none");
+        })
+        // chi-squared goodness of fit (issue 9): cells after pooling, None for other tests
+        .def_property_readonly("cells", [](const Result &s) -> py::object {
+            if (s.r.test != MCSTAT_TEST_CHISQ_GOF)
+                return py::none();
+            return py::int_(MCSTAT_RESULT_CHISQ_CELLS(&s.r));
         })
         .def_property_readonly("alpha", [](const Result &s) { return s.r.alpha; })
         .def_property_readonly("reject", [](const Result &s) { return s.r.reject != 0; })

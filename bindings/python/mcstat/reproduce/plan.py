@@ -11,7 +11,9 @@ Rules (the issue's, in code):
   matrix compares every pair of the listed estimators.
 - Section 3.4 needs estimator A (where the bugs are planted) and a trusted
   estimator other than A.
-- Sections 3.2 and 3.3 need BRDFs (those listed for each study).
+- Sections 3.2 and 3.3 need BRDFs (those listed for each study), and so
+  does the comparison of the chi-squared and K-S routes on planted
+  sampler bugs (3.2+, beyond the paper).
 - The timing study times the listed estimators at the first receiver that
   sees an emitter (RMSE against Lambert with one triangle, else the
   estimated standard error), and the K-S simulation when 3.2 runs.
@@ -35,6 +37,7 @@ def equivalence_what() -> str:
 
 SECTIONS = {"irradiance": "3.1", "sampling": "3.2", "radiance": "3.3", "bugs": "3.4", "timing": "time"}
 SECTIONS["diagnostics"] = "diag"  # issue 9
+SECTIONS["sampler_bugs"] = "3.2+"  # beyond the paper (issue 9)
 TITLES = {
     "irradiance": "Irradiance estimators (3.1)",
     "sampling": "BRDF sampling (3.2)",
@@ -42,6 +45,7 @@ TITLES = {
     "bugs": "Planted bugs (3.4)",
     "timing": "Error against run time",
     "diagnostics": "Estimator diagnostics",
+    "sampler_bugs": "Planted sampler bugs: chi-squared against K-S (3.2+)",
 }
 
 #: --quick: (study, field, cap); list fields keep the values <= cap (at least the first).
@@ -56,6 +60,8 @@ QUICK = [
     ("timing", "ks_n_sim", 9999),
     ("timing", "ks_reps", 5),
     ("diagnostics", "n", 20000),
+    ("sampler_bugs", "sizes", 3000),
+    ("sampler_bugs", "runs", 20),
 ]
 
 
@@ -87,6 +93,9 @@ class Plan:
         self._brdf_study("radiance", "Welch tests of BRDF sampling against rejection sampling at many "
                                      "outgoing directions, and a binomial test of the fraction of equal means")
         self._bugs()
+        self._brdf_study("sampler_bugs", "each BRDF's sampler with each planted bug (and without: the size check), "
+                                         "chi-squared on equal-probability cells of the claimed density against K-S "
+                                         "(Canner) of Morton keys against the correct sampler: power curves")
         self._timing()
         self._diagnostics()
 
