@@ -261,7 +261,7 @@ def test_no_brdf_scene(no_brdf):
     assert ("diagnostics", "the scene has no BRDFs") in left and res["studies"]["diagnostics"]["brdfs"] == []
     assert ("sampler_bugs", "the scene has no BRDFs") in left
     report = open(os.path.join(no_brdf["dir"], "report.md"), encoding="utf-8").read()
-    assert report.count("the scene has no BRDFs") == 3 and "BRDF sampling (3.2)" in report
+    assert report.count("the scene has no BRDFs") == 4 and "BRDF sampling (3.2)" in report
     assert "the scene has no BRDFs" in out
     assert [r["name"] for r in res["studies"]["irradiance"]["receivers"]] == ["floor", "wall"]
     for r in res["studies"]["irradiance"]["receivers"]:
