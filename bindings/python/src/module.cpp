@@ -12,6 +12,8 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_moments(mod);
     mcs::register_tests(mod);
     mcs::register_ks(mod);
+    mcs::register_p_adjust(mod);
+    mcs::register_summary_rows(mod);
 
     mod.def("set_num_threads", &mcs::set_num_threads, py::arg("n"),
             R"doc(Sets the number of threads for row-wise tests (0 = the default).
