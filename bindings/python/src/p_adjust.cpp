@@ -5,6 +5,7 @@
 #include "common.hpp"
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 namespace mcs {
@@ -30,10 +31,12 @@ void register_p_adjust(py::module_ &mod)
             int st = mcstat_p_adjust_work_size(n, m, &bytes);
             if (st)
                 throw_status(st);
-            std::vector<double> work((bytes + sizeof(double) - 1) / sizeof(double));
+            // Uninitialised scratch (a zero-filled vector would cost a pass
+            // over 32 bytes per p-value).
+            std::unique_ptr<double[]> work(new double[bytes / sizeof(double) + 1]);
             {
                 py::gil_scoped_release nogil;
-                st = mcstat_p_adjust(d, n, m, work.data(), bytes, d);
+                st = mcstat_p_adjust(d, n, m, work.get(), bytes, d);
             }
             if (st == MCSTAT_EINVAL) {
                 size_t k = 0;
