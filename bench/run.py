@@ -77,6 +77,9 @@ def main():
     if not args.quick:
         sh([py, "bench/bench_python.py"])
         sh([py, "bench/bench_ks_python.py", "--write"])  # its section of RESULTS_ks.md
+    if not args.quick:
+        # per-pixel image comparison at 4K (mcstat image-test): RESULTS_image.md
+        sh([py, "bench/bench_image.py", "--write"])
     est = os.path.join(build, "bench", "bench_estimators")
     if os.path.exists(est) and not args.quick:
         sh([py, "bench/bench_estimators_numpy.py", "--c", est, "--write"])
@@ -101,7 +104,7 @@ def main():
         except subprocess.CalledProcessError as e:
             plot_note = f"(no plot: {e.stderr.strip().splitlines()[-1] if e.stderr else e})"
 
-    for name in ("RESULTS_python.md", "RESULTS_estimators.md", "RESULTS_ks.md"):
+    for name in ("RESULTS_python.md", "RESULTS_estimators.md", "RESULTS_ks.md", "RESULTS_image.md"):
         path = os.path.join(HERE, name)
         if os.path.exists(path):
             parts.append(section(path))
