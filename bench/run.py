@@ -96,7 +96,8 @@ def unregistered(known_py, known_c):
 
 
 C_BENCHES = ("bench_moments", "bench_check", "ks_bench", "bench_estimators")
-PY_BENCHES = ("bench_python.py", "bench_ks_python.py", "bench_estimators_numpy.py", "ks_numpy.py")
+PY_BENCHES = ("bench_python.py", "bench_ks_python.py", "bench_estimators_numpy.py", "ks_numpy.py",
+              "bench_image.py")
 
 
 def main():
@@ -143,6 +144,10 @@ def main():
     est_args = ["--n", "400000", "--chunk", "100000", "--reps", "3"] if args.quick else []
     run([py, "bench/bench_estimators_numpy.py", "--c", exe["bench_estimators"], "--write", *est_args])
     parts.append(section(os.path.join(HERE, "RESULTS_estimators.md")))
+
+    # ---- per-pixel image comparison at 4K (mcstat image-test against SciPy + statsmodels) ----
+    run([py, "bench/bench_image.py", "--write"] + (["--small", "--no-rgb"] if args.quick else []))
+    parts.append(section(os.path.join(HERE, "RESULTS_image.md")))
 
     # ---- K-S: Python targets (SciPy / NumPy, same run), then the C program ----
     run([py, "bench/bench_ks_python.py", "--write", *quick])

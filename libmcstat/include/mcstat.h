@@ -883,6 +883,46 @@ MCSTAT_API int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t ro
 MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
                                               double ratio, int alternative, double alpha, unsigned flags,
                                               mcstat_result *out, int32_t *status);
+/* Multiple testing: adjusted p-values, as R's p.adjust.                     */
+/* A per-pixel comparison makes millions of tests; at level alpha each, a    */
+/* fraction alpha of the unchanged pixels is rejected by chance.  Adjusted   */
+/* p-values compared with alpha control the family-wise error rate          */
+/* (Bonferroni, Holm, Hochberg, Hommel) or the false discovery rate (BH:     */
+/* Benjamini & Hochberg; BY: Benjamini & Yekutieli, valid under any          */
+/* dependence).  The values are R's p.adjust's, to rounding: NaN entries are */
+/* R's NA (they stay NaN, and n, the number of tests, counts the others);    */
+/* with n <= 1 the p-values come back unchanged.  O(n log n) (Hommel too).   */
+/* Values match across versions; FFI callers may use the integers.          */
+/* ------------------------------------------------------------------------ */
+enum mcstat_p_adjust_method {
+    MCSTAT_P_ADJUST_NONE = 0,       /* unchanged */
+    MCSTAT_P_ADJUST_BONFERRONI = 1, /* min(1, n p) */
+    MCSTAT_P_ADJUST_HOLM = 2,       /* step-down Bonferroni (FWER, any dependence) */
+    MCSTAT_P_ADJUST_HOCHBERG = 3,   /* step-up (FWER, independent or positively dependent tests) */
+    MCSTAT_P_ADJUST_HOMMEL = 4,     /* Simes closed testing (FWER, as Hochberg; more powerful) */
+    MCSTAT_P_ADJUST_BH = 5,         /* Benjamini-Hochberg (FDR, independent or positively dependent) */
+    MCSTAT_P_ADJUST_BY = 6          /* Benjamini-Yekutieli (FDR, any dependence) */
+};
+
+/* Parses R's names: "none", "bonferroni", "holm", "hochberg", "hommel", "BH"
+ * (also "bh", "fdr"), "BY" (also "by").  MCSTAT_EINVAL for anything else. */
+MCSTAT_API int mcstat_p_adjust_method_parse(const char *name, int *method);
+/* R's name of a method ("BH", "holm", ...), or NULL for an invalid value. */
+MCSTAT_API const char *mcstat_p_adjust_method_name(int method);
+/* *bytes <- the workspace mcstat_p_adjust needs for n p-values: 0 for none
+ * and bonferroni, 32 n for holm, hochberg, BH and BY, 40 n for hommel (on
+ * 64-bit machines).  MCSTAT_EINVAL (bad method, bytes NULL), MCSTAT_ETOOBIG
+ * (the size does not fit in a size_t). */
+MCSTAT_API int mcstat_p_adjust_work_size(size_t n, int method, size_t *bytes);
+/* adjusted[0..n) <- the adjusted p[0..n) (adjusted may equal p: in place).
+ * work: work_bytes of scratch aligned for double (mcstat_p_adjust_work_size),
+ * or NULL, in which case the call allocates it with malloc and frees it
+ * before returning.  Statuses: MCSTAT_EINVAL (p or adjusted NULL with n > 0,
+ * a bad method, a p-value outside [0, 1] other than NaN, misaligned work;
+ * nothing written), MCSTAT_EBUFSIZE (work_bytes too small), MCSTAT_ENOMEM
+ * (work NULL and the allocation failed), MCSTAT_ETOOBIG. */
+MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work, size_t work_bytes,
+                               double *adjusted);
 
 /* ------------------------------------------------------------------------ */
 /* Buffered per-thread accumulator: checks inside a renderer.                */

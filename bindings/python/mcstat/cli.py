@@ -6,9 +6,12 @@
     mcstat scene [SCENE]                a scene with every default filled in (JSON; the built-in one by default)
     mcstat schema                       the scene format (JSON Schema)
     mcstat test X [Y] [options]         one test on samples in .npy / .csv files, printed as R does
+    mcstat image-test -r REF... -c CAND... [options]   per-pixel Welch tests with FDR control: PNG map + JSON
 
 Exit status: 0 on success, 2 for bad input (a scene file, a sample file,
-an argument), 1 with ``mcstat test --fail-on-reject`` when H0 is rejected.
+an argument), 1 with ``mcstat test --fail-on-reject`` when H0 is rejected
+(``mcstat image-test --fail-on-reject``: when any pixel differs after the
+adjustment).
 """
 from __future__ import annotations
 
@@ -92,6 +95,53 @@ def _test(a: argparse.Namespace) -> int:
     return 1 if (a.fail_on_reject and r.reject) else 0
 
 
+def _image_test(a: argparse.Namespace) -> int:
+    from .image import run
+
+    res = run(a.reference, a.candidate, png=a.png, json_path=a.json, worst=a.worst, alpha=a.alpha,
+              method=a.adjust, alternative=a.alternative, channels=a.channels, seed_axis=a.seed_axis,
+              nan_policy=a.nan)
+    if not a.quiet:
+        sys.stdout.write(res.text(a.worst))
+        if a.png:
+            print(f"\nsignificance map: {a.png} (red: candidate greater, blue: less, yellow: channels "
+                  "disagree, grey: not significant, black: not tested)")
+        if a.json:
+            print(f"summary: {a.json}")
+    return 1 if (a.fail_on_reject and int((res.padjusted <= res.alpha).sum()) > 0) else 0
+
+
+def _add_image_test(sub) -> None:
+    it = sub.add_parser(
+        "image-test", help="per-pixel Welch tests of a candidate against a reference, with FDR control",
+        description="Compares a candidate renderer's images with a reference's, pixel by pixel: Welch's t test "
+                    "on the renders of several seeds per side, p-values adjusted together (Benjamini-Hochberg "
+                    "by default, so that at most alpha of the flagged pixels are expected to be false "
+                    "discoveries). Writes a significance map (PNG) and a summary (text, JSON). Inputs per side: "
+                    "one .npy stack (seeds, H, W[, C]); or one image per seed (.exr, .pfm, .npy); or one .npz of "
+                    "per-pixel summaries n, mean, M2 (or var).")
+    it.add_argument("-r", "--reference", nargs="+", required=True, metavar="FILE", help="the reference's input")
+    it.add_argument("-c", "--candidate", nargs="+", required=True, metavar="FILE", help="the candidate's input")
+    it.add_argument("--png", metavar="FILE", default=None, help="write the significance map here")
+    it.add_argument("--json", metavar="FILE", default=None, help="write the summary here (JSON)")
+    it.add_argument("--alpha", type=float, default=0.05, help="level of the FDR (or FWER) (default: %(default)s)")
+    it.add_argument("--adjust", default="BH",
+                    choices=("BH", "BY", "holm", "hochberg", "hommel", "bonferroni", "none"),
+                    help="p-value adjustment (default: %(default)s, the false discovery rate)")
+    it.add_argument("--channels", choices=("luminance", "rgb"), default="luminance",
+                    help="test the luminance, or each channel (default: %(default)s)")
+    it.add_argument("--alternative", choices=("two-sided", "less", "greater"), default="two-sided",
+                    help="a claim about the candidate (default: %(default)s)")
+    it.add_argument("--seed-axis", type=int, default=0, help="the seeds axis of a .npy stack (default: 0)")
+    it.add_argument("--nan", choices=("raise", "omit"), default="raise",
+                    help="NaN values: an error, or left out of their pixel's sample (default: %(default)s)")
+    it.add_argument("--worst", type=int, default=10, help="list this many smallest p-values (default: 10)")
+    it.add_argument("--quiet", action="store_true", help="print nothing")
+    it.add_argument("--fail-on-reject", action="store_true",
+                    help="exit with status 1 when any pixel differs after the adjustment")
+    it.set_defaults(func=_image_test)
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="mcstat", description="Statistical hypothesis tests for Monte Carlo estimators (Subr & Arvo).",
@@ -158,6 +208,8 @@ def build_parser() -> argparse.ArgumentParser:
     t.add_argument("--json", action="store_true", help="print the result's fields as JSON")
     t.add_argument("--fail-on-reject", action="store_true", help="exit with status 1 when H0 is rejected")
     t.set_defaults(func=_test)
+
+    _add_image_test(sub)
     return p
 
 

@@ -84,6 +84,11 @@ void register_result_helpers(py::module_ &mod);
 py::object make_result(const mcstat_result &r);
 py::object make_result(const Result &r);
 
+// ---- adjusted p-values (p_adjust.cpp) -------------------------------------
+void register_p_adjust(py::module_ &mod);
+// Welch's test per row from (n, mean, M2) summaries (summary_rows.cpp).
+void register_summary_rows(py::module_ &mod);
+
 // ---- the K-S test (ks.cpp) ---------------------------------------------------
 void register_ks(py::module_ &mod);
 

@@ -16,6 +16,8 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_power(mod); // equivalence (TOST), power and sample size
     mcs::register_diagnostics(mod); // issue 9
     mcs::register_chisq(mod); // chi-squared goodness of fit (issue 9)
+    mcs::register_p_adjust(mod);
+    mcs::register_summary_rows(mod);
 
     mod.def("set_num_threads", &mcs::set_num_threads, py::arg("n"),
             R"doc(Sets the number of threads for row-wise tests (0 = the default).
