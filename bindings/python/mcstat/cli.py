@@ -119,7 +119,8 @@ def _add_image_test(sub) -> None:
                     "by default, so that at most alpha of the flagged pixels are expected to be false "
                     "discoveries). Writes a significance map (PNG) and a summary (text, JSON). Inputs per side: "
                     "one .npy stack (seeds, H, W[, C]); or one image per seed (.exr, .pfm, .npy); or one .npz of "
-                    "per-pixel summaries n, mean, M2 (or var).")
+                    "per-pixel summaries n, mean, M2 (or var); or one .npz of per-pixel accumulators (key moments: "
+                    "mcstat.image.save_moments of a merged MomentsArray).")
     it.add_argument("-r", "--reference", nargs="+", required=True, metavar="FILE", help="the reference's input")
     it.add_argument("-c", "--candidate", nargs="+", required=True, metavar="FILE", help="the candidate's input")
     it.add_argument("--png", metavar="FILE", default=None, help="write the significance map here")

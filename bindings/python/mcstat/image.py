@@ -18,11 +18,15 @@ Inputs, per side (`load_side`):
   holding one ``(H, W[, C])`` image;
 - one ``.npz`` of per-pixel summaries: ``n``, ``mean`` and ``M2`` (the sum
   of squared deviations) or ``var`` (``M2 / (n - 1)``), each ``(H, W)`` or
-  ``(H, W, C)``; ``n`` may be a scalar.
+  ``(H, W, C)``; ``n`` may be a scalar;
+- one ``.npz`` of per-pixel accumulators (a render farm's merged
+  ``mcstat.MomentsArray``, written by `save_moments`): the key ``moments``,
+  a ``uint8`` array ``(H, W[, C], 96)`` of libmcstat's 96-byte records,
+  each checked (magic, version, checksum) when read.  In Python a
+  ``MomentsArray`` itself is accepted as a side.
 
 Each input kind is one reader function in ``_READERS`` returning
-`Samples` or `Summary`; a reader of serialized per-pixel accumulators
-(libmcstat's 96-byte moments records) adds one more entry there.
+`Samples` or `Summary`.
 
 Colour key of the significance map (`COLOR_KEY`): red, the candidate is
 significantly greater (brighter) than the reference after FDR control;
@@ -49,6 +53,8 @@ __all__ = [
     "Summary",
     "ImageComparison",
     "load_side",
+    "save_moments",
+    "summary_of_moments",
     "read_image",
     "compare",
     "write_map",
@@ -184,9 +190,51 @@ def _read_stack_npy(path: str, seed_axis: int) -> Samples:
     return Samples(a, _channel_names(a.shape[-1]))
 
 
+def summary_of_moments(acc: "MomentsArray") -> Summary:
+    """Per-pixel summaries of a ``mcstat.MomentsArray`` of shape ``(H, W)``
+    or ``(H, W, C)``: n, mean and M2 = var (n - 1) (0 where n < 2)."""
+    if acc.ndim not in (2, 3):
+        raise ImageInputError(f"a MomentsArray side must be (H, W) or (H, W, C), got shape {acc.shape}")
+    n = np.asarray(acc.n, dtype=np.float64)
+    mean = np.asarray(acc.mean, dtype=np.float64)
+    with np.errstate(invalid="ignore"):
+        m2 = np.where(n > 1, np.asarray(acc.var, dtype=np.float64) * (n - 1), 0.0)
+    if acc.ndim == 2:
+        n, mean, m2 = n[..., None], mean[..., None], m2[..., None]
+    return Summary(np.ascontiguousarray(n), np.ascontiguousarray(mean), np.ascontiguousarray(m2),
+                   _channel_names(mean.shape[-1]))
+
+
+def save_moments(path: str, acc: "MomentsArray") -> None:
+    """Writes a ``MomentsArray`` as the ``.npz`` that `load_side` and
+    ``mcstat image-test`` read: key ``moments``, ``uint8 (*shape, 96)``."""
+    from ._core import MomentsArray
+
+    if not isinstance(acc, MomentsArray):
+        raise TypeError("save_moments expects a mcstat.MomentsArray")
+    rec = np.frombuffer(acc.to_bytes(), dtype=np.uint8).reshape(tuple(acc.shape) + (-1,))
+    np.savez(path, moments=rec)
+
+
+def _read_moments_npz(path: str, z) -> Summary:
+    from ._core import MomentsArray
+
+    rec = np.asarray(z["moments"])
+    if rec.dtype != np.uint8 or rec.ndim not in (3, 4):
+        raise ImageInputError(f"{path}: 'moments' must be a uint8 array (H, W[, C], record bytes), "
+                              f"got {rec.dtype} {rec.shape}")
+    try:
+        acc = MomentsArray.from_bytes(np.ascontiguousarray(rec).tobytes(), tuple(rec.shape[:-1]))
+    except ValueError as e:
+        raise ImageInputError(f"{path}: {e}") from e
+    return summary_of_moments(acc)
+
+
 def _read_summary_npz(path: str) -> Summary:
     with np.load(path, allow_pickle=False) as z:
         keys = set(z.files)
+        if "moments" in keys:
+            return _read_moments_npz(path, z)
         if "mean" not in keys or "n" not in keys or not ({"M2", "m2", "var"} & keys):
             raise ImageInputError(f"{path}: a summary .npz needs arrays 'n', 'mean' and 'M2' (or 'var'), "
                                   f"found {sorted(keys)}")
@@ -251,8 +299,12 @@ def load_side(paths: Union[str, Sequence[str]], *, seed_axis: int = 0) -> Side:
 
 
 def _as_side(x: Union[Side, np.ndarray, str, Sequence[str]], seed_axis: int) -> Side:
+    from ._core import MomentsArray
+
     if isinstance(x, (Samples, Summary)):
         return x
+    if isinstance(x, MomentsArray):
+        return summary_of_moments(x)
     if isinstance(x, np.ndarray):
         a = np.moveaxis(x, seed_axis, 0)
         if a.ndim == 3:
