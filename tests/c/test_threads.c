@@ -4,6 +4,8 @@
  * mcstat_ks_cache, and each thread's outputs must be bit for bit those of a
  * single-threaded run of the same calls.
  *
+ * A second shared cache is too small for more than a few entries, so threads
+ * evict each other's entries while they use it.
  * Every call appends (status, output bytes) to a per-thread log; the logs are
  * compared with memcmp against a log made first by the main thread alone.
  * Per-thread accumulators (moments, streams, their serialized bytes) over
@@ -111,7 +113,7 @@ static void log_put(log_t *L, const char *label, int status, const void *p, size
         }
         L->buf = b, L->cap = c;
     }
-    if (len)
+    if (len && p)
         memcpy(L->buf + L->used, p, len);
     L->items[L->n++] = (item){label, status, L->used, len};
     L->used += len;
@@ -273,9 +275,10 @@ static void battery_rows(log_t *L)
 }
 
 /* K-S with every method, both weights, every alternative; the simulated
- * ones through `shared` (the cache every thread uses) and through a cache
- * private to this call. */
-static void battery_ks(log_t *L, mcstat_ks_cache *shared)
+ * ones through `shared` (the cache every thread uses), through `tiny` (also
+ * shared, too small for more than a few entries: threads evict each other's
+ * entries) and through a cache private to this call. */
+static void battery_ks(log_t *L, mcstat_ks_cache *shared, mcstat_ks_cache *tiny)
 {
     mcstat_ks_cache *own = NULL;
     int st = mcstat_ks_cache_new(1 << 20, &own);
@@ -304,6 +307,13 @@ static void battery_ks(log_t *L, mcstat_ks_cache *shared)
                                           &o, &r);
                     log_result(L, "ks_test_2", st, &r);
                     if (methods[m] == MCSTAT_METHOD_SIMULATE) {
+                        o.cache = tiny;
+                        blank(&r, 1);
+                        st = mcstat_ks_test_2(data[dset].x, data[dset].nx, data[dset].y, data[dset].ny, alt,
+                                              0.05, &o, &r);
+                        log_result(L, "ks_test_2 tiny shared cache", st, &r);
+                        uint64_t e = 0; /* read while others write: the value varies, the call must not race */
+                        log_put(L, "ks_cache_stats shared", mcstat_ks_cache_stats(shared, NULL, NULL, &e), NULL, 0);
                         o.cache = own;
                         o.threads = 1;
                         blank(&r, 1);
@@ -406,14 +416,14 @@ static void battery_stream(log_t *L)
     free(s);
 }
 
-static void battery(log_t *L, mcstat_ks_cache *shared)
+static void battery(log_t *L, mcstat_ks_cache *shared, mcstat_ks_cache *tiny)
 {
     battery_misc(L);
     battery_classic(L);
     battery_rows(L);
     battery_dist(L);
     battery_stream(L);
-    battery_ks(L, shared);
+    battery_ks(L, shared, tiny);
 }
 
 /* ---- per-thread accumulators over disjoint slices ------------------------ */
@@ -479,7 +489,7 @@ static uint64_t merge_parts(const part *parts, int T, log_t *L)
 /* ---- the threads --------------------------------------------------------- */
 typedef struct worker {
     int t, T, reps;
-    mcstat_ks_cache *cache;
+    mcstat_ks_cache *cache, *tiny;
     pthread_barrier_t *start;
     log_t *logs; /* reps of them */
     part *p;
@@ -491,7 +501,7 @@ static void *work(void *arg)
     pthread_barrier_wait(w->start); /* all threads enter the library together */
     accumulate(w->p, w->t, w->T);
     for (int k = 0; k < w->reps; k++)
-        battery(&w->logs[k], w->cache);
+        battery(&w->logs[k], w->cache, w->tiny);
     return NULL;
 }
 
@@ -526,9 +536,10 @@ int main(void)
     /* the single-threaded run (its own cache: cached results must equal
      * freshly simulated ones) */
     log_t ref = {0}, ref_merge = {0};
-    mcstat_ks_cache *ref_cache = NULL;
+    mcstat_ks_cache *ref_cache = NULL, *ref_tiny = NULL;
     CHECK_INT(mcstat_ks_cache_new(1 << 22, &ref_cache), MCSTAT_OK);
-    battery(&ref, ref_cache);
+    CHECK_INT(mcstat_ks_cache_new(1 << 15, &ref_tiny), MCSTAT_OK);
+    battery(&ref, ref_cache, ref_tiny);
     CHECK(!ref.oom && ref.n > 500);
     part *ref_parts = calloc((size_t)T, sizeof *ref_parts);
     part *parts = calloc((size_t)T, sizeof *parts);
@@ -543,13 +554,14 @@ int main(void)
     CHECK_INT(merge_parts(ref_parts, T, &ref_merge), NBIG);
 
     /* T threads at once, one cache shared by all */
-    mcstat_ks_cache *shared = NULL;
+    mcstat_ks_cache *shared = NULL, *tiny = NULL;
     CHECK_INT(mcstat_ks_cache_new(1 << 22, &shared), MCSTAT_OK);
+    CHECK_INT(mcstat_ks_cache_new(1 << 15, &tiny), MCSTAT_OK);
     pthread_barrier_t start;
     pthread_barrier_init(&start, NULL, (unsigned)T);
     pthread_t th[MAXT];
     for (int t = 0; t < T; t++) {
-        ws[t] = (worker){t, T, reps, shared, &start, &logs[t * reps], &parts[t]};
+        ws[t] = (worker){t, T, reps, shared, tiny, &start, &logs[t * reps], &parts[t]};
         int st = pthread_create(&th[t], NULL, work, &ws[t]);
         CHECK_INT(st, 0);
         if (st) /* cannot start: the barrier would never open */
@@ -587,7 +599,14 @@ int main(void)
     printf("test_threads: %d threads x %d repetitions, %zu calls each, %zu bytes of output each\n", T, reps,
            ref.n, ref.used);
 
+    uint64_t tiny_entries = 0, tiny_lookups = 0;
+    CHECK_INT(mcstat_ks_cache_stats(tiny, &hits, &misses, &tiny_entries), MCSTAT_OK);
+    tiny_lookups = hits + misses;
+    CHECK_MSG(tiny_entries < tiny_lookups / (uint64_t)(T * reps), "tiny cache: %llu entries, no eviction",
+              (unsigned long long)tiny_entries);
     mcstat_ks_cache_free(shared);
+    mcstat_ks_cache_free(tiny);
+    mcstat_ks_cache_free(ref_tiny);
     mcstat_ks_cache_free(ref_cache);
     for (int i = 0; i < T * reps; i++)
         log_free(&logs[i]);
