@@ -12,6 +12,8 @@ PY := $(VENV)/bin/python
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
+# r-mathlib: libRmath (the noncentral t of mcstat_power_*), linked into libmcstat
+APT_PACKAGES += r-mathlib
 # asan-test, tsan-test (the sanitizer runtimes come with gcc) and valgrind-test
 APT_PACKAGES += valgrind
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
@@ -186,6 +188,10 @@ references: python-deps
 	$(PY) tests/reference/make_reference.py
 	Rscript tests/reference/make_rformat.R
 	Rscript tests/reference/make_rblocks_python.R
+	# equivalence (TOST) and power: tests/data/{power,equivalence}_ref.tsv
+	Rscript tests/reference/make_power_ref.R
+	# issue 9: R's binom.test for the binomial meta-test
+	Rscript tests/reference/make_binom_ref.R
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-bench

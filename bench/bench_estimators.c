@@ -2,8 +2,9 @@
  * bench_estimators.c - throughput of libmcest's batch calls: estimates per
  * second per core for U, C, A, S on the paper-like scene (and S on a
  * straddling and a tiny emitter), and directions per second for the BRDF
- * samplers.  Single thread; best of `reps` runs of `n` estimates filled in
- * batches of `batch`.  Prints one line per case: name, Mest/s, ns/est.
+ * samplers.  Single thread; the median of `reps` runs (at most 64) of `n`
+ * estimates filled in batches of `batch`.  Prints one line per case: name,
+ * Mest/s, ns/est (medians), and the range of Mest/s over the runs.
  *
  * Usage: bench_estimators [n] [batch] [reps]
  */
@@ -22,9 +23,19 @@ static double now(void)
 
 static volatile double sink;
 
-static void report(const char *name, double best, size_t n)
+static int cmp_double(const void *a, const void *b)
 {
-    printf("%-28s %8.1f Mest/s %8.2f ns/est\n", name, n / best / 1e6, best / n * 1e9);
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median and range of the run times t[0..reps-1] (sorted in place). */
+static void report(const char *name, double *t, int reps, size_t n)
+{
+    qsort(t, (size_t)reps, sizeof *t, cmp_double);
+    double med = reps % 2 ? t[reps / 2] : 0.5 * (t[reps / 2 - 1] + t[reps / 2]);
+    printf("%-28s %8.1f Mest/s %8.2f ns/est  (median of %d, range %.1f-%.1f Mest/s)\n", name, n / med / 1e6,
+           med / n * 1e9, reps, n / t[reps - 1] / 1e6, n / t[0] / 1e6);
 }
 
 int main(int argc, char **argv)
@@ -32,6 +43,11 @@ int main(int argc, char **argv)
     size_t n = argc > 1 ? strtoull(argv[1], NULL, 10) : 20000000;
     size_t batch = argc > 2 ? strtoull(argv[2], NULL, 10) : 1 << 16;
     int reps = argc > 3 ? atoi(argv[3]) : 3;
+    if (reps < 1)
+        reps = 1;
+    if (reps > 64)
+        reps = 64;
+    double ts[64];
     double *out = malloc(batch * sizeof(double) * 3);
     if (!out)
         return 1;
@@ -48,7 +64,6 @@ int main(int argc, char **argv)
         for (int m = MCEST_U; m <= MCEST_S; m++) {
             if (s > 0 && m != MCEST_S && m != MCEST_A)
                 continue;
-            double best = 1e300;
             for (int r = 0; r < reps; r++) {
                 double t0 = now(), acc = 0;
                 for (size_t i = 0; i < n; i += batch) {
@@ -57,12 +72,11 @@ int main(int argc, char **argv)
                     acc += out[k - 1];
                 }
                 sink = acc;
-                double t = now() - t0;
-                best = t < best ? t : best;
+                ts[r] = now() - t0;
             }
             char name[64];
             snprintf(name, sizeof name, "irradiance %s %s", mcest_method_name(m), snames[s]);
-            report(name, best, n);
+            report(name, ts, reps, n);
         }
     }
     /* BRDF samplers and the exact samplers (fewer: they cost more) */
@@ -76,7 +90,6 @@ int main(int argc, char **argv)
         mcest_brdf_plan_init(&b[k], wo, &P);
         const char *nm = k ? "A-S" : "Ward";
         for (int exact = 0; exact < 2; exact++) {
-            double best = 1e300;
             for (int r = 0; r < reps; r++) {
                 double t0 = now();
                 for (size_t i = 0; i < nb; i += batch) {
@@ -86,12 +99,11 @@ int main(int argc, char **argv)
                     else
                         mcest_brdf_sample(&P, 1, i, c, out, NULL);
                 }
-                double t = now() - t0;
-                best = t < best ? t : best;
+                ts[r] = now() - t0;
             }
             char name[64];
             snprintf(name, sizeof name, "%s %s", nm, exact ? "exact sampler" : "sampler");
-            report(name, best, nb);
+            report(name, ts, reps, nb);
         }
     }
     free(out);

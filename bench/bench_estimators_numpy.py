@@ -17,10 +17,15 @@ import argparse
 import os
 import platform
 import re
+import statistics
 import subprocess
+import sys
 import time
 
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import fmt_bytes, machine, peak_rss  # noqa: E402
 
 # The paper-like scene of mcest_scene_paper (receiver at 0, normal +z, L = 1).
 TRI = np.array([[-0.6, -0.4, 1.0], [0.9, -0.3, 1.3], [0.1, 0.9, 0.8]])
@@ -116,9 +121,9 @@ def bench_numpy(n_total, chunk, reps):
     P, F = prepare(), prepare_S()
     fns = {"U": lambda u: est_U(P, u), "C": lambda u: est_C(P, u), "A": lambda u: est_A(P, u),
            "S": lambda u: est_S(F, u)}
-    res = {}
+    res, mem = {}, {}
     for name, fn in fns.items():
-        best = float("inf")
+        times = []
         for r in range(reps):
             g = np.random.Generator(np.random.Philox(r))
             s1 = s2 = 0.0
@@ -127,25 +132,34 @@ def bench_numpy(n_total, chunk, reps):
                 e = fn(g.random((2, chunk)))
                 s1 += e.sum()
                 s2 += (e * e).sum()
-            best = min(best, time.perf_counter() - t0)
+            times.append(time.perf_counter() - t0)
         n = (n_total // chunk) * chunk
         mean = s1 / n
         se = np.sqrt((s2 / n - mean * mean) / n)
         z = (mean - E_EXACT) / se
         assert abs(z) < 5, f"NumPy {name} is wrong: mean {mean}, exact {E_EXACT}, z {z}"
-        res[name] = n / best / 1e6
-    return res
+        # Mest/s: median, slowest, fastest run
+        res[name] = (n / statistics.median(times) / 1e6, n / max(times) / 1e6, n / min(times) / 1e6)
+        g = np.random.Generator(np.random.Philox(0))
+        mem[name] = peak_rss(lambda: fn(g.random((2, chunk))))  # one chunk's temporaries
+    return res, mem
 
 
 def bench_c(exe, n_total, reps):
-    out = subprocess.run([exe, str(n_total), "65536", str(reps)], check=True, capture_output=True,
-                         text=True).stdout
+    """Runs the C benchmark; its medians and ranges, its output and its
+    peak RSS (the whole process: ru_maxrss from wait4)."""
+    p = subprocess.Popen([exe, str(n_total), "65536", str(reps)], stdout=subprocess.PIPE, text=True)
+    out = p.stdout.read()
+    _, status, ru = os.wait4(p.pid, 0)
+    p.returncode = os.waitstatus_to_exitcode(status)
+    if p.returncode:
+        raise subprocess.CalledProcessError(p.returncode, exe)
     res = {}
     for line in out.splitlines():
-        m = re.match(r"irradiance (\w) paper\s+([\d.]+) Mest/s", line)
+        m = re.match(r"irradiance (\w) paper\s+([\d.]+) Mest/s.*range ([\d.]+)-([\d.]+) Mest/s", line)
         if m:
-            res[m.group(1)] = float(m.group(2))
-    return res, out
+            res[m.group(1)] = (float(m.group(2)), float(m.group(3)), float(m.group(4)))
+    return res, out, ru.ru_maxrss * 1024
 
 
 def main():
@@ -153,15 +167,20 @@ def main():
     ap.add_argument("--c", default="build-bench/bench/bench_estimators")
     ap.add_argument("--n", type=int, default=4_000_000)
     ap.add_argument("--chunk", type=int, default=1 << 20)
-    ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--reps", type=int, default=5)
     ap.add_argument("--write", action="store_true")
     a = ap.parse_args()
     load = os.getloadavg()[0]
-    npres = bench_numpy(a.n, a.chunk, a.reps)
-    cres, cout = bench_c(a.c, 5 * a.n, a.reps)
-    rows = ["| estimator | C (Mest/s) | NumPy (Mest/s) | C / NumPy |", "|---|---:|---:|---:|"]
+    npres, npmem = bench_numpy(a.n, a.chunk, a.reps)
+    cres, cout, crss = bench_c(a.c, 5 * a.n, a.reps)
+    rows = ["| estimator | C (Mest/s), median [range] | NumPy (Mest/s), median [range] | C / NumPy (medians) "
+            "| peak RSS: NumPy, one chunk's temporaries |", "|---|---:|---:|---:|---:|"]
     for k in "UCAS":
-        rows.append(f"| {k} | {cres[k]:.1f} | {npres[k]:.1f} | {cres[k] / npres[k]:.1f}x |")
+        c, nm = cres[k], npres[k]
+        rows.append(f"| {k} | {c[0]:.1f} [{c[1]:.1f}-{c[2]:.1f}] | {nm[0]:.1f} [{nm[1]:.1f}-{nm[2]:.1f}] | "
+                    f"{c[0] / nm[0]:.1f}x | {fmt_bytes(npmem[k])} |")
+    rows.append(f"\nThe whole C benchmark process peaked at {fmt_bytes(crss)} resident (ru_maxrss; its buffer is "
+                f"3 x 65536 doubles), the NumPy side adds the temporaries above per chunk of {a.chunk} estimates.")
     table = "\n".join(rows)
     print(table)
     print(cout)
@@ -169,7 +188,7 @@ def main():
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "RESULTS_estimators.md")
         with open(path, "w") as f:
             f.write(RESULTS_TEMPLATE.format(
-                table=table, cout=cout.rstrip(), cpu=platform.processor() or platform.machine(),
+                table=table, cout=cout.rstrip(), cpu=machine(),
                 numpy=np.__version__, load=load, n=a.n, chunk=a.chunk, reps=a.reps, cn=5 * a.n))
         print("wrote", path)
 
@@ -178,7 +197,8 @@ RESULTS_TEMPLATE = """# Irradiance estimators: C batch calls against NumPy
 
 Single core, estimates per second on the paper-like scene
 (`mcest_scene_paper`), random numbers included on both sides
-(Philox4x64-10 in both).  Best of {reps} runs.
+(Philox4x64-10 in both).  Medians of {reps} runs, with the slowest and
+fastest run in brackets.
 
 {table}
 
@@ -187,8 +207,8 @@ Single core, estimates per second on the paper-like scene
 - NumPy {numpy}: `bench/bench_estimators_numpy.py` ({n} estimates in chunks
   of {chunk}, each estimator fully vectorised and checked against Lambert's
   formula within 5 standard errors).
-- Machine: {cpu}, 2 cores shared with other jobs (1-minute load average
-  {load:.2f} at the start): expect +-20% run to run.  Regenerate with
+- Machine: {cpu} at the end; shared with other jobs (1-minute load
+  average {load:.2f} at the start): expect +-20% run to run.  Regenerate with
   `python3 bench/bench_estimators_numpy.py --c build-bench/bench/bench_estimators --write`
   after `cmake -S . -B build-bench -DMCSTAT_BUILD_BENCH=ON && cmake --build build-bench`.
 

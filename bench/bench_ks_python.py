@@ -13,15 +13,16 @@ one run on the same data:
     .venv/bin/python bench/bench_ks_python.py [--quick] [--write]
 
 --write replaces the section between the markers in bench/RESULTS_ks.md.
-Times are the best of several repeats (the machine is shared: the best is
-the least disturbed run).
+Times are medians over several calls, [fastest-slowest] beside them;
+ratios are ratios of medians; peak RSS is the resident memory one call adds
+(bench/common.py).
 """
 import argparse
 import datetime
 import os
 import platform
 import re
-import time
+import sys
 
 import numpy as np
 import scipy
@@ -29,17 +30,16 @@ from scipy import stats
 
 import mcstat
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from common import fmt_bytes, measure, num, peak_rss  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 BEGIN, END = "<!-- bench_ks_python begin -->", "<!-- bench_ks_python end -->"
 
 
 def best(f, repeat):
-    t = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        f()
-        t = min(t, time.perf_counter() - t0)
-    return t
+    """The median time of one call over `repeat` calls (bench/common.py)."""
+    return measure(f, repeat, 1)
 
 
 def numpy_simulation(n1, n2, reps, rng, weight):
@@ -69,22 +69,33 @@ def main():
     lines.append(f"Written by `bench/bench_ks_python.py` on {datetime.date.today()}: Python "
                  f"{platform.python_version()}, NumPy {np.__version__}, SciPy {scipy.__version__}, "
                  f"{os.cpu_count()} CPUs shared with other work (1-minute load average {load:.2f} at the start; "
-                 "treat single numbers as +-20%).\n")
+                 "treat single numbers as +-20%). Times are medians [fastest-slowest call]; ratios are ratios "
+                 "of medians.\n")
 
     # 1. simulation per replicate, 1000 + 1000
     n, reps_np, B = 1000, 400 if args.quick else 2000, 20000
     x, y = rng.standard_normal(n), rng.standard_normal(n) + 0.1
     lines.append("### Simulation at n1 = n2 = 1000: time per replicate\n")
-    lines.append("| weight | NumPy (us) | mcstat 1 thread (us) | mcstat 2 threads (us) | ratio, 1 thread | ratio, 2 threads |")
-    lines.append("|---|---:|---:|---:|---:|---:|")
+    lines.append("| weight | NumPy (us) | mcstat 1 thread (us) | mcstat 2 threads (us) | ratio, 1 thread | "
+                 "ratio, 2 threads | peak RSS NumPy / mcstat (one call) |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|")
+
+    def per(tm, k):  # median [range] per replicate, in us
+        return f"{num(1e6 * tm.median / k)} [{num(1e6 * tm.lo / k)}-{num(1e6 * tm.hi / k)}]"
+
     for weight in ("canner", "none"):
-        t_np = best(lambda: numpy_simulation(n, n, reps_np, rng, weight), rep) / reps_np
+        t_np = best(lambda: numpy_simulation(n, n, reps_np, rng, weight), rep)
+        m_np = peak_rss(lambda: numpy_simulation(n, n, reps_np, rng, weight))
         t_ms = {}
         for th in (1, 2):
             t_ms[th] = best(lambda: mcstat.ks_test(x, y, weight=weight, method="simulate", n_sim=B, seed=1,
-                                                   threads=th, critical=False), rep) / B
-        lines.append(f"| {weight} | {1e6 * t_np:.2f} | {1e6 * t_ms[1]:.3f} | {1e6 * t_ms[2]:.3f} | "
-                     f"{t_np / t_ms[1]:.0f}x | {t_np / t_ms[2]:.0f}x |")
+                                                   threads=th, critical=False), rep)
+        m_ms = peak_rss(lambda: mcstat.ks_test(x, y, weight=weight, method="simulate", n_sim=B, seed=1,
+                                               critical=False))
+        r1 = (t_np.median / reps_np) / (t_ms[1].median / B)
+        r2 = (t_np.median / reps_np) / (t_ms[2].median / B)
+        lines.append(f"| {weight} | {per(t_np, reps_np)} | {per(t_ms[1], B)} | {per(t_ms[2], B)} | "
+                     f"{r1:.0f}x | {r2:.0f}x | {fmt_bytes(m_np)} / {fmt_bytes(m_ms)} |")
     lines.append("")
     lines.append(f"mcstat: one `ks_test(x, y, method=\"simulate\", n_sim={B}, critical=False)` call divided by "
                  f"n_sim (argument parsing, sorting the data and the {B} null keys included); NumPy: {reps_np} "
@@ -94,8 +105,8 @@ def main():
     m = 1000000
     lines.append("### Unweighted, 1e6 + 1e6 values, asymptotic\n")
     lines.append("| data | SciPy `ks_2samp(method=\"asymp\")` (ms) | mcstat 1 thread (ms) | mcstat 2 threads (ms) "
-                 "| ratio, 1 thread | ratio, 2 threads | D | p (mcstat / SciPy) |")
-    lines.append("|---|---:|---:|---:|---:|---:|---:|---|")
+                 "| ratio, 1 thread | ratio, 2 threads | D | p (mcstat / SciPy) | peak RSS SciPy / mcstat |")
+    lines.append("|---|---:|---:|---:|---:|---:|---:|---|---:|")
     for seed in (2, 1):
         g = np.random.default_rng(seed)
         a, b = g.standard_normal(m), g.standard_normal(m) + 0.002
@@ -105,8 +116,11 @@ def main():
              for th in (1, 2)}
         r = mcstat.ks_test(a, b, weight="none", method="asymptotic")
         assert abs(r.statistic - s.statistic) < 1e-9
-        lines.append(f"| N(0,1) vs N(0.002,1), seed {seed} | {1e3 * t_sp:.1f} | {1e3 * t[1]:.1f} | {1e3 * t[2]:.1f} | "
-                     f"{t_sp / t[1]:.1f}x | {t_sp / t[2]:.1f}x | {r.statistic:.6f} | {r.pvalue:.4g} / {s.pvalue:.4g} |")
+        m_sp = peak_rss(lambda: stats.ks_2samp(a, b, method="asymp"))
+        m_ms = peak_rss(lambda: mcstat.ks_test(a, b, weight="none", method="asymptotic"))
+        lines.append(f"| N(0,1) vs N(0.002,1), seed {seed} | {t_sp.fmt('ms')} | {t[1].fmt('ms')} | {t[2].fmt('ms')} | "
+                     f"{t_sp.median / t[1].median:.1f}x | {t_sp.median / t[2].median:.1f}x | {r.statistic:.6f} | "
+                     f"{r.pvalue:.4g} / {s.pvalue:.4g} | {fmt_bytes(m_sp)} / {fmt_bytes(m_ms)} |")
     lines.append("")
     lines.append("SciPy's time depends on the data: its p-value comes from `kstwo.sf(D, round(ne))`, which is "
                  "fast for p ~ 0.5 and takes ~0.5 s at p ~ 0.002 (seed 1); the first row is the fair comparison. "

@@ -3,8 +3,9 @@
  * against a plain sum of the same array in the same run (the machine's
  * memory read bandwidth), and against the textbook alternatives.
  *
- * Usage: bench_moments [n] [repeats]   (default 1e7 doubles, best of 7)
- * Prints a Markdown table on stdout.
+ * Usage: bench_moments [n] [repeats]   (default 1e7 doubles, 7 runs, at most 64)
+ * Prints a Markdown table on stdout: median time per case with the fastest
+ * and slowest run; the bandwidth share compares medians.
  */
 #include "mcstat.h"
 
@@ -61,13 +62,23 @@ static volatile double sink;
 
 typedef struct {
     const char *name;
-    double seconds, value;
+    double t[64], value, median;
 } row;
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
 
 int main(int argc, char **argv)
 {
     size_t n = argc > 1 ? (size_t)atof(argv[1]) : 10000000;
     int reps = argc > 2 ? atoi(argv[2]) : 7;
+    if (reps < 1)
+        reps = 1;
+    if (reps > 64)
+        reps = 64;
     double *x = malloc(n * sizeof *x);
     if (!x)
         return 1;
@@ -87,11 +98,11 @@ int main(int argc, char **argv)
         ss += (x[i] - mu) * (x[i] - mu);
     double var_ref = (double)(ss / (n - 1));
 
-    row rows[5] = {{"plain sum (memory bandwidth)", INFINITY, 0},
-                   {"mcstat_moments_add_array", INFINITY, 0},
-                   {"mcstat_t_test_1 (moments + test)", INFINITY, 0},
-                   {"Welford's update", INFINITY, 0},
-                   {"naive sum of squares", INFINITY, 0}};
+    static row rows[5] = {{"plain sum (memory bandwidth)", {0}, 0, 0},
+                          {"mcstat_moments_add_array", {0}, 0, 0},
+                          {"mcstat_t_test_1 (moments + test)", {0}, 0, 0},
+                          {"Welford's update", {0}, 0, 0},
+                          {"naive sum of squares", {0}, 0, 0}};
     for (int r = 0; r < reps; r++) {
         double t0 = now();
         sink = plain_sum(x, n);
@@ -110,23 +121,26 @@ int main(int argc, char **argv)
         double t[5] = {t1 - t0, t2 - t1, t3 - t2, t4 - t3, t5 - t4};
         double v[5] = {0, mcstat_moments_var(&m), mcstat_moments_var(&m), wv, nv};
         for (int k = 0; k < 5; k++) {
-            if (t[k] < rows[k].seconds)
-                rows[k].seconds = t[k];
+            rows[k].t[r] = t[k];
             rows[k].value = v[k];
         }
         sink = res.p_value;
     }
     double bytes = (double)n * sizeof(double);
-    printf("| %.0e doubles (1e9 + U(0,1)), best of %d | time (ms) | GB/s | share of plain-sum bandwidth | "
-           "relative error of the variance |\n|---|---:|---:|---:|---:|\n",
+    for (int k = 0; k < 5; k++) {
+        qsort(rows[k].t, (size_t)reps, sizeof(double), cmp_double);
+        rows[k].median = reps % 2 ? rows[k].t[reps / 2] : 0.5 * (rows[k].t[reps / 2 - 1] + rows[k].t[reps / 2]);
+    }
+    printf("| %.0e doubles (1e9 + U(0,1)), %d runs | time (ms), median [fastest-slowest] | GB/s (median) | "
+           "share of plain-sum bandwidth | relative error of the variance |\n|---|---:|---:|---:|---:|\n",
            (double)n, reps);
     for (int k = 0; k < 5; k++) {
-        double gbs = bytes / rows[k].seconds / 1e9;
+        double gbs = bytes / rows[k].median / 1e9;
         char err[32] = "-";
         if (k > 0)
             snprintf(err, sizeof err, "%.1e", fabs(rows[k].value - var_ref) / var_ref);
-        printf("| %s | %.2f | %.1f | %.0f%% | %s |\n", rows[k].name, 1e3 * rows[k].seconds, gbs,
-               100.0 * rows[0].seconds / rows[k].seconds, err);
+        printf("| %s | %.2f [%.2f-%.2f] | %.1f | %.0f%% | %s |\n", rows[k].name, 1e3 * rows[k].median,
+               1e3 * rows[k].t[0], 1e3 * rows[k].t[reps - 1], gbs, 100.0 * rows[0].median / rows[k].median, err);
     }
     free(x);
     return 0;

@@ -16,6 +16,10 @@
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
+/* Rectangle (s0, s1, t0, t1) of heap node `node` of a cell tree; returns
+ * the node's depth (direction_cells.c). */
+MCEST_HIDDEN int mcest_cells_bounds_of(const double *split, int depth, size_t node, double *b);
+
 #endif
 
 /* ---- Philox4x64-10 (Salmon, Moraes, Dror, Shaw, SC'11) ---------------------
@@ -161,5 +165,9 @@ MCEST_HIDDEN double mcest_cubature(mcest_fn2 f, void *ctx, double abs_tol, doubl
  * the diffuse part (cosine map) and the specular part (the sampler's map). */
 MCEST_HIDDEN int mcest_plan_integrate(const mcest_brdf_plan *p, double (*g)(const double *),
                                       double rel_tol, double *value, double *err);
+
+/* Rectangle (s0, s1, t0, t1) of heap node `node` of a cell tree; returns
+ * the node's depth (direction_cells.c). */
+MCEST_HIDDEN int mcest_cells_bounds_of(const double *split, int depth, size_t node, double *b);
 
 #endif

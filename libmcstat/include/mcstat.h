@@ -158,7 +158,11 @@ enum mcstat_test {
     MCSTAT_TEST_T_2 = 2,   /* Welch two-sample t */
     MCSTAT_TEST_VAR_1 = 3, /* one-sample chi-squared test on the variance */
     MCSTAT_TEST_VAR_2 = 4, /* two-sample F test on the ratio of variances */
-    MCSTAT_TEST_KS_2 = 5   /* two-sample Kolmogorov-Smirnov, unweighted or with Canner's weight */
+    MCSTAT_TEST_KS_2 = 5,  /* two-sample Kolmogorov-Smirnov, unweighted or with Canner's weight */
+    MCSTAT_TEST_EQUIV_1 = 6, /* one-sample equivalence (TOST), mcstat_equivalence_test_1 */
+    MCSTAT_TEST_EQUIV_2 = 7, /* Welch two-sample equivalence (TOST), mcstat_equivalence_test_2 */
+    MCSTAT_TEST_BINOM = 8,   /* exact binomial test (also the battery meta-test) */
+    MCSTAT_TEST_CHISQ_GOF = 9 /* Pearson's chi-squared goodness of fit of cell counts */
 };
 
 enum mcstat_method {
@@ -251,6 +255,150 @@ MCSTAT_API int mcstat_var_test_2(const double *x, size_t nx, const double *y, si
 MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
                                          double ratio, int alternative, double alpha,
                                          mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Equivalence: two one-sided tests (TOST, Schuirmann 1987).                 */
+/* H0: the mean lies outside the bounds, mean <= mu0 + lower or mean >=      */
+/* mu0 + upper (two-sample: the difference of means outside [lower, upper]); */
+/* H1: it lies strictly inside.  Each bound is tested by a one-sided t test */
+/* at level alpha (the one-sample t, or Welch's t with Welch-Satterthwaite  */
+/* df); equivalence is shown when both reject, i.e. when the 1 - 2 alpha    */
+/* confidence interval lies inside the bounds.  With lower = -eps, upper =  */
+/* eps and mu0 the exact value, "equivalent" is the evidence that the       */
+/* estimator's bias is smaller than eps in magnitude.                        */
+/* Result fields: statistic and p_value are those of the one-sided test     */
+/* with the larger p-value (the TOST p-value is max(p_lower, p_upper));      */
+/* df[0] the t's degrees of freedom; conf_int the 1 - 2 alpha interval;      */
+/* estimate, std_error, n as the t tests; null_value mu0 (0 for two         */
+/* samples); alternative MCSTAT_TWO_SIDED (unused); critical[1] = t(1-alpha, */
+/* df), critical[0] = -critical[1]: equivalent when t_lower > critical[1]   */
+/* and t_upper < critical[0].  reject == 1 means EQUIVALENT (H0 of a        */
+/* difference at least as large as the bounds is rejected); decision is 0   */
+/* then, else -1 when the lower bound's test is the one that failed (the   */
+/* mean may lie at or below the lower bound), +1 when the upper bound's did. */
+/* Reserved fields used:                                                     */
+/*   MCSTAT_RESULT_TOST_T_LOWER(r) reserved[0]  t for H1: mean > lower bound */
+/*   MCSTAT_RESULT_TOST_T_UPPER(r) reserved[1]  t for H1: mean < upper bound */
+/*   MCSTAT_RESULT_TOST_P_LOWER(r) reserved[2]  their one-sided p-values     */
+/*   MCSTAT_RESULT_TOST_P_UPPER(r) reserved[3]                               */
+/*   MCSTAT_RESULT_TOST_LOWER(r)   reserved[4]  the bounds: mu0 + lower and  */
+/*   MCSTAT_RESULT_TOST_UPPER(r)   reserved[5]  mu0 + upper (or lower, upper) */
+/* mcstat_result_format prints both one-sided tests and "equivalent" or     */
+/* "not equivalent" as the decision.                                         */
+/* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0, 0.5), bounds not finite */
+/* or lower >= upper, mu0 not finite), then those of mcstat_t_test_1 / _2.  */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_RESULT_TOST_T_LOWER(r) ((r)->reserved[0])
+#define MCSTAT_RESULT_TOST_T_UPPER(r) ((r)->reserved[1])
+#define MCSTAT_RESULT_TOST_P_LOWER(r) ((r)->reserved[2])
+#define MCSTAT_RESULT_TOST_P_UPPER(r) ((r)->reserved[3])
+#define MCSTAT_RESULT_TOST_LOWER(r) ((r)->reserved[4])
+#define MCSTAT_RESULT_TOST_UPPER(r) ((r)->reserved[5])
+
+/* Is mean(x) within [mu0 + lower, mu0 + upper]?  (lower < upper; typically
+ * lower = -margin < 0 < upper = margin.) */
+MCSTAT_API int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lower,
+                                         double upper, double alpha, mcstat_result *out);
+MCSTAT_API int mcstat_equivalence_test_1_moments(const mcstat_moments *x, double mu0,
+                                                 double lower, double upper, double alpha,
+                                                 mcstat_result *out);
+/* Is mean(x) - mean(y) within [lower, upper]?  (Welch: unequal variances.) */
+MCSTAT_API int mcstat_equivalence_test_2(const double *x, size_t nx, const double *y, size_t ny,
+                                         double lower, double upper, double alpha,
+                                         mcstat_result *out);
+MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
+                                                 double lower, double upper, double alpha,
+                                                 mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Power and sample size.                                                    */
+/* Given all but one of n, effect, alpha and power, mcstat_power_solve finds */
+/* the missing one (as R's power.t.test and statsmodels' solve_power); n is */
+/* the smallest integer whose power reaches the target.  The tests and what */
+/* `effect` means (the statistic's distribution under the alternative):     */
+/*   T_1    one-sample t: d = (mean - mu0)/sd; noncentral t, df n-1,         */
+/*          ncp sqrt(n) d                                                    */
+/*   T_2    two-sample t with n per group and a common sd (R's               */
+/*          power.t.test type = "two.sample"): d = (mean_x - mean_y)/sd;     */
+/*          noncentral t, df 2(n-1), ncp sqrt(n/2) d                          */
+/*   WELCH  Welch's t with nx = n, ny = n_ratio n, sd_y = sd_ratio sd_x:     */
+/*          d = (mean_x - mean_y)/sd_x; noncentral t with the Welch-         */
+/*          Satterthwaite df of the true variances, ncp d/sqrt(1/nx +        */
+/*          sd_ratio^2/ny) (an approximation, checked by simulation in the  */
+/*          tests; ny may be fractional: round it up)                        */
+/*   VAR_1  chi-squared test: rho = sigma^2/sigma0^2 > 0; exact, the         */
+/*          statistic is rho chi^2(n-1)                                      */
+/*   VAR_2  F test with nx = n, ny = n_ratio n: rho = (var_x/var_y)/ratio0;  */
+/*          exact, the statistic is rho F(nx-1, ny-1)                        */
+/* alternative as in the tests (LESS: the effect is negative, rho < 1).     */
+/* Two-sided: strict = 1 (default) counts rejections in both tails, the     */
+/* true rejection probability (R's strict = TRUE); strict = 0 only the tail */
+/* the effect points to (R's default).  Solving for the effect gives the    */
+/* solution on the side the alternative names (d > 0, rho > 1 when two-    */
+/* sided).  Accuracy: chi-squared and F power to ~1e-13 relative; the      */
+/* noncentral t is R's pnt (libRmath), about 1e-12 absolute (not relative:  */
+/* a power below 1e-12 is noise), and for |ncp| > 37.62 or df > 4e5 it is  */
+/* Abramowitz & Stegun 26.7.10's normal approximation, whose error is      */
+/* O(1/df): negligible at df > 4e5; at |ncp| > 37.62 the power is 1 to     */
+/* double precision from df = 2 on (SciPy's nct: 1 - 2.5e-31 at df 2, ncp */
+/* 38), but at df = 1 (n = 2) it is off by 2e-3 (0.99918 for 0.99713).    */
+/* pnt is called so that it never prints (see                               */
+/* src/noncentral.c).                                                        */
+/* ------------------------------------------------------------------------ */
+enum mcstat_power_test {
+    MCSTAT_POWER_T_1 = 1,
+    MCSTAT_POWER_T_2 = 2,
+    MCSTAT_POWER_WELCH = 3,
+    MCSTAT_POWER_VAR_1 = 4,
+    MCSTAT_POWER_VAR_2 = 5
+};
+enum mcstat_power_unknown {
+    MCSTAT_POWER_SOLVE_POWER = 0,
+    MCSTAT_POWER_SOLVE_N = 1,
+    MCSTAT_POWER_SOLVE_EFFECT = 2,
+    MCSTAT_POWER_SOLVE_ALPHA = 3
+};
+
+/* Grows by appending fields: always start from the initialiser (n, effect
+ * and power start at 0: unset, invalid until given). */
+typedef struct mcstat_power_options {
+    uint32_t size;       /* sizeof(mcstat_power_options): set by the initialiser */
+    int32_t test;        /* enum mcstat_power_test; default T_1 */
+    int32_t alternative; /* enum mcstat_alternative; default TWO_SIDED */
+    int32_t strict;      /* two-sided: 1 both tails (default), 0 the effect's tail */
+    double n;            /* observations (per group for T_2, of x for WELCH and VAR_2), >= 2 */
+    double n_ratio;      /* WELCH, VAR_2: ny = n_ratio n (ny >= 2); default 1 */
+    double sd_ratio;     /* WELCH: sd_y / sd_x > 0; default 1 */
+    double effect;       /* d (t tests, finite) or rho (variance tests, > 0) */
+    double alpha;        /* significance level in (0, 1); default 0.05 */
+    double power;        /* in (0, 1) */
+    double reserved[4];  /* zero */
+} mcstat_power_options;
+
+#define MCSTAT_POWER_OPTIONS_INIT \
+    {sizeof(mcstat_power_options), MCSTAT_POWER_T_1, MCSTAT_TWO_SIDED, 1, 0.0, 1.0, 1.0, 0.0, \
+     0.05, 0.0, {0.0, 0.0, 0.0, 0.0}}
+
+/* Sets *o to MCSTAT_POWER_OPTIONS_INIT.  MCSTAT_EINVAL for NULL. */
+MCSTAT_API int mcstat_power_options_init(mcstat_power_options *o);
+MCSTAT_API size_t mcstat_sizeof_power_options(void);
+/* *power <- the power at o->n, o->effect, o->alpha (o->power is ignored).
+ * MCSTAT_EINVAL (NULL, bad enum or size, n < 2, ny < 2, an effect out of
+ * its domain, alpha outside (0, 1)), MCSTAT_ENUMERIC. */
+MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power);
+/* *out <- *o with the field named by `unknown` (enum mcstat_power_unknown)
+ * solved for; the other three must be valid (the unknown's field is
+ * ignored).  Solving for n also sets out->power to the power at that n
+ * (>= the target).  MCSTAT_EINVAL as above, and when no value reaches the
+ * power (an effect of 0; a power at or below what alpha alone gives; n
+ * beyond 1e15); MCSTAT_ENUMERIC. */
+MCSTAT_API int mcstat_power_solve(const mcstat_power_options *o, int unknown,
+                                  mcstat_power_options *out);
+/* R's print.power.htest block ("Two-sample t test power calculation", the
+ * named values aligned, NOTE lines) for a solved *o, into buf as
+ * mcstat_result_format does.  MCSTAT_EINVAL, MCSTAT_EBUFSIZE. */
+MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, size_t size,
+                                   size_t *length);
 
 /* ------------------------------------------------------------------------ */
 /* Two-sample Kolmogorov-Smirnov test (section 2.5, ERRATA 1-3, 7).          */
@@ -368,6 +516,226 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
                                 mcstat_result *out);
 
 /* ------------------------------------------------------------------------ */
+/* Exact binomial test and the battery meta-test.                            */
+/* A battery of k tests at level `level` rejects about level * k times when  */
+/* every null hypothesis holds; whether an observed count is consistent with */
+/* that is R's binom.test of the count against level.  x successes in n     */
+/* trials against P(success) = p, p in [0, 1]:                               */
+/*   LESS       p-value P[X <= x];  GREATER  P[X >= x];                       */
+/*   TWO_SIDED  R's rule: the sum of P[X = i] over every i with P[X = i] <=   */
+/*              P[X = x] (1 + 1e-7); 1 when x == n p.                        */
+/* Tails come from the library's incomplete beta, accurate to ~1e-13        */
+/* relative down to the smallest normal double and, in log scale, far below */
+/* it; the densities are compared in log scale (R's dbinom underflows).     */
+/* Result fields: statistic = x, estimate[0] = x/n, null_value = p, n[0] =   */
+/* n, method EXACT, conf_int the Clopper-Pearson interval at level 1-alpha  */
+/* (one-sided for one-sided alternatives, as R), critical = the acceptance  */
+/* region of counts [critical[0], critical[1]] (reject iff x < critical[0]  */
+/* or x > critical[1]; -Inf / +Inf for the open side), decision the sign of */
+/* x - n p when rejected; df and std_error NaN.  Reserved field used:       */
+/*   MCSTAT_RESULT_LOG_P_VALUE(r)  reserved[2]: log(p_value), finite where   */
+/*                                 p_value underflows to 0                   */
+/* Statuses: MCSTAT_EINVAL (out NULL, bad enum, alpha outside (0,1), p      */
+/* outside [0,1] or NaN, x > n), MCSTAT_ETOOFEW (n == 0), MCSTAT_ETOOBIG     */
+/* (n > 2^53), MCSTAT_ENUMERIC.  Cost: O(log^2 n) incomplete-beta and       */
+/* density evaluations (the critical counts are bisections): measured       */
+/* 0.02 ms at n = 1e3, 0.1-0.8 ms at n = 1e9 (through Python).              */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_RESULT_LOG_P_VALUE(r) ((r)->reserved[2])
+
+MCSTAT_API int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha,
+                                 mcstat_result *out);
+/* The battery meta-test: `rejections` among k tests each at level `level`
+ * in (0, 1), tested against the rate `level` (mcstat_binom_test(rejections,
+ * k, level, ...)); reject == 1 means the count is not consistent with the
+ * level (GREATER: too many rejections, the usual question).  Statuses as
+ * mcstat_binom_test, plus MCSTAT_EINVAL for level outside (0, 1). */
+MCSTAT_API int mcstat_battery_test(uint64_t rejections, uint64_t k, double level, int alternative,
+                                   double alpha, mcstat_result *out);
+/* The same from the battery's k p-values: a test rejects when its p-value
+ * is <= level.  MCSTAT_ENONFINITE for a NaN p-value, MCSTAT_EINVAL for one
+ * outside [0, 1] (or p_values NULL with k > 0), MCSTAT_ETOOFEW for k == 0. */
+MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative,
+                                           double alpha, mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Estimator diagnostics.                                                    */
+/* Before testing, look at the primary estimates themselves:                 */
+/*   shape   skewness g1 and excess kurtosis g2 (mcstat_moments) with their  */
+/*           standard errors under normality;                               */
+/*   tails   Hill's tail index of each tail, from the tail_k largest        */
+/*           excesses over the median (default max(10, min(4 sqrt(n),       */
+/*           n/25)); fewer when fewer values lie beyond the median, as for  */
+/*           an estimator that is mostly 0): P[X > t] ~ t^-index, the       */
+/*           variance is infinite when index <= 2 ("fireflies": rare huge   */
+/*           estimates that the sample variance misses until one arrives). */
+/*           heavy_tail = 1 when the smaller index is below tail_threshold  */
+/*           (default 2.2: index-2 tails scatter about 2).  Measured        */
+/*           (tests/reference/diagnose_rates.py; 200 samples each at n = 1e3 */
+/*           / 1e4): flagged U^-1/2 (index 2) 99.5% / 100%, Pareto 1.5 and  */
+/*           Cauchy 100% / 100%, t_2 95.5% / 100%, 99% zeros + 1% U^-1/2     */
+/*           (10 or 100 nonzero values) 22% / 81.5%; false alarms: uniform,  */
+/*           normal, exponential, t_5 0 / 0, gamma(1/2) 0.5% / 0, the paper's */
+/*           irradiance estimators U, C, A, S 0 / 0, reflected radiance off */
+/*           Ward's and Ashikhmin-Shirley's BRDFs (sampling and rejection,   */
+/*           3 outgoing directions) at most 4% / 0.  Tails in between       */
+/*           (lognormal(0,1) 55% / 66%, Pareto 3 70% / 98.5%: finite         */
+/*           variance, infinite or huge fourth moment) are flagged often:   */
+/*           their variance estimates are unreliable too.                   */
+/*   batch   the batch size k that makes the two-sided t test at alpha on m */
+/*           batch means of k primaries keep its level: the smallest k with */
+/*           each tail's rejection rate, by Hall's Edgeworth expansion of   */
+/*           the Studentized mean (see diagnose.c), within tolerance *      */
+/*           alpha/2 of alpha/2.  The rate's error falls like 1/sqrt(k m), */
+/*           so it is m, the number of secondary estimates the test sees,   */
+/*           that fixes k.  The rule uses the sample skewness and kurtosis, */
+/*           which understate heavy tails: trust it only without heavy_tail.*/
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_DIAG_DEFAULT_M 30u /* batch means when neither k nor m is given */
+
+/* Options; grows by appending fields, so always start from the initialiser. */
+typedef struct mcstat_diag_options {
+    uint32_t size;         /* sizeof(mcstat_diag_options): set by the initialiser */
+    int32_t reserved_i;    /* zero */
+    uint64_t k;            /* the batch size in use (0: none; t_size is then for k = 1) */
+    uint64_t m;            /* batch means the t test sees (0: n / k, or MCSTAT_DIAG_DEFAULT_M without k) */
+    uint64_t tail_k;       /* order statistics per tail in Hill's estimate (0: max(10, min(4 sqrt(n), n/25))) */
+    double alpha;          /* the t test's level; default 0.05 */
+    double tolerance;      /* allowed relative error of each tail's rate, in (0, 1); default 0.2 */
+    double tail_threshold; /* heavy_tail when a tail index is below this (> 0); default 2.2 */
+    double reserved[4];    /* zero */
+} mcstat_diag_options;
+
+#define MCSTAT_DIAG_OPTIONS_INIT \
+    {sizeof(mcstat_diag_options), 0, 0u, 0u, 0u, 0.05, 0.2, 2.2, {0.0, 0.0, 0.0, 0.0}}
+
+typedef struct mcstat_diagnostics {
+    uint64_t n;              /* primary estimates */
+    uint64_t tail_k;         /* order statistics per tail asked for (see tail_index_se) */
+    uint64_t k, m;           /* batch size and number of batch means t_size is for */
+    uint64_t recommended_k;  /* the batch size rule's k for m batch means */
+    int32_t heavy_tail;      /* 1: a tail index is below tail_threshold */
+    int32_t reserved_i;
+    double mean, sd;
+    double skewness, skewness_se;  /* g1 and sqrt(6n(n-1)/((n-2)(n+1)(n+3))) */
+    double kurtosis, kurtosis_se;  /* excess g2 and its standard error under normality */
+    double tail_index[2];    /* Hill: [0] lower tail, [1] upper tail (+Inf: no Pareto tail) */
+    double tail_index_se[2]; /* index / sqrt(k) with the k actually used (NaN: none) */
+    double max_share;        /* max_i (x_i - mean)^2 / sum_i (x_i - mean)^2 */
+    double t_size[2];        /* predicted rejection rates of the lower / upper tail of the
+                                two-sided t test at alpha on m batch means of k (alpha/2 each
+                                when the batch means are normal) */
+    double alpha, tolerance; /* as used */
+    double reserved[4];
+} mcstat_diagnostics;
+
+/* Sets *opt to MCSTAT_DIAG_OPTIONS_INIT (for callers that cannot use macros). */
+MCSTAT_API int mcstat_diag_options_init(mcstat_diag_options *opt);
+MCSTAT_API size_t mcstat_sizeof_diag_options(void);
+MCSTAT_API size_t mcstat_sizeof_diagnostics(void);
+
+/* All diagnostics of n primary estimates x; opt may be NULL (defaults).
+ * Allocates 16 n bytes (a radix sort: ~0.15 s per 1e6 values).  Statuses:
+ * MCSTAT_EINVAL (NULL x or out, an options size this library does not know,
+ * alpha outside (0,1),
+ * tolerance outside (0,1), tail_threshold <= 0, k > n), MCSTAT_ETOOFEW
+ * (n < 8, n < 2 tail_k + 2, or fewer than 2 batch means), MCSTAT_ENONFINITE,
+ * MCSTAT_EDEGENERATE (constant data), MCSTAT_ENOMEM. */
+MCSTAT_API int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt,
+                               mcstat_diagnostics *out);
+/* Hill's tail index of each tail (index[0] lower, index[1] upper) from
+ * tail_k order statistics (0: the default), as above.  Statuses:
+ * MCSTAT_EINVAL, MCSTAT_ETOOFEW (n < 2 tail_k + 2), MCSTAT_ENONFINITE,
+ * MCSTAT_ENOMEM. */
+MCSTAT_API int mcstat_tail_index(const double *x, size_t n, size_t tail_k, double index[2]);
+/* The Edgeworth-predicted rejection rates size[0] (lower tail: "less") and
+ * size[1] (upper: "greater") of the two-sided t test at alpha on m batch
+ * means of k values whose skewness and excess kurtosis are given.
+ * MCSTAT_EINVAL (non-finite shape, kurtosis < -2, alpha, k == 0),
+ * MCSTAT_ETOOFEW (m < 2). */
+MCSTAT_API int mcstat_t_size_edgeworth(double skewness, double kurtosis, uint64_t k, uint64_t m,
+                                       double alpha, double size[2]);
+/* The batch size rule: the smallest k whose predicted tail rates are within
+ * tolerance * alpha/2 of alpha/2 for m batch means.  MCSTAT_EINVAL,
+ * MCSTAT_ETOOFEW (m < 2), MCSTAT_ETOOBIG (k beyond 2^53). */
+MCSTAT_API int mcstat_batch_size_recommend(double skewness, double kurtosis, uint64_t m, double alpha,
+                                           double tolerance, uint64_t *k);
+/* Chi-squared goodness of fit (Pearson).                                    */
+/* Counts observed[i] of k cells against expected[i], given as probabilities */
+/* (summing to 1) or as counts (summing to the total N = sum observed), both */
+/* to within sqrt(DBL_EPSILON) relative as R's chisq.test requires, unless   */
+/* rescale = 1 (expected is then scaled to the right total).                 */
+/* Pooling (pool = 1, the default): walking the cells in the given order,    */
+/* consecutive cells are pooled into one until its expected count N p        */
+/* reaches min_expected (default 5, Cochran's rule); a short last group is   */
+/* pooled into the group before it.  Order the cells so that neighbours in   */
+/* the array are neighbours in space (mcest_brdf_cells does).  Cells of zero */
+/* expectation are allowed only with pooling.  pool = 0 is R's chisq.test.   */
+/*   X^2 = sum over pooled cells (O - E)^2 / E,                              */
+/*   df  = (cells after pooling) - 1 - n_estimated,                          */
+/* n_estimated the number of parameters of the expected probabilities that  */
+/* were estimated from these counts.  p = P[chi^2(df) > X^2], the upper tail */
+/* computed directly (relative accuracy ~1e-13 down to 1e-300 and below).    */
+/* Result: test MCSTAT_TEST_CHISQ_GOF, method MCSTAT_METHOD_ASYMPTOTIC (X^2 */
+/* is chi^2 only asymptotically), alternative MCSTAT_GREATER, n[0] = N      */
+/* (rounded), df[0]; critical[1] the upper alpha quantile of chi^2(df),      */
+/* critical[0] = -Inf; reject = p <= alpha; decision +1 when rejected (the   */
+/* counts stray further from expectation than chance allows), else 0.       */
+/* conf_int, estimate, null_value, std_error are NaN.  Reserved fields used: */
+/*   MCSTAT_RESULT_CHISQ_CELLS(r)        reserved_i[1]: cells after pooling  */
+/*   MCSTAT_RESULT_CHISQ_ESTIMATED(r)    reserved_i[2]: n_estimated          */
+/*   MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r)  reserved[2]: k                      */
+/*   MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r) reserved[3]: smallest expected      */
+/*                                       count after pooling                 */
+/*   MCSTAT_RESULT_CHISQ_POOL_BELOW(r)   reserved[4]: min_expected, 0 when   */
+/*                                       pooling was off                     */
+/* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0,1), bad option, an        */
+/* options size this library does not know, a negative count or            */
+/* expectation, a zero expectation without pooling, sums that do not match */
+/* without rescale, totals that overflow), MCSTAT_ENONFINITE (NaN or Inf   */
+/* in either array),                                                         */
+/* MCSTAT_ETOOFEW (k < 2, N = 0, or df < 1 after pooling).                   */
+/* ------------------------------------------------------------------------ */
+enum mcstat_chisq_expected {
+    MCSTAT_CHISQ_PROBABILITIES = 0, /* expected[i] are cell probabilities */
+    MCSTAT_CHISQ_COUNTS = 1         /* expected[i] are expected counts */
+};
+
+#define MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED 5.0
+
+#define MCSTAT_RESULT_CHISQ_CELLS(r) ((r)->reserved_i[1])
+#define MCSTAT_RESULT_CHISQ_ESTIMATED(r) ((r)->reserved_i[2])
+#define MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r) ((r)->reserved[2])
+#define MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r) ((r)->reserved[3])
+#define MCSTAT_RESULT_CHISQ_POOL_BELOW(r) ((r)->reserved[4])
+
+/* Options; grows by appending fields, so always start from the initialiser. */
+typedef struct mcstat_chisq_options {
+    uint32_t size;        /* sizeof(mcstat_chisq_options): set by the initialiser */
+    int32_t expected;     /* enum mcstat_chisq_expected; default PROBABILITIES */
+    int32_t pool;         /* 1 (default): pool cells of low expectation (above); 0: never */
+    int32_t rescale;      /* 1: scale expected to the right total; 0 (default): it must sum to it */
+    double min_expected;  /* pooling threshold on expected counts, >= 0; default 5 */
+    int32_t n_estimated;  /* parameters estimated from the counts, >= 0; default 0 */
+    int32_t reserved;     /* zero */
+} mcstat_chisq_options;
+
+#define MCSTAT_CHISQ_OPTIONS_INIT \
+    {sizeof(mcstat_chisq_options), MCSTAT_CHISQ_PROBABILITIES, 1, 0, \
+     MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED, 0, 0}
+
+/* Sets *opt to MCSTAT_CHISQ_OPTIONS_INIT (for callers that cannot use macros). */
+MCSTAT_API int mcstat_chisq_options_init(mcstat_chisq_options *opt);
+MCSTAT_API size_t mcstat_sizeof_chisq_options(void);
+MCSTAT_API double mcstat_chisq_default_min_expected(void);
+
+/* Pearson's test of observed[0..k) against expected[0..k) as above.  opt may
+ * be NULL (the defaults). */
+MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
+                                const mcstat_chisq_options *opt, double alpha,
+                                mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
 /* Distributions.                                                            */
 /* Tail probabilities accurate to about 1e-13 relative down to the smallest  */
 /* normal double, computed from whichever tail is small (never as 1 - P);    */
@@ -445,6 +813,76 @@ MCSTAT_API int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_strid
                                       int alternative, double alpha, unsigned flags, mcstat_result *out,
                                       int32_t *status);
 
+
+/* ------------------------------------------------------------------------ */
+/* Arrays of accumulators: one mcstat_moments per pixel.                     */
+/* A render farm keeps one accumulator per pixel (an array of `rows` structs */
+/* the caller owns, row i = pixel i), adds every rendered image or batch of  */
+/* images into it, ships it as bytes, merges arrays element-wise, and tests  */
+/* every pixel.  Adding a batch is "add_array on a fresh accumulator, then   */
+/* merge", so pushing batches A then B on one machine gives bit for bit what */
+/* pushing A and B on two machines and merging the second into the first    */
+/* gives: a fixed merge order reproduces a single-machine run exactly.      */
+/* No allocation; disjoint row ranges may run on different threads.          */
+/* ------------------------------------------------------------------------ */
+
+/* Empties m[0..rows).  MCSTAT_EINVAL for m NULL with rows > 0. */
+MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
+
+/* Adds n values to each of rows accumulators: row i's values are the n
+ * contiguous doubles at x + i * x_stride (strides in elements), and m[i]
+ * becomes exactly mcstat_moments_merge(m[i], A) where A is
+ * mcstat_moments_add_array on a fresh accumulator of those values.  One
+ * image with one value per pixel is n = 1, x_stride = 1; a stack of k
+ * images stored pixel-major (k values per pixel) is n = k, x_stride = k.
+ * flags: MCSTAT_ROWS_OMIT_NAN skips NaN values (+-Inf remains an error).
+ * status[i] (may be NULL) receives row i's status; a row that fails
+ * (MCSTAT_ENONFINITE) is left unchanged and the other rows are still added.
+ * Returns MCSTAT_OK, the status of the first row that failed, or
+ * MCSTAT_EINVAL (nothing changed) for NULL pointers, unknown flags or an
+ * uninitialised accumulator. */
+MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, size_t n,
+                                       size_t x_stride, unsigned flags, int32_t *status);
+
+/* dst[i] <- dst[i] merged with src[i], for i < rows (mcstat_moments_merge
+ * element-wise).  src may equal dst; the arrays must not otherwise overlap.
+ * MCSTAT_EINVAL (nothing changed) for NULL pointers or an uninitialised
+ * accumulator in either array. */
+MCSTAT_API int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows);
+
+/* The array as rows * MCSTAT_MOMENTS_BYTES bytes: the records of
+ * mcstat_moments_to_bytes concatenated in row order, no header (each record
+ * carries its own magic, version and checksum; the count is size / 96; the
+ * image's shape is the caller's).  MCSTAT_EBUFSIZE when size is smaller,
+ * MCSTAT_EINVAL for NULL pointers or an uninitialised accumulator. */
+MCSTAT_API int mcstat_moments_to_bytes_rows(const mcstat_moments *m, size_t rows, unsigned char *buf,
+                                            size_t size);
+/* Reads rows accumulators from exactly rows * MCSTAT_MOMENTS_BYTES bytes.
+ * MCSTAT_ECORRUPT (m unchanged) when size differs or any record is corrupt
+ * (see mcstat_moments_from_bytes); MCSTAT_EINVAL for NULL pointers. */
+MCSTAT_API int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t size, size_t rows,
+                                              mcstat_moments *m);
+
+/* The tests on arrays of accumulators: out[i] is bit for bit the
+ * mcstat_*_moments call on x[i] (and y[i]), status[i] (may be NULL) its
+ * status, with the conventions of the row-wise tests above: a failed row
+ * gets NaN fields and the others are still computed, critical values are
+ * solved once for rows of equal degrees of freedom, MCSTAT_ROWS_NO_INTERVALS
+ * skips critical values and confidence intervals.  MCSTAT_ROWS_OMIT_NAN has
+ * no meaning here and is MCSTAT_EINVAL.  Returns MCSTAT_OK when every row
+ * succeeded, else the first failing row's status; MCSTAT_EINVAL (nothing
+ * written) for NULL pointers or unknown flags. */
+MCSTAT_API int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative,
+                                            double alpha, unsigned flags, mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                                            double mu0, int alternative, double alpha, unsigned flags,
+                                            mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2,
+                                              int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                              int32_t *status);
+MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                                              double ratio, int alternative, double alpha, unsigned flags,
+                                              mcstat_result *out, int32_t *status);
 
 /* ------------------------------------------------------------------------ */
 /* Buffered per-thread accumulator: checks inside a renderer.                */

@@ -121,3 +121,61 @@ int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_stride, const do
     return rows_2(mcstat__var_test_2, x, nx, x_stride, y, ny, y_stride, rows, ratio, alternative, alpha, flags,
                   out, status);
 }
+
+/* ---- rows of accumulators (the per-pixel arrays of moments_rows.c) --------
+ * The same loop without the data pass: row i is x[i] (and y[i]). */
+
+static int check_moments_rows(const mcstat_moments *x, const mcstat_moments *y, int two, size_t rows,
+                              unsigned flags, const mcstat_result *out)
+{
+    if (rows > 0 && (!x || !out || (two && !y)))
+        return MCSTAT_EINVAL;
+    if (flags & ~(unsigned)MCSTAT_ROWS_NO_INTERVALS)
+        return MCSTAT_EINVAL;
+    return MCSTAT_OK;
+}
+
+static int moments_rows(test_1_fn test1, test_2_fn test2, const mcstat_moments *x, const mcstat_moments *y,
+                        size_t rows, double null_value, int alternative, double alpha, unsigned flags,
+                        mcstat_result *out, int32_t *status)
+{
+    int st = check_moments_rows(x, y, test2 != NULL, rows, flags, out);
+    if (st)
+        return st;
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    mcstat_qcache *q = (flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
+    int first = MCSTAT_OK;
+    for (size_t i = 0; i < rows; i++) {
+        st = test2 ? test2(&x[i], &y[i], null_value, alternative, alpha, q, &out[i])
+                   : test1(&x[i], null_value, alternative, alpha, q, &out[i]);
+        finish_row(st, i, out, status, &first);
+    }
+    return first;
+}
+
+int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative, double alpha,
+                                 unsigned flags, mcstat_result *out, int32_t *status)
+{
+    return moments_rows(mcstat__t_test_1, NULL, x, NULL, rows, mu0, alternative, alpha, flags, out, status);
+}
+
+int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows, double mu0,
+                                 int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                 int32_t *status)
+{
+    return moments_rows(NULL, mcstat__t_test_2, x, y, rows, mu0, alternative, alpha, flags, out, status);
+}
+
+int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2, int alternative,
+                                   double alpha, unsigned flags, mcstat_result *out, int32_t *status)
+{
+    return moments_rows(mcstat__var_test_1, NULL, x, NULL, rows, sigma2, alternative, alpha, flags, out, status);
+}
+
+int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows, double ratio,
+                                   int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                   int32_t *status)
+{
+    return moments_rows(NULL, mcstat__var_test_2, x, y, rows, ratio, alternative, alpha, flags, out, status);
+}

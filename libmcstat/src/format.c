@@ -101,6 +101,10 @@ static int describe(const mcstat_result *r, test_text *t)
         *t = (test_text){"F test to compare two variances", "F", {"num df", "denom df"}, "ratio of variances",
                          {"ratio of variances", NULL}, 1};
         return 1;
+    case MCSTAT_TEST_BINOM: /* R's binom.test: its parameter is n, not a df */
+        *t = (test_text){"Exact binomial test", "number of successes", {"number of trials", NULL},
+                         "probability of success", {"probability of success", NULL}, 1};
+        return 1;
     default:
         return 0;
     }
@@ -135,10 +139,125 @@ static void format_ks(const mcstat_result *r, const char *x_name, const char *y_
     sb_printf(s, "decision at alpha = %s: %s\n\n", a, mcstat_decision_name(r->decision));
 }
 
+/* The chi-squared goodness-of-fit block: R's print of chisq.test(x, p = p),
+ * then a line on pooling when cells were pooled or parameters estimated. */
+static void format_chisq(const mcstat_result *r, const char *x_name, sbuf *s)
+{
+    sb_printf(s, "\n\tChi-squared test for given probabilities\n\n");
+    sb_printf(s, "data:  %s\n", x_name);
+    char a[64], b[64], line[512];
+    size_t ll = 0;
+    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, "X-squared = %s", a);
+    mcstat__rformat1(r->df[0], R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", df = %s", a);
+    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
+    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
+    sb_wrapped(s, line);
+    double given = MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r);
+    int cells = MCSTAT_RESULT_CHISQ_CELLS(r), est = MCSTAT_RESULT_CHISQ_ESTIMATED(r);
+    if ((double)cells != given || est > 0) {
+        mcstat__rformat1(MCSTAT_RESULT_CHISQ_POOL_BELOW(r), R_DIGITS, a, sizeof a);
+        mcstat__rformat1(MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r), 4, b, sizeof b);
+        ll = (size_t)snprintf(line, sizeof line, "cells: %.0f given, %d after pooling expected counts below %s "
+                              "(smallest expected count %s)", given, cells, a, b);
+        if (est > 0)
+            snprintf(line + ll, sizeof line - ll, "; %d estimated parameter%s", est, est == 1 ? "" : "s");
+        sb_wrapped(s, line);
+    }
+    mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
+    sb_printf(s, "decision at alpha = %s: %s\n\n", a, r->reject ? "reject" : "do not reject");
+}
+
+/* ---- equivalence (TOST) -------------------------------------------------------
+ * No R function prints TOST; the block follows print.htest's layout, with
+ * the two one-sided tests on lines of their own and the bounds in the
+ * alternative's line. */
+static void format_equiv(const mcstat_result *r, const char *x_name, const char *y_name, sbuf *s)
+{
+    int two = r->test == MCSTAT_TEST_EQUIV_2;
+    char a[64], b[64], line[512];
+    sb_printf(s, "\n\t%s\n\n", two ? "Welch Two Sample TOST equivalence t-test" : "One Sample TOST equivalence t-test");
+    if (two)
+        sb_printf(s, "data:  %s and %s\n", x_name, y_name);
+    else
+        sb_printf(s, "data:  %s\n", x_name);
+    size_t ll = 0;
+    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, "t = %s", a);
+    mcstat__rformat1(r->df[0], R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", df = %s", a);
+    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
+    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
+    sb_wrapped(s, line);
+    static const char *side[] = {"lower", "upper"};
+    for (int k = 0; k < 2; k++) {
+        double t = k ? MCSTAT_RESULT_TOST_T_UPPER(r) : MCSTAT_RESULT_TOST_T_LOWER(r);
+        double p = k ? MCSTAT_RESULT_TOST_P_UPPER(r) : MCSTAT_RESULT_TOST_P_LOWER(r);
+        double bound = k ? MCSTAT_RESULT_TOST_UPPER(r) : MCSTAT_RESULT_TOST_LOWER(r);
+        mcstat__rformat1(bound, R_DIGITS, b, sizeof b);
+        mcstat__rformat1(t, R_DIGITS - 2, a, sizeof a);
+        ll = (size_t)snprintf(line, sizeof line, "%s bound %s: t = %s", side[k], b, a);
+        mcstat__rformat_pval(p, R_DIGITS - 3, a, sizeof a);
+        snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
+        sb_wrapped(s, line);
+    }
+    mcstat__rformat1(MCSTAT_RESULT_TOST_LOWER(r), R_DIGITS, a, sizeof a);
+    mcstat__rformat1(MCSTAT_RESULT_TOST_UPPER(r), R_DIGITS, b, sizeof b);
+    sb_printf(s, "alternative hypothesis: true %s is between %s and %s\n", two ? "difference in means" : "mean", a, b);
+    mcstat__rformat1(100.0 * (1.0 - 2.0 * r->alpha), R_DIGITS, a, sizeof a);
+    sb_printf(s, "%s percent confidence interval:\n", a);
+    mcstat_rlayout lay;
+    mcstat__rformat_layout(r->conf_int, 2, R_DIGITS, &lay);
+    mcstat__rformat_encode(r->conf_int[0], &lay, 0, a, sizeof a);
+    mcstat__rformat_encode(r->conf_int[1], &lay, 0, b, sizeof b);
+    sb_printf(s, " %s %s\n", a, b);
+    sb_puts(s, "sample estimates:\n");
+    static const char *names[] = {"mean of x", "mean of y"};
+    int ne = two ? 2 : 1;
+    mcstat__rformat_layout(r->estimate, ne, R_DIGITS, &lay);
+    int colw[2];
+    for (int k = 0; k < ne; k++) {
+        int nl = (int)strlen(names[k]);
+        colw[k] = nl > lay.w ? nl : lay.w;
+        sb_printf(s, "%*s ", colw[k], names[k]);
+    }
+    sb_puts(s, "\n");
+    for (int k = 0; k < ne; k++) {
+        mcstat__rformat_encode(r->estimate[k], &lay, colw[k], a, sizeof a);
+        sb_printf(s, "%s ", a);
+    }
+    sb_puts(s, "\n");
+    mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
+    sb_printf(s, "decision at alpha = %s: %s\n\n", a, r->reject ? "equivalent" : "not equivalent");
+}
+
 int mcstat_result_format(const mcstat_result *r, const char *x_name, const char *y_name, char *buf,
                          size_t size, size_t *length)
 {
     test_text tt;
+    if (r && r->test == MCSTAT_TEST_CHISQ_GOF) {
+        if (!buf && size > 0)
+            return MCSTAT_EINVAL;
+        sbuf s = {buf, size, 0};
+        if (size > 0)
+            buf[0] = '\0';
+        format_chisq(r, x_name ? x_name : "x", &s);
+        if (length)
+            *length = s.len;
+        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+    }
+    if (r && (r->test == MCSTAT_TEST_EQUIV_1 || r->test == MCSTAT_TEST_EQUIV_2)) {
+        if (!buf && size > 0)
+            return MCSTAT_EINVAL;
+        sbuf s = {buf, size, 0};
+        if (size > 0)
+            buf[0] = '\0';
+        format_equiv(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
+        if (length)
+            *length = s.len;
+        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+    }
     if (r && r->test == MCSTAT_TEST_KS_2) {
         if ((!buf && size > 0) || !valid_alternative(r->alternative))
             return MCSTAT_EINVAL;
@@ -155,7 +274,7 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
     if (!x_name)
         x_name = "x";
     if (!y_name)
-        y_name = "y";
+        y_name = r->test == MCSTAT_TEST_BINOM ? "n" : "y";
     sbuf s = {buf, size, 0};
     if (size > 0)
         buf[0] = '\0';
@@ -173,7 +292,8 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
     mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
     ll += (size_t)snprintf(line + ll, sizeof line - ll, "%s = %s", tt.stat_name, a);
     for (int k = 0; k < 2 && tt.param_name[k]; k++) {
-        mcstat__rformat1(r->df[k], R_DIGITS - 2, a, sizeof a);
+        double par = r->test == MCSTAT_TEST_BINOM ? (double)r->n[0] : r->df[k];
+        mcstat__rformat1(par, R_DIGITS - 2, a, sizeof a);
         ll += (size_t)snprintf(line + ll, sizeof line - ll, ", %s = %s", tt.param_name[k], a);
     }
     mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
@@ -213,6 +333,54 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
     mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
     sb_printf(&s, "decision at alpha = %s: %s\n\n", a, mcstat_decision_name(r->decision));
 
+    if (length)
+        *length = s.len;
+    return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+}
+
+/* ---- power (R's print.power.htest) ------------------------------------------
+ * The method line, then "name = value" with the names right-justified to 15
+ * columns, the values at 7 significant digits, then a NOTE. */
+int mcstat_power_format(const mcstat_power_options *o, char *buf, size_t size, size_t *length)
+{
+    if (!o || (!buf && size > 0) || o->size != sizeof *o || o->test < MCSTAT_POWER_T_1 ||
+        o->test > MCSTAT_POWER_VAR_2 || !valid_alternative(o->alternative))
+        return MCSTAT_EINVAL;
+    static const char *method[] = {"", "One-sample t test power calculation", "Two-sample t test power calculation",
+                                   "Welch two-sample t test power calculation",
+                                   "One-sample chi-squared variance test power calculation",
+                                   "Two-sample F variance test power calculation"};
+    static const char *alt[] = {"two.sided", "less", "greater"};
+    int is_t = o->test <= MCSTAT_POWER_WELCH;
+    sbuf s = {buf, size, 0};
+    if (size > 0)
+        buf[0] = '\0';
+    char a[64];
+    sb_printf(&s, "\n     %s \n\n", method[o->test]);
+#define PF_NUM(name, v)                                \
+    do {                                               \
+        mcstat__rformat1((v), R_DIGITS, a, sizeof a);  \
+        sb_printf(&s, "%15s = %s\n", name, a);         \
+    } while (0)
+    PF_NUM("n", o->n);
+    if (o->test == MCSTAT_POWER_WELCH || o->test == MCSTAT_POWER_VAR_2)
+        PF_NUM("n.y", o->n * o->n_ratio);
+    if (o->test == MCSTAT_POWER_WELCH)
+        PF_NUM("sd.ratio", o->sd_ratio);
+    PF_NUM(is_t ? "d" : "rho", o->effect);
+    PF_NUM("sig.level", o->alpha);
+    PF_NUM("power", o->power);
+#undef PF_NUM
+    sb_printf(&s, "%15s = %s\n", "alternative", alt[o->alternative]);
+    if (o->alternative == MCSTAT_TWO_SIDED)
+        sb_printf(&s, "%15s = %s\n", "strict", o->strict ? "TRUE" : "FALSE");
+    static const char *note[] = {"",
+                                 "d = (mean - mu0) / sd",
+                                 "n is number in *each* group; d = (mean.x - mean.y) / sd",
+                                 "n is the size of x, n.y that of y; d = (mean.x - mean.y) / sd.x, sd.ratio = sd.y / sd.x",
+                                 "rho = variance / sigma0^2",
+                                 "n is the size of x, n.y that of y; rho = (var.x / var.y) / ratio0"};
+    sb_printf(&s, "\nNOTE: %s\n\n", note[o->test]);
     if (length)
         *length = s.len;
     return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;

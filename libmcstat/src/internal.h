@@ -286,4 +286,9 @@ MCSTAT_HIDDEN double mcstat__ks_jaeschke_sf(double n, int two_sided, double d2);
 /* Kolmogorov's limit P(K > t). */
 MCSTAT_HIDDEN double mcstat__kolmogorov_sf(double t);
 
+/* ---- noncentral t (noncentral.c, R's pnt from libRmath) ------------------
+ * Both tails of the noncentral t at t (df > 0, finite ncp; t may be +-Inf);
+ * never prints (see noncentral.c).  MCSTAT_EINVAL, MCSTAT_ENUMERIC. */
+MCSTAT_HIDDEN int mcstat__nct_tails(double t, double df, double ncp, double *lower, double *upper);
+
 #endif /* MCSTAT_INTERNAL_H */

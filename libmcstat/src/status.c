@@ -26,7 +26,7 @@ const char *mcstat_strerror(int status)
     switch (status) {
     case MCSTAT_OK: return "success";
     case MCSTAT_EINVAL: return "invalid argument (NULL pointer, unknown option, or a parameter outside its domain)";
-    case MCSTAT_ETOOFEW: return "too few observations: a sample needs at least 2 (at least 1 for the K-S test)";
+    case MCSTAT_ETOOFEW: return "too few observations: a sample needs at least 2 (at least 1 for the K-S test; a chi-squared goodness of fit needs observations and df >= 1 after pooling)";
     case MCSTAT_ENONFINITE: return "the data contain NaN or infinite values";
     case MCSTAT_EDEGENERATE: return "the data are essentially constant (zero spread)";
     case MCSTAT_ENOMEM: return "out of memory";

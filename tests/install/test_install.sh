@@ -57,6 +57,16 @@ $cc -O2 -static -o "$work/demo-pc-static" examples/c/demo.c $(pkg-config --stati
     2> "$work/static.log" || { cat "$work/static.log"; fail "static link through pkg-config --static"; }
 if readelf -d "$work/demo-pc-static" | grep -q NEEDED; then fail "not a static executable"; fi
 check_demo "$work/demo-pc-static"
+# 3. libRmath (Requires.private of mcstat.pc): a consumer of the power
+# calculations, shared and fully static
+# shellcheck disable=SC2046
+$cc -O2 -o "$work/power-pc" tests/install/power_consumer.c $(pkg-config --cflags --libs mcstat) -Wl,-rpath,"$libdir" -lm
+"$work/power-pc" > /dev/null || fail "power consumer (shared)"
+# shellcheck disable=SC2046
+$cc -O2 -static -o "$work/power-pc-static" tests/install/power_consumer.c $(pkg-config --static --cflags --libs mcstat) \
+    2> "$work/power-static.log" || { cat "$work/power-static.log"; fail "static power consumer through pkg-config --static"; }
+if readelf -d "$work/power-pc-static" | grep -q NEEDED; then fail "power consumer: not a static executable"; fi
+"$work/power-pc-static" > /dev/null || fail "power consumer (static)"
 echo "install test: headers, shared + static libraries, CMake package (shared, static, checks) and"
 echo "pkg-config (shared, fully static) consumers built from $stage and run"
 echo "1 passed, 0 failed"

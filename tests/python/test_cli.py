@@ -96,6 +96,33 @@ def test_paper_figure4_diagonal_and_fields(paper):
     assert cols["method"] == "Welch Two Sample t-test"
 
 
+def test_paper_equivalence_and_sample_size(paper):
+    """Beyond the paper: TOST against Lambert and the samples needed to see a bias."""
+    rec = paper["res"]["studies"]["irradiance"]["receivers"][0]
+    eq = rec["equivalence"]
+    E = rec["lambert"]
+    assert eq["margins"] == [0.01, 0.001] and eq["biases"] == [0.01, 0.001] and eq["power"] == 0.9
+    k = paper["res"]["studies"]["irradiance"]["k"]
+    for m in "UCAS":
+        e = eq["estimators"][m]
+        one = e["equivalence"][0]
+        # the decision is the interval inside the margin (TOST's duality), and it re-runs identically
+        lo, hi = one["conf_int"]
+        assert one["equivalent"] == (E * (1 - 0.01) < lo and hi < E * (1 + 0.01))
+        # n scales as 1/bias^2: a 10x smaller bias needs ~100x the samples
+        n1, n01 = (q["n_primary"] for q in e["sample_size"])
+        assert 95 < n01 / n1 < 105
+        assert e["sd_primary_estimated"] == pytest.approx(rec["sd_primary_estimated"][m], rel=1e-12)
+        assert e["n_primary"] == e["n_secondary"] * k
+    # S (the best estimator) is shown within 1% of E in the quick budget, and needs the fewest samples
+    assert eq["estimators"]["S"]["equivalence"][0]["equivalent"]
+    need = {m: eq["estimators"][m]["sample_size"][1]["n_primary"] for m in "UCAS"}
+    assert need["S"] < need["A"] < need["C"] < need["U"]
+    report = open(os.path.join(paper["dir"], "report.md"), encoding="utf-8").read()
+    assert "Is the bias small? Equivalence and sample size" in report
+    assert "Equivalence with Lambert's formula (TOST" in paper["out"]
+
+
 def test_paper_bugs_detected(paper):
     b = paper["res"]["studies"]["bugs"]["receivers"][0]["summary"]
     for bug in ("no_cosine", "barycentric", "no_jacobian"):
@@ -120,12 +147,55 @@ def test_paper_samplers(paper):
     assert len(ward[10]["results"]["pvalue"]) == 10 and ward[10]["results"]["weight"][0] == "canner"
 
 
+def test_paper_sampler_bugs(paper):
+    # 3.2+ (issue 9): every planted sampler bug caught by the chi-squared route at the largest quick size,
+    # the correct samplers rejected at about alpha by both routes, chi-squared never later than K-S
+    r = paper["res"]["studies"]["sampler_bugs"]
+    assert r["sizes"] == [100, 300, 1000, 3000] and r["runs"] == 20 and r["alpha"] == 0.01
+    assert [b["name"] for b in r["brdfs"]] == ["ward", "ashikhmin_shirley"]
+    for b in r["brdfs"]:
+        last = b["sizes"][-1]["variants"]
+        for bug in ("roughness", "axes_swapped", "phi_half", "jacobian"):
+            assert last[bug]["chisq"]["rate"] >= 0.9, (b["name"], bug)
+            d = b["summary"][bug]
+            assert d["chisq"]["detected_from"] is not None
+            assert d["ks"]["detected_from"] is None or d["chisq"]["detected_from"] <= d["ks"]["detected_from"]
+        for route in ("chisq", "ks"):
+            assert b["size_check"][route]["binom_pvalue"] >= 0.001, (b["name"], route)
+            assert b["size_check"][route]["tests"] == 80
+        assert all(abs(c["sum_minus_one"]) < 1e-5 for c in b["cells"])
+    assert any(f.startswith("3.2+ ward: planted sampler bugs") for f in paper["res"]["findings"])
+    report = open(os.path.join(paper["dir"], "report.md"), encoding="utf-8").read()
+    assert "## 3.2+ Planted sampler bugs" in report and "sampler_bugs_ward.png" in report
+    assert "Chi-squared test for given probabilities" in paper["out"]
+
+
 def test_paper_radiance_counts(paper):
     r = paper["res"]["studies"]["radiance"]
     b = r["brdfs"][0]
     assert b["name"] == "ward" and b["tests_ok"] == r["directions"] == 200
     assert b["counts"]["equal"] + b["rejections"] == 200
     assert b["binomial"]["x"] == b["rejections"] and b["binomial"]["p0"] == 0.01
+
+
+def test_paper_diagnostics(paper):
+    """Issue 9: every estimator the studies test is diagnosed; none of the
+    paper's has a heavy tail, the scene's k = 100 suffices for U, C, A, S,
+    and the report has the section."""
+    dg = paper["res"]["studies"]["diagnostics"]
+    rec = dg["receivers"][0]
+    assert list(rec["estimators"]) == ["U", "C", "A", "S"] and rec["k"] == 100 and rec["m"] == 50
+    for m, d in rec["estimators"].items():
+        assert not d["heavy_tail"] and d["study_k_ok"] and d["recommended_k"] <= 100, m
+        assert d["n"] == dg["n"] == 20000 and d["batch_k"] == 100 and d["batch_m"] == 200
+        assert 0 <= d["shapiro_pvalue"] <= 1 and d["skewness_se"] > 0
+    assert rec["estimators"]["U"]["skewness"] > 1  # U: a few large cosines, right-skewed
+    ward = dg["brdfs"][0]
+    assert ward["name"] == "ward" and list(ward["estimators"]) == ["sampling", "rejection"] and ward["alpha"] == 0.01
+    assert not any(d["heavy_tail"] for d in ward["estimators"].values())
+    report = open(os.path.join(paper["dir"], "report.md"), encoding="utf-8").read()
+    assert "## Estimator diagnostics" in report and "| rejection |" in report
+    assert sum(f.startswith("Diagnostics, ") for f in paper["res"]["findings"]) == 2
 
 
 def test_paper_outputs(paper):
@@ -157,7 +227,7 @@ def test_same_seed_same_results(paper, tmp_path):
 
 def test_another_seed_other_numbers(tmp_path):
     scene = copy.deepcopy(PAPER_SCENE)
-    scene["studies"] = {s: {"enabled": False} for s in ("sampling", "radiance", "bugs", "timing")}
+    scene["studies"] = {s: {"enabled": False} for s in ("sampling", "radiance", "bugs", "timing", "sampler_bugs")}
     scene["studies"]["irradiance"] = {"runs": 5}
     path = tmp_path / "small.json"
     path.write_text(json.dumps(scene))
@@ -185,11 +255,13 @@ def test_another_seed_other_numbers(tmp_path):
 
 def test_no_brdf_scene(no_brdf):
     res, out = no_brdf["res"], no_brdf["out"]
-    assert set(res["studies"]) == {"irradiance", "bugs"} and "ks" not in res["timing"]
+    assert set(res["studies"]) == {"irradiance", "bugs", "diagnostics"} and "ks" not in res["timing"]
     left = {(s["study"], s["reason"]) for s in res["plan"]["left_out"]}
     assert ("sampling", "the scene has no BRDFs") in left and ("radiance", "the scene has no BRDFs") in left
+    assert ("diagnostics", "the scene has no BRDFs") in left and res["studies"]["diagnostics"]["brdfs"] == []
+    assert ("sampler_bugs", "the scene has no BRDFs") in left
     report = open(os.path.join(no_brdf["dir"], "report.md"), encoding="utf-8").read()
-    assert report.count("the scene has no BRDFs") == 2 and "BRDF sampling (3.2)" in report
+    assert report.count("the scene has no BRDFs") == 3 and "BRDF sampling (3.2)" in report
     assert "the scene has no BRDFs" in out
     assert [r["name"] for r in res["studies"]["irradiance"]["receivers"]] == ["floor", "wall"]
     for r in res["studies"]["irradiance"]["receivers"]:
@@ -200,6 +272,7 @@ def test_two_triangle_scene(two_triangles):
     res = two_triangles["res"]
     rec = res["studies"]["irradiance"]["receivers"][0]
     assert rec["one_sample"] is None and rec["lambert"] is None
+    assert "equivalence" not in rec  # stated relative to an exact E, which this scene lacks
     assert rec["matrix"]["estimators"] == ["C", "A", "S"]  # only the listed estimators run
     assert set(rec["against_trusted"]) == {"C", "A"}
     assert all(s["binom_pvalue"] >= 0.001 for s in rec["against_trusted"].values())
@@ -316,5 +389,7 @@ def test_degenerate_samples_do_not_stop_the_run(tmp_path):
     assert u["rate"] is None and u["failed"] == 20 and u["rejections"] == 0
     assert rec[0]["one_sample"]["S"]["tests"] == 20
     assert any("no test of U, C could run" in f for f in res["findings"])
+    dg = res["studies"]["diagnostics"]["receivers"][0]["estimators"]
+    assert "constant" in dg["U"]["error"] and "error" not in dg["S"]  # recorded, and the run goes on
     assert any(s["target"] == "blind" and "horizon" in s["reason"] for s in res["plan"]["left_out"])
     assert "DegenerateDataError" in out

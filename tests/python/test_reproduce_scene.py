@@ -111,6 +111,9 @@ BAD = [
     (dict(studies__radiance__brdfs=["wadr"]), "scene.studies.radiance.brdfs[0]: expected the name of one of the scene's BRDFs ('ward', 'ashikhmin_shirley'), got 'wadr'"),
     (dict(studies__bugs__bugs=["typo"]), "scene.studies.bugs.bugs[0]: expected one of 'no_cosine', 'barycentric', 'no_jacobian'"),
     (dict(studies__timing__enabled="yes"), "scene.studies.timing.enabled: expected true or false, got 'yes'"),
+    (dict(studies__sampler_bugs__bugs=["typo"]), "scene.studies.sampler_bugs.bugs[0]: expected one of 'roughness', 'axes_swapped', 'phi_half', 'jacobian'"),
+    (dict(studies__sampler_bugs__sizes=[300, 100]), "scene.studies.sampler_bugs.sizes: expected increasing numbers, got [300, 100]"),
+    (dict(studies__sampler_bugs__brdfs=["nope"]), "scene.studies.sampler_bugs.brdfs[0]: expected the name of one of the scene's BRDFs ('ward', 'ashikhmin_shirley'), got 'nope'"),
     (dict(colour="red"), "scene.colour: unknown field; expected one of name, description, emitters"),
 ]
 
@@ -162,9 +165,17 @@ def left(plan, study):
 
 def test_plan_of_the_paper_scene():
     p = Plan(load_scene(None))
-    assert [s["study"] for s in p.steps] == ["irradiance", "irradiance", "sampling", "sampling", "radiance", "bugs",
-                                             "timing", "timing"]
+    assert [s["study"] for s in p.steps] == ["irradiance", "irradiance", "irradiance", "sampling", "sampling",
+                                             "radiance", "bugs", "sampler_bugs", "sampler_bugs", "timing", "timing",
+                                             "diagnostics", "diagnostics"]
+    # diagnostics: the receiver's irradiance estimators and the BRDF 3.3 tests
+    assert [s["target"] for s in steps(p, "diagnostics")] == ["origin", "ward"]
+    assert [s["target"] for s in left(p, "diagnostics")] == ["ashikhmin_shirley"]
+    assert [s["section"] for s in steps(p, "sampler_bugs")] == ["3.2+", "3.2+"]
     assert "Lambert" in steps(p, "irradiance")[0]["what"]
+    # beyond the paper: equivalence and sample sizes against Lambert
+    assert "equivalence (TOST)" in steps(p, "irradiance")[1]["what"]
+    assert "0.1% bias at power 0.9" in steps(p, "irradiance")[1]["what"]
     # 3.3 on Ward only, as in the paper, and said so
     assert [s["target"] for s in left(p, "radiance")] == ["ashikhmin_shirley"]
     assert p.quick_changes == [] and not p.quick
@@ -173,6 +184,7 @@ def test_plan_of_the_paper_scene():
 def test_plan_quick_caps():
     p = Plan(load_scene(None), quick=True)
     assert p.params["sampling"]["sizes"][-1] == 10000 and p.params["radiance"]["directions"] == 200
+    assert p.params["sampler_bugs"]["sizes"][-1] == 3000 and p.params["sampler_bugs"]["runs"] == 20
     assert any("sampling.sizes" in c for c in p.quick_changes)
     assert load_scene(None).studies["sampling"]["sizes"][-1] == 100000  # the scene itself is unchanged
 
@@ -180,12 +192,19 @@ def test_plan_quick_caps():
 def test_plan_rules():
     # no BRDF: 3.2 and 3.3 left out, with the reason
     p = Plan(load_scene(os.path.join(SCENES, "minimal.json")))
-    assert not steps(p, "sampling") and not steps(p, "radiance")
-    assert [s["reason"] for s in left(p, "sampling") + left(p, "radiance")] == ["the scene has no BRDFs"] * 2
+    assert not steps(p, "sampling") and not steps(p, "radiance") and not steps(p, "sampler_bugs")
+    assert [s["reason"] for s in left(p, "sampling") + left(p, "radiance") + left(p, "sampler_bugs")] == \
+        ["the scene has no BRDFs"] * 3
+    # 3.2+ on the listed BRDFs only, the others left out with the reason
+    p = Plan(parse_scene(scene_with(studies__sampler_bugs__brdfs=["ward"])))
+    assert [s["target"] for s in steps(p, "sampler_bugs")] == ["ward"]
+    assert left(p, "sampler_bugs")[0]["reason"] == "not listed in studies.sampler_bugs.brdfs"
     # two triangles: no one-sample test against Lambert
     p = Plan(load_scene(os.path.join(SCENES, "two_triangles.toml")))
     assert all("Lambert" not in s["what"] for s in steps(p, "irradiance"))
     assert any("2 emitter triangles" in s["reason"] for s in left(p, "irradiance"))
+    assert any(s["what"].startswith("equivalence with Lambert") and "exact irradiance" in s["reason"]
+               for s in left(p, "irradiance"))
     assert all(r["lambert"] is None for r in p.receivers)
     # no A: no bugs; A trusted: no bugs
     p = Plan(parse_scene(scene_with(estimators=["U", "S"])))
@@ -195,6 +214,14 @@ def test_plan_rules():
     # a receiver that sees nothing
     p = Plan(parse_scene(scene_with(receivers__0__normal=[0, 0, -1])))
     assert not steps(p, "irradiance") and "horizon" in left(p, "irradiance")[0]["reason"]
+    # diagnostics: no BRDF, a blind receiver, switched off
+    p = Plan(load_scene(os.path.join(SCENES, "minimal.json")))
+    assert [s["reason"] for s in left(p, "diagnostics")] == ["the scene has no BRDFs"]
+    p = Plan(parse_scene(scene_with(receivers__0__normal=[0, 0, -1])))
+    assert "horizon" in left(p, "diagnostics")[0]["reason"]
+    p = Plan(parse_scene(scene_with(studies__diagnostics__enabled=False)))
+    assert not steps(p, "diagnostics")
+    assert Plan(load_scene(None), quick=True).params["diagnostics"]["n"] == 20000
     # switched off
     p = Plan(parse_scene(scene_with(studies__bugs__enabled=False)))
     assert left(p, "bugs")[0]["reason"] == "disabled in the scene (studies.bugs.enabled = false)"

@@ -12,6 +12,7 @@ variance below?    one-sample chi-squared on the variance      ``var_test(x, sig
 two agree?         Welch two-sample t                          ``t_test(x, y)``
 which varies less  two-sample F                                ``var_test(x, y)``
 same distribution  two-sample Kolmogorov-Smirnov (Canner)      ``ks_test(x, y)``
+counts fit?        Pearson's chi-squared goodness of fit       ``chisq_gof(x, p)``
 =================  ==========================================  ======================
 
 Each returns a `TestResult` (``str()`` prints R's layout plus the paper's
@@ -19,9 +20,16 @@ less / equal / greater decision), or a `BatchResult` of arrays for N-D
 input (one test per row, e.g. per pixel).  `Moments` accumulates samples
 in streams and merges across threads and machines; `batch_means` makes
 secondary estimates; `KSCache` shares simulated K-S null distributions
-across a battery of tests.  Errors are `ValueError` subclasses (see
+across a battery of tests.  `MomentsArray` keeps one accumulator per
+pixel (render farms: push images, ship bytes, merge, test per pixel).
+Errors are `ValueError` subclasses (see
 `mcstat._errors`).  The reference estimators of the paper's case studies
 are in the subpackage `mcstat.estimators`.
+
+Beyond the paper (issue 9): `binom_test` (R's exact binomial test),
+`battery_test` (is a battery's rejection count consistent with its level?)
+and `diagnose` (skewness, kurtosis, heavy tails, the batch size the t test
+needs) in `mcstat.diagnostics`.
 
 One-sided alternatives are claims about the first sample in every test:
 ``ks_test(x, y, alternative="less")`` means x tends to be smaller, which
@@ -57,7 +65,23 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
     t_test,
     var_test,
 )
+from ._core import chisq_gof  # noqa: E402  (chi-squared goodness of fit, issue 9)
 from ._result import BatchResult
+
+# Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
+from ._core import MomentsArray  # noqa: E402
+# Equivalence (TOST), power and sample size (mcstat._power).
+from ._power import (  # noqa: E402
+    EquivalenceResult,
+    KSPowerResult,
+    PowerResult,
+    equivalence_test,
+    ks_power,
+    ks_sample_size,
+    power,
+)
+# issue 9: the binomial meta-test and estimator diagnostics
+from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 
 __version__ = "0.1.0"
 
@@ -65,12 +89,26 @@ __all__ = [
     "t_test",
     "var_test",
     "ks_test",
+    "chisq_gof",
     "KSCache",
     "Moments",
     "batch_means",
     "TestResult",
     "BatchResult",
+    "MomentsArray",
     "set_num_threads",
     "get_num_threads",
+    "binom_test",
+    "battery_test",
+    "diagnose",
+    "Diagnostics",
     *_errors.__all__,
+    # equivalence, power and sample size
+    "equivalence_test",
+    "EquivalenceResult",
+    "power",
+    "PowerResult",
+    "ks_power",
+    "ks_sample_size",
+    "KSPowerResult",
 ]

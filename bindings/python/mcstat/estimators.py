@@ -16,6 +16,12 @@ BRDF sampling (section 3.2)
     model's own sampler (with the true density), ``sample_exact`` from
     f cos / albedo by rejection (with the number of proposals), both with
     Morton keys; :func:`direction_keys`, :func:`direction_square`.
+Chi-squared tests of direction samplers (issue 9)
+    :func:`direction_cells` cuts the sphere into cells of nearly equal
+    probability under a plan's sampler density, with each cell's exact
+    probability by cubature; :func:`direction_gof` tests directions against
+    them with :func:`mcstat.chisq_gof`; ``plan.sample_bug(n, bug)`` draws
+    from the sampler with one of the planted :data:`SAMPLER_BUGS`.
 Reflected radiance (section 3.3)
     ``plan.reflected_radiance(method, n)`` under the analytic
     :func:`environment_radiance`; ``plan.reflected_radiance_reference()``.
@@ -70,6 +76,12 @@ __all__ = [
     "TrialLimitError",
     "EstimatorNumericalError",
     "NotReadyError",
+    # chi-squared route for direction samplers (issue 9)
+    "SAMPLER_BUGS",
+    "DirectionCells",
+    "direction_cells",
+    "direction_gof",
+    "default_depth",
 ]
 
 #: The irradiance estimators of section 3.1.
@@ -170,3 +182,112 @@ from ._estimators import (  # noqa: E402  (the extension looks the errors up her
     paper_scene,
     ward,
 )
+
+
+# ---- chi-squared route for direction samplers (issue 9) ------------------------------
+
+from ._estimators import _brdf_cells, cells_bounds, cells_count, cells_locate  # noqa: E402
+
+#: The planted bugs of the BRDF samplers (``BRDFPlan.sample_bug``); see mcest.h.
+SAMPLER_BUGS = ("roughness", "axes_swapped", "phi_half", "jacobian")
+
+
+class DirectionCells(NamedTuple):
+    """Cells of the sphere for chi-squared tests of a direction sampler
+    (:func:`direction_cells`).
+
+    Attributes
+    ----------
+    depth : int
+        The k-d tree's depth: ``2**depth`` cells.
+    split : ndarray of float64, shape (2**depth - 1,)
+        Split values in heap order, alternately across s and t of the
+        equal-area square (:func:`direction_square`).
+    prob : ndarray of float64, shape (2**depth,)
+        Each cell's probability under the plan's sampler density, by
+        cubature.
+    err : float
+        Sum of the cubature's estimated absolute errors.
+    """
+
+    depth: int
+    split: np.ndarray
+    prob: np.ndarray
+    err: float
+
+    def counts(self, w) -> np.ndarray:
+        """The number of directions w (shape (..., 3)) in each cell."""
+        return cells_count(self.split, self.depth, w)
+
+    def locate(self, w) -> np.ndarray:
+        """The cell (uint32) of each direction w (shape (..., 3))."""
+        return cells_locate(self.split, self.depth, w)
+
+    def bounds(self) -> np.ndarray:
+        """Rectangles (s0, s1, t0, t1) of the cells, shape (2**depth, 4)."""
+        return cells_bounds(self.split, self.depth)
+
+
+def default_depth(n: int, min_expected: float = 5.0) -> int:
+    """The depth used when none is given: about 2 n^(2/5) cells (Mann and
+    Wald's rule of thumb for equiprobable cells), at most n / min_expected
+    cells, between 2 and 12 levels."""
+    k = 2.0 * max(n, 1) ** 0.4
+    k = min(k, max(n, 1) / max(min_expected, 1.0))
+    return int(min(12, max(2, round(np.log2(max(k, 1.0))))))
+
+
+def direction_cells(plan, depth: int, *, rel_tol: float = 1e-8, strict: bool = True) -> DirectionCells:
+    """Cells of (nearly) equal probability under ``plan``'s sampler density.
+
+    The sphere, mapped to the equal-area square of the Morton keys, is cut
+    by a k-d tree of the given depth at medians of a quasi-random pilot of
+    the plan's own sampler; each cell's probability under the density
+    ``plan.pdf`` (whole sphere, below-horizon directions included) is then
+    computed by adaptive cubature to ``rel_tol`` (libmcest's
+    ``mcest_brdf_cells``, the GIL released).  Deterministic.
+
+    Raises EstimatorNumericalError when the summed error estimate exceeds
+    1e-5 (``strict``); with ``strict=False`` the cells are returned anyway.
+    """
+    split, prob, err, status = _brdf_cells(plan, depth, rel_tol)
+    if status and strict:
+        raise EstimatorNumericalError(f"cell probabilities: summed error estimate {err:.3g} exceeds 1e-5")
+    return DirectionCells(int(depth), split, prob, float(err))
+
+
+def direction_gof(directions, plan=None, *, cells: Optional[DirectionCells] = None, depth: Optional[int] = None,
+                  alpha: float = 0.05, min_expected: float = 5.0):
+    """Chi-squared goodness of fit of directions to a BRDF sampler's density.
+
+    Parameters
+    ----------
+    directions : array_like, shape (n, 3)
+        Directions to test (any non-zero length; below the horizon too).
+    plan : BRDFPlan
+        Whose sampler density (``plan.pdf``) the directions should follow;
+        needed unless ``cells`` is given.
+    cells : DirectionCells, optional
+        Cells made once by :func:`direction_cells` (reuse them across
+        tests: making them costs 0.1-1 s).
+    depth : int, optional
+        Cells ``2**depth`` when ``cells`` is None; default
+        :func:`default_depth` of n.
+    alpha, min_expected
+        As :func:`mcstat.chisq_gof` (cells are pooled in tree order, so
+        neighbours pool).
+
+    Returns
+    -------
+    mcstat.TestResult
+    """
+    from . import chisq_gof  # the hypothesis test is libmcstat's
+
+    w = np.asarray(directions, dtype=np.float64)
+    if cells is None:
+        if plan is None:
+            raise InvalidEstimatorArgument("direction_gof needs a plan or cells")
+        n = w.size // 3 if w.ndim >= 1 else 0
+        cells = direction_cells(plan, default_depth(n, min_expected) if depth is None else depth)
+    counts = cells.counts(w)
+    return chisq_gof(counts, cells.prob, alpha=alpha, min_expected=min_expected, rescale=True)

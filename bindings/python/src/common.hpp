@@ -11,6 +11,7 @@
 #include <pybind11/pybind11.h>
 
 #include <string>
+#include <vector>
 
 #include "mcstat.h"
 
@@ -86,6 +87,13 @@ py::object make_result(const Result &r);
 // ---- the K-S test (ks.cpp) ---------------------------------------------------
 void register_ks(py::module_ &mod);
 
+// ---- equivalence and power (power.cpp) -------------------------------------------
+void register_power(py::module_ &mod);
+// ---- binomial test, battery meta-test, diagnostics (diagnostics.cpp) --------
+void register_diagnostics(py::module_ &mod);
+// ---- chi-squared goodness of fit (chisq.cpp) ------------------------------------
+void register_chisq(py::module_ &mod);
+
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);
 
@@ -114,5 +122,21 @@ void set_num_threads(int n);
 // releasing and re-taking it costs more than the loop (measured, see
 // bench/RESULTS_python.md); every longer loop over data runs without it.
 constexpr size_t GIL_RELEASE_MIN = 4096;
+
+// ---- arrays of accumulators, one per pixel (moments_array.cpp, rows.cpp) ----
+struct MomentsArray {
+    std::vector<py::ssize_t> shape;
+    std::vector<mcstat_moments> m; // C order of shape
+};
+void register_moments_array(py::module_ &mod);
+// The array inside a Python MomentsArray, or nullptr if obj is not one.
+const MomentsArray *as_moments_array(py::handle obj);
+// One test per pixel of x (and y, same number of pixels); the BatchResult
+// of `shape`, as run_rows returns it.
+py::object run_moments_rows(const TestArgs &a, const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                            const std::vector<py::ssize_t> &shape);
+// t_test / var_test when x or y is a MomentsArray (the other a MomentsArray
+// of the same shape or a Moments, compared with every pixel).
+py::object test_moments_array(const TestArgs &a, py::handle x, py::handle y);
 
 } // namespace mcs

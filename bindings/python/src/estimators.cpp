@@ -464,6 +464,164 @@ Returns
 ndarray of uint64, shape (...)
 )doc";
 
+// ---- chi-squared route for direction samplers (issue 9) ---------------------------
+// Planted sampler bugs (BRDFPlan.sample_bug) and equal-probability direction
+// cells (_brdf_cells, cells_count, cells_locate, cells_bounds); the Python
+// face is mcstat.estimators.direction_cells / direction_gof.
+
+int parse_sampler_bug(py::handle o)
+{
+    if (o.is_none())
+        return MCEST_SAMPLER_BUG_NONE;
+    if (!py::isinstance<py::str>(o))
+        throw py::type_error("bug must be None or a str, got " + show(o));
+    int bug;
+    if (mcest_sampler_bug_parse(o.cast<std::string>().c_str(), &bug))
+        throw_invalid("unknown sampler bug " + show(o) +
+                      "; expected None, 'roughness', 'axes_swapped', 'phi_half' or 'jacobian'");
+    return bug;
+}
+
+int cells_depth(py::handle o)
+{
+    uint64_t d = PyBool_Check(o.ptr()) ? 0 : to_u64(o, "depth");
+    if (d < 1 || d > MCEST_CELLS_MAX_DEPTH)
+        throw_invalid("depth must be in 1.." + std::to_string(MCEST_CELLS_MAX_DEPTH) + ", got " + show(o));
+    return static_cast<int>(d);
+}
+
+carray cell_splits(py::handle o, int depth)
+{
+    carray a = carray::ensure(o);
+    if (!a || a.ndim() != 1 || static_cast<size_t>(a.size()) != (size_t{1} << depth) - 1)
+        throw_invalid("split must be a 1-D array of 2**depth - 1 values");
+    return a;
+}
+
+void register_sampler_gof(py::module_ &m)
+{
+    py::object cls = m.attr("BRDFPlan");
+    cls.attr("sample_bug") = py::cpp_function(
+        [](const BRDFPlan &s, py::object n_o, py::object bug_o, py::object seed_o, py::object first_o,
+           py::object threads_o) {
+            size_t n = to_count(n_o, "n");
+            int bug = parse_sampler_bug(bug_o);
+            uint64_t seed = to_u64(seed_o, "seed"), first = to_u64(first_o, "first_index");
+            int threads = to_threads(threads_o);
+            check_range(first, n);
+            py::array_t<double> wi({static_cast<py::ssize_t>(n), py::ssize_t{3}}), pdf(static_cast<py::ssize_t>(n));
+            py::array_t<uint64_t> keys(static_cast<py::ssize_t>(n));
+            double *w = wi.mutable_data(), *p = pdf.mutable_data();
+            uint64_t *k = keys.mutable_data();
+            mcest_brdf_plan P = s.p;
+            int st;
+            {
+                py::gil_scoped_release nogil;
+                st = run_chunks(n, threads, [&](size_t a, size_t c) {
+                    int r = mcest_brdf_sample_bug(&P, bug, seed, first + a, c, w + 3 * a);
+                    if (!r)
+                        r = mcest_brdf_pdf(&P, w + 3 * a, c, p + a);
+                    return r ? r : mcest_direction_key(w + 3 * a, c, k + a);
+                });
+            }
+            if (st)
+                throw_est(st);
+            return direction_sample(wi, pdf, keys, n);
+        },
+        py::name("sample_bug"), py::is_method(cls), py::sibling(py::getattr(cls, "sample_bug", py::none())),
+        py::arg("n"), py::arg("bug"), py::kw_only(), py::arg("seed") = 0, py::arg("first_index") = 0,
+        py::arg("threads") = py::none(), R"doc(sample_bug(n, bug, *, seed=0, first_index=0, threads=None)
+
+n directions from the BRDF's sampler with a planted bug (issue 9): bug in
+None (exactly `sample`), "roughness" (lobe 10% too wide), "axes_swapped"
+(anisotropy axes swapped), "phi_half" (azimuth over half its range),
+"jacobian" (the sin(theta) of d(omega) forgotten in the polar warp: a
+half-normal instead of a Rayleigh polar radius).  ``pdf`` is the density
+the sampler *claims* (the correct one, `pdf`), not the one it draws from.
+Each bug draws from its own random stream.
+
+Returns
+-------
+DirectionSample
+)doc");
+
+    m.def(
+        "_brdf_cells",
+        [](const BRDFPlan &s, py::object depth_o, double rel_tol) {
+            int depth = cells_depth(depth_o);
+            if (!(rel_tol >= 1e-12 && rel_tol <= 1e-2))
+                throw_invalid("rel_tol must be in [1e-12, 1e-2]");
+            size_t cells = size_t{1} << depth;
+            std::vector<double> work(mcest_cells_work_size(depth));
+            py::array_t<double> split(static_cast<py::ssize_t>(cells - 1)), prob(static_cast<py::ssize_t>(cells));
+            double *sp = split.mutable_data(), *pp = prob.mutable_data(), err = NAN;
+            mcest_brdf_plan P = s.p;
+            int st;
+            {
+                py::gil_scoped_release nogil;
+                st = mcest_brdf_cells(&P, depth, rel_tol, work.data(), sp, pp, &err);
+            }
+            if (st && st != MCEST_ENUMERIC)
+                throw_est(st);
+            return py::make_tuple(split, prob, err, st);
+        },
+        py::arg("plan"), py::arg("depth"), py::arg("rel_tol"),
+        "(split, prob, err, status) of mcest_brdf_cells (use mcstat.estimators.direction_cells).");
+
+    m.def(
+        "cells_count",
+        [](py::object split_o, py::object depth_o, py::object w_o) {
+            int depth = cells_depth(depth_o);
+            carray split = cell_splits(split_o, depth);
+            size_t k;
+            carray w = directions(w_o, "w", k);
+            py::array_t<double> counts(static_cast<py::ssize_t>(size_t{1} << depth));
+            int st;
+            {
+                py::gil_scoped_release nogil;
+                st = mcest_cells_count(split.data(), depth, w.data(), k, counts.mutable_data());
+            }
+            if (st)
+                throw_est(st, "directions must be finite and non-zero");
+            return counts;
+        },
+        py::arg("split"), py::arg("depth"), py::arg("w"),
+        "Counts of directions w (shape (..., 3)) in each of the 2**depth cells.");
+
+    m.def(
+        "cells_locate",
+        [](py::object split_o, py::object depth_o, py::object w_o) {
+            int depth = cells_depth(depth_o);
+            carray split = cell_splits(split_o, depth);
+            size_t k;
+            carray w = directions(w_o, "w", k);
+            py::array_t<uint32_t> cell(lead_shape(w));
+            int st;
+            {
+                py::gil_scoped_release nogil;
+                st = mcest_cells_locate(split.data(), depth, w.data(), k, cell.mutable_data());
+            }
+            if (st)
+                throw_est(st, "directions must be finite and non-zero");
+            return cell;
+        },
+        py::arg("split"), py::arg("depth"), py::arg("w"), "The cell of each direction w (shape (..., 3)).");
+
+    m.def(
+        "cells_bounds",
+        [](py::object split_o, py::object depth_o) {
+            int depth = cells_depth(depth_o);
+            carray split = cell_splits(split_o, depth);
+            size_t cells = size_t{1} << depth;
+            py::array_t<double> b({static_cast<py::ssize_t>(cells), py::ssize_t{4}});
+            int st = mcest_cells_bounds(split.data(), depth, b.mutable_data());
+            if (st)
+                throw_est(st);
+            return b;
+        },
+        py::arg("split"), py::arg("depth"), "Rectangles (s0, s1, t0, t1) of the cells in the equal-area square.");
+}
+
 } // namespace
 
 PYBIND11_MODULE(_estimators, m)
@@ -930,4 +1088,6 @@ The analytic environment of section 3.3 at directions w (shape (..., 3),
 normalised first), in the shading frame:
 Lenv(w) = 1 + 0.5 (x^3 - 3 x y^2) + 0.3 cos(12 y) + 4 exp(20 (w.d - 1)),
 d = (0.3, -0.4, sqrt(0.75)).  Returns shape (...).)doc");
+
+    register_sampler_gof(m); // issue 9: chi-squared route, planted sampler bugs
 }

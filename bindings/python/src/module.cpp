@@ -12,6 +12,10 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_moments(mod);
     mcs::register_tests(mod);
     mcs::register_ks(mod);
+    mcs::register_moments_array(mod); // per-pixel accumulators
+    mcs::register_power(mod); // equivalence (TOST), power and sample size
+    mcs::register_diagnostics(mod); // issue 9
+    mcs::register_chisq(mod); // chi-squared goodness of fit (issue 9)
 
     mod.def("set_num_threads", &mcs::set_num_threads, py::arg("n"),
             R"doc(Sets the number of threads for row-wise tests (0 = the default).

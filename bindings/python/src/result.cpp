@@ -26,6 +26,7 @@ std::string method_name(const mcstat_result &r)
     case MCSTAT_TEST_T_2: return "Welch Two Sample t-test";
     case MCSTAT_TEST_VAR_1: return "One Sample Chi-squared test on variance";
     case MCSTAT_TEST_VAR_2: return "F test to compare two variances";
+    case MCSTAT_TEST_CHISQ_GOF: return "Chi-squared test for given probabilities";
     case MCSTAT_TEST_KS_2: {
         // libmcstat's formatter owns the wording: take its title line
         char buf[256];
@@ -37,6 +38,7 @@ std::string method_name(const mcstat_result &r)
         size_t a = t.find('\t'), b = t.find('\n', a == std::string::npos ? 0 : a);
         return a == std::string::npos ? t : t.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
     }
+    case MCSTAT_TEST_BINOM: return "Exact binomial test";
     default: return "unknown";
     }
 }
@@ -109,11 +111,14 @@ Attributes
 statistic : float
     t, X-squared or F; for `ks_test` D = sup |F - G| (weight "none") or
     Canner's D2 (weight "canner"), one-sided versions for "less" and
-    "greater".
+    "greater"; for `binom_test` the number of successes.
 df : float or tuple of float
     Degrees of freedom; ``(num, denom)`` for the F test.
 pvalue : float
     p-value for `alternative`.
+log_pvalue : float
+    Its natural logarithm; `binom_test` computes it directly, so it stays
+    finite where `pvalue` underflows to 0.
 conf_int : tuple of float
     ``(low, high)`` confidence interval at level ``1 - alpha`` for the
     tested parameter (mean, difference in means, variance or ratio of
@@ -132,7 +137,8 @@ method : str
     weight"``.
 pvalue_method : str
     How the p-value was obtained: ``"analytic"`` (t, chi-squared, F),
-    ``"exact"``, ``"simulate"`` or ``"asymptotic"`` (K-S).
+    ``"exact"``, ``"simulate"`` or ``"asymptotic"`` (K-S; Pearson's
+    X-squared in `chisq_gof`).
 alpha : float
     Significance level used for `reject`, `decision`, `critical_values`
     and `conf_int`.
@@ -155,6 +161,9 @@ seed : int or None
     simulated): passing it back as ``seed=`` reproduces the result.
 weight : str or None
     K-S: ``"none"`` or ``"canner"``; None for the other tests.
+cells : int or None
+    `chisq_gof`: the number of cells after pooling; None for the other
+    tests.
 std_error : float
     Standard error of the estimate (t tests; NaN otherwise).
 nobs : int or tuple of int
@@ -171,6 +180,10 @@ y_name)`` names them.
             return two_df(s.r) ? pair(s.r.df[0], s.r.df[1]) : py::float_(s.r.df[0]);
         })
         .def_property_readonly("pvalue", [](const Result &s) { return s.r.p_value; })
+        .def_property_readonly("log_pvalue", [](const Result &s) {
+            // the binomial test keeps it where the p-value underflows
+            return s.r.test == MCSTAT_TEST_BINOM ? MCSTAT_RESULT_LOG_P_VALUE(&s.r) : std::log(s.r.p_value);
+        })
         .def_property_readonly("conf_int", [](const Result &s) { return pair(s.r.conf_int[0], s.r.conf_int[1]); })
         .def_property_readonly("estimate", [](const Result &s) -> py::object {
             return two_estimates(s.r) ? pair(s.r.estimate[0], s.r.estimate[1]) : py::float_(s.r.estimate[0]);
@@ -192,6 +205,12 @@ y_name)`` names them.
             if (!is_ks(s.r))
                 return py::none();
             return py::str(MCSTAT_RESULT_KS_WEIGHT(&s.r) == MCSTAT_KS_WEIGHT_CANNER ? "canner" : "none");
+        })
+        // chi-squared goodness of fit (issue 9): cells after pooling, None for other tests
+        .def_property_readonly("cells", [](const Result &s) -> py::object {
+            if (s.r.test != MCSTAT_TEST_CHISQ_GOF)
+                return py::none();
+            return py::int_(MCSTAT_RESULT_CHISQ_CELLS(&s.r));
         })
         .def_property_readonly("alpha", [](const Result &s) { return s.r.alpha; })
         .def_property_readonly("reject", [](const Result &s) { return s.r.reject != 0; })

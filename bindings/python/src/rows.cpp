@@ -295,3 +295,105 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
 }
 
 } // namespace mcs
+
+// ---- one test per accumulator (MomentsArray) ---------------------------------
+// The accumulators are already reduced, so there is no layout to read: rows
+// are split into one range per thread and libmcstat's *_moments_rows fills
+// each range, bit for bit the single *_moments call per pixel.
+namespace mcs {
+
+py::object run_moments_rows(const TestArgs &a, const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                            const std::vector<py::ssize_t> &shape)
+{
+    bool two = a.kind == Kind::T2 || a.kind == Kind::V2;
+    bool t2 = a.kind == Kind::T2, v2 = a.kind == Kind::V2;
+    auto with = [&](int k) {
+        std::vector<py::ssize_t> s = shape;
+        if (k > 1)
+            s.push_back(k);
+        return s;
+    };
+    Outputs o;
+    o.ndf = v2 ? 2 : 1;
+    o.nest = t2 ? 2 : 1;
+    o.nobs_per_row = two ? 2 : 1;
+    py::array_t<double> statistic(with(1)), df(with(o.ndf)), pvalue(with(1)), conf_int(with(2)),
+        estimate(with(o.nest)), critical(with(2)), std_error(with(1));
+    py::array_t<bool> reject(with(1));
+    py::array_t<int8_t> decision(with(1)), status(with(1));
+    py::array_t<int64_t> nobs(with(o.nobs_per_row));
+    o.statistic = statistic.mutable_data();
+    o.df = df.mutable_data();
+    o.pvalue = pvalue.mutable_data();
+    o.conf_int = conf_int.mutable_data();
+    o.estimate = estimate.mutable_data();
+    o.critical = critical.mutable_data();
+    o.std_error = std_error.mutable_data();
+    o.reject = reject.mutable_data();
+    o.decision = decision.mutable_data();
+    o.status = status.mutable_data();
+    o.nobs = nobs.mutable_data();
+    unsigned flags = a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS;
+    auto range = [&](size_t begin, size_t end) {
+        const size_t chunk = 256;
+        std::vector<mcstat_result> res(chunk);
+        std::vector<int32_t> st(chunk);
+        for (size_t r0 = begin; r0 < end; r0 += chunk) {
+            size_t k = std::min(chunk, end - r0);
+            const mcstat_moments *px = x + r0, *py_ = two ? y + r0 : nullptr;
+            switch (a.kind) {
+            case Kind::T1:
+                mcstat_t_test_1_moments_rows(px, k, a.null_value, a.alternative, a.alpha, flags, res.data(), st.data());
+                break;
+            case Kind::T2:
+                mcstat_t_test_2_moments_rows(px, py_, k, a.null_value, a.alternative, a.alpha, flags, res.data(),
+                                             st.data());
+                break;
+            case Kind::V1:
+                mcstat_var_test_1_moments_rows(px, k, a.null_value, a.alternative, a.alpha, flags, res.data(),
+                                               st.data());
+                break;
+            case Kind::V2:
+                mcstat_var_test_2_moments_rows(px, py_, k, a.null_value, a.alternative, a.alpha, flags, res.data(),
+                                               st.data());
+                break;
+            }
+            scatter(res.data(), st.data(), r0, k, o);
+        }
+    };
+    {
+        py::gil_scoped_release nogil;
+        size_t nt = std::min<size_t>(static_cast<size_t>(num_threads()), std::max<size_t>(1, rows / 1024));
+        if (nt <= 1) {
+            range(0, rows);
+        } else {
+            std::vector<std::thread> pool;
+            size_t per = (rows + nt - 1) / nt;
+            for (size_t t = 1; t < nt; t++) {
+                size_t b = t * per, e = std::min(rows, b + per);
+                if (b < e)
+                    pool.emplace_back([&, b, e] { range(b, e); });
+            }
+            range(0, std::min(rows, per));
+            for (auto &th : pool)
+                th.join();
+        }
+    }
+    py::dict fields;
+    fields["statistic"] = statistic;
+    fields["df"] = df;
+    fields["pvalue"] = pvalue;
+    fields["conf_int"] = conf_int;
+    fields["estimate"] = estimate;
+    fields["critical_values"] = critical;
+    fields["std_error"] = std_error;
+    fields["reject"] = reject;
+    fields["decision_code"] = decision;
+    fields["status"] = status;
+    fields["nobs"] = nobs;
+    static py::object make = py::module_::import("mcstat._result").attr("_make_batch");
+    return make(kind_name(a.kind), fields, a.alternative, a.alpha, a.null_value, a.axis, a.errors_as_nan,
+                a.intervals);
+}
+
+} // namespace mcs

@@ -179,6 +179,9 @@ int call_arrays(const TestArgs &a, const double *x, size_t nx, const double *y, 
 py::object run(const Parsed &p, TestArgs &a)
 {
     bool two = p.y != nullptr;
+    // Per-pixel accumulators: one test per pixel (moments_array.cpp).
+    if (as_moments_array(p.x) || (two && as_moments_array(p.y)))
+        return test_moments_array(a, p.x, two ? py::handle(p.y) : py::handle());
     const mcstat_moments *mx = as_moments(p.x), *my = two ? as_moments(p.y) : nullptr;
     mcstat_result r;
     if (mx || my) { // accumulators (an array beside one is turned into moments)

@@ -13,7 +13,8 @@ sampling       3.2: BRDF samplers against rejection sampling (K-S, figure 6)
 radiance       3.3: reflected radiance, Welch per direction, binomial test
 bugs           3.4: the three planted bugs against the trusted estimator
 timing         error against run time; K-S p-value error against run time
-binomial       exact binomial test and Clopper-Pearson intervals
+binomial       battery meta-test (libmcstat's exact binomial test), intervals
+diagnose       estimator diagnostics: shape, tails, batch size (issue 9)
 results        results.json
 plots, report  the PNG figures and report.md
 run            the driver behind ``mcstat reproduce``

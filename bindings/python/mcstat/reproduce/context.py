@@ -22,6 +22,8 @@ import numpy as np
 
 #: Fixed numbers of the studies in the streams' keys (never reuse one).
 STUDY_KEYS = {"irradiance": 1, "sampling": 2, "radiance": 3, "bugs": 4, "timing": 5}
+STUDY_KEYS["diagnostics"] = 6  # issue 9
+STUDY_KEYS["sampler_bugs"] = 7  # issue 9
 
 
 class _NoBar:

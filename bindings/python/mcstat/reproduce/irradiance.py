@@ -27,6 +27,7 @@ import numpy as np
 
 import mcstat
 from .. import estimators as est
+from . import equivalence
 from .binomial import rate_of_counts
 from .context import Context
 from .plan import Plan
@@ -221,6 +222,10 @@ def _tests(ctx: Context, sc, r: Dict[str, Any], X: Dict[str, np.ndarray], alpha:
         x = pooled[m]
         counts, edges = np.histogram(x, bins=40)
         res["histograms"][m] = dict(counts=counts, edges=edges, mean=float(x.mean()), sd=sd[m], n=int(x.size))
+
+    # beyond the paper: equivalence with Lambert and sample sizes (equivalence.py)
+    if E is not None and alpha < 0.5:
+        res["equivalence"] = equivalence.analyse(ctx, pooled, E, k, alpha)
     return res
 
 
@@ -253,6 +258,8 @@ def findings(res: Dict[str, Any]) -> List[str]:
                 text += (f"{'; ' if parts else ': '}no test of {', '.join(none)} could run (constant samples, e.g. "
                          "no direction hit the emitter; see the R-style output)")
             out.append(text + ".")
+        if r.get("equivalence"):
+            out += equivalence.findings(where, r["equivalence"])
         if len(r["ordering"]["order"]) > 1:
             out.append(f"{where}: variance ordering {r['ordering']['text']} (one-sided F tests on pooled "
                        f"secondary estimates; '~' = not resolved at alpha = {alpha:g}"

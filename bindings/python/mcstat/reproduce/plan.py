@@ -11,7 +11,9 @@ Rules (the issue's, in code):
   matrix compares every pair of the listed estimators.
 - Section 3.4 needs estimator A (where the bugs are planted) and a trusted
   estimator other than A.
-- Sections 3.2 and 3.3 need BRDFs (those listed for each study).
+- Sections 3.2 and 3.3 need BRDFs (those listed for each study), and so
+  does the comparison of the chi-squared and K-S routes on planted
+  sampler bugs (3.2+, beyond the paper).
 - The timing study times the listed estimators at the first receiver that
   sees an emitter (RMSE against Lambert with one triangle, else the
   estimated standard error), and the K-S simulation when 3.2 runs.
@@ -28,13 +30,22 @@ from typing import Any, Dict, List, Optional
 from .. import estimators as est
 from .scene import Scene
 
+
+def equivalence_what() -> str:
+    from .equivalence import WHAT  # equivalence.py imports the package; plan.py stays light
+    return WHAT
+
 SECTIONS = {"irradiance": "3.1", "sampling": "3.2", "radiance": "3.3", "bugs": "3.4", "timing": "time"}
+SECTIONS["diagnostics"] = "diag"  # issue 9
+SECTIONS["sampler_bugs"] = "3.2+"  # beyond the paper (issue 9)
 TITLES = {
     "irradiance": "Irradiance estimators (3.1)",
     "sampling": "BRDF sampling (3.2)",
     "radiance": "Reflected radiance (3.3)",
     "bugs": "Planted bugs (3.4)",
     "timing": "Error against run time",
+    "diagnostics": "Estimator diagnostics",
+    "sampler_bugs": "Planted sampler bugs: chi-squared against K-S (3.2+)",
 }
 
 #: --quick: (study, field, cap); list fields keep the values <= cap (at least the first).
@@ -48,6 +59,9 @@ QUICK = [
     ("timing", "reps", 6),
     ("timing", "ks_n_sim", 9999),
     ("timing", "ks_reps", 5),
+    ("diagnostics", "n", 20000),
+    ("sampler_bugs", "sizes", 3000),
+    ("sampler_bugs", "runs", 20),
 ]
 
 
@@ -79,7 +93,11 @@ class Plan:
         self._brdf_study("radiance", "Welch tests of BRDF sampling against rejection sampling at many "
                                      "outgoing directions, and a binomial test of the fraction of equal means")
         self._bugs()
+        self._brdf_study("sampler_bugs", "each BRDF's sampler with each planted bug (and without: the size check), "
+                                         "chi-squared on equal-probability cells of the claimed density against K-S "
+                                         "(Canner) of Morton keys against the correct sampler: power curves")
         self._timing()
+        self._diagnostics()
 
     # -- helpers ---------------------------------------------------------------
     def _apply_quick(self) -> None:
@@ -136,12 +154,21 @@ class Plan:
                 self._add("irradiance", r["name"],
                           f"one-sample t tests of {ests} against Lambert's formula (E = {r['lambert']:.6g}); "
                           f"{p['runs']} runs of {p['secondary']} secondary estimates (means of k = {k})")
+                if p["alpha"] < 0.5:
+                    self._add("irradiance", r["name"], equivalence_what())
+                else:
+                    self._leave("irradiance", r["name"], "equivalence and sample sizes",
+                                f"alpha = {p['alpha']:g}: an equivalence test needs alpha < 0.5 (its interval has "
+                                "level 1 - 2 alpha)")
             else:
                 self._leave("irradiance", r["name"], "one-sample tests against Lambert's formula",
                             f"the scene has {sc.n_emitters} emitter triangles: Lambert's formula is exact for one "
                             "unoccluded triangle, and nothing here checks that the triangles do not occlude one "
                             f"another, so no analytic value is trusted; the estimators are compared with the "
                             f"trusted estimator {sc.trusted} (each run per triangle and summed) instead")
+                self._leave("irradiance", r["name"], "equivalence with Lambert's formula and sample sizes",
+                            "they are stated relative to the exact irradiance, which a scene of several triangles "
+                            "does not have")
             if len(sc.estimators) >= 2:
                 self._add("irradiance", r["name"],
                           f"figure-4 matrix: Welch and F tests of every pair of {ests}, {p['runs']} runs; "
@@ -212,6 +239,34 @@ class Plan:
         else:
             self._leave("timing", "ks", "simulated K-S p-value error against run time",
                         "section 3.2 does not run, so there are no direction samples to test")
+
+    def _diagnostics(self) -> None:
+        """Issue 9: shape, tails and batch size of every estimator the other
+        studies test (irradiance at each receiver that sees an emitter; both
+        reflected-radiance estimators of the BRDFs section 3.3 tests)."""
+        if self._disabled("diagnostics"):
+            return
+        sc, n = self.scene, self.params["diagnostics"]["n"]
+        for r in self.receivers:
+            if not r["visible"]:
+                self._leave("diagnostics", r["name"], "diagnostics of the irradiance estimators",
+                            "no emitter is above this receiver's horizon: every estimator returns 0")
+                continue
+            self._add("diagnostics", r["name"], f"skewness, kurtosis, tail index, normality of batch means and "
+                                                f"recommended batch size of {', '.join(sc.estimators)} ({n} primary "
+                                                "estimates each)")
+        if not sc.brdfs:
+            self._leave("diagnostics", "BRDFs", "diagnostics of the reflected-radiance estimators",
+                        "the scene has no BRDFs")
+            return
+        tested = self.brdfs_for("radiance")
+        for b in sc.brdfs:
+            if b["name"] in tested:
+                self._add("diagnostics", b["name"], f"the same for BRDF sampling and rejection sampling of the "
+                                                    f"reflected radiance at the BRDF's outgoing direction ({n} each)")
+            else:
+                self._leave("diagnostics", b["name"], "diagnostics of the reflected-radiance estimators",
+                            "section 3.3 does not test this BRDF")
 
     # -- output ----------------------------------------------------------------
     def to_dict(self) -> Dict[str, Any]:

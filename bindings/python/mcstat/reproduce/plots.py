@@ -172,3 +172,26 @@ def ks_error_time(ks: Dict[str, Any], path: str) -> None:
     ax.set_title(f"K-S simulation, {ks['size']} + {ks['size']} (exact p = {ks['exact_pvalue']:.3g})", fontsize=10)
     ax.legend(fontsize=7)
     _save(fig, path)
+
+
+def sampler_bug_power(b: Dict[str, Any], res: Dict[str, Any], path: str) -> None:
+    """3.2+ (issue 9): rejection rate against n, chi-squared and K-S, one panel per sampler variant."""
+    variants = ["none"] + res["bugs"]
+    fig, axes = plt.subplots(1, len(variants), figsize=(2.6 * len(variants), 2.9), sharey=True)
+    n = np.array([r["n"] for r in b["sizes"]])
+    for ax, v in zip(np.atleast_1d(axes), variants):
+        for route, label, style in (("chisq", "chi-squared", "-"), ("ks", "K-S (Morton)", "--")):
+            s = [r["variants"][v][route] for r in b["sizes"]]
+            rate = np.array([x["rate"] for x in s])
+            lo = np.array([x["ci95"][0] for x in s])
+            hi = np.array([x["ci95"][1] for x in s])
+            ax.errorbar(n, rate, yerr=[rate - lo, hi - rate], marker="o", ms=3, capsize=2, ls=style, label=label)
+        ax.axhline(res["alpha"], color="0.5", ls=":", lw=1)
+        ax.set_xscale("log")
+        ax.set_ylim(-0.03, 1.03)
+        ax.set_title("no bug (size)" if v == "none" else v, fontsize=9)
+        ax.set_xlabel("directions n")
+    np.atleast_1d(axes)[0].set_ylabel(f"rejection rate ({res['runs']} runs)")
+    np.atleast_1d(axes)[0].legend(fontsize=7)
+    fig.suptitle(f"3.2+ {b['name']}: planted sampler bugs, alpha = {res['alpha']:g}", fontsize=10, y=1.04)
+    _save(fig, path)

@@ -70,7 +70,8 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
     L += [f"- {f}" for f in all_findings] or ["- (no study ran)"]
     L += ["", "These sentences are computed from the runs (see each section); a rate is a count of rejections among "
               "repeated tests, given with its exact 95% (Clopper-Pearson) interval, and 'consistent with alpha' means "
-              "an exact binomial test of rate = alpha gives p >= 0.01.", ""]
+              "the battery meta-test (libmcstat's exact binomial test of rate = alpha, `mcstat.battery_test`) "
+              "gives p >= 0.01.", ""]
 
     # plan
     plan = results["plan"]
@@ -113,6 +114,11 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
         L += _radiance(st["radiance"], fig, transcripts.get("radiance", ""))
     if "bugs" in st:
         L += _bugs(st["bugs"], fig, transcripts.get("bugs", ""))
+    if "diagnostics" in st:  # issue 9
+        from . import diagnose
+        L += diagnose.report(st["diagnostics"], transcripts.get("diagnostics", ""))
+    if "sampler_bugs" in st:  # beyond the paper (issue 9)
+        L += _sampler_bugs(st["sampler_bugs"], fig, transcripts.get("sampler_bugs", ""))
     if "timing" in results:
         L += _timing(results["timing"], fig, transcripts.get("timing", ""))
 
@@ -176,7 +182,42 @@ def _irradiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
                   f"estimates rejects equal variances at alpha = {res['alpha']:g}, '~' where it does not). Standard "
                   "deviation of one primary estimate, estimated as s.d.(secondary) x sqrt(k): "
                   + ", ".join(f"{m} {r['sd_primary_estimated'][m]:.4g}" for m in o["order"]) + ".", ""]
+        if r.get("equivalence"):
+            L += _equivalence(r["equivalence"], r["lambert"])
     L += _details("R-style output of 3.1", transcript)
+    return L
+
+
+def _equivalence(eq: Dict[str, Any], E: float) -> List[str]:
+    """Beyond the paper: is the bias small (TOST), and how many samples would find a small one (power)."""
+    margins, biases = eq["margins"], eq["biases"]
+    L = ["#### Is the bias small? Equivalence and sample size (beyond the paper)", "",
+         "The t tests above can only fail to find a bias. An equivalence test (two one-sided t tests, TOST) turns "
+         f"the question round: H0 |bias| >= margin against H1 |bias| < margin, at alpha = {eq['alpha']:g}, on the "
+         "pooled secondary estimates; **yes** is evidence that the bias is smaller than the margin (the "
+         f"{1 - 2 * eq['alpha']:.0%} confidence interval of the mean, shown relative to E, lies inside "
+         "+-margin). The last columns give the number of primary estimates a one-sample t test needs to detect a "
+         f"bias of that size with probability {eq['power']:g} (`mcstat.power`), from the estimator's measured "
+         "variance.", "",
+         "| estimator | (mean - E)/E | " + " | ".join(f"bias < {m:.1%} of E? (p)" for m in margins) + " | "
+         + f"{1 - 2 * eq['alpha']:.0%} CI of (mean - E)/E | "
+         + " | ".join(f"n to detect {b:.1%}" for b in biases) + " |",
+         "|---|---|" + "---|" * len(margins) + "---|" + "---|" * len(biases)]
+    for m, e in eq["estimators"].items():
+        cells = []
+        ci = "-"
+        for q in e["equivalence"]:
+            if "error" in q:
+                cells.append("test failed")
+                continue
+            cells.append(f"{'**yes**' if q['equivalent'] else 'no'} ({_p(q['pvalue'])})")
+            ci = f"[{q['conf_int_relative'][0]:.2e}, {q['conf_int_relative'][1]:.2e}]"
+        ns = [f"{q['n_primary']:.3g}" if q["n_primary"] else "-" for q in e["sample_size"]]
+        L += [f"| {m} | {e['bias_relative']:.2e} | " + " | ".join(cells) + f" | {ci} | " + " | ".join(ns) + " |"]
+    first = next(iter(eq["estimators"].values()), None)
+    if first:
+        L += ["", f"Each estimator contributed {first['n_primary']} primary estimates ({first['n_secondary']} "
+                  "secondary ones) to these tests.", ""]
     return L
 
 
@@ -252,6 +293,49 @@ def _bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
         L += ["", f"Control over all budgets: {c['rejections']}/{c['tests']} rejected, {_ci(c, 4)}; binomial test "
                   f"of rate = alpha: {_p(c['binom_pvalue'])}.", ""]
     L += _details("R-style output of 3.4", transcript)
+    return L
+
+
+def _sampler_bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+    depth = "about 2 n^0.4 cells per size (Mann and Wald)" if not res["depth"] else f"2^{res['depth']} cells"
+    L = ["## 3.2+ Planted sampler bugs: chi-squared against K-S (beyond the paper)", "",
+         "libmcest plants four bugs in the BRDF samplers' half-vector warps, while the density the sampler claims "
+         "stays the correct one: *roughness* (the lobe 10% too wide), *axes_swapped* (anisotropy axes swapped), "
+         "*phi_half* (azimuth over half its range), *jacobian* (the sin theta of d omega forgotten in the polar warp: "
+         "a half-normal instead of a Rayleigh polar radius). The same n directions are tested two ways: "
+         f"**chi-squared**, Pearson's test of the counts in {depth} of nearly equal probability under the claimed "
+         "density (cells are a k-d tree in the equal-area square of the Morton keys; each cell's probability by "
+         "cubature; cells with expected counts below 5 pooled with their neighbours), a one-sample test that needs "
+         "the density; and **K-S**, Canner's two-sample test of the directions' Morton keys against n directions "
+         "of the correct sampler, the route of section 3.2, which needs only a trusted sampler. "
+         f"alpha = {res['alpha']:g}, {res['runs']} runs per size; a route detects a bug from the size on which it "
+         f"rejects in at least {res['detected_threshold']:.0%} of the runs. The rate with no bug is each route's "
+         "size, which should be about alpha.", ""]
+    for b in res["brdfs"]:
+        vs = ["none"] + res["bugs"]
+        L += [f"### {b['name']}", "", fig(f"sampler_bugs_{b['name']}.png", plots.sampler_bug_power, b, res), "",
+              "| n | cells | " + " | ".join("no bug (size)" if v == "none" else v for v in vs) + " |",
+              "|---|---|" + "---|" * len(vs)]
+        for row in b["sizes"]:
+            L += [f"| {row['n']} | {2 ** row['depth']} | "
+                  + " | ".join(f"{row['variants'][v]['chisq']['rejections']} / {row['variants'][v]['ks']['rejections']}"
+                               for v in vs) + " |"]
+        L += ["", f"(each entry: rejections of {res['runs']} by chi-squared / by K-S)", ""]
+        L += ["| bug | chi-squared detects from | K-S detects from |", "|---|---|---|"]
+        for v in res["bugs"]:
+            s = b["summary"][v]
+            L += [f"| {v} | " + " | ".join(
+                f"n = {s[r]['detected_from']}" if s[r]["detected_from"] is not None else
+                f"not reliably ({s[r]['rate_at_largest']:.0%} at the largest n)" for r in ("chisq", "ks")) + " |"]
+        L += [""]
+        for r, label in (("chisq", "chi-squared"), ("ks", "K-S")):
+            s = b["size_check"][r]
+            L += [f"Size check, {label}: the correct sampler was rejected in {s['rejections']}/{s['tests']} tests, "
+                  f"{_ci(s, 4)}; binomial test of rate = alpha: {_p(s['binom_pvalue'])}.", ""]
+        cells = "; ".join(f"depth {c['depth']}: probabilities {c['prob_min']:.3g}..{c['prob_max']:.3g}, sum - 1 = "
+                          f"{c['sum_minus_one']:.1g}" for c in b["cells"])
+        L += [f"Cells: {cells}.", ""]
+    L += _details("R-style output of 3.2+", transcript)
     return L
 
 

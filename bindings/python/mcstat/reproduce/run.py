@@ -10,12 +10,16 @@ import numpy as np
 
 import mcstat
 from .. import estimators as est
-from . import bugs, irradiance, radiance, results, sampling, timing
+from . import bugs, irradiance, radiance, results, sampler_bugs, sampling, timing
+from . import diagnose  # issue 9
 from .context import Context
 from .plan import Plan
 from .scene import load_scene
 
 STUDIES = [("irradiance", irradiance), ("sampling", sampling), ("radiance", radiance), ("bugs", bugs)]
+STUDIES.append(("diagnostics", diagnose))  # issue 9: estimator diagnostics
+# beyond the paper (issue 9): chi-squared against Morton-key K-S on planted sampler bugs
+STUDIES.append(("sampler_bugs", sampler_bugs))
 
 
 def missing_report_packages() -> List[str]:

@@ -251,7 +251,7 @@ def _semantic(raw: Dict[str, Any], d: Dict[str, Any]) -> List[str]:
             errors.append(f"scene.brdfs[{i}].name: {n!r} is also the name of brdfs[{bnames.index(n)}]; "
                           "expected distinct names (give each BRDF a name)")
     st = d["studies"]
-    for study in ("sampling", "radiance"):
+    for study in ("sampling", "radiance", "sampler_bugs"):
         listed = st[study].get("brdfs")
         if listed is None:
             st[study]["brdfs"] = list(bnames)
@@ -260,7 +260,8 @@ def _semantic(raw: Dict[str, Any], d: Dict[str, Any]) -> List[str]:
                 if n not in bnames:
                     errors.append(f"scene.studies.{study}.brdfs[{j}]: expected the name of one of the scene's "
                                   f"BRDFs ({', '.join(map(repr, bnames)) or 'it has none'}), got {n!r}")
-    for field, where in (("sizes", "sampling"), ("budgets", "bugs"), ("budgets", "timing"), ("ks_n_sim", "timing")):
+    for field, where in (("sizes", "sampling"), ("budgets", "bugs"), ("budgets", "timing"), ("ks_n_sim", "timing"),
+                         ("sizes", "sampler_bugs")):
         xs = st[where][field]
         if any(b <= a for a, b in zip(xs, xs[1:])):
             errors.append(f"scene.studies.{where}.{field}: expected increasing numbers, got {show(xs)}")

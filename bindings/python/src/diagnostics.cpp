@@ -1,0 +1,131 @@
+// diagnostics.cpp - the exact binomial test, the battery meta-test and the
+// estimator diagnostics (issue 9): argument conversion only; the numbers
+// are libmcstat's (binom_test.c, diagnose.c).
+//
+// Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+#include "common.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace mcs {
+
+namespace {
+
+int parse_alternative(const std::string &name)
+{
+    int alt;
+    if (mcstat_alternative_parse(name.c_str(), &alt))
+        throw_invalid("alternative must be 'two-sided', 'less' or 'greater', not '" + name + "'");
+    return alt;
+}
+
+uint64_t count(py::handle o, const char *name)
+{
+    if (PyBool_Check(o.ptr()) || !PyIndex_Check(o.ptr()))
+        throw py::type_error(std::string(name) + " must be an integer, not " + repr(o.ptr()));
+    py::int_ v = py::reinterpret_borrow<py::object>(o);
+    if (PyObject_RichCompareBool(v.ptr(), py::int_(0).ptr(), Py_LT) == 1)
+        throw_invalid(std::string(name) + " must be >= 0, got " + repr(o.ptr()));
+    return v.cast<uint64_t>();
+}
+
+} // namespace
+
+void register_diagnostics(py::module_ &mod)
+{
+    mod.def(
+        "_binom_test",
+        [](py::object x, py::object n, double p, const std::string &alternative, double alpha) {
+            uint64_t xx = count(x, "x"), nn = count(n, "n");
+            mcstat_result r;
+            int st = mcstat_binom_test(xx, nn, p, parse_alternative(alternative), alpha, &r);
+            if (st)
+                throw_status(st, "binom_test(x=" + std::to_string(xx) + ", n=" + std::to_string(nn) + ")");
+            return make_result(r);
+        },
+        py::arg("x"), py::arg("n"), py::arg("p"), py::arg("alternative"), py::arg("alpha"));
+
+    mod.def(
+        "_battery_test_pvalues",
+        [](py::object pv, double level, const std::string &alternative, double alpha) {
+            py::array a = as_contiguous_array(pv);
+            mcstat_result r;
+            int st = mcstat_battery_test_pvalues(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()),
+                                                 level, parse_alternative(alternative), alpha, &r);
+            if (st)
+                throw_status(st, "battery_test of p-values");
+            return make_result(r);
+        },
+        py::arg("pvalues"), py::arg("level"), py::arg("alternative"), py::arg("alpha"));
+
+    mod.def(
+        "_diagnose",
+        [](py::object x, uint64_t k, uint64_t m, double alpha, double tolerance, uint64_t tail_k,
+           double tail_threshold) {
+            py::array a = as_contiguous_array(x);
+            if (a.ndim() != 1)
+                throw_invalid("diagnose: x must be one-dimensional, got " + std::to_string(a.ndim()) + " dimensions");
+            mcstat_diag_options o = MCSTAT_DIAG_OPTIONS_INIT;
+            o.k = k;
+            o.m = m;
+            o.alpha = alpha;
+            o.tolerance = tolerance;
+            o.tail_k = tail_k;
+            o.tail_threshold = tail_threshold;
+            mcstat_diagnostics d;
+            int st;
+            {
+                py::gil_scoped_release nogil;
+                st = mcstat_diagnose(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()), &o, &d);
+            }
+            if (st)
+                throw_status(st, "diagnose");
+            py::dict out;
+            out["n"] = d.n;
+            out["mean"] = d.mean;
+            out["sd"] = d.sd;
+            out["skewness"] = d.skewness;
+            out["skewness_se"] = d.skewness_se;
+            out["kurtosis"] = d.kurtosis;
+            out["kurtosis_se"] = d.kurtosis_se;
+            out["tail_k"] = d.tail_k;
+            out["tail_index"] = py::make_tuple(d.tail_index[0], d.tail_index[1]);
+            out["tail_index_se"] = py::make_tuple(d.tail_index_se[0], d.tail_index_se[1]);
+            out["max_share"] = d.max_share;
+            out["heavy_tail"] = d.heavy_tail != 0;
+            out["k"] = d.k;
+            out["m"] = d.m;
+            out["t_size"] = py::make_tuple(d.t_size[0], d.t_size[1]);
+            out["recommended_k"] = d.recommended_k;
+            out["alpha"] = d.alpha;
+            out["tolerance"] = d.tolerance;
+            return out;
+        },
+        py::arg("x"), py::arg("k"), py::arg("m"), py::arg("alpha"), py::arg("tolerance"), py::arg("tail_k"),
+        py::arg("tail_threshold"));
+
+    mod.def(
+        "_t_size_edgeworth",
+        [](double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha) {
+            double s[2];
+            int st = mcstat_t_size_edgeworth(skewness, kurtosis, k, m, alpha, s);
+            if (st)
+                throw_status(st, "t_size_edgeworth");
+            return py::make_tuple(s[0], s[1]);
+        },
+        py::arg("skewness"), py::arg("kurtosis"), py::arg("k"), py::arg("m"), py::arg("alpha"));
+
+    mod.def(
+        "_batch_size_recommend",
+        [](double skewness, double kurtosis, uint64_t m, double alpha, double tolerance) {
+            uint64_t k;
+            int st = mcstat_batch_size_recommend(skewness, kurtosis, m, alpha, tolerance, &k);
+            if (st)
+                throw_status(st, "batch_size_recommend");
+            return k;
+        },
+        py::arg("skewness"), py::arg("kurtosis"), py::arg("m"), py::arg("alpha"), py::arg("tolerance"));
+}
+
+} // namespace mcs

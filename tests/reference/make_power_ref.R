@@ -1,0 +1,130 @@
+# Writes tests/data/power_ref.tsv and tests/data/equivalence_ref.tsv: the
+# oracle numbers of tests/c/test_power.c, tests/c/test_equivalence.c and
+# tests/python/test_power.py / test_equivalence.py.  Run from the
+# repository root:
+#   Rscript tests/reference/make_power_ref.R
+# (R 4.2.2 produced the committed files.)
+#
+# Power of the t tests: R's power.t.test (stats), which uses pt(., ncp) =
+# the same AS 243 code libmcstat calls through libRmath, but its own
+# uniroot search; tol = 1e-12 so the continuous n, delta and sig.level it
+# solves for are accurate well past the tests' tolerances.  Power of the
+# chi-squared and F tests: the closed forms, written out below by hand
+# (R has no power function for them).
+# Equivalence (TOST): two one-sided t.test calls and the 1 - 2 alpha
+# interval of a third.
+options(digits = 17)
+num <- function(x) ifelse(is.na(x), "NA", sprintf("%.17g", x))
+hex <- function(x) sprintf("%a", x)
+
+# ---- power -------------------------------------------------------------------
+rows <- list()
+add <- function(solve, test, alt, strict, n, effect, alpha, power, n_ratio = 1, sd_ratio = 1) {
+  rows[[length(rows) + 1]] <<- c(solve, test, alt, strict, num(n), num(n_ratio), num(sd_ratio),
+                                 num(effect), num(alpha), num(power))
+}
+ptt <- function(type, alt, strict, n = NULL, delta = NULL, sig = 0.05, power = NULL)
+  power.t.test(n = n, delta = delta, sd = 1, sig.level = sig, power = power, type = type,
+               alternative = alt, strict = strict, tol = 1e-12)
+tname <- c(one.sample = "t_1", two.sample = "t_2")
+aname <- c(two.sided = "two-sided", one.sided = "greater")
+for (type in c("one.sample", "two.sample")) for (alt in c("two.sided", "one.sided"))
+  for (strict in c(FALSE, TRUE)) {
+    if (alt == "one.sided" && strict) next
+    s <- if (strict) 1 else 0
+    for (n in c(2, 3, 5, 10, 33, 100, 1000, 1e5)) for (d in c(0.01, 0.1, 0.3, 1, 2.5)) for (sig in c(0.01, 0.05)) {
+      r <- ptt(type, alt, strict, n = n, delta = d, sig = sig)
+      add("power", tname[[type]], aname[[alt]], s, n, d, sig, r$power)
+    }
+    for (d in c(0.05, 0.2, 0.5, 1, 2)) for (pw in c(0.5, 0.8, 0.9, 0.99)) {
+      r <- ptt(type, alt, strict, delta = d, power = pw)
+      add("n", tname[[type]], aname[[alt]], s, r$n, d, 0.05, pw)
+      ni <- ceiling(r$n - 1e-9)
+      for (k in c(ni - 1, ni)) if (k >= 2) {
+        add("power", tname[[type]], aname[[alt]], s, k, d, 0.05, ptt(type, alt, strict, n = k, delta = d)$power)
+      }
+    }
+    for (n in c(5, 20, 200)) for (pw in c(0.6, 0.9)) {
+      add("effect", tname[[type]], aname[[alt]], s, n, ptt(type, alt, strict, n = n, power = pw)$delta, 0.05, pw)
+      # delta = 2.5/sqrt(n) keeps the solution a moderate alpha; R's uniroot
+      # returns values outside (0, 1) when no alpha reaches the power
+      r <- ptt(type, alt, strict, n = n, delta = 2.5 / sqrt(n), power = pw, sig = NULL)
+      if (r$sig.level > 0 && r$sig.level < 1)
+        add("alpha", tname[[type]], aname[[alt]], s, n, 2.5 / sqrt(n), r$sig.level, pw)
+    }
+  }
+# chi-squared and F: rho * chi^2(n-1), rho * F(n-1, k n - 1)
+pvar <- function(test, alt, strict, n, rho, sig, k = 1) {
+  a <- if (alt == "two-sided") sig / 2 else sig
+  q <- function(p, lower) if (test == "var_1") qchisq(p, n - 1, lower.tail = lower) else qf(p, n - 1, k * n - 1, lower.tail = lower)
+  P <- function(x, lower) if (test == "var_1") pchisq(x, n - 1, lower.tail = lower) else pf(x, n - 1, k * n - 1, lower.tail = lower)
+  hi <- alt == "greater" || (alt == "two-sided" && (strict || rho >= 1))
+  lo <- alt == "less" || (alt == "two-sided" && (strict || rho < 1))
+  (if (hi) P(q(a, FALSE) / rho, FALSE) else 0) + (if (lo) P(q(a, TRUE) / rho, TRUE) else 0)
+}
+for (test in c("var_1", "var_2")) for (alt in c("two-sided", "less", "greater")) for (strict in c(0, 1)) {
+  if (alt != "two-sided" && strict == 0) next
+  for (n in c(2, 4, 10, 50, 400, 10000)) for (rho in c(0.25, 0.8, 1.1, 1.5, 4)) for (sig in c(0.01, 0.05))
+    for (k in if (test == "var_2") c(0.5, 1, 3) else 1) {
+      if (k * n < 2) next
+      add("power", test, alt, strict, n, rho, sig, pvar(test, alt, strict == 1, n, rho, sig, k), n_ratio = k)
+    }
+  # sample size: the smallest integer n, by a plain scan from R (up to 5000)
+  for (rho in if (alt == "less") c(0.5, 0.8) else c(1.25, 2)) for (pw in c(0.8, 0.9)) for (k in if (test == "var_2") c(1, 2) else 1) {
+    n <- 2; while (pvar(test, alt, strict == 1, n, rho, 0.05, k) < pw) n <- n + 1
+    add("n", test, alt, strict, n, rho, 0.05, pw, n_ratio = k)
+  }
+  for (n in c(10, 100)) for (pw in c(0.6, 0.9)) {
+    f <- function(u) pvar(test, alt, strict == 1, n, if (alt == "less") exp(-u) else exp(u), 0.05) - pw
+    u <- uniroot(f, c(1e-9, 20), tol = 1e-14)$root
+    add("effect", test, alt, strict, n, if (alt == "less") exp(-u) else exp(u), 0.05, pw)
+  }
+}
+out <- file("tests/data/power_ref.tsv", "w")
+writeLines("# Generated by tests/reference/make_power_ref.R (R 4.2.2); do not edit.", out)
+writeLines("# solve test alternative strict n n_ratio sd_ratio effect alpha power", out)
+for (r in rows) writeLines(paste(r, collapse = "\t"), out)
+close(out)
+
+# ---- equivalence -----------------------------------------------------------------
+set.seed(20261123)
+eq <- list()
+addq <- function(x, y, mu0, lower, upper, alpha) {
+  if (is.null(y)) {
+    lo <- t.test(x, mu = mu0 + lower, alternative = "greater")
+    hi <- t.test(x, mu = mu0 + upper, alternative = "less")
+    ci <- t.test(x, mu = mu0, conf.level = 1 - 2 * alpha)$conf.int
+    est <- c(mean(x), NA)
+  } else {
+    lo <- t.test(x, y, mu = lower, alternative = "greater")
+    hi <- t.test(x, y, mu = upper, alternative = "less")
+    ci <- t.test(x, y, conf.level = 1 - 2 * alpha)$conf.int
+    est <- c(mean(x), mean(y))
+  }
+  eq[[length(eq) + 1]] <<- c(paste(hex(x), collapse = ","), if (is.null(y)) "-" else paste(hex(y), collapse = ","),
+                             num(mu0), num(lower), num(upper), num(alpha),
+                             num(lo$statistic), num(lo$p.value), num(hi$statistic), num(hi$p.value),
+                             num(lo$parameter), num(ci[1]), num(ci[2]), num(est[1]), num(est[2]))
+}
+for (i in 1:12) {
+  n <- sample(c(2, 3, 5, 10, 40, 200), 1)
+  m <- runif(1, -0.3, 0.3); s <- runif(1, 0.2, 2)
+  x <- rnorm(n, m, s)
+  eps <- runif(1, 0.05, 1.5)
+  addq(x, NULL, 0, -eps, eps, sample(c(0.05, 0.01, 0.1), 1))
+}
+addq(rnorm(50, 1e6 + 0.01, 0.1), NULL, 1e6, -0.05, 0.05, 0.05)        # large offset
+addq(rnorm(30, 2, 1), NULL, 2, -0.2, 0.6, 0.05)                        # asymmetric bounds
+addq(rexp(500, 1 / 3), NULL, 3, -0.3, 0.3, 0.05)                       # skewed, equivalent
+for (i in 1:10) {
+  nx <- sample(c(2, 4, 8, 25, 120), 1); ny <- sample(c(3, 6, 15, 60), 1)
+  x <- rnorm(nx, runif(1, -0.2, 0.2), runif(1, 0.3, 2)); y <- rnorm(ny, 0, runif(1, 0.3, 2))
+  eps <- runif(1, 0.1, 2)
+  addq(x, y, 0, -eps, eps, sample(c(0.05, 0.025), 1))
+}
+addq(rnorm(300, 5, 1), rnorm(200, 5.05, 3), 0, -0.5, 0.4, 0.05)
+out <- file("tests/data/equivalence_ref.tsv", "w")
+writeLines("# Generated by tests/reference/make_power_ref.R (R 4.2.2); do not edit.", out)
+writeLines("# x y mu0 lower upper alpha t_lower p_lower t_upper p_upper df ci_lo ci_hi est_x est_y", out)
+for (r in eq) writeLines(paste(r, collapse = "\t"), out)
+close(out)
