@@ -416,6 +416,133 @@ static void battery_stream(log_t *L)
     free(s);
 }
 
+/* The functions merged later (equivalence, power, binomial and battery
+ * tests, diagnostics, chi-squared goodness of fit, accumulator rows). */
+static void battery_more(log_t *L)
+{
+    mcstat_result r;
+    mcstat_moments mx, my;
+    mcstat_moments_init(&mx);
+    mcstat_moments_init(&my);
+    mcstat_moments_add_array(&mx, X, NX);
+    mcstat_moments_add_array(&my, Y, NY);
+    blank(&r, 1);
+    log_result(L, "equivalence_test_1", mcstat_equivalence_test_1(X, NX, 1e3, -0.5, 0.5, 0.05, &r), &r);
+    blank(&r, 1);
+    log_result(L, "equivalence_test_1_moments",
+               mcstat_equivalence_test_1_moments(&mx, 1e3, -0.5, 0.5, 0.05, &r), &r);
+    blank(&r, 1);
+    log_result(L, "equivalence_test_2", mcstat_equivalence_test_2(X, NX, Y, NY, -1, 1, 0.05, &r), &r);
+    blank(&r, 1);
+    log_result(L, "equivalence_test_2_moments",
+               mcstat_equivalence_test_2_moments(&mx, &my, -1, 1, 0.05, &r), &r);
+
+    for (int test = MCSTAT_POWER_T_1; test <= MCSTAT_POWER_VAR_2; test++) {
+        mcstat_power_options o, solved;
+        log_put(L, "power_options_init", mcstat_power_options_init(&o), &o, sizeof o);
+        o.test = test;
+        o.n = 30;
+        o.effect = test >= MCSTAT_POWER_VAR_1 ? 2.0 : 0.5;
+        o.n_ratio = 1.5;
+        o.sd_ratio = 2.0;
+        double pw = -1;
+        log_put(L, "power_compute", mcstat_power_compute(&o, &pw), &pw, sizeof pw);
+        o.power = 0.8;
+        memset(&solved, 0x5a, sizeof solved);
+        int st = mcstat_power_solve(&o, MCSTAT_POWER_SOLVE_N, &solved);
+        log_put(L, "power_solve n", st, &solved, sizeof solved);
+        char text[1024];
+        size_t len = 0;
+        if (st == MCSTAT_OK) {
+            log_put(L, "power_format", mcstat_power_format(&solved, text, sizeof text, &len), &len, sizeof len);
+            log_str(L, "power_format text", text);
+        }
+        memset(&solved, 0x5a, sizeof solved);
+        log_put(L, "power_solve effect", mcstat_power_solve(&o, MCSTAT_POWER_SOLVE_EFFECT, &solved), &solved,
+                sizeof solved);
+    }
+
+    for (int alt = 0; alt < 3; alt++) {
+        blank(&r, 1);
+        log_result(L, "binom_test", mcstat_binom_test(37, 1000, 0.05, alt, 0.05, &r), &r);
+        blank(&r, 1);
+        log_result(L, "binom_test large", mcstat_binom_test(500001234, 1000000000, 0.5, alt, 0.01, &r), &r);
+        blank(&r, 1);
+        log_result(L, "battery_test", mcstat_battery_test(9, 100, 0.05, alt, 0.01, &r), &r);
+    }
+    double pv[NT];
+    for (int i = 0; i < NT; i++)
+        pv[i] = fmod(XT[i] * 0.173 + i * 0.0161, 1.0);
+    blank(&r, 1);
+    log_result(L, "battery_test_pvalues", mcstat_battery_test_pvalues(pv, NT, 0.05, MCSTAT_GREATER, 0.01, &r),
+               &r);
+
+    mcstat_diag_options dopt;
+    log_put(L, "diag_options_init", mcstat_diag_options_init(&dopt), &dopt, sizeof dopt);
+    mcstat_diagnostics dg;
+    memset(&dg, 0x5a, sizeof dg);
+    log_put(L, "diagnose", mcstat_diagnose(BIG, 5000, &dopt, &dg), &dg, sizeof dg);
+    dopt.k = 10;
+    memset(&dg, 0x5a, sizeof dg);
+    log_put(L, "diagnose k", mcstat_diagnose(Y, NY, &dopt, &dg), &dg, sizeof dg);
+    double idx[2] = {-1, -1}, size2[2] = {-1, -1};
+    log_put(L, "tail_index", mcstat_tail_index(BIG, 5000, 0, idx), idx, sizeof idx);
+    log_put(L, "t_size_edgeworth", mcstat_t_size_edgeworth(2.0, 9.0, 4, 30, 0.05, size2), size2, sizeof size2);
+    uint64_t k = 0;
+    log_put(L, "batch_size_recommend", mcstat_batch_size_recommend(2.0, 9.0, 30, 0.05, 0.2, &k), &k, sizeof k);
+
+    double obs[12], expct[12];
+    for (int i = 0; i < 12; i++) {
+        obs[i] = 40 + (i * 7) % 13 + (i == 11 ? -35 : 0);
+        expct[i] = 1.0 / 12;
+    }
+    mcstat_chisq_options copt;
+    log_put(L, "chisq_options_init", mcstat_chisq_options_init(&copt), &copt, sizeof copt);
+    double dme = mcstat_chisq_default_min_expected();
+    log_put(L, "chisq_default_min_expected", 0, &dme, sizeof dme);
+    blank(&r, 1);
+    log_result(L, "chisq_gof", mcstat_chisq_gof(obs, expct, 12, &copt, 0.05, &r), &r);
+    blank(&r, 1);
+    log_result(L, "chisq_gof defaults", mcstat_chisq_gof(obs, expct, 12, NULL, 0.01, &r), &r);
+
+    /* accumulator rows: add, merge, serialize, test */
+    mcstat_moments rx[ROWS], ry[ROWS], rb[ROWS];
+    int32_t status[ROWS];
+    static unsigned char bytes[ROWS * MCSTAT_MOMENTS_BYTES];
+    log_put(L, "moments_init_rows", mcstat_moments_init_rows(rx, ROWS), rx, sizeof rx);
+    mcstat_moments_init_rows(ry, ROWS);
+    memset(status, 0x5a, sizeof status);
+    log_put(L, "moments_add_rows", mcstat_moments_add_rows(rx, ROWS, XROW, RNX, RSX, 0, status), rx, sizeof rx);
+    log_put(L, "moments_add_rows status", 0, status, sizeof status);
+    log_put(L, "moments_add_rows omit", mcstat_moments_add_rows(rx, ROWS, XROW, RNX, RSX, MCSTAT_ROWS_OMIT_NAN, NULL),
+            rx, sizeof rx);
+    log_put(L, "moments_add_rows y", mcstat_moments_add_rows(ry, ROWS, YROW, RNY, RSY, 0, NULL), ry, sizeof ry);
+    memcpy(rb, rx, sizeof rb);
+    log_put(L, "moments_merge_rows", mcstat_moments_merge_rows(rb, ry, ROWS), rb, sizeof rb);
+    memset(bytes, 0, sizeof bytes);
+    log_put(L, "moments_to_bytes_rows", mcstat_moments_to_bytes_rows(rb, ROWS, bytes, sizeof bytes), bytes,
+            sizeof bytes);
+    memset(rb, 0x5a, sizeof rb);
+    log_put(L, "moments_from_bytes_rows", mcstat_moments_from_bytes_rows(bytes, sizeof bytes, ROWS, rb), rb,
+            sizeof rb);
+    mcstat_result out[ROWS];
+    for (int alt = 0; alt < 3; alt++) {
+        int st;
+        blank(out, ROWS);
+        st = mcstat_t_test_1_moments_rows(rx, ROWS, 0.2, alt, 0.05, 0, out, status);
+        log_put(L, "t_test_1_moments_rows", st, out, sizeof out);
+        blank(out, ROWS);
+        st = mcstat_t_test_2_moments_rows(rx, ry, ROWS, 0.0, alt, 0.05, 0, out, status);
+        log_put(L, "t_test_2_moments_rows", st, out, sizeof out);
+        blank(out, ROWS);
+        st = mcstat_var_test_1_moments_rows(rx, ROWS, 2.0, alt, 0.05, MCSTAT_ROWS_NO_INTERVALS, out, status);
+        log_put(L, "var_test_1_moments_rows", st, out, sizeof out);
+        blank(out, ROWS);
+        st = mcstat_var_test_2_moments_rows(rx, ry, ROWS, 1.0, alt, 0.05, 0, out, NULL);
+        log_put(L, "var_test_2_moments_rows", st, out, sizeof out);
+    }
+}
+
 static void battery(log_t *L, mcstat_ks_cache *shared, mcstat_ks_cache *tiny)
 {
     battery_misc(L);
@@ -424,6 +551,7 @@ static void battery(log_t *L, mcstat_ks_cache *shared, mcstat_ks_cache *tiny)
     battery_dist(L);
     battery_stream(L);
     battery_ks(L, shared, tiny);
+    battery_more(L);
 }
 
 /* ---- per-thread accumulators over disjoint slices ------------------------ */
@@ -541,6 +669,10 @@ int main(void)
     CHECK_INT(mcstat_ks_cache_new(1 << 15, &ref_tiny), MCSTAT_OK);
     battery(&ref, ref_cache, ref_tiny);
     CHECK(!ref.oom && ref.n > 500);
+    if (getenv("MCSTAT_VERBOSE")) /* which calls failed, on purpose or not */
+        for (size_t i = 0; i < ref.n; i++)
+            if (ref.items[i].status)
+                printf("  call %zu %s: status %d\n", i, ref.items[i].label, ref.items[i].status);
     part *ref_parts = calloc((size_t)T, sizeof *ref_parts);
     part *parts = calloc((size_t)T, sizeof *parts);
     worker *ws = calloc((size_t)T, sizeof *ws);
