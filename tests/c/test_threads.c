@@ -508,7 +508,7 @@ static void battery_more(log_t *L)
     /* accumulator rows: add, merge, serialize, test */
     mcstat_moments rx[ROWS], ry[ROWS], rb[ROWS];
     int32_t status[ROWS];
-    static unsigned char bytes[ROWS * MCSTAT_MOMENTS_BYTES];
+    unsigned char bytes[ROWS * MCSTAT_MOMENTS_BYTES]; /* per thread: a static buffer here raced (TSan) */
     log_put(L, "moments_init_rows", mcstat_moments_init_rows(rx, ROWS), rx, sizeof rx);
     mcstat_moments_init_rows(ry, ROWS);
     memset(status, 0x5a, sizeof status);
