@@ -139,12 +139,12 @@ tsan-test: system-deps
 	$(TSAN_ENV) $(SAN_SIZE) ctest --test-dir $(BUILD)-tsan --output-on-failure --stop-on-failure -j $(JOBS) \
 	  -R '$(TSAN_TESTS)'
 
-# Left out of valgrind-test (they run under asan-test): libmcest's test_brdf
-# and test_radiance, several minutes each under memcheck, whose statistical
-# assertions need their full sample sizes (measured: at 1/10 of them, power
-# and z checks fail).  test_format's R-text checks need x87 80-bit long double,
+# Left out of valgrind-test (they run under asan-test): libmcest's test_brdf,
+# test_radiance and test_sampler_gof, several minutes each under memcheck,
+# whose statistical assertions need their full sample sizes (measured for
+# test_brdf: at 1/10 of them, power and z checks fail).  test_format's R-text checks need x87 80-bit long double,
 # which valgrind computes in 64 bits: for it only memory errors count.
-VALGRIND_EXCLUDE := test_brdf|test_radiance
+VALGRIND_EXCLUDE := test_brdf|test_radiance|test_sampler_gof
 valgrind-test: build
 	$(SAN_SIZE) python3 tests/valgrind/memcheck.py $(BUILD) -j $(JOBS) -E '$(VALGRIND_EXCLUDE)' \
 	  --long-double 'test_format'
