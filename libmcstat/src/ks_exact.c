@@ -280,14 +280,18 @@ static mcstat__ks_point max_point(const dp_ctx *c)
 /* A point of value near v (a guide only; exactness comes from snapping). */
 static mcstat__ks_point near_value(const dp_ctx *c, double v)
 {
+    /* Converting a double outside [0, 2^64) to uint64_t is undefined: a NaN
+     * or negative guess becomes 0, a huge one 2^62 (points have u < 2^63). */
     mcstat__ks_point r;
+    double u;
     if (c->weight == MCSTAT_KS_WEIGHT_NONE) {
-        r.u = (uint64_t)ceil(v);
+        u = ceil(v);
         r.q = 1;
-        return r;
+    } else {
+        u = sqrt(v) * 0x1p20;
+        r.q = UINT64_C(1) << 40;
     }
-    r.q = UINT64_C(1) << 40;
-    r.u = (uint64_t)(sqrt(v) * 0x1p20);
+    r.u = !(u > 0.0) ? 0 : u >= 0x1p62 ? UINT64_C(1) << 62 : (uint64_t)u;
     return r;
 }
 
@@ -317,6 +321,11 @@ int mcstat__ks_exact_critical(const mcstat__ks_data *d, double alpha, double *ke
         double x = -log(-log1p(-alpha) / (d->alternative == MCSTAT_TWO_SIDED ? 2.0 : 1.0));
         double d2 = (x + b) / a;
         g = d2 * d2 * (double)n1 * (double)n2 / (double)N;
+        /* Jaeschke's limit needs log log N > 0: for N <= 2 it is NaN (found
+         * by UBSan as a NaN converted to an integer); start small and let
+         * the 69% steps find the bracket. */
+        if (!(g > 0.0) || !isfinite(g))
+            g = 1.0;
     }
     if (d->obs.u > 0) { /* the observed point is one more free bracket */
         double po = sf(&c, d->obs);

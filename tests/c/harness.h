@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 static int h_checks, h_failures;
 
@@ -65,6 +66,18 @@ static inline double rel_err(double got, double want)
             fprintf(stderr, "%s:%d: %s = %ld, want %ld\n", __FILE__, __LINE__, #got, g_, w_); \
         }                                                                         \
     } while (0)
+
+/* The size knob of the slow tests: n divided by the integer in the
+ * environment variable MCSTAT_TEST_SCALE (default 1), but not below lo.
+ * make asan-test / valgrind-test set it so that a test does the same work on
+ * smaller sizes under the sanitizers and valgrind. */
+static inline size_t h_scaled(size_t n, size_t lo)
+{
+    const char *s = getenv("MCSTAT_TEST_SCALE");
+    long d = s ? strtol(s, NULL, 10) : 1;
+    size_t m = d > 1 ? n / (size_t)d : n;
+    return m < lo ? (lo < n ? lo : n) : m;
+}
 
 static inline int h_report(const char *name)
 {

@@ -216,12 +216,15 @@ static void test_distributions(void)
 }
 
 /* Random extreme arguments: every call answers, with a status or a number
- * in range; with GSL's aborting handler installed, reaching it is fatal. */
+ * in range; with GSL's aborting handler installed, reaching it is fatal.
+ * 200000 draws, divided by MCSTAT_TEST_SCALE (harness.h) under the
+ * sanitizer and valgrind runs. */
 static void fuzz_distributions(void)
 {
     uint64_t s = 12345;
     int bad = 0;
-    for (int i = 0; i < 200000; i++) {
+    const int draws = (int)h_scaled(200000, 5000);
+    for (int i = 0; i < draws; i++) {
         s = s * 6364136223846793005ull + 1442695040888963407ull;
         double u1 = (double)(s >> 11) * 0x1p-53;
         s = s * 6364136223846793005ull + 1442695040888963407ull;

@@ -168,8 +168,8 @@ static void test_offset_accuracy(void)
 
 static void test_nonfinite_rows(void)
 {
-    static double a[PIX * K];
-    fill(a, PIX, K, 3, 0.0);
+    static double a[(PIX + 1) * K]; /* one row more: the first add reads rows 1..PIX */
+    fill(a, PIX + 1, K, 3, 0.0);
     a[4 * K + 2] = NAN;
     a[9 * K + 0] = INFINITY;
     static mcstat_moments m[PIX], before[PIX];
