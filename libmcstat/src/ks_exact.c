@@ -281,13 +281,15 @@ static mcstat__ks_point max_point(const dp_ctx *c)
 static mcstat__ks_point near_value(const dp_ctx *c, double v)
 {
     mcstat__ks_point r;
+    if (!(v >= 0.0)) /* converting a NaN or an out-of-range double is undefined */
+        v = 0.0;
     if (c->weight == MCSTAT_KS_WEIGHT_NONE) {
-        r.u = (uint64_t)ceil(v);
+        r.u = (uint64_t)ceil(fmin(v, 0x1p63));
         r.q = 1;
         return r;
     }
     r.q = UINT64_C(1) << 40;
-    r.u = (uint64_t)(sqrt(v) * 0x1p20);
+    r.u = (uint64_t)(sqrt(fmin(v, 0x1p86)) * 0x1p20);
     return r;
 }
 
@@ -318,6 +320,11 @@ int mcstat__ks_exact_critical(const mcstat__ks_data *d, double alpha, double *ke
         double d2 = (x + b) / a;
         g = d2 * d2 * (double)n1 * (double)n2 / (double)N;
     }
+    /* Jaeschke's constants need log log N > 0: at N = 2 (1 + 1 values) the
+     * guess was NaN and near_value converted it to an integer, undefined
+     * behaviour (found by tests/fuzz/fuzz_ks).  The guess only guides. */
+    if (!(g > 0.0) || !isfinite(g))
+        g = 1.0;
     if (d->obs.u > 0) { /* the observed point is one more free bracket */
         double po = sf(&c, d->obs);
         if (po > alpha)
