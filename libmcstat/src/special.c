@@ -60,7 +60,17 @@ double mcstat__log_gammastar(double a)
      * and costs as much as the rest of a t tail's prefactor). */
     if (a == 0.5)
         return 0.15342640972002736;
-    /* a > 0 finite is checked by every caller, so GSL's handler cannot fire. */
+    /* GSL's handler must not fire: its domain is a > 0.  Callers check df > 0,
+     * but a = df/2 of the smallest subnormal df rounds to 0 (found by
+     * tests/fuzz/fuzz_dist: mcstat_t_cdf(5e-324, 5e-324) aborted in GSL). */
+    if (!(a > 0.0) || !isfinite(a))
+        return NAN;
+    /* Below 1e-300 GSL's gammastar overflows inside and calls the handler
+     * (mcstat_chisq_cdf(5e-324, 2.2e-308) aborted: tests/fuzz/fuzz_dist).
+     * There G*(a) = G(a) e^a a^(1/2 - a) / sqrt(2 pi) with G(a) = 1/a - gamma
+     * + O(a): log G*(a) = -(log a + log 2 pi)/2 + O(a log a), exact in double. */
+    if (a < 1e-300)
+        return -0.5 * (log(a) + log(2.0 * M_PI));
     gsl_sf_result g;
     if (gsl_sf_gammastar_e(a, &g) != 0 || !(g.val > 0.0))
         return NAN;

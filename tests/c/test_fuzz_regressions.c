@@ -31,8 +31,57 @@ static void test_ks_canner_one_each(void)
     }
 }
 
+/* fuzz_dist: the t far tail (|t| >= 1e150) at df near DBL_MAX computed
+ * (a - 1/2) log a - (a + 1/2) log(a + 1/2) as Inf - Inf: P = NaN with
+ * status OK.  Oracle: for u^2 >> df the log tail is -df log(u / sqrt(df))
+ * to relative O(log(df) / (df log(u/sqrt df))). */
+static void test_t_far_tail_huge_df(void)
+{
+    double p = -1.0, lp = 1.0;
+    CHECK_INT(mcstat_t_cdf(DBL_MAX, DBL_MAX, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 1.0, 0.0, "t_cdf(DBL_MAX; DBL_MAX) lower");
+    CHECK_INT(mcstat_t_cdf(DBL_MAX, DBL_MAX, 1, &p), MCSTAT_OK);
+    CHECK_REL(p, 0.0, 0.0, "t_cdf(DBL_MAX; DBL_MAX) upper");
+    CHECK_INT(mcstat_t_logcdf(DBL_MAX, DBL_MAX, 1, &lp), MCSTAT_OK);
+    CHECK(!isnan(lp) && lp <= 0.0);
+    CHECK_INT(mcstat_t_logcdf(1e200, 1e300, 1, &lp), MCSTAT_OK);
+    CHECK_REL(lp, -1e300 * log(1e50), 1e-9, "log P[T > 1e200], df 1e300");
+    /* df > (u / 1e10)^2: the normal-like branch, -u^2/2 to leading order */
+    CHECK_INT(mcstat_t_logcdf(1e150, 1e300, 1, &lp), MCSTAT_OK);
+    CHECK_REL(lp, -0.5 * (1e300 + 1.0) * log1p(1e-300 * 1e150 * 1e150), 1e-9, "log P[T > 1e150], df 1e300");
+    CHECK_INT(mcstat_t_logcdf(-1e200, 1e300, 0, &lp), MCSTAT_OK);
+    CHECK_REL(lp, -1e300 * log(1e50), 1e-9, "log P[T <= -1e200], df 1e300 (symmetry)");
+}
+
+/* fuzz_dist: degrees of freedom so small that df/2 is 0 or below 1e-300
+ * reached GSL's gammastar outside its domain or past its overflow, and
+ * GSL's default handler aborted the process. */
+static void test_tiny_df_no_gsl_abort(void)
+{
+    double p = -1.0;
+    const double tiny = 4.9406564584124654e-324;
+    int st = mcstat_t_cdf(tiny, tiny, 0, &p);
+    CHECK(st == MCSTAT_OK || st == MCSTAT_EINVAL || st == MCSTAT_ENUMERIC);
+    if (st == MCSTAT_OK)
+        CHECK(p >= 0.5 && p <= 1.0);
+    /* chi-squared at df = 2.2e-308 (a = df/2 = 1.1e-308 < 1e-300): no abort,
+     * tails in [0, 1] summing to 1.  (Their accuracy is not promised below
+     * df = 1e-3, and is poor here: Q = 5.7e-14 where the series gives
+     * -a (log(x/2) + Euler's gamma) = 8.3e-306; tests/fuzz/README.md.) */
+    const double df = 2.2250738585072014e-308, x = 4 * tiny;
+    double q = -1.0;
+    CHECK_INT(mcstat_chisq_cdf(x, df, 1, &q), MCSTAT_OK);
+    CHECK_INT(mcstat_chisq_cdf(x, df, 0, &p), MCSTAT_OK);
+    CHECK(p >= 0.0 && p <= 1.0 && q >= 0.0 && q <= 1.0);
+    CHECK_REL(p + q, 1.0, 1e-15, "tails of chi2(2.2e-308) at 2e-323");
+    CHECK_INT(mcstat_chisq_cdf(tiny, 0.5 * df, 0, &p), MCSTAT_OK);
+    CHECK(p >= 0.0 && p <= 1.0);
+}
+
 int main(void)
 {
     test_ks_canner_one_each();
+    test_t_far_tail_huge_df();
+    test_tiny_df_no_gsl_abort();
     return h_report("test_fuzz_regressions");
 }
