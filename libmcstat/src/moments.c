@@ -464,8 +464,16 @@ double mcstat_moments_kurtosis(const mcstat_moments *m)
 
 void mcstat__moments_var_scaled(const mcstat_moments *m, double *v, int *e)
 {
-    *v = m->m2 / (double)(m->n - 1);
-    *e = m->scale;
+    /* Accumulators built by adds keep m2 far from under- and overflow (the
+     * scale follows the data's magnitude), but deserialized or merged ones
+     * may not: m2 = 1e-305 at n = 4e10 made v / n underflow to 0 and the t
+     * statistic 0/0 (found by tests/fuzz/fuzz_bytes).  There the exponent is
+     * moved into e, exactly; elsewhere nothing changes, bit for bit. */
+    int k = 0;
+    if (m->m2 > 0.0 && isfinite(m->m2) && (m->m2 < 0x1p-500 || m->m2 > 0x1p+500))
+        k = ilogb(m->m2) / 2;
+    *v = scale2(m->m2, -2 * k) / (double)(m->n - 1);
+    *e = m->scale + k;
 }
 
 mcstat_dd mcstat__moments_mean_dd(const mcstat_moments *m)

@@ -106,7 +106,14 @@ static int consistent(const mcstat_moments *m)
             return 0;
     if (m->scale < -1100 || m->scale > 1100 || m->m2 < 0.0 || m->m4 < 0.0 || m->min > m->max)
         return 0;
-    if (fabs(m->mean_lo) > fabs(m->mean) * 0x1p-50 + 0x1p-1074)
+    /* (mean, mean_lo) is a normalised double-double: mean = fl(mean + mean_lo).
+     * The looser |mean_lo| <= |mean| 2^-50 + 2^-1074 accepted mean 0 with
+     * mean_lo 2^-1074, which a merge turned into a mean above max (found by
+     * tests/fuzz/fuzz_bytes). */
+    if (m->mean + m->mean_lo != m->mean)
+        return 0;
+    /* all values equal: no spread */
+    if (m->min == m->max && (m->mean != m->min || m->m2 != 0.0 || m->m3 != 0.0 || m->m4 != 0.0))
         return 0;
     double slack = fmax(fabs(m->min), fabs(m->max)) * 0x1p-48;
     if (m->mean < m->min - slack || m->mean > m->max + slack)

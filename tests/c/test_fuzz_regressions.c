@@ -78,10 +78,91 @@ static void test_tiny_df_no_gsl_abort(void)
     CHECK(p >= 0.0 && p <= 1.0);
 }
 
+/* fuzz_bytes: an accumulator whose m2 is near underflow (possible only
+ * through from_bytes or merges): v/n underflowed to 0 and t = 0/0 = NaN with
+ * status OK.  Oracle: t = mean / sqrt(m2 / ((n - 1) n)) in long double, whose
+ * exponent range holds these numbers. */
+static void test_t_tiny_m2(void)
+{
+    mcstat_moments m;
+    mcstat_moments_init(&m);
+    m.n = 42949672985ull;
+    m.scale = 0;
+    m.mean = 1e-170;
+    m.m2 = 0x1.4ffff60ff1919p-1015;
+    m.min = -1e-160;
+    m.max = 1e-160;
+    mcstat_result r;
+    CHECK_INT(mcstat_t_test_1_moments(&m, 0.0, MCSTAT_TWO_SIDED, 0.05, &r), MCSTAT_OK);
+    long double n = (long double)m.n, se = sqrtl((long double)m.m2 / ((n - 1) * n));
+    CHECK_REL(r.statistic, (double)(1e-170L / se), 1e-14, "t with m2 = 1.3e-305");
+    CHECK_REL(r.std_error, (double)se, 1e-14, "standard error");
+    CHECK(r.p_value > 0.99 && r.p_value <= 1.0);
+    CHECK(r.conf_int[0] < 1e-170 && r.conf_int[1] > 1e-170);
+    mcstat_result v;
+    CHECK_INT(mcstat_var_test_2_moments(&m, &m, 1.0, MCSTAT_TWO_SIDED, 0.05, &v), MCSTAT_OK);
+    CHECK_REL(v.statistic, 1.0, 0.0, "F of an accumulator against itself");
+}
+
+/* FNV-1a 64 and the layout of serialize.c, to write bytes by hand. */
+static uint64_t fnv1a(const unsigned char *p, size_t n)
+{
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ p[i]) * 0x100000001b3ull;
+    return h;
+}
+
+static void moments_bytes(unsigned char *b, uint64_t n, const double f[7])
+{
+    memset(b, 0, MCSTAT_MOMENTS_BYTES);
+    memcpy(b, "MCSM", 4);
+    b[4] = 1;
+    for (int i = 0; i < 8; i++)
+        b[8 + i] = (unsigned char)(n >> (8 * i));
+    for (int k = 0; k < 7; k++) {
+        uint64_t u;
+        memcpy(&u, &f[k], 8);
+        for (int i = 0; i < 8; i++)
+            b[24 + 8 * k + i] = (unsigned char)(u >> (8 * i));
+    }
+    uint64_t h = fnv1a(b, 88);
+    for (int i = 0; i < 8; i++)
+        b[88 + i] = (unsigned char)(h >> (8 * i));
+}
+
+/* fuzz_bytes: from_bytes accepted (mean, mean_lo) = (0, 2^-1074), not a
+ * normalised double-double, and min == max with m2 > 0; merging such an
+ * accumulator with itself gave a mean above max, which from_bytes then
+ * refused: the library produced what it would not read back. */
+static void test_from_bytes_consistency(void)
+{
+    const double tiny = 4.9406564584124654e-324;
+    unsigned char b[MCSTAT_MOMENTS_BYTES];
+    mcstat_moments m;
+    const double noncanonical[7] = {0.0, tiny, 0x0.086p-1022, 0.0, 0.0, 0.0, 0.0};
+    moments_bytes(b, 81, noncanonical);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
+    const double spread_without_range[7] = {0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0};
+    moments_bytes(b, 81, spread_without_range);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
+    /* a genuine accumulator still reads back, and so does its self-merge */
+    const double x[4] = {0.0, tiny, 2 * tiny, tiny};
+    mcstat_moments g, back;
+    mcstat_moments_init(&g);
+    CHECK_INT(mcstat_moments_add_array(&g, x, 4), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_merge(&g, &g), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_to_bytes(&g, b, sizeof b), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &back), MCSTAT_OK);
+    CHECK(back.n == 8 && back.mean >= back.min && back.mean <= back.max);
+}
+
 int main(void)
 {
     test_ks_canner_one_each();
     test_t_far_tail_huge_df();
     test_tiny_df_no_gsl_abort();
+    test_t_tiny_m2();
+    test_from_bytes_consistency();
     return h_report("test_fuzz_regressions");
 }
