@@ -12,10 +12,16 @@
 
 #include <float.h>
 
-/* (hi + lo) scaled by 2^-e, rounded to double. */
-static double dd_scaled(mcstat_dd d, int e)
+/* (a + b) 2^-e, rounded to double, the sum formed after scaling: a mean of
+ * 1e300 minus a null value of 1.8e308 overflows in unscaled units (the
+ * statistic was then Inf - Inf = NaN; found by tests/fuzz/fuzz_bytes), but
+ * not in the units of the data.  Powers of two scale exactly, so elsewhere
+ * this is (a + b) 2^-e formed the other way round, bit for bit. */
+static double dd_add_scaled(mcstat_dd a, double b, int e)
 {
-    return scale2(d.hi, -e) + scale2(d.lo, -e);
+    mcstat_dd as = {scale2(a.hi, -e), scale2(a.lo, -e)}, bs = {scale2(b, -e), 0.0};
+    mcstat_dd s = dd_add(as, bs);
+    return s.hi + s.lo;
 }
 
 /* est - c * se in units of 2^e, est a double-double already in those units. */
@@ -55,8 +61,7 @@ int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, doubl
     mcstat__moments_var_scaled(x, &v, &e);
     double se = sqrt(v / n); /* units of 2^e */
     mcstat_dd mean = mcstat__moments_mean_dd(x);
-    mcstat_dd mu = {-mu0, 0.0};
-    double diff = dd_scaled(dd_add(mean, mu), e);
+    double diff = dd_add_scaled(mean, -mu0, e);
     r.statistic = diff / se;
     r.df[0] = df;
     r.estimate[0] = x->mean;
@@ -119,8 +124,7 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
     double mmax = fmax(fabs(x->mean), fabs(y->mean));
     if (!(se > 0.0) || sdmax < 10.0 * DBL_EPSILON * scale2(mmax, -e))
         return MCSTAT_EDEGENERATE;
-    mcstat_dd mu = {-mu0, 0.0};
-    r.statistic = dd_scaled(dd_add(diff, mu), e) / se;
+    r.statistic = dd_add_scaled(diff, -mu0, e) / se;
     /* Welch-Satterthwaite, normalised by the larger term so nothing over- or
      * underflows: df = (a + b)^2 / (a^2/(nx-1) + b^2/(ny-1)). */
     double m = fmax(a, b), ra = a / m, rb = b / m;

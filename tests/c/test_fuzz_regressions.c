@@ -157,8 +157,30 @@ static void test_from_bytes_consistency(void)
     CHECK(back.n == 8 && back.mean >= back.min && back.mean <= back.max);
 }
 
+/* fuzz_bytes: the t statistics formed mean - mu0 before scaling to the
+ * data's units, so mean(y) = 1.4e300 against mu0 = 1.8e308 overflowed to
+ * -Inf and the statistic came out NaN with status OK (ordinary arrays reach
+ * it).  Oracle: the statistic in long double, whose exponent range holds it. */
+static void test_t_null_value_near_overflow(void)
+{
+    const double x[4] = {1.0, 2.0, 3.0, 4.0}, y[4] = {1e300, 2e300, 1.5e300, 1.2e300};
+    long double mx = 2.5L, my = (1e300L + 2e300L + 1.5e300L + 1.2e300L) / 4, vx = 5.0L / 3.0L, vy = 0;
+    for (int i = 0; i < 4; i++)
+        vy += ((long double)y[i] - my) * ((long double)y[i] - my);
+    vy /= 3;
+    mcstat_result r;
+    CHECK_INT(mcstat_t_test_2(x, 4, y, 4, DBL_MAX, MCSTAT_TWO_SIDED, 0.05, &r), MCSTAT_OK);
+    CHECK_REL(r.statistic, (double)((mx - my - (long double)DBL_MAX) / sqrtl(vx / 4 + vy / 4)), 1e-12,
+              "Welch t, mu0 = DBL_MAX");
+    CHECK(r.p_value < 1e-20 && r.reject == 1 && r.decision == -1);
+    CHECK_INT(mcstat_t_test_1(y, 4, -DBL_MAX, MCSTAT_TWO_SIDED, 0.05, &r), MCSTAT_OK);
+    CHECK_REL(r.statistic, (double)((my + (long double)DBL_MAX) / sqrtl(vy / 4)), 1e-12, "t, mu0 = -DBL_MAX");
+    CHECK(r.reject == 1 && r.decision == 1);
+}
+
 int main(void)
 {
+    test_t_null_value_near_overflow();
     test_ks_canner_one_each();
     test_t_far_tail_huge_df();
     test_tiny_df_no_gsl_abort();
