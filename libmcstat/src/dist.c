@@ -407,7 +407,12 @@ static int t_upper_quantile(double p, double df, double *u)
 
 static int store_tail(const mcstat_tails *t, int upper, int logscale, double *out)
 {
-    *out = upper ? (logscale ? t->logq : t->q) : (logscale ? t->logp : t->p);
+    double v = upper ? (logscale ? t->logq : t->q) : (logscale ? t->logp : t->p);
+    /* A NaN is a failed method, never an answer (t at df = 5e-324, where
+     * df/2 rounds to 0, gave NaN with status OK: tests/fuzz/fuzz_dist). */
+    if (isnan(v))
+        return MCSTAT_ENUMERIC;
+    *out = v;
     return MCSTAT_OK;
 }
 
