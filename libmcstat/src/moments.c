@@ -292,15 +292,23 @@ static void merge_into(mcstat_moments *a, const mcstat_moments *b)
     rescale(&B, e);
     double na = (double)a->n, nb = (double)B.n, n = na + nb;
     double fa = na / n, fb = nb / n;
-    mcstat_dd ma = {a->mean, a->mean_lo}, mb = {B.mean, B.mean_lo};
-    mcstat_dd delta = dd_add(mb, dd_neg(ma));
-    double ds = scale2(delta.hi, -e) + scale2(delta.lo, -e);
+    /* The difference of the means and its share nb/n are formed in units of
+     * 2^e: unscaled, means of +-1e308 overflowed to Inf and Dekker's split
+     * in dd_mul_d overflowed for |delta| above 1e300, and the mean came out
+     * NaN (found by tests/fuzz/fuzz_moments).  Powers of two scale exactly,
+     * so for all other data nothing changes, bit for bit. */
+    mcstat_dd ma = {a->mean, a->mean_lo};
+    mcstat_dd mas = {scale2(a->mean, -e), scale2(a->mean_lo, -e)}, mbs = {scale2(B.mean, -e), scale2(B.mean_lo, -e)};
+    mcstat_dd delta = dd_add(mbs, dd_neg(mas)); /* units of 2^e */
+    double ds = delta.hi + delta.lo;
     double ds2 = ds * ds;
     double m2 = a->m2 + B.m2 + ds2 * n * fa * fb;
     double m3 = a->m3 + B.m3 + ds2 * ds * n * fa * fb * (fa - fb) + 3.0 * ds * (fa * B.m2 - fb * a->m2);
     double m4 = a->m4 + B.m4 + ds2 * ds2 * n * fa * fb * (fa * fa - fa * fb + fb * fb) +
                 6.0 * ds2 * (fa * fa * B.m2 + fb * fb * a->m2) + 4.0 * ds * (fa * B.m3 - fb * a->m3);
-    mcstat_dd mean = dd_add(ma, dd_div_d(dd_mul_d(delta, nb), n)); /* delta nb / n, unrounded */
+    mcstat_dd inc = dd_div_d(dd_mul_d(delta, nb), n); /* delta nb / n, unrounded */
+    mcstat_dd incu = {scale2(inc.hi, e), scale2(inc.lo, e)};
+    mcstat_dd mean = dd_add(ma, incu);
     a->n += B.n;
     a->mean = mean.hi;
     a->mean_lo = mean.lo;

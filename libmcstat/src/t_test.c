@@ -29,6 +29,12 @@ static double ci_bound(mcstat_dd est, double c, double se, int e)
 {
     if (isinf(c))
         return c > 0 ? -INFINITY : INFINITY;
+    /* A critical value beyond 2^900 (df = 1 at alpha = 1e-308 gives -1.4e307)
+     * would overflow Dekker's split in dd_two_prod into NaN (found by
+     * tests/fuzz/fuzz_rows).  The estimate (O(1) in these units) is then
+     * far below the product's rounding, so plain doubles, scaled, suffice. */
+    if (fabs(c) > 0x1p900)
+        return scale2(scale2(-c, -900) * se + scale2(est.hi + est.lo, -900), e + 900);
     mcstat_dd p = dd_two_prod(-c, se);
     mcstat_dd b = dd_add(est, p);
     return scale2(b.hi + b.lo, e);

@@ -183,8 +183,52 @@ static void test_t_null_value_near_overflow(void)
     CHECK(r.reject == 1 && r.decision == 1);
 }
 
+/* fuzz_rows: a t critical value beyond 2^900 (df = 1, alpha = DBL_MIN:
+ * -1/(pi alpha) = -1.43e307) overflowed Dekker's split in the interval's
+ * bound, giving conf_int[1] = NaN.  Oracle: mean - c se, c from the Cauchy
+ * quantile tan(pi (alpha - 1/2)) = -1/(pi alpha) to relative 1e-16. */
+static void test_t_interval_huge_critical(void)
+{
+    const double x[2] = {0.0, 1.0};
+    mcstat_result r;
+    CHECK_INT(mcstat_t_test_1(x, 2, 0.0, MCSTAT_LESS, DBL_MIN, &r), MCSTAT_OK);
+    CHECK(r.conf_int[0] == -INFINITY);
+    CHECK_REL(r.conf_int[1], 0.5 + 0.5 / (M_PI * DBL_MIN), 1e-12, "upper bound at alpha = DBL_MIN");
+    const double y[3] = {0.0, 1.0, 2.0};
+    CHECK_INT(mcstat_t_test_2(x, 2, y, 3, 0.0, MCSTAT_TWO_SIDED, DBL_MIN, &r), MCSTAT_OK);
+    CHECK(!isnan(r.conf_int[0]) && !isnan(r.conf_int[1]) && r.conf_int[0] < -0.5 && r.conf_int[1] > -0.5);
+}
+
+/* fuzz_moments: merging blocks whose means are near +-DBL_MAX formed the
+ * difference of the means unscaled: it overflowed (or Dekker's split did)
+ * and the mean came out NaN.  Oracle: exact means of small integers times
+ * 2^1000, and min <= mean <= max. */
+static void test_merge_extreme_means(void)
+{
+    mcstat_moments a, b;
+    mcstat_moments_init(&a);
+    mcstat_moments_init(&b);
+    const double big = 0x1p1020, xa[2] = {-big, -3 * big}, xb[2] = {7 * big, 5 * big};
+    CHECK_INT(mcstat_moments_add_array(&a, xa, 2), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_add_array(&b, xb, 2), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_merge(&a, &b), MCSTAT_OK);
+    CHECK_REL(mcstat_moments_mean(&a), 2 * big, 0.0, "mean of -1, -3, 7, 5 times 2^1020");
+    CHECK_REL(mcstat_moments_sd(&a), sqrt(68.0 / 3.0) * big, 1e-15, "sd");
+    const double xs[4] = {-DBL_MAX, 54039278518272.0, -DBL_MAX, DBL_MAX};
+    mcstat_moments c;
+    mcstat_moments_init(&c);
+    CHECK_INT(mcstat_moments_add_array(&c, xs, 2), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_merge(&c, &c), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_add_array(&c, xs + 2, 2), MCSTAT_OK);
+    double m = mcstat_moments_mean(&c);
+    CHECK(!isnan(m) && m >= -DBL_MAX && m <= DBL_MAX);
+    CHECK_REL(m, -DBL_MAX / 3, 1e-15, "mean of 2 x {-DBL_MAX, 5.4e13}, -DBL_MAX, DBL_MAX");
+}
+
 int main(void)
 {
+    test_t_interval_huge_critical();
+    test_merge_extreme_means();
     test_t_null_value_near_overflow();
     test_ks_canner_one_each();
     test_t_far_tail_huge_df();

@@ -119,7 +119,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         size_t k, omitted;
         double x;
         before = a;
-        switch (fz_u8(&in) % 9) {
+        int code = fz_u8(&in) % 9;
+        if (fz_verbose())
+            fprintf(stderr, "op %d: A n %llu mean %a scale %d m2 %a min %a max %a; B n %llu mean %a scale %d\n", code,
+                    (unsigned long long)a.n, a.mean, a.scale, a.m2, a.min, a.max, (unsigned long long)bm.n, bm.mean,
+                    bm.scale);
+        switch (code) {
         case 0: /* one value */
             if (n_a + 1 > MAXALL)
                 break;
