@@ -12,15 +12,20 @@
 
 #include <float.h>
 
-/* (a + b) 2^-e, rounded to double, the sum formed after scaling: a mean of
- * 1e300 minus a null value of 1.8e308 overflows in unscaled units (the
- * statistic was then Inf - Inf = NaN; found by tests/fuzz/fuzz_bytes), but
- * not in the units of the data.  Powers of two scale exactly, so elsewhere
- * this is (a + b) 2^-e formed the other way round, bit for bit. */
+/* (a + b) 2^-e, rounded to double.  The sum is formed unscaled, as always;
+ * only if it overflows (a mean of 1e300 minus a null value of 1.8e308: the
+ * double-double became (-Inf, NaN) and the statistic NaN; found by
+ * tests/fuzz/fuzz_bytes) is it formed again in the data's units, where it
+ * cannot (both terms are then large, so e > 0 and scaling shrinks them).
+ * Scaling first in every case would overflow the other way: mu0 = -50 with
+ * subnormal data (e = -1026) scales to Inf, and Inf + x is (Inf, NaN). */
 static double dd_add_scaled(mcstat_dd a, double b, int e)
 {
+    mcstat_dd s = dd_add(a, (mcstat_dd){b, 0.0});
+    if (isfinite(s.hi))
+        return scale2(s.hi, -e) + scale2(s.lo, -e);
     mcstat_dd as = {scale2(a.hi, -e), scale2(a.lo, -e)}, bs = {scale2(b, -e), 0.0};
-    mcstat_dd s = dd_add(as, bs);
+    s = dd_add(as, bs);
     return s.hi + s.lo;
 }
 

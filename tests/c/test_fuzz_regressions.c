@@ -181,6 +181,14 @@ static void test_t_null_value_near_overflow(void)
     CHECK_INT(mcstat_t_test_1(y, 4, -DBL_MAX, MCSTAT_TWO_SIDED, 0.05, &r), MCSTAT_OK);
     CHECK_REL(r.statistic, (double)((my + (long double)DBL_MAX) / sqrtl(vy / 4)), 1e-12, "t, mu0 = -DBL_MAX");
     CHECK(r.reject == 1 && r.decision == 1);
+    /* and the other way (fuzz_tests): subnormal data (scale 2^-1026) against
+     * mu0 = -50: scaling mu0 first overflowed to Inf, the statistic was NaN.
+     * The mean is 5e-310 above -50 in units of a 5e-310 standard error. */
+    const double s[3] = {-0x0.114034bc6a7fp-1022, 0.0, 0.0};
+    CHECK_INT(mcstat_t_test_1(s, 3, -50.2, MCSTAT_GREATER, 0.25, &r), MCSTAT_OK);
+    CHECK(r.statistic == INFINITY && r.p_value == 0.0 && r.reject == 1);
+    CHECK_INT(mcstat_t_test_2(s, 3, x, 4, -50.2, MCSTAT_TWO_SIDED, 0.25, &r), MCSTAT_OK);
+    CHECK_REL(r.statistic, (double)((-mx + 50.2L) / sqrtl(vx / 4)), 1e-12, "Welch t, subnormal x");
 }
 
 /* fuzz_rows: a t critical value beyond 2^900 (df = 1, alpha = DBL_MIN:

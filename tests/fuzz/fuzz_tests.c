@@ -41,6 +41,8 @@ static const int TEST_KIND[4] = {MCSTAT_TEST_T_1, MCSTAT_TEST_T_2, MCSTAT_TEST_V
 
 static void stream_checks(const double *x, size_t nx, double reference, double tolerance, double alpha)
 {
+    if (fz_verbose())
+        fprintf(stderr, "stream: reference %a tolerance %a alpha %a\n", reference, tolerance, alpha);
     mcstat_stream s;
     FZ_ASSERT(mcstat_stream_init(&s) == MCSTAT_OK, "stream_init");
     size_t nonfinite = 0;
