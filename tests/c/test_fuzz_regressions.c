@@ -151,6 +151,16 @@ static void test_from_bytes_consistency(void)
     const double spread_without_range[7] = {0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0};
     moments_bytes(b, 81, spread_without_range);
     CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
+    /* third and fourth sums beyond what the second allows */
+    const double m3_without_m2[7] = {1.0, 0.0, 0.0, 0x1p1008, 0.0, -1.0, 3.0};
+    moments_bytes(b, 7, m3_without_m2);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
+    const double m4_too_big[7] = {1.0, 0.0, 4.0, 0.0, 17.0, -1.0, 3.0};
+    moments_bytes(b, 7, m4_too_big);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
+    const double m4_ok[7] = {1.0, 0.0, 4.0, -7.9, 16.0, -1.0, 3.0};
+    moments_bytes(b, 7, m4_ok);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_OK);
     /* a genuine accumulator still reads back, and so does its self-merge */
     const double x[4] = {0.0, tiny, 2 * tiny, tiny};
     mcstat_moments g, back;
@@ -189,6 +199,17 @@ static void test_t_null_value_near_overflow(void)
     CHECK(r.statistic == INFINITY && r.p_value == 0.0 && r.reject == 1);
     CHECK_INT(mcstat_t_test_2(s, 3, x, 4, -50.2, MCSTAT_TWO_SIDED, 0.25, &r), MCSTAT_OK);
     CHECK_REL(r.statistic, (double)((-mx + 50.2L) / sqrtl(vx / 4)), 1e-12, "Welch t, subnormal x");
+    /* (fuzz_rows) means near -DBL_MAX and +DBL_MAX/2: mean(x) - mean(y)
+     * itself overflowed unscaled; the statistic was NaN. */
+    const double u[3] = {-DBL_MAX, -DBL_MAX, -0.5 * DBL_MAX}, w[3] = {0.5 * DBL_MAX, 0.25 * DBL_MAX, 0.0};
+    long double mu = -2.5L * DBL_MAX / 3, mw = 0.75L * DBL_MAX / 3, vu = 0, vw = 0;
+    for (int i = 0; i < 3; i++) {
+        vu += ((long double)u[i] - mu) * ((long double)u[i] - mu);
+        vw += ((long double)w[i] - mw) * ((long double)w[i] - mw);
+    }
+    CHECK_INT(mcstat_t_test_2(u, 3, w, 3, 0.0, MCSTAT_TWO_SIDED, 0.05, &r), MCSTAT_OK);
+    CHECK_REL(r.statistic, (double)((mu - mw) / sqrtl(vu / 6 + vw / 6)), 1e-12, "Welch t, means near -+DBL_MAX");
+    CHECK(r.conf_int[0] == -INFINITY && r.conf_int[1] < 0.0);
 }
 
 /* fuzz_rows: a t critical value beyond 2^900 (df = 1, alpha = DBL_MIN:
