@@ -128,14 +128,28 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
     double a = scale2(vx / nx, 2 * (ex - e)), b = scale2(vy / ny, 2 * (ey - e));
     double se = sqrt(a + b); /* units of 2^e */
     mcstat_dd mx = mcstat__moments_mean_dd(x), my = mcstat__moments_mean_dd(y);
-    mcstat_dd diff = dd_add(mx, dd_neg(my));
+    mcstat_dd diff = dd_add(mx, dd_neg(my)), ds;
+    if (isfinite(diff.hi)) {
+        ds = (mcstat_dd){scale2(diff.hi, -e), scale2(diff.lo, -e)};
+        ds = dd_fast_two_sum(ds.hi, ds.lo);
+    } else { /* means near -+DBL_MAX: the difference overflows unscaled (the
+              * statistic was NaN; found by tests/fuzz/fuzz_rows), not in
+              * the units of the data, where e is then near 1024 */
+        mcstat_dd a = {scale2(mx.hi, -e), scale2(mx.lo, -e)}, b = {scale2(my.hi, -e), scale2(my.lo, -e)};
+        ds = dd_add(a, dd_neg(b));
+    }
     /* Both samples constant to within rounding (one constant sample is fine,
      * as in R): the larger standard deviation below 10 eps max|mean|. */
     double sdmax = sqrt(fmax(scale2(vx, 2 * (ex - e)), scale2(vy, 2 * (ey - e))));
     double mmax = fmax(fabs(x->mean), fabs(y->mean));
     if (!(se > 0.0) || sdmax < 10.0 * DBL_EPSILON * scale2(mmax, -e))
         return MCSTAT_EDEGENERATE;
-    r.statistic = dd_add_scaled(diff, -mu0, e) / se;
+    if (isfinite(diff.hi)) {
+        r.statistic = dd_add_scaled(diff, -mu0, e) / se;
+    } else {
+        mcstat_dd t0 = dd_add(ds, (mcstat_dd){scale2(-mu0, -e), 0.0});
+        r.statistic = (t0.hi + t0.lo) / se;
+    }
     /* Welch-Satterthwaite, normalised by the larger term so nothing over- or
      * underflows: df = (a + b)^2 / (a^2/(nx-1) + b^2/(ny-1)). */
     double m = fmax(a, b), ra = a / m, rb = b / m;
@@ -155,8 +169,6 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
         *out = r;
         return MCSTAT_OK;
     }
-    mcstat_dd ds = {scale2(diff.hi, -e), scale2(diff.lo, -e)};
-    ds = dd_fast_two_sum(ds.hi, ds.lo);
     r.conf_int[0] = ci_bound(ds, r.critical[1], se, e);
     r.conf_int[1] = ci_bound(ds, r.critical[0], se, e);
     *out = r;
