@@ -133,7 +133,10 @@ static inline void fz_check_result(int st, const mcstat_result *r, int test, int
     /* The statistic clearly beyond a critical value rejects; clearly inside
      * does not (p-values and quantiles agree to ~1e-13; we allow 1e-6).  Only
      * where alpha is a normal number: below, quantiles are not promised. */
-    if (alpha >= 1e-300 && isfinite(s)) {
+    /* Where p rounds to within 1e-12 of alpha (p = 0.5 + 4e-126 is 0.5 in
+     * double) the rule p <= alpha decides on the rounded value: skipped. */
+    int clear = fabs(r->p_value - alpha) > 1e-12 * alpha;
+    if (alpha >= 1e-300 && isfinite(s) && clear) {
         double m = 1e-6;
         int out_hi = alternative != MCSTAT_LESS && s > c1 + m * fabs(c1) + 1e-300;
         int out_lo = alternative != MCSTAT_GREATER && s < c0 - m * fabs(c0) - 1e-300;
@@ -151,7 +154,7 @@ static inline void fz_check_result(int st, const mcstat_result *r, int test, int
      * of the bound: far above the rounding of either). */
     double c = test == MCSTAT_TEST_T_2 ? r->estimate[0] - r->estimate[1] : r->estimate[0];
     double lo = r->conf_int[0], hi = r->conf_int[1], nv = r->null_value;
-    if (alpha >= 1e-300 && isfinite(c) && isfinite(nv)) {
+    if (alpha >= 1e-300 && isfinite(c) && isfinite(nv) && clear) {
         double tl = 1e-6 * fabs(lo - c) + 1e-12 * fabs(lo), th = 1e-6 * fabs(hi - c) + 1e-12 * fabs(hi);
         int outside = (isfinite(lo) && nv < lo - tl) || (isfinite(hi) && nv > hi + th);
         int inside = (lo == -INFINITY || nv > lo + tl) && (hi == INFINITY || nv < hi - th);
