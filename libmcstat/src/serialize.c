@@ -117,6 +117,10 @@ static int consistent(const mcstat_moments *m)
      * was accepted, and a merge made m4 negative (tests/fuzz/fuzz_bytes). */
     if (fabs(m->m3) > m->m2 * sqrt(m->m2) * (1.0 + 0x1p-20) || m->m4 > m->m2 * m->m2 * (1.0 + 0x1p-20))
         return 0;
+    /* and sum d^4 >= (sum d^2)^2 / n (Cauchy-Schwarz): m4 = 2e-308 with m2 = 5
+     * at n = 3.4e10 merged into m4 = -3.8e208 (fuzz_bytes) */
+    if (m->m4 < (m->m2 / (double)m->n) * m->m2 * (1.0 - 0x1p-20))
+        return 0;
     /* all values equal: no spread */
     if (m->min == m->max && (m->mean != m->min || m->m2 != 0.0 || m->m3 != 0.0 || m->m4 != 0.0))
         return 0;

@@ -158,6 +158,9 @@ static void test_from_bytes_consistency(void)
     const double m4_too_big[7] = {1.0, 0.0, 4.0, 0.0, 17.0, -1.0, 3.0};
     moments_bytes(b, 7, m4_too_big);
     CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
+    const double m4_too_small[7] = {1.0, 0.0, 4.0, 0.0, 2.2e-308, -1.0, 3.0};
+    moments_bytes(b, 7, m4_too_small);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
     const double m4_ok[7] = {1.0, 0.0, 4.0, -7.9, 16.0, -1.0, 3.0};
     moments_bytes(b, 7, m4_ok);
     CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_OK);
