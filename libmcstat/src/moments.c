@@ -297,7 +297,6 @@ static void merge_into(mcstat_moments *a, const mcstat_moments *b)
      * in dd_mul_d overflowed for |delta| above 1e300, and the mean came out
      * NaN (found by tests/fuzz/fuzz_moments).  Powers of two scale exactly,
      * so for all other data nothing changes, bit for bit. */
-    mcstat_dd ma = {a->mean, a->mean_lo};
     mcstat_dd mas = {scale2(a->mean, -e), scale2(a->mean_lo, -e)}, mbs = {scale2(B.mean, -e), scale2(B.mean_lo, -e)};
     mcstat_dd delta = dd_add(mbs, dd_neg(mas)); /* units of 2^e */
     double ds = delta.hi + delta.lo;
@@ -307,8 +306,10 @@ static void merge_into(mcstat_moments *a, const mcstat_moments *b)
     double m4 = a->m4 + B.m4 + ds2 * ds2 * n * fa * fb * (fa * fa - fa * fb + fb * fb) +
                 6.0 * ds2 * (fa * fa * B.m2 + fb * fb * a->m2) + 4.0 * ds * (fa * B.m3 - fb * a->m3);
     mcstat_dd inc = dd_div_d(dd_mul_d(delta, nb), n); /* delta nb / n, unrounded */
-    mcstat_dd incu = {scale2(inc.hi, e), scale2(inc.lo, e)};
-    mcstat_dd mean = dd_add(ma, incu);
+    /* the new mean in units of 2^e too: the increment alone may exceed
+     * DBL_MAX (from -DBL_MAX towards +DBL_MAX) where the mean does not */
+    mcstat_dd ms = dd_add(mas, inc);
+    mcstat_dd mean = {scale2(ms.hi, e), scale2(ms.lo, e)};
     a->n += B.n;
     a->mean = mean.hi;
     a->mean_lo = mean.lo;
@@ -469,6 +470,11 @@ double mcstat_moments_kurtosis(const mcstat_moments *m)
 }
 
 /* ---- for the tests -------------------------------------------------------- */
+
+int mcstat__moments_scale_for(double amax)
+{
+    return scale_for(amax);
+}
 
 void mcstat__moments_var_scaled(const mcstat_moments *m, double *v, int *e)
 {

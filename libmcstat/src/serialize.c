@@ -106,11 +106,20 @@ static int consistent(const mcstat_moments *m)
             return 0;
     if (m->scale < -1100 || m->scale > 1100 || m->m2 < 0.0 || m->m4 < 0.0 || m->min > m->max)
         return 0;
-    /* (mean, mean_lo) is a normalised double-double: mean = fl(mean + mean_lo).
+    /* the scale follows the largest magnitude (moments.c): m2 = 1.6e-303 at
+     * scale 0 for data up to 2^-511, whose m4 had underflowed to 0, merged
+     * into an accumulator that broke m4 >= m2^2/n (fuzz_bytes) */
+    if (m->scale != mcstat__moments_scale_for(fmax(fabs(m->min), fabs(m->max))))
+        return 0;
+    /* (mean, mean_lo) is a double-double: |mean_lo| <= ulp(mean).  (Half an
+     * ulp when normalised; a full ulp allows for mean_lo rounded to the
+     * subnormal grid by the scale, which a tie or an exponent near -1022
+     * can push past half: fuzz_moments, data at 2^-1019.)
      * The looser |mean_lo| <= |mean| 2^-50 + 2^-1074 accepted mean 0 with
      * mean_lo 2^-1074, which a merge turned into a mean above max (found by
      * tests/fuzz/fuzz_bytes). */
-    if (m->mean + m->mean_lo != m->mean)
+    double am = fabs(m->mean);
+    if (fabs(m->mean_lo) > nextafter(am, INFINITY) - am)
         return 0;
     /* |sum d^3| <= (sum d^2)^1.5 and sum d^4 <= (sum d^2)^2 (the ratios
      * approach 1 only for one outlier among many): m3 = 2^1008 with m2 = 0

@@ -164,6 +164,16 @@ static void test_from_bytes_consistency(void)
     const double m4_ok[7] = {1.0, 0.0, 4.0, -7.9, 16.0, -1.0, 3.0};
     moments_bytes(b, 7, m4_ok);
     CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_OK);
+    /* (fuzz_moments) data 2^-1019 apart by a few ulps: mean_lo on the
+     * subnormal grid is half an ulp of the mean, and must still read back */
+    double near_min[40];
+    for (int i = 0; i < 40; i++)
+        near_min[i] = -0x1.ff165p-1020 + (double)((i * 7) % 13 - 6) * 0x1p-1072;
+    mcstat_moments nm, nm_back;
+    mcstat_moments_init(&nm);
+    CHECK_INT(mcstat_moments_add_array(&nm, near_min, 40), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_to_bytes(&nm, b, sizeof b), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &nm_back), MCSTAT_OK);
     /* a genuine accumulator still reads back, and so does its self-merge */
     const double x[4] = {0.0, tiny, 2 * tiny, tiny};
     mcstat_moments g, back;
@@ -255,6 +265,16 @@ static void test_merge_extreme_means(void)
     double m = mcstat_moments_mean(&c);
     CHECK(!isnan(m) && m >= -DBL_MAX && m <= DBL_MAX);
     CHECK_REL(m, -DBL_MAX / 3, 1e-15, "mean of 2 x {-DBL_MAX, 5.4e13}, -DBL_MAX, DBL_MAX");
+    /* 1 value at -DBL_MAX merged with 7 at DBL_MAX: the increment of the
+     * mean, 7/8 of 2 DBL_MAX, exceeds DBL_MAX; the mean, 3/4 DBL_MAX, does not */
+    const double lo1[1] = {-DBL_MAX}, hi7[7] = {DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX, DBL_MAX};
+    mcstat_moments l, h;
+    mcstat_moments_init(&l);
+    mcstat_moments_init(&h);
+    CHECK_INT(mcstat_moments_add_array(&l, lo1, 1), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_add_array(&h, hi7, 7), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_merge(&l, &h), MCSTAT_OK);
+    CHECK_REL(mcstat_moments_mean(&l), 0.75 * DBL_MAX, 1e-15, "mean of -DBL_MAX and 7 x DBL_MAX");
 }
 
 /* fuzz_dist: F with df1 = 0.125, df2 = 2^29: the incomplete beta's
