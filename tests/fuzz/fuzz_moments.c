@@ -139,6 +139,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (n_a + MAXARR > MAXALL)
                 break;
             k = fz_doubles(&in, v, MAXARR);
+            if (fz_verbose())
+                fz_print_doubles("add_array", v, k);
             st = mcstat_moments_add_array(&a, v, k);
             fz_check_status(st);
             UNCHANGED_UNLESS_OK(st, before, &a, "add_array");
