@@ -161,7 +161,10 @@ static void test_from_bytes_consistency(void)
     const double m4_too_small[7] = {1.0, 0.0, 4.0, 0.0, 2.2e-308, -1.0, 3.0};
     moments_bytes(b, 7, m4_too_small);
     CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
-    const double m4_ok[7] = {1.0, 0.0, 4.0, -7.9, 16.0, -1.0, 3.0};
+    const double not_psd[7] = {0x1.4cc69cccccccdp+1, 0.0, 7.2, -12.5, 9.0, 1.0, 4.5};
+    moments_bytes(b, 21, not_psd);
+    CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_ECORRUPT);
+    const double m4_ok[7] = {1.0, 0.0, 8.0, 0.0, 32.0, -1.0, 3.0}; /* {-1, 3, 1, 1, 1, 1, 1} */
     moments_bytes(b, 7, m4_ok);
     CHECK_INT(mcstat_moments_from_bytes(b, sizeof b, &m), MCSTAT_OK);
     /* (fuzz_moments) data 2^-1019 apart by a few ulps: mean_lo on the

@@ -68,7 +68,8 @@ static void check_invariants(const mcstat_moments *m, const char *what)
     mcstat_moments back;
     FZ_ASSERT(mcstat_moments_to_bytes(m, b, sizeof b) == MCSTAT_OK, "%s: to_bytes", what);
     int st = mcstat_moments_from_bytes(b, sizeof b, &back);
-    FZ_ASSERT(st == MCSTAT_OK, "%s: from_bytes of its own bytes: status %d", what, st);
+    FZ_ASSERT(st == MCSTAT_OK, "%s: from_bytes of its own bytes: status %d (n %llu scale %d mean %a lo %a m2 %a m3 %a m4 %a min %a max %a)",
+              what, st, (unsigned long long)m->n, m->scale, m->mean, m->mean_lo, m->m2, m->m3, m->m4, m->min, m->max);
     FZ_ASSERT(mcstat_moments_to_bytes(&back, b2, sizeof b2) == MCSTAT_OK && memcmp(b, b2, sizeof b) == 0,
               "%s: bytes do not round-trip", what);
 }
