@@ -13,7 +13,10 @@ JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+# clang and its runtimes (libFuzzer, ASan, UBSan) for `make fuzz` (tests/fuzz).
+APT_PACKAGES += clang libclang-rt-14-dev
 
+.PHONY: fuzz fuzz-build fuzz-replay fuzz-ci
 .PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
@@ -100,7 +103,7 @@ mitsuba-test: install-test python-deps
 	    $(PY) -m pytest -q -rs -p no:cacheprovider examples/mitsuba; \
 	fi
 
-test: deps ctest pytest install-test ctypes-test rust-test go-test mitsuba-test
+test: deps ctest pytest install-test ctypes-test rust-test go-test mitsuba-test fuzz-ci
 
 # The main job: the paper's case studies on its scene (full budgets, about
 # 20-40 s on 2 cores), into $(REPORT)/.
@@ -142,5 +145,27 @@ references: python-deps
 	Rscript tests/reference/make_rformat.R
 	Rscript tests/reference/make_rblocks_python.R
 
+# ---- fuzzing (tests/fuzz/README.md) -------------------------------------------
+# libFuzzer harnesses built by clang with ASan + UBSan in $(BUILD)-fuzz; each
+# runs FUZZ_SECONDS, two at a time; any crash, sanitizer report or invariant
+# violation fails.  fuzz-replay only re-runs the committed corpus and
+# regressions (a few seconds; ctest does the same in every build).
+FUZZ_SECONDS ?= 60
+FUZZ_BUILD := $(BUILD)-fuzz
+fuzz-build: system-deps
+	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMCSTAT_FUZZ=ON \
+	  -DMCSTAT_BUILD_TESTS=OFF -DMCSTAT_BUILD_EXAMPLES=OFF -DMCSTAT_BUILD_ESTIMATORS=OFF
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+
+fuzz-replay: fuzz-build
+	ctest --test-dir $(FUZZ_BUILD) --output-on-failure -j $(JOBS)
+
+fuzz: fuzz-replay
+	tests/fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) 2
+
+# What `make test` runs: 7 harnesses x 45 s, 2 at a time: about 3 minutes.
+fuzz-ci:
+	$(MAKE) fuzz FUZZ_SECONDS=45
+
 clean:
-	rm -rf $(BUILD) $(BUILD)-bench
+	rm -rf $(BUILD) $(BUILD)-bench $(BUILD)-fuzz
