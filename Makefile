@@ -17,8 +17,11 @@ APT_PACKAGES += r-mathlib
 # asan-test, tsan-test (the sanitizer runtimes come with gcc) and valgrind-test
 APT_PACKAGES += valgrind
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+# clang and its runtimes (libFuzzer, ASan, UBSan) for `make fuzz` (tests/fuzz).
+APT_PACKAGES += clang libclang-rt-14-dev
 
 .PHONY: asan-test tsan-test valgrind-test
+.PHONY: fuzz fuzz-build fuzz-replay fuzz-ci
 .PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
@@ -107,6 +110,7 @@ mitsuba-test: install-test python-deps
 
 test: deps ctest pytest install-test ctypes-test rust-test go-test mitsuba-test
 test: asan-test tsan-test valgrind-test
+test: fuzz-ci
 
 # ---- sanitizers and valgrind (part of make test) ---------------------------
 # asan-test: every C test of libmcstat and libmcest, built with AddressSanitizer
@@ -192,6 +196,28 @@ references: python-deps
 	# issue 9: R's binom.test for the binomial meta-test
 	Rscript tests/reference/make_binom_ref.R
 
+# ---- fuzzing (tests/fuzz/README.md) -------------------------------------------
+# libFuzzer harnesses built by clang with ASan + UBSan in $(BUILD)-fuzz; each
+# runs FUZZ_SECONDS, two at a time; any crash, sanitizer report or invariant
+# violation fails.  fuzz-replay only re-runs the committed corpus and
+# regressions (a few seconds; ctest does the same in every build).
+FUZZ_SECONDS ?= 60
+FUZZ_BUILD := $(BUILD)-fuzz
+fuzz-build: system-deps
+	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMCSTAT_FUZZ=ON \
+	  -DMCSTAT_BUILD_TESTS=OFF -DMCSTAT_BUILD_EXAMPLES=OFF -DMCSTAT_BUILD_ESTIMATORS=OFF
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+
+fuzz-replay: fuzz-build
+	ctest --test-dir $(FUZZ_BUILD) --output-on-failure -j $(JOBS)
+
+fuzz: fuzz-replay
+	tests/fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) 2
+
+# What `make test` runs: 7 harnesses x 45 s, 2 at a time: about 3 minutes.
+fuzz-ci:
+	$(MAKE) fuzz FUZZ_SECONDS=45
+
 clean:
-	rm -rf $(BUILD) $(BUILD)-bench
+	rm -rf $(BUILD) $(BUILD)-bench $(BUILD)-fuzz
 	rm -rf $(BUILD)-asan $(BUILD)-tsan

@@ -48,10 +48,25 @@ static double t_log_upper_far(double u, double df)
 {
     double a = 0.5 * df, b = 0.5;
     /* log B(a, b) by Stirling with remainders (no cancellation concerns: the
-     * result is only needed to relative accuracy, and it is dwarfed by df log u). */
-    double lb = 0.5 * log(2.0 * M_PI) + (a - 0.5) * log(a) + (b - 0.5) * log(b) - (a + b - 0.5) * log(a + b)
+     * result is only needed to relative accuracy, and it is dwarfed by df log u).
+     * (a - 1/2) log a - (a + b - 1/2) log(a + b) is written as
+     * -(a - 1/2) log1p(b/a) - b log(a + b), and -df log u + (a - 1) log df as
+     * -df log(u / sqrt(df)) - log df: the plain forms overflow to Inf - Inf = NaN
+     * for df near DBL_MAX (found by tests/fuzz/fuzz_dist). */
+    double lb = 0.5 * log(2.0 * M_PI) - (a - 0.5) * log1p(b / a) + (b - 0.5) * log(b) - b * log(a + b)
               + mcstat__log_gammastar(a) + mcstat__log_gammastar(b) - mcstat__log_gammastar(a + b);
-    return -df * log(u) + (a - 1.0) * log(df) - lb;
+    return -df * (log(u) - 0.5 * log(df)) - log(df) - lb;
+}
+
+/* log P[T > u] for u >= 1e150 but df > (u / 1e10)^2, so large (> 1e280) that
+ * T is normal to far below the probability's underflow: the t density's
+ * exponent -(df+1)/2 log1p(r^2), r = u/sqrt(df), over Mills' ratio r sqrt(2 pi).
+ * Only the logarithm is meaningful here (P itself is 0 in double); it keeps
+ * the leading terms, so its relative error is O(1/r^2 + 1/df). */
+static double t_log_upper_huge_df(double u, double df)
+{
+    double r = u / sqrt(df);
+    return -0.5 * (df + 1.0) * log1p(r * r) - log(r) - 0.5 * log(2.0 * M_PI);
 }
 
 /* P[|T| <= u] = I_y(1/2, df/2), y = u^2/(df+u^2), by the hypergeometric
@@ -115,7 +130,7 @@ int mcstat__t_tails(double t, double df, mcstat_tails *out)
         logother = log1p(-up);
         logk = b.logk;
     } else {
-        logup = t_log_upper_far(at, df);
+        logup = at / sqrt(df) >= 1e10 ? t_log_upper_far(at, df) : t_log_upper_huge_df(at, df);
         up = exp(logup);
         other = 1.0 - up;
         logother = log1p(-up);
@@ -392,7 +407,12 @@ static int t_upper_quantile(double p, double df, double *u)
 
 static int store_tail(const mcstat_tails *t, int upper, int logscale, double *out)
 {
-    *out = upper ? (logscale ? t->logq : t->q) : (logscale ? t->logp : t->p);
+    double v = upper ? (logscale ? t->logq : t->q) : (logscale ? t->logp : t->p);
+    /* A NaN is a failed method, never an answer (t at df = 5e-324, where
+     * df/2 rounds to 0, gave NaN with status OK: tests/fuzz/fuzz_dist). */
+    if (isnan(v))
+        return MCSTAT_ENUMERIC;
+    *out = v;
     return MCSTAT_OK;
 }
 

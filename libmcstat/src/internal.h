@@ -142,6 +142,8 @@ MCSTAT_HIDDEN int mcstat__f_tails(double x, double df1, double df2, mcstat_tails
 
 /* ---- moments (moments.c) ------------------------------------------------ */
 /* The variance as v * 2^(2*e) with v finite: *v = m2/(n-1) in scaled units. */
+/* The scale exponent an accumulator holding values up to amax in magnitude has. */
+MCSTAT_HIDDEN int mcstat__moments_scale_for(double amax);
 MCSTAT_HIDDEN void mcstat__moments_var_scaled(const mcstat_moments *m, double *v, int *e);
 MCSTAT_HIDDEN mcstat_dd mcstat__moments_mean_dd(const mcstat_moments *m);
 /* MCSTAT_ETOOFEW / MCSTAT_EDEGENERATE / MCSTAT_EINVAL checks of a sample. */

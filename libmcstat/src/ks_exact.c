@@ -327,6 +327,11 @@ int mcstat__ks_exact_critical(const mcstat__ks_data *d, double alpha, double *ke
         if (!(g > 0.0) || !isfinite(g))
             g = 1.0;
     }
+    /* Jaeschke's constants need log log N > 0: at N = 2 (1 + 1 values) the
+     * guess was NaN and near_value converted it to an integer, undefined
+     * behaviour (found by tests/fuzz/fuzz_ks).  The guess only guides. */
+    if (!(g > 0.0) || !isfinite(g))
+        g = 1.0;
     if (d->obs.u > 0) { /* the observed point is one more free bracket */
         double po = sf(&c, d->obs);
         if (po > alpha)

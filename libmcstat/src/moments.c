@@ -292,15 +292,24 @@ static void merge_into(mcstat_moments *a, const mcstat_moments *b)
     rescale(&B, e);
     double na = (double)a->n, nb = (double)B.n, n = na + nb;
     double fa = na / n, fb = nb / n;
-    mcstat_dd ma = {a->mean, a->mean_lo}, mb = {B.mean, B.mean_lo};
-    mcstat_dd delta = dd_add(mb, dd_neg(ma));
-    double ds = scale2(delta.hi, -e) + scale2(delta.lo, -e);
+    /* The difference of the means and its share nb/n are formed in units of
+     * 2^e: unscaled, means of +-1e308 overflowed to Inf and Dekker's split
+     * in dd_mul_d overflowed for |delta| above 1e300, and the mean came out
+     * NaN (found by tests/fuzz/fuzz_moments).  Powers of two scale exactly,
+     * so for all other data nothing changes, bit for bit. */
+    mcstat_dd mas = {scale2(a->mean, -e), scale2(a->mean_lo, -e)}, mbs = {scale2(B.mean, -e), scale2(B.mean_lo, -e)};
+    mcstat_dd delta = dd_add(mbs, dd_neg(mas)); /* units of 2^e */
+    double ds = delta.hi + delta.lo;
     double ds2 = ds * ds;
     double m2 = a->m2 + B.m2 + ds2 * n * fa * fb;
     double m3 = a->m3 + B.m3 + ds2 * ds * n * fa * fb * (fa - fb) + 3.0 * ds * (fa * B.m2 - fb * a->m2);
     double m4 = a->m4 + B.m4 + ds2 * ds2 * n * fa * fb * (fa * fa - fa * fb + fb * fb) +
                 6.0 * ds2 * (fa * fa * B.m2 + fb * fb * a->m2) + 4.0 * ds * (fa * B.m3 - fb * a->m3);
-    mcstat_dd mean = dd_add(ma, dd_div_d(dd_mul_d(delta, nb), n)); /* delta nb / n, unrounded */
+    mcstat_dd inc = dd_div_d(dd_mul_d(delta, nb), n); /* delta nb / n, unrounded */
+    /* the new mean in units of 2^e too: the increment alone may exceed
+     * DBL_MAX (from -DBL_MAX towards +DBL_MAX) where the mean does not */
+    mcstat_dd ms = dd_add(mas, inc);
+    mcstat_dd mean = {scale2(ms.hi, e), scale2(ms.lo, e)};
     a->n += B.n;
     a->mean = mean.hi;
     a->mean_lo = mean.lo;
@@ -462,10 +471,23 @@ double mcstat_moments_kurtosis(const mcstat_moments *m)
 
 /* ---- for the tests -------------------------------------------------------- */
 
+int mcstat__moments_scale_for(double amax)
+{
+    return scale_for(amax);
+}
+
 void mcstat__moments_var_scaled(const mcstat_moments *m, double *v, int *e)
 {
-    *v = m->m2 / (double)(m->n - 1);
-    *e = m->scale;
+    /* Accumulators built by adds keep m2 far from under- and overflow (the
+     * scale follows the data's magnitude), but deserialized or merged ones
+     * may not: m2 = 1e-305 at n = 4e10 made v / n underflow to 0 and the t
+     * statistic 0/0 (found by tests/fuzz/fuzz_bytes).  There the exponent is
+     * moved into e, exactly; elsewhere nothing changes, bit for bit. */
+    int k = 0;
+    if (m->m2 > 0.0 && isfinite(m->m2) && (m->m2 < 0x1p-500 || m->m2 > 0x1p+500))
+        k = ilogb(m->m2) / 2;
+    *v = scale2(m->m2, -2 * k) / (double)(m->n - 1);
+    *e = m->scale + k;
 }
 
 mcstat_dd mcstat__moments_mean_dd(const mcstat_moments *m)

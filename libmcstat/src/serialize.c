@@ -106,7 +106,44 @@ static int consistent(const mcstat_moments *m)
             return 0;
     if (m->scale < -1100 || m->scale > 1100 || m->m2 < 0.0 || m->m4 < 0.0 || m->min > m->max)
         return 0;
-    if (fabs(m->mean_lo) > fabs(m->mean) * 0x1p-50 + 0x1p-1074)
+    /* the scale follows the largest magnitude (moments.c): m2 = 1.6e-303 at
+     * scale 0 for data up to 2^-511, whose m4 had underflowed to 0, merged
+     * into an accumulator that broke m4 >= m2^2/n (fuzz_bytes) */
+    if (m->scale != mcstat__moments_scale_for(fmax(fabs(m->min), fabs(m->max))))
+        return 0;
+    /* (mean, mean_lo) is a double-double: |mean_lo| <= ulp(mean).  (Half an
+     * ulp when normalised; a full ulp allows for mean_lo rounded to the
+     * subnormal grid by the scale, which a tie or an exponent near -1022
+     * can push past half: fuzz_moments, data at 2^-1019.)
+     * The looser |mean_lo| <= |mean| 2^-50 + 2^-1074 accepted mean 0 with
+     * mean_lo 2^-1074, which a merge turned into a mean above max (found by
+     * tests/fuzz/fuzz_bytes). */
+    double am = fabs(m->mean);
+    if (fabs(m->mean_lo) > nextafter(am, INFINITY) - am)
+        return 0;
+    /* The sums of powers of the same deviations bound each other: with
+     * u = M3/M2^1.5, w = M4/M2^2 (scale-free), |u| <= 1, 1/n <= w <= 1, and
+     * the moment matrix [[n, 0, M2], [0, M2, M3], [M2, M3, M4]] is positive
+     * semidefinite: w - u^2 >= 1/n (equality for data on two points, hence
+     * the 2^-20 slack).  Found by fuzz_bytes: m3 = 2^1008 with m2 = 0; m4
+     * below m2^2/n; m2 = 7.2, m3 = -12.5, m4 = 9 at n = 21 (each bound alone
+     * holds): merges of these gave m4 < 0.  The lower bounds only where m4
+     * cannot have underflowed: genuine accumulators of data near 2^-199
+     * with a tiny spread have m4 near 2^-1000 (fuzz_moments). */
+    const double tol = 0x1p-20;
+    if (m->m2 == 0.0) {
+        if (m->m3 != 0.0 || m->m4 != 0.0)
+            return 0;
+    } else {
+        double u = (m->m3 / m->m2) / sqrt(m->m2), w = (m->m4 / m->m2) / m->m2, inv_n = 1.0 / (double)m->n;
+        if (!(fabs(u) <= 1.0 + tol) || !(w <= 1.0 + tol))
+            return 0;
+        if ((m->m2 / (double)m->n) * m->m2 >= 0x1p-900 &&
+            (w < inv_n * (1.0 - tol) || w - u * u - inv_n < -tol * (w + u * u + inv_n)))
+            return 0;
+    }
+    /* all values equal: no spread */
+    if (m->min == m->max && (m->mean != m->min || m->mean_lo != 0.0 || m->m2 != 0.0 || m->m3 != 0.0 || m->m4 != 0.0))
         return 0;
     double slack = fmax(fabs(m->min), fabs(m->max)) * 0x1p-48;
     if (m->mean < m->min - slack || m->mean > m->max + slack)

@@ -12,10 +12,21 @@
 
 #include <float.h>
 
-/* (hi + lo) scaled by 2^-e, rounded to double. */
-static double dd_scaled(mcstat_dd d, int e)
+/* (a + b) 2^-e, rounded to double.  The sum is formed unscaled, as always;
+ * only if it overflows (a mean of 1e300 minus a null value of 1.8e308: the
+ * double-double became (-Inf, NaN) and the statistic NaN; found by
+ * tests/fuzz/fuzz_bytes) is it formed again in the data's units, where it
+ * cannot (both terms are then large, so e > 0 and scaling shrinks them).
+ * Scaling first in every case would overflow the other way: mu0 = -50 with
+ * subnormal data (e = -1026) scales to Inf, and Inf + x is (Inf, NaN). */
+static double dd_add_scaled(mcstat_dd a, double b, int e)
 {
-    return scale2(d.hi, -e) + scale2(d.lo, -e);
+    mcstat_dd s = dd_add(a, (mcstat_dd){b, 0.0});
+    if (isfinite(s.hi))
+        return scale2(s.hi, -e) + scale2(s.lo, -e);
+    mcstat_dd as = {scale2(a.hi, -e), scale2(a.lo, -e)}, bs = {scale2(b, -e), 0.0};
+    s = dd_add(as, bs);
+    return s.hi + s.lo;
 }
 
 /* est - c * se in units of 2^e, est a double-double already in those units. */
@@ -23,6 +34,12 @@ static double ci_bound(mcstat_dd est, double c, double se, int e)
 {
     if (isinf(c))
         return c > 0 ? -INFINITY : INFINITY;
+    /* A critical value beyond 2^900 (df = 1 at alpha = 1e-308 gives -1.4e307)
+     * would overflow Dekker's split in dd_two_prod into NaN (found by
+     * tests/fuzz/fuzz_rows).  The estimate (O(1) in these units) is then
+     * far below the product's rounding, so plain doubles, scaled, suffice. */
+    if (fabs(c) > 0x1p900)
+        return scale2(scale2(-c, -900) * se + scale2(est.hi + est.lo, -900), e + 900);
     mcstat_dd p = dd_two_prod(-c, se);
     mcstat_dd b = dd_add(est, p);
     return scale2(b.hi + b.lo, e);
@@ -55,8 +72,7 @@ int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, doubl
     mcstat__moments_var_scaled(x, &v, &e);
     double se = sqrt(v / n); /* units of 2^e */
     mcstat_dd mean = mcstat__moments_mean_dd(x);
-    mcstat_dd mu = {-mu0, 0.0};
-    double diff = dd_scaled(dd_add(mean, mu), e);
+    double diff = dd_add_scaled(mean, -mu0, e);
     r.statistic = diff / se;
     r.df[0] = df;
     r.estimate[0] = x->mean;
@@ -112,15 +128,28 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
     double a = scale2(vx / nx, 2 * (ex - e)), b = scale2(vy / ny, 2 * (ey - e));
     double se = sqrt(a + b); /* units of 2^e */
     mcstat_dd mx = mcstat__moments_mean_dd(x), my = mcstat__moments_mean_dd(y);
-    mcstat_dd diff = dd_add(mx, dd_neg(my));
+    mcstat_dd diff = dd_add(mx, dd_neg(my)), ds;
+    if (isfinite(diff.hi)) {
+        ds = (mcstat_dd){scale2(diff.hi, -e), scale2(diff.lo, -e)};
+        ds = dd_fast_two_sum(ds.hi, ds.lo);
+    } else { /* means near -+DBL_MAX: the difference overflows unscaled (the
+              * statistic was NaN; found by tests/fuzz/fuzz_rows), not in
+              * the units of the data, where e is then near 1024 */
+        mcstat_dd a = {scale2(mx.hi, -e), scale2(mx.lo, -e)}, b = {scale2(my.hi, -e), scale2(my.lo, -e)};
+        ds = dd_add(a, dd_neg(b));
+    }
     /* Both samples constant to within rounding (one constant sample is fine,
      * as in R): the larger standard deviation below 10 eps max|mean|. */
     double sdmax = sqrt(fmax(scale2(vx, 2 * (ex - e)), scale2(vy, 2 * (ey - e))));
     double mmax = fmax(fabs(x->mean), fabs(y->mean));
     if (!(se > 0.0) || sdmax < 10.0 * DBL_EPSILON * scale2(mmax, -e))
         return MCSTAT_EDEGENERATE;
-    mcstat_dd mu = {-mu0, 0.0};
-    r.statistic = dd_scaled(dd_add(diff, mu), e) / se;
+    if (isfinite(diff.hi)) {
+        r.statistic = dd_add_scaled(diff, -mu0, e) / se;
+    } else {
+        mcstat_dd t0 = dd_add(ds, (mcstat_dd){scale2(-mu0, -e), 0.0});
+        r.statistic = (t0.hi + t0.lo) / se;
+    }
     /* Welch-Satterthwaite, normalised by the larger term so nothing over- or
      * underflows: df = (a + b)^2 / (a^2/(nx-1) + b^2/(ny-1)). */
     double m = fmax(a, b), ra = a / m, rb = b / m;
@@ -140,8 +169,6 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
         *out = r;
         return MCSTAT_OK;
     }
-    mcstat_dd ds = {scale2(diff.hi, -e), scale2(diff.lo, -e)};
-    ds = dd_fast_two_sum(ds.hi, ds.lo);
     r.conf_int[0] = ci_bound(ds, r.critical[1], se, e);
     r.conf_int[1] = ci_bound(ds, r.critical[0], se, e);
     *out = r;

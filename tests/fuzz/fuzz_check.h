@@ -1,0 +1,186 @@
+/*
+ * fuzz_check.h - invariants every answer of mcstat must satisfy, checked by
+ * the harnesses after every call.  A violation prints what was wrong and
+ * traps, so the fuzzer reports wrong answers as it reports crashes.
+ *
+ * The checks hold for any input whatsoever; where floating point makes an
+ * identity approximate (a statistic against its critical value) the
+ * tolerance is stated and far above the library's documented accuracy.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#ifndef MCSTAT_FUZZ_CHECK_H
+#define MCSTAT_FUZZ_CHECK_H
+
+#include "mcstat.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define FZ_ASSERT(cond, ...)                                                              \
+    do {                                                                                  \
+        if (!(cond)) {                                                                    \
+            fprintf(stderr, "\nmcstat fuzz: invariant violated at %s:%d: %s\n  ", __FILE__, \
+                    __LINE__, #cond);                                                     \
+            fprintf(stderr, __VA_ARGS__);                                                 \
+            fputc('\n', stderr);                                                          \
+            __builtin_trap();                                                             \
+        }                                                                                 \
+    } while (0)
+
+/* A status is one of the documented codes and has a sentence. */
+static inline void fz_check_status(int st)
+{
+    FZ_ASSERT(st >= MCSTAT_OK && st <= MCSTAT_ETOOBIG, "status %d", st);
+    const char *s = mcstat_strerror(st);
+    FZ_ASSERT(s && *s, "strerror(%d)", st);
+}
+
+/* The R-style block of a result the library produced always fits a 4 KiB
+ * buffer, and its reported length is the string's. */
+static inline void fz_check_format(const mcstat_result *r)
+{
+    char buf[4096];
+    size_t len = 0;
+    int st = mcstat_result_format(r, NULL, NULL, buf, sizeof buf, &len);
+    FZ_ASSERT(st == MCSTAT_OK, "format status %d", st);
+    FZ_ASSERT(strlen(buf) == len, "format length %zu, strlen %zu", len, strlen(buf));
+}
+
+/* x <= y up to a relative slack. */
+static inline int fz_le(double x, double y, double rel)
+{
+    return x <= y || x - y <= rel * fmax(fabs(x), fabs(y));
+}
+
+enum {
+    FZ_NO_INTERVALS = 1 /* critical values and intervals were not asked for */
+};
+
+/* The invariants of a result returned with status st by a test of kind
+ * `test` called with `alternative` and `alpha` (nothing to check unless OK). */
+static inline void fz_check_result(int st, const mcstat_result *r, int test, int alternative, double alpha,
+                                   unsigned flags)
+{
+    fz_check_status(st);
+    if (st != MCSTAT_OK)
+        return;
+    FZ_ASSERT(r->test == test, "test %d, want %d", r->test, test);
+    FZ_ASSERT(r->alternative == alternative, "alternative %d, want %d", r->alternative, alternative);
+    FZ_ASSERT(r->alpha == alpha, "alpha %.17g, want %.17g", r->alpha, alpha);
+    FZ_ASSERT(alpha > 0.0 && alpha < 1.0, "OK with alpha %.17g", alpha);
+    FZ_ASSERT(r->p_value >= 0.0 && r->p_value <= 1.0, "p_value %.17g", r->p_value);
+    FZ_ASSERT(r->p_value_se >= 0.0 && r->p_value_se <= 0.5, "p_value_se %.17g", r->p_value_se);
+    FZ_ASSERT(r->reject == 0 || r->reject == 1, "reject %d", r->reject);
+    FZ_ASSERT(r->reject == (r->p_value <= alpha), "reject %d with p %.17g, alpha %.17g", r->reject, r->p_value,
+              alpha);
+    FZ_ASSERT(r->decision >= -1 && r->decision <= 1, "decision %d", r->decision);
+    FZ_ASSERT((r->decision != 0) == (r->reject != 0), "decision %d, reject %d", r->decision, r->reject);
+    FZ_ASSERT(mcstat_decision_name(r->decision) != NULL, "decision name %d", r->decision);
+    FZ_ASSERT(!isnan(r->statistic), "statistic NaN");
+    if (alternative == MCSTAT_LESS)
+        FZ_ASSERT(r->decision <= 0, "decision %d against 'less'", r->decision);
+    if (alternative == MCSTAT_GREATER)
+        FZ_ASSERT(r->decision >= 0, "decision %d against 'greater'", r->decision);
+    fz_check_format(r);
+
+    if (test == MCSTAT_TEST_KS_2) {
+        FZ_ASSERT(r->n[0] >= 1 && r->n[1] >= 1, "n %llu %llu", (unsigned long long)r->n[0],
+                  (unsigned long long)r->n[1]);
+        FZ_ASSERT(r->statistic >= 0.0, "K-S statistic %.17g", r->statistic);
+        if (MCSTAT_RESULT_KS_WEIGHT(r) == MCSTAT_KS_WEIGHT_NONE)
+            FZ_ASSERT(r->statistic <= 1.0, "K-S D %.17g", r->statistic);
+        FZ_ASSERT(r->method == MCSTAT_METHOD_EXACT || r->method == MCSTAT_METHOD_SIMULATE ||
+                      r->method == MCSTAT_METHOD_ASYMPTOTIC,
+                  "K-S method %d", r->method);
+        if (r->method != MCSTAT_METHOD_SIMULATE)
+            FZ_ASSERT(r->p_value_se == 0.0, "p_value_se %.17g (method %d)", r->p_value_se, r->method);
+        if (!isnan(r->critical[1])) {
+            FZ_ASSERT(r->critical[0] == -INFINITY, "critical[0] %.17g", r->critical[0]);
+            /* documented: reject == statistic > critical[1] == p <= alpha */
+            FZ_ASSERT(r->reject == (r->statistic > r->critical[1]), "reject %d, D %.17g, critical %.17g (method %d)",
+                      r->reject, r->statistic, r->critical[1], r->method);
+        }
+        return;
+    }
+
+    FZ_ASSERT(r->method == MCSTAT_METHOD_ANALYTIC, "method %d", r->method);
+    FZ_ASSERT(r->p_value_se == 0.0, "p_value_se %.17g", r->p_value_se);
+    FZ_ASSERT(r->n[0] >= 2, "n %llu", (unsigned long long)r->n[0]);
+    int two = test == MCSTAT_TEST_T_2 || test == MCSTAT_TEST_VAR_2;
+    FZ_ASSERT(two ? r->n[1] >= 2 : r->n[1] == 0, "n[1] %llu", (unsigned long long)r->n[1]);
+    FZ_ASSERT(r->df[0] > 0.0, "df %.17g", r->df[0]);
+    if (test == MCSTAT_TEST_T_2) {
+        /* Welch-Satterthwaite lies between min(nx, ny) - 1 and nx + ny - 2 */
+        double lo = (double)(r->n[0] < r->n[1] ? r->n[0] : r->n[1]) - 1.0;
+        double hi = (double)r->n[0] + (double)r->n[1] - 2.0;
+        FZ_ASSERT(fz_le(lo, r->df[0], 1e-12) && fz_le(r->df[0], hi, 1e-12), "Welch df %.17g outside [%g, %g]",
+                  r->df[0], lo, hi);
+    }
+    if (test == MCSTAT_TEST_T_1 || test == MCSTAT_TEST_T_2)
+        FZ_ASSERT(r->std_error >= 0.0, "std_error %.17g", r->std_error);
+    else
+        FZ_ASSERT(r->estimate[0] >= 0.0 && r->statistic >= 0.0, "estimate %.17g, statistic %.17g", r->estimate[0],
+                  r->statistic);
+    if (flags & FZ_NO_INTERVALS)
+        return;
+
+    double c0 = r->critical[0], c1 = r->critical[1], s = r->statistic;
+    /* ordered, up to rounding: at alpha = 1 - 2^-53 both two-sided critical
+     * values are the median, and they may come out 1 ulp apart either way */
+    FZ_ASSERT(!isnan(c0) && !isnan(c1) && fz_le(c0, c1, 4 * DBL_EPSILON), "critical %.17g %.17g", c0, c1);
+    FZ_ASSERT(!isnan(r->conf_int[0]) && !isnan(r->conf_int[1]) &&
+                  fz_le(r->conf_int[0], r->conf_int[1], 4 * DBL_EPSILON),
+              "conf_int %.17g %.17g", r->conf_int[0], r->conf_int[1]);
+    /* The statistic clearly beyond a critical value rejects; clearly inside
+     * does not (p-values and quantiles agree to ~1e-13; we allow 1e-6).  Only
+     * where alpha is a normal number: below, quantiles are not promised. */
+    /* Where p rounds to within 1e-12 of alpha (p = 0.5 + 4e-126 is 0.5 in
+     * double) the rule p <= alpha decides on the rounded value: skipped. */
+    int clear = fabs(r->p_value - alpha) > 1e-12 * alpha;
+    if (alpha >= 1e-300 && isfinite(s) && clear) {
+        double m = 1e-6;
+        int out_hi = alternative != MCSTAT_LESS && s > c1 + m * fabs(c1) + 1e-300;
+        int out_lo = alternative != MCSTAT_GREATER && s < c0 - m * fabs(c0) - 1e-300;
+        int in = (alternative == MCSTAT_GREATER || s > c0 + m * fabs(c0) + 1e-300) &&
+                 (alternative == MCSTAT_LESS || s < c1 - m * fabs(c1) - 1e-300);
+        if (out_hi || out_lo)
+            FZ_ASSERT(r->reject, "statistic %.17g beyond critical [%.17g, %.17g] but p %.17g > alpha %.17g", s, c0, c1,
+                      r->p_value, alpha);
+        if (in)
+            FZ_ASSERT(!r->reject, "statistic %.17g inside critical [%.17g, %.17g] but p %.17g <= alpha %.17g", s, c0,
+                      c1, r->p_value, alpha);
+    }
+    /* Duality: the null value clearly inside the interval is not rejected,
+     * clearly outside it is (slack: 1e-6 of the interval's half-width, 1e-12
+     * of the bound: far above the rounding of either). */
+    double c = test == MCSTAT_TEST_T_2 ? r->estimate[0] - r->estimate[1] : r->estimate[0];
+    double lo = r->conf_int[0], hi = r->conf_int[1], nv = r->null_value;
+    /* Not where a variance interval's bound is 0 or Inf: at alpha ~ 1e-273 the
+     * bounds M2/c saturate to [0, Inf] while the statistic still rejects
+     * (open: tests/fuzz/open/, README.md). */
+    int saturated = (test == MCSTAT_TEST_VAR_1 || test == MCSTAT_TEST_VAR_2) &&
+                    (lo == 0.0 || hi == INFINITY || !isfinite(lo));
+    if (alpha >= 1e-300 && isfinite(c) && isfinite(nv) && clear && !saturated) {
+        double tl = 1e-6 * fabs(lo - c) + 1e-12 * fabs(lo), th = 1e-6 * fabs(hi - c) + 1e-12 * fabs(hi);
+        int outside = (isfinite(lo) && nv < lo - tl) || (isfinite(hi) && nv > hi + th);
+        int inside = (lo == -INFINITY || nv > lo + tl) && (hi == INFINITY || nv < hi - th);
+        if (outside)
+            FZ_ASSERT(r->reject, "null %.17g outside conf_int [%.17g, %.17g] but p %.17g > alpha %.17g", nv, lo, hi,
+                      r->p_value, alpha);
+        if (inside)
+            FZ_ASSERT(!r->reject, "null %.17g inside conf_int [%.17g, %.17g] but p %.17g <= alpha %.17g", nv, lo, hi,
+                      r->p_value, alpha);
+    }
+    /* A t interval holds the mean of x, unless a one-sided interval has level
+     * 1 - alpha below 1/2.  (Not so for variances: chi-squared is skewed.) */
+    if (test == MCSTAT_TEST_T_1 && isfinite(r->estimate[0]) && (alternative == MCSTAT_TWO_SIDED || alpha <= 0.5)) {
+        double e = r->estimate[0];
+        FZ_ASSERT(fz_le(r->conf_int[0], e, 1e-9) && fz_le(e, r->conf_int[1], 1e-9),
+                  "estimate %.17g outside conf_int [%.17g, %.17g]", e, r->conf_int[0], r->conf_int[1]);
+    }
+}
+
+#endif /* MCSTAT_FUZZ_CHECK_H */

@@ -1,0 +1,137 @@
+/*
+ * fuzz_tests.c - the four analytic tests on arrays and on accumulators, and
+ * the stream checks built on them.
+ *
+ * Input: a selector byte, x and y (fz_doubles, up to 64 values each), the
+ * null value, the alternative, alpha, a flags byte.  Beyond the invariants of
+ * fz_check_result: the array call is bit for bit the accumulator call on
+ * mcstat_moments_add_array of the same data (they are documented as the same
+ * test), a failed call leaves *out untouched, and NULL data are refused.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "fuzz_check.h"
+#include "fuzz_input.h"
+
+#define MAXN 64
+
+static int array_test(int which, const double *x, size_t nx, const double *y, size_t ny, double v, int alt,
+                      double alpha, mcstat_result *r)
+{
+    switch (which) {
+    case 0: return mcstat_t_test_1(x, nx, v, alt, alpha, r);
+    case 1: return mcstat_t_test_2(x, nx, y, ny, v, alt, alpha, r);
+    case 2: return mcstat_var_test_1(x, nx, v, alt, alpha, r);
+    default: return mcstat_var_test_2(x, nx, y, ny, v, alt, alpha, r);
+    }
+}
+
+static int moments_test(int which, const mcstat_moments *x, const mcstat_moments *y, double v, int alt,
+                        double alpha, mcstat_result *r)
+{
+    switch (which) {
+    case 0: return mcstat_t_test_1_moments(x, v, alt, alpha, r);
+    case 1: return mcstat_t_test_2_moments(x, y, v, alt, alpha, r);
+    case 2: return mcstat_var_test_1_moments(x, v, alt, alpha, r);
+    default: return mcstat_var_test_2_moments(x, y, v, alt, alpha, r);
+    }
+}
+
+static const int TEST_KIND[4] = {MCSTAT_TEST_T_1, MCSTAT_TEST_T_2, MCSTAT_TEST_VAR_1, MCSTAT_TEST_VAR_2};
+
+static void stream_checks(const double *x, size_t nx, double reference, double tolerance, double alpha)
+{
+    if (fz_verbose())
+        fprintf(stderr, "stream: reference %a tolerance %a alpha %a\n", reference, tolerance, alpha);
+    mcstat_stream s;
+    FZ_ASSERT(mcstat_stream_init(&s) == MCSTAT_OK, "stream_init");
+    size_t nonfinite = 0;
+    for (size_t i = 0; i < nx; i++) {
+        mcstat_stream_add(&s, x[i]);
+        nonfinite += !isfinite(x[i]);
+    }
+    mcstat_result r, keep;
+    memset(&r, 0x5a, sizeof r);
+    keep = r;
+    int st = mcstat_stream_check_mean(&s, reference, tolerance, alpha, &r);
+    fz_check_status(st);
+    if (nonfinite)
+        FZ_ASSERT(st != MCSTAT_OK, "check_mean OK on a stream with %zu non-finite values", nonfinite);
+    if (st == MCSTAT_OK) {
+        FZ_ASSERT(tolerance >= 0.0 && isfinite(tolerance), "check_mean OK with tolerance %.17g", tolerance);
+        if (tolerance == 0.0)
+            fz_check_result(st, &r, MCSTAT_TEST_T_1, MCSTAT_TWO_SIDED, alpha, 0);
+        else
+            fz_check_result(st, &r, MCSTAT_TEST_T_1, r.alternative == MCSTAT_LESS ? MCSTAT_LESS : MCSTAT_GREATER,
+                            alpha / 2, 0);
+    } else {
+        FZ_ASSERT(memcmp(&r, &keep, sizeof r) == 0, "check_mean wrote *out with status %d", st);
+    }
+    st = mcstat_stream_check_var(&s, reference, alpha, &r);
+    fz_check_status(st);
+    if (nonfinite)
+        FZ_ASSERT(st != MCSTAT_OK, "check_var OK on a stream with non-finite values");
+    fz_check_result(st, &r, MCSTAT_TEST_VAR_1, MCSTAT_GREATER, alpha, 0);
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    fz_input in = fz_make(data, size);
+    static double x[MAXN], y[MAXN];
+    int which = fz_u8(&in) % 5;
+    size_t nx = fz_doubles(&in, x, MAXN), ny = fz_doubles(&in, y, MAXN);
+    double v = fz_double(&in);
+    int alt = fz_alternative(&in);
+    double alpha = fz_alpha(&in);
+    uint8_t flags = fz_u8(&in);
+    if (fz_verbose()) {
+        fz_print_doubles("x", x, nx);
+        fz_print_doubles("y", y, ny);
+        fprintf(stderr, "which %d null %a alt %d alpha %a flags %u\n", which, v, alt, alpha, flags);
+    }
+
+    if (which == 4) {
+        stream_checks(x, nx, v, fz_double(&in), alpha);
+        return 0;
+    }
+
+    mcstat_result r, rm, keep;
+    memset(&r, 0xa5, sizeof r);
+    keep = rm = r;
+    int st = array_test(which, x, nx, y, ny, v, alt, alpha, &r);
+    fz_check_result(st, &r, TEST_KIND[which], alt, alpha, 0);
+    if (st != MCSTAT_OK)
+        FZ_ASSERT(memcmp(&r, &keep, sizeof r) == 0, "status %d but *out written", st);
+
+    /* The same test through accumulators. */
+    mcstat_moments mx, my;
+    mcstat_moments_init(&mx);
+    mcstat_moments_init(&my);
+    int sx = mcstat_moments_add_array(&mx, x, nx), sy = mcstat_moments_add_array(&my, y, ny);
+    int two = which == 1 || which == 3;
+    int sdata = sx ? sx : (two ? sy : 0);
+    int sm = moments_test(which, &mx, &my, v, alt, alpha, &rm);
+    fz_check_result(sm, &rm, TEST_KIND[which], alt, alpha, 0);
+    if (sdata) {
+        FZ_ASSERT(st == sdata || st == MCSTAT_EINVAL, "array status %d, data status %d", st, sdata);
+    } else {
+        FZ_ASSERT(st == sm, "array status %d, accumulator status %d", st, sm);
+        if (st == MCSTAT_OK)
+            FZ_ASSERT(memcmp(&r, &rm, sizeof r) == 0, "array and accumulator results differ");
+    }
+
+    /* NULL data, NULL out: refused whatever else is wrong. */
+    if (flags & 1) {
+        st = array_test(which, NULL, nx, y, ny, v, alt, alpha, &r);
+        FZ_ASSERT(st == MCSTAT_EINVAL, "NULL x: status %d", st);
+        st = moments_test(which, NULL, &my, v, alt, alpha, &r);
+        FZ_ASSERT(st == MCSTAT_EINVAL, "NULL moments: status %d", st);
+        st = array_test(which, x, nx, y, ny, v, alt, alpha, NULL);
+        FZ_ASSERT(st == MCSTAT_EINVAL, "NULL out: status %d", st);
+        if (two) {
+            st = array_test(which, x, nx, NULL, ny, v, alt, alpha, &r);
+            FZ_ASSERT(st == MCSTAT_EINVAL, "NULL y: status %d", st);
+        }
+    }
+    return 0;
+}

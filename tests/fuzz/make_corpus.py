@@ -1,0 +1,273 @@
+#!/usr/bin/env python3
+"""Writes the seed corpus of every harness: tests/fuzz/corpus/<harness>/.
+
+Each seed is a small, meaningful input in the byte layout that fuzz_input.h
+decodes (the encoders below mirror it): typical data, offset data, ties,
+degenerate and extreme samples, each option of each entry point.  The
+fuzzer starts from these instead of from nothing.  Deterministic: running
+it again rewrites the same files (python3 tests/fuzz/make_corpus.py).
+"""
+import os
+import random
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SPECIAL = [0.0, -0.0, 1.0, -1.0, 0.5, 2.0, 1e-3, 1e3,
+           "DBL_MIN", "-DBL_MIN", "TRUE_MIN", "-TRUE_MIN", "DBL_MAX", "-DBL_MAX", "inf", "-inf",
+           "nan", "EPS", "1+EPS", "1-EPS/2", 1e9, -1e9, 1e-300, 1e300,
+           0.05, 0.95, 1e12, 1e-12, "HALF_MIN", 9007199254740993.0, 3.0, 7.0]
+
+
+def u8(v):
+    return bytes([v & 0xFF])
+
+
+def u16(v):
+    return struct.pack("<H", v & 0xFFFF)
+
+
+def u32(v):
+    return struct.pack("<I", v & 0xFFFFFFFF)
+
+
+def u64(v):
+    return struct.pack("<Q", v & 0xFFFFFFFFFFFFFFFF)
+
+
+def special(i):
+    """The tag of FZ_SPECIAL[i]."""
+    return u8(i)
+
+
+def dbl(x):
+    """fz_double: small multiples of 1/256 compactly, anything else raw."""
+    if isinstance(x, str):
+        return special(SPECIAL.index(x))
+    k = x * 256.0
+    if k == int(k) and -32768 <= k < 32768 and not (x == 0.0 and str(x).startswith("-")):
+        return u8(32) + struct.pack("<h", int(k))
+    return u8(128) + struct.pack("<d", x)
+
+
+def rng(v, lo, hi):
+    """fz_range(lo, hi) decoding to v."""
+    span = hi - lo
+    k = v - lo
+    return u8(k) if span <= 0xFF else u16(k) if span <= 0xFFFF else u32(k)
+
+
+def alpha(a=None, raw=None):
+    if raw is not None:
+        return u8(250) + dbl(raw)
+    b = int(round(a * 250 - 0.5))
+    return u8(b)
+
+
+def alt(a):
+    return u8(a) if a in (0, 1, 2) else u8(3) + u32(a)
+
+
+def doubles(xs, maxn, mode=0, base=0.0, step=1.0):
+    """fz_doubles: mode 0 each value, 1 base + step * int8, 2 constant, 3 int8."""
+    out = rng(len(xs), 0, maxn) + u8(mode)
+    if mode == 0:
+        out += b"".join(dbl(x) for x in xs)
+    elif mode == 1:
+        out += dbl(base) + dbl(step) + bytes((int(k) & 0xFF) for k in xs)
+    elif mode == 2:
+        out += dbl(xs[0] if xs else 0.0)
+    else:
+        out += bytes((int(k) & 0xFF) for k in xs)
+    return out
+
+
+def samples(r, maxn):
+    """A handful of (x, y) sample encodings of every kind."""
+    g = [round(r.gauss(0, 1), 3) for _ in range(maxn)]
+    h = [round(r.gauss(0.5, 2), 3) for _ in range(maxn)]
+    ints = [r.randint(-5, 5) for _ in range(maxn)]
+    return [
+        (doubles(g[:10], maxn), doubles(h[:12], maxn)),
+        (doubles(g[:3], maxn), doubles(h[:2], maxn)),
+        (doubles(ints[:20], maxn, mode=1, base=1e9, step=1e-3), doubles(ints[20:35], maxn, mode=1, base=1e9, step=2e-3)),
+        (doubles(ints[:16], maxn, mode=3), doubles(ints[16:30], maxn, mode=3)),
+        (doubles([4.0] * 6, maxn, mode=2), doubles(h[:6], maxn)),
+        (doubles(ints[:8], maxn, mode=1, base=1e-300, step=1e-302), doubles(ints[8:16], maxn, mode=1, base=0.0, step=1e300)),
+        (doubles([1.0, "nan", 2.0, 3.0], maxn), doubles([1.0, "inf", 2.0], maxn)),
+        (doubles([], maxn), doubles([1.0], maxn)),
+    ]
+
+
+def write(harness, seeds):
+    d = os.path.join(HERE, "corpus", harness)
+    os.makedirs(d, exist_ok=True)
+    for f in os.listdir(d):
+        os.remove(os.path.join(d, f))
+    for i, s in enumerate(seeds):
+        with open(os.path.join(d, "seed-%02d" % i), "wb") as f:
+            f.write(s)
+
+
+def fuzz_tests(r):
+    seeds = []
+    for i, (x, y) in enumerate(samples(r, 64)):
+        for which in range(5):
+            null = [0.0, 0.5, 1.0, 1.5, 0.25][which]
+            a = [0.05, 0.01, 0.5, 0.9][(i + which) % 4]
+            s = u8(which) + x + y + dbl(null) + alt((i + which) % 3) + alpha(a) + u8(i)
+            if which == 4:
+                s += dbl([0.0, 0.1, 1e-9, 2.0][i % 4])
+            seeds.append(s)
+    seeds.append(u8(0) + samples(r, 64)[0][0] + samples(r, 64)[0][1] + dbl(0.0) + alt(7) + alpha(raw=1.5) + u8(1))
+    return seeds
+
+
+def fuzz_ks(r):
+    seeds = []
+    for i, (x, y) in enumerate(samples(r, 40)):
+        for weight in (0, 1):
+            for method in range(5):
+                n_sim = [49, 99, 199, 9][(i + method) % 4]
+                flags = [0, 4, 0, 1, 2][method] if i % 3 else 4
+                s = x + y + alt((i + method) % 3) + alpha([0.05, 0.1, 0.01][i % 3]) + u8(flags)
+                s += u8(weight) + u8(method) + u8(1 + (i & 1)) + u8(n_sim - 1) + u64(r.getrandbits(64)) + u8(1)
+                if flags & 2:
+                    s += rng(48, 0, 96)
+                s += rng([0, 1000, 65536][i % 3], 0, 1 << 20)
+                seeds.append(s)
+    return seeds
+
+
+def moments_seed(r, ops):
+    s = b""
+    for op in ops:
+        s += u8(op)
+        if op == 0:
+            s += dbl(round(r.gauss(3, 1), 2))
+        elif op in (1, 2, 3, 6):
+            xs = [round(r.gauss(0, 1), 3) for _ in range(r.randint(1, 30))]
+            if op == 2:
+                xs[0] = "nan"
+            s += doubles(xs, 48)
+            if op == 2:
+                s += u8(0)
+        elif op == 7:
+            s += u8(r.randint(0, 1))
+    return s
+
+
+def fuzz_moments(r):
+    seeds = [moments_seed(r, [r.randint(0, 8) for _ in range(r.randint(3, 20))]) for _ in range(16)]
+    seeds.append(u8(1) + doubles(list(range(40)), 48, mode=1, base=1e9, step=1e-6) + u8(3) +
+                 doubles(list(range(10)), 48, mode=1, base=-1e9, step=1e-6) + u8(4) + u8(5) + u8(8))
+    seeds.append(u8(1) + doubles(list(range(20)), 48, mode=1, base=1e300, step=1e290) + u8(0) + dbl(1e-300) + u8(8))
+    return seeds
+
+
+def fnv1a(b):
+    h = 0xCBF29CE484222325
+    for c in b:
+        h = ((h ^ c) * 0x100000001B3) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def moments_bytes(n, scale, mean, mean_lo, m2, m3, m4, mn, mx):
+    b = b"MCSM" + u32(1) + u64(n)
+    b += (struct.pack("<i", scale) + u32(0) + struct.pack("<7d", mean, mean_lo, m2, m3, m4, mn, mx)) if n else bytes(64)
+    b += u64(0)
+    return b + u64(fnv1a(b))
+
+
+def fuzz_bytes(r):
+    tail = doubles([1.0, 2.0, 3.5, 0.5], 32) + dbl(1.0) + alt(0) + alpha(0.05)
+    valid = [
+        moments_bytes(0, 0, 0, 0, 0, 0, 0, 0, 0),
+        moments_bytes(1, 0, 2.0, 0.0, 0.0, 0.0, 0.0, 2.0, 2.0),
+        moments_bytes(5, 0, 2.6, 0.0, 5.2, 1.0, 9.0, 1.0, 4.5),
+        moments_bytes(1000, 0, 1e9, 1e-8, 80.0, -3.0, 1500.0, 1e9 - 3, 1e9 + 3),
+        moments_bytes(10, -990, 1e-298, 0.0, 9.0, 0.0, 20.0, 0.5e-298, 2e-298),
+        moments_bytes(7, 1000, 1e300, 0.0, 5.0, 1.0, 7.0, 0.2e300, 2e300),
+    ]
+    seeds = [u8(0) + v + tail for v in valid]          # as they are
+    seeds += [u8(3) + v[:88] + tail for v in valid]   # checksum recomputed by the harness
+    bad = bytearray(valid[2])
+    bad[40] ^= 1
+    seeds.append(u8(0) + bytes(bad) + tail)
+    seeds.append(u8(4 | (16 << 3)) + valid[2] + tail)  # wrong length
+    return seeds
+
+
+def fuzz_rows(r):
+    seeds = []
+    for which in range(4):
+        for flags in range(4):
+            rows, nx, ny = 1 + (which + flags) % 6, 2 + flags * 3, 3 + which * 2
+            sx, sy = nx + flags % 4, ny
+            xs = [round(r.gauss(0, 1), 2) for _ in range(rows * sx)]
+            ys = [round(r.gauss(0, 1), 2) for _ in range(rows * sy)]
+            if flags & 2:
+                xs[1] = "nan"
+            s = u8(which) + rng(rows, 0, 6) + rng(nx, 0, 12) + rng(ny, 0, 12) + rng(sx - nx, 0, 3) + rng(0, 0, 3)
+            # the matrices: fz_doubles with max = rows * stride, every value given
+            s += u8(flags) + doubles(xs, len(xs)) + doubles(ys, len(ys))
+            s += dbl([0.0, 0.0, 1.0, 1.0][which]) + alt(flags % 3) + alpha(0.05) + u8(flags & 1)
+            seeds.append(s)
+    seeds.append(u8(0) + rng(2, 0, 6) + rng(4, 0, 12) + rng(4, 0, 12) + rng(0, 0, 3) + rng(0, 0, 3) + u8(250) + u32(8))
+    return seeds
+
+
+def fuzz_dist(r):
+    seeds = []
+    cases = [
+        (0, 2.0, 0.0, 10.0, 1.0, 0.025), (0, -1.5, 3.0, 1e-3, 1.0, 0.5), (0, 40.0, 1e5, 3.5, 1.0, 1e-200),
+        (0, 1e200, 0.0, 2.0, 1.0, 1e-300), (1, 3.0, 10.0, 5.0, 1.0, 0.05), (1, 1e6, 0.0, 1e6, 1.0, 0.5),
+        (1, 1e-3, 1.0, 1e-3, 1.0, 1e-100), (2, 1.5, 0.5, 5.0, 7.0, 0.05), (2, 1.0000001, 2.0, 1e9, 1e9, 0.5),
+        (2, 3.0, 1.0, 1e25, 4.0, 0.01), (2, 0.2, 9.0, 2.0, 1e25, 0.99), (0, "inf", "-inf", "DBL_MAX", 1.0, 1.0),
+        (1, "TRUE_MIN", "DBL_MIN", "HALF_MIN", 1.0, 0.0), (0, "nan", 1.0, 1.0, 1.0, "nan"),
+    ]
+    for i, (fam, x, x2, d1, d2, p) in enumerate(cases):
+        for upper in (0, 1):
+            seeds.append(u8(fam) + dbl(x) + dbl(x2) + dbl(d1) + dbl(d2) + dbl(p) + u8(upper))
+    seeds.append(u8(0) + dbl(1.0) + dbl(2.0) + dbl(3.0) + dbl(1.0) + dbl(0.3) + u8(250) + u8(2))
+    return seeds
+
+
+def fuzz_format(r):
+    seeds = []
+
+    def result(test, method, alternative, reject, decision, weight, n0, n1, d):
+        s = u8(test) + u8(method) + u8(alternative) + u8(reject) + u8(decision + 1) + u8(weight)
+        s += u8(0) + u8(n0) + u8(0) + u8(n1)
+        return s + b"".join(dbl(x) for x in d)
+
+    t1 = [2.5, 9.0, "nan", 0.034, 0.0, 0.1, 1.9, 1.0, "nan", 0.0, 0.05, -2.26, 2.26, 0.4, "nan", "nan"]
+    t2 = [-1.2, 17.3, "nan", 0.25, 0.0, -2.0, 0.5, 1.0, 1.75, 0.0, 0.05, -2.1, 2.1, 0.6, "nan", "nan"]
+    v1 = [12.0, 9.0, "nan", 0.4, 0.0, 0.5, 3.3, 1.1, "nan", 1.0, 0.05, 2.7, 19.0, "nan", "nan", "nan"]
+    v2 = [1.7, 9.0, 11.0, 0.4, 0.0, 0.5, 5.3, 1.7, "nan", 1.0, 0.05, 0.26, 3.9, "nan", "nan", "nan"]
+    ks = [1.3, "nan", "nan", 0.07, 0.002, "nan", "nan", "nan", "nan", "nan", 0.05, "-inf", 1.36, "nan", 0.01, 999.0]
+    names = [(b"x", b"y"), (b"", b""), (b"renderer A" * 60, b"B"), None]
+    for i, (test, d) in enumerate([(1, t1), (2, t2), (3, v1), (4, v2), (5, ks)]):
+        for j, nm in enumerate(names):
+            s = result(test, 0 if test < 5 else 2 + j % 3, j % 3, j & 1, (j % 3) - 1 if j & 1 else 0, j & 1, 10, 12 if test in (2, 4, 5) else 0, d)
+            if nm is None:
+                s += u16(0xFFFF) + u16(0xFFFF)
+            else:
+                s += u16(len(nm[0])) + nm[0] + u16(len(nm[1])) + nm[1]
+            s += rng([4096, 50, 0, 200][j], 0, 4096)
+            word = [b"two-sided", b"less", b"greater", b"two.sided", b"sideways"][(i + j) % 5]
+            s += u16(len(word)) + word + u32([0, 1, 2, -1, 3][(i + j) % 5])
+            seeds.append(s)
+    return seeds
+
+
+def main():
+    for name, make in [("fuzz_tests", fuzz_tests), ("fuzz_ks", fuzz_ks), ("fuzz_moments", fuzz_moments),
+                       ("fuzz_bytes", fuzz_bytes), ("fuzz_rows", fuzz_rows), ("fuzz_dist", fuzz_dist),
+                       ("fuzz_format", fuzz_format)]:
+        seeds = make(random.Random(name))
+        write(name, seeds)
+        print("%-13s %3d seeds, %5d bytes" % (name, len(seeds), sum(len(s) for s in seeds)))
+
+
+if __name__ == "__main__":
+    main()
