@@ -6,11 +6,19 @@
 # Each harness starts from its committed corpus and regressions; what it
 # discovers goes to BUILD_DIR/fuzz/corpus/<harness> (not the source tree),
 # crashing inputs to BUILD_DIR/fuzz/artifacts/, logs to BUILD_DIR/fuzz/logs/.
+#
+# FUZZ_SEED=S fixes libFuzzer's random seed and FUZZ_RUNS=FILE (lines
+# "harness runs") caps each harness's executions: the run is then the same
+# sequence of mutations every time, up to coverage feedback (which makes two
+# runs only nearly identical); that is how CI runs it (make fuzz-ci), and
+# exploration with fresh seeds is `make fuzz`.
 set -uo pipefail
 BUILD=${1:?build dir}
 SECONDS_EACH=${2:-60}
 JOBS=${3:-2}
 SRC=$(cd "$(dirname "$0")" && pwd)
+FUZZ_SEED=${FUZZ_SEED:-}
+FUZZ_RUNS=${FUZZ_RUNS:-}
 BIN=$BUILD/tests/fuzz
 OUT=$BUILD/fuzz
 mkdir -p "$OUT/logs" "$OUT/artifacts"
@@ -19,7 +27,16 @@ harnesses=$(cd "$SRC" && ls fuzz_*.c | sed 's/\.c$//')
 run_one() {
     h=$1
     mkdir -p "$OUT/corpus/$h"
-    "$BIN/$h" -max_total_time="$SECONDS_EACH" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
+    local fixed=()
+    if [ -n "${FUZZ_SEED:-}" ]; then
+        fixed+=(-seed="$FUZZ_SEED")
+        rm -rf "$OUT/corpus/$h" && mkdir -p "$OUT/corpus/$h" # start from the committed corpus only
+    fi
+    if [ -n "${FUZZ_RUNS:-}" ]; then
+        local runs; runs=$(awk -v h="$h" '$1 == h {print $2}' "$FUZZ_RUNS")
+        [ -n "$runs" ] && fixed+=(-runs="$runs")
+    fi
+    "$BIN/$h" "${fixed[@]}" -max_total_time="$SECONDS_EACH" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
         -artifact_prefix="$OUT/artifacts/$h-" "$OUT/corpus/$h" "$SRC/corpus/$h" "$SRC/regressions/$h" \
         > "$OUT/logs/$h.log" 2>&1
     rc=$?
@@ -35,7 +52,7 @@ run_one() {
     return "$rc"
 }
 export -f run_one
-export BIN OUT SRC SECONDS_EACH
+export BIN OUT SRC SECONDS_EACH FUZZ_SEED FUZZ_RUNS
 
 echo "fuzzing $(echo $harnesses | wc -w) harnesses, ${SECONDS_EACH}s each, $JOBS at a time"
 printf '%s\n' $harnesses | xargs -P "$JOBS" -I{} bash -c 'run_one {}'
