@@ -152,8 +152,8 @@ valgrind-test: build
 	$(SAN_SIZE) python3 tests/valgrind/memcheck.py $(BUILD) -j $(JOBS) -E '$(VALGRIND_EXCLUDE)' \
 	  --long-double 'test_format'
 
-# The main job: the paper's case studies on its scene (full budgets, about
-# 20-40 s on 2 cores), into $(REPORT)/.
+# The main job: the paper's case studies and the studies beyond it on its scene (full budgets, about
+# a minute on 2 cores), into $(REPORT)/.
 REPORT ?= report
 demo: python
 	$(VENV)/bin/mcstat reproduce --out $(REPORT)
