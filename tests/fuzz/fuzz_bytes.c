@@ -81,8 +81,15 @@ static void use_moments(const mcstat_moments *m, fz_input *in)
         unsigned char b[NB];
         mcstat_moments back;
         FZ_ASSERT(mcstat_moments_to_bytes(&c[i], b, NB) == MCSTAT_OK, "to_bytes merged");
-        if (isfinite(c[i].m2) && isfinite(c[i].m4) && isfinite(c[i].m3) && isfinite(c[i].mean))
-            FZ_ASSERT(mcstat_moments_from_bytes(b, NB, &back) == MCSTAT_OK, "merged %d not accepted back", i);
+        /* from_bytes checks necessary conditions (it cannot prove that data
+         * exist with these moments), so a record it accepted but no data
+         * could produce may merge into one it refuses: here only "refused
+         * as corrupt, never crashed or misread".  Accumulators built from
+         * data must read back after any merges: fuzz_moments asserts that.
+         * (CI found such a pair at n = 1.8e19; each stricter rule only moved
+         * the hole.) */
+        int back_st = mcstat_moments_from_bytes(b, NB, &back);
+        FZ_ASSERT(back_st == MCSTAT_OK || back_st == MCSTAT_ECORRUPT, "merged %d read back: status %d", i, back_st);
         fz_check_result(mcstat_t_test_1_moments(&c[i], v, alt, alpha, &r), &r, MCSTAT_TEST_T_1, alt, alpha, 0);
     }
     /* One more value, and the stream built on it. */
