@@ -179,6 +179,96 @@ const char *kind_name(Kind k)
     }
 }
 
+
+// The result arrays of a batch (the image's shape, a trailing axis where a
+// field has several values) and the pointers scatter() writes through.
+struct BatchOutputs {
+    py::array_t<double> statistic, df, pvalue, conf_int, estimate, critical, std_error;
+    py::array_t<bool> reject;
+    py::array_t<int8_t> decision, status;
+    py::array_t<int64_t> nobs;
+    Outputs o;
+
+    BatchOutputs(const std::vector<py::ssize_t> &shape, Kind kind)
+    {
+        bool two = kind == Kind::T2 || kind == Kind::V2;
+        o.ndf = kind == Kind::V2 ? 2 : 1;
+        o.nest = kind == Kind::T2 ? 2 : 1;
+        o.nobs_per_row = two ? 2 : 1;
+        auto with = [&](int k) {
+            std::vector<py::ssize_t> s = shape;
+            if (k > 1)
+                s.push_back(k);
+            return s;
+        };
+        statistic = py::array_t<double>(with(1));
+        df = py::array_t<double>(with(o.ndf));
+        pvalue = py::array_t<double>(with(1));
+        conf_int = py::array_t<double>(with(2));
+        estimate = py::array_t<double>(with(o.nest));
+        critical = py::array_t<double>(with(2));
+        std_error = py::array_t<double>(with(1));
+        reject = py::array_t<bool>(with(1));
+        decision = py::array_t<int8_t>(with(1));
+        status = py::array_t<int8_t>(with(1));
+        nobs = py::array_t<int64_t>(with(o.nobs_per_row));
+        o.statistic = statistic.mutable_data();
+        o.df = df.mutable_data();
+        o.pvalue = pvalue.mutable_data();
+        o.conf_int = conf_int.mutable_data();
+        o.estimate = estimate.mutable_data();
+        o.critical = critical.mutable_data();
+        o.std_error = std_error.mutable_data();
+        o.reject = reject.mutable_data();
+        o.decision = decision.mutable_data();
+        o.status = status.mutable_data();
+        o.nobs = nobs.mutable_data();
+    }
+
+    // The Python BatchResult (mcstat._result._make_batch) of these arrays.
+    py::object result(const TestArgs &a) const
+    {
+        py::dict fields;
+        fields["statistic"] = statistic;
+        fields["df"] = df;
+        fields["pvalue"] = pvalue;
+        fields["conf_int"] = conf_int;
+        fields["estimate"] = estimate;
+        fields["critical_values"] = critical;
+        fields["std_error"] = std_error;
+        fields["reject"] = reject;
+        fields["decision_code"] = decision;
+        fields["status"] = status;
+        fields["nobs"] = nobs;
+        static py::object make = py::module_::import("mcstat._result").attr("_make_batch");
+        return make(kind_name(a.kind), fields, a.alternative, a.alpha, a.null_value, a.axis, a.errors_as_nan,
+                    a.intervals);
+    }
+};
+
+// Runs range(begin, end) over [0, rows) split into one range per thread, the
+// GIL released.  At least ~1000 rows per thread: below that a thread costs
+// more than it saves.
+template <class F> void for_row_ranges(size_t rows, F range)
+{
+    py::gil_scoped_release nogil;
+    size_t nt = std::min<size_t>(static_cast<size_t>(num_threads()), std::max<size_t>(1, rows / 1024));
+    if (nt <= 1) {
+        range(size_t(0), rows);
+        return;
+    }
+    std::vector<std::thread> pool;
+    size_t per = (rows + nt - 1) / nt;
+    for (size_t t = 1; t < nt; t++) {
+        size_t b = t * per, e = std::min(rows, b + per);
+        if (b < e)
+            pool.emplace_back([&range, b, e] { range(b, e); });
+    }
+    range(size_t(0), std::min(rows, per));
+    for (auto &th : pool)
+        th.join();
+}
+
 } // namespace
 
 int num_threads()
@@ -230,68 +320,9 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
     if (two)
         Y = layout_of(yv, rows);
 
-    bool t2 = a.kind == Kind::T2, v2 = a.kind == Kind::V2;
-    auto with = [&](int k) {
-        std::vector<py::ssize_t> s = outer;
-        if (k > 1)
-            s.push_back(k);
-        return s;
-    };
-    Outputs o;
-    o.ndf = v2 ? 2 : 1;
-    o.nest = t2 ? 2 : 1;
-    o.nobs_per_row = two ? 2 : 1;
-    py::array_t<double> statistic(with(1)), df(with(o.ndf)), pvalue(with(1)), conf_int(with(2)),
-        estimate(with(o.nest)), critical(with(2)), std_error(with(1));
-    py::array_t<bool> reject(with(1));
-    py::array_t<int8_t> decision(with(1)), status(with(1));
-    py::array_t<int64_t> nobs(with(o.nobs_per_row));
-    o.statistic = statistic.mutable_data();
-    o.df = df.mutable_data();
-    o.pvalue = pvalue.mutable_data();
-    o.conf_int = conf_int.mutable_data();
-    o.estimate = estimate.mutable_data();
-    o.critical = critical.mutable_data();
-    o.std_error = std_error.mutable_data();
-    o.reject = reject.mutable_data();
-    o.decision = decision.mutable_data();
-    o.status = status.mutable_data();
-    o.nobs = nobs.mutable_data();
-
-    {
-        py::gil_scoped_release nogil;
-        // At least ~1000 rows per thread: below that a thread costs more than it saves.
-        size_t nt = std::min<size_t>(static_cast<size_t>(num_threads()), std::max<size_t>(1, rows / 1024));
-        if (nt <= 1) {
-            run_range(a, X, Y, two, 0, rows, o);
-        } else {
-            std::vector<std::thread> pool;
-            size_t per = (rows + nt - 1) / nt;
-            for (size_t t = 1; t < nt; t++) {
-                size_t b = t * per, e = std::min(rows, b + per);
-                if (b < e)
-                    pool.emplace_back([&, b, e] { run_range(a, X, Y, two, b, e, o); });
-            }
-            run_range(a, X, Y, two, 0, std::min(rows, per), o);
-            for (auto &th : pool)
-                th.join();
-        }
-    }
-    py::dict fields;
-    fields["statistic"] = statistic;
-    fields["df"] = df;
-    fields["pvalue"] = pvalue;
-    fields["conf_int"] = conf_int;
-    fields["estimate"] = estimate;
-    fields["critical_values"] = critical;
-    fields["std_error"] = std_error;
-    fields["reject"] = reject;
-    fields["decision_code"] = decision;
-    fields["status"] = status;
-    fields["nobs"] = nobs;
-    static py::object make = py::module_::import("mcstat._result").attr("_make_batch");
-    return make(kind_name(a.kind), fields, a.alternative, a.alpha, a.null_value, a.axis, a.errors_as_nan,
-                a.intervals);
+    BatchOutputs out(outer, a.kind);
+    for_row_ranges(rows, [&](size_t b, size_t e) { run_range(a, X, Y, two, b, e, out.o); });
+    return out.result(a);
 }
 
 } // namespace mcs
@@ -306,33 +337,8 @@ py::object run_moments_rows(const TestArgs &a, const mcstat_moments *x, const mc
                             const std::vector<py::ssize_t> &shape)
 {
     bool two = a.kind == Kind::T2 || a.kind == Kind::V2;
-    bool t2 = a.kind == Kind::T2, v2 = a.kind == Kind::V2;
-    auto with = [&](int k) {
-        std::vector<py::ssize_t> s = shape;
-        if (k > 1)
-            s.push_back(k);
-        return s;
-    };
-    Outputs o;
-    o.ndf = v2 ? 2 : 1;
-    o.nest = t2 ? 2 : 1;
-    o.nobs_per_row = two ? 2 : 1;
-    py::array_t<double> statistic(with(1)), df(with(o.ndf)), pvalue(with(1)), conf_int(with(2)),
-        estimate(with(o.nest)), critical(with(2)), std_error(with(1));
-    py::array_t<bool> reject(with(1));
-    py::array_t<int8_t> decision(with(1)), status(with(1));
-    py::array_t<int64_t> nobs(with(o.nobs_per_row));
-    o.statistic = statistic.mutable_data();
-    o.df = df.mutable_data();
-    o.pvalue = pvalue.mutable_data();
-    o.conf_int = conf_int.mutable_data();
-    o.estimate = estimate.mutable_data();
-    o.critical = critical.mutable_data();
-    o.std_error = std_error.mutable_data();
-    o.reject = reject.mutable_data();
-    o.decision = decision.mutable_data();
-    o.status = status.mutable_data();
-    o.nobs = nobs.mutable_data();
+    BatchOutputs out(shape, a.kind);
+    const Outputs &o = out.o;
     unsigned flags = a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS;
     auto range = [&](size_t begin, size_t end) {
         const size_t chunk = 256;
@@ -361,39 +367,8 @@ py::object run_moments_rows(const TestArgs &a, const mcstat_moments *x, const mc
             scatter(res.data(), st.data(), r0, k, o);
         }
     };
-    {
-        py::gil_scoped_release nogil;
-        size_t nt = std::min<size_t>(static_cast<size_t>(num_threads()), std::max<size_t>(1, rows / 1024));
-        if (nt <= 1) {
-            range(0, rows);
-        } else {
-            std::vector<std::thread> pool;
-            size_t per = (rows + nt - 1) / nt;
-            for (size_t t = 1; t < nt; t++) {
-                size_t b = t * per, e = std::min(rows, b + per);
-                if (b < e)
-                    pool.emplace_back([&, b, e] { range(b, e); });
-            }
-            range(0, std::min(rows, per));
-            for (auto &th : pool)
-                th.join();
-        }
-    }
-    py::dict fields;
-    fields["statistic"] = statistic;
-    fields["df"] = df;
-    fields["pvalue"] = pvalue;
-    fields["conf_int"] = conf_int;
-    fields["estimate"] = estimate;
-    fields["critical_values"] = critical;
-    fields["std_error"] = std_error;
-    fields["reject"] = reject;
-    fields["decision_code"] = decision;
-    fields["status"] = status;
-    fields["nobs"] = nobs;
-    static py::object make = py::module_::import("mcstat._result").attr("_make_batch");
-    return make(kind_name(a.kind), fields, a.alternative, a.alpha, a.null_value, a.axis, a.errors_as_nan,
-                a.intervals);
+    for_row_ranges(rows, range);
+    return out.result(a);
 }
 
 } // namespace mcs
