@@ -26,7 +26,9 @@ typedef struct {
     char domain[128];
     int cases;     /* cases the table was measured on */
     double bound;  /* what the tests enforce */
+    int failed;    /* cases the library failed (error status, non-finite) when measured */
     int seen;      /* cases checked by this run */
+    int nfail;     /* failed in this run */
     double worst;  /* largest error seen by this run */
 } acc_row;
 
@@ -36,14 +38,16 @@ static int acc_nrows = -1;
 static void acc_read_row(char **f, int nf, void *ctx)
 {
     (void)ctx;
-    if (nf < 6 || acc_nrows >= ACC_MAX_ROWS)
+    if (nf < 7 || acc_nrows >= ACC_MAX_ROWS)
         return;
     acc_row *r = &acc_rows[acc_nrows++];
     snprintf(r->func, sizeof r->func, "%s", f[0]);
     snprintf(r->domain, sizeof r->domain, "%s", f[1]);
     r->cases = atoi(f[2]);
     r->bound = strtod(f[5], NULL);
+    r->failed = atoi(f[6]);
     r->seen = 0;
+    r->nfail = 0;
     r->worst = 0.0;
 }
 

@@ -122,7 +122,6 @@ static void check_case(char **f, int nf, void *ctx)
     int flag = atoi(f[5]), st;
     int is_dist = ends_with(func, "_cdf") || ends_with(func, "_logcdf") || ends_with(func, "_quantile");
     double got = is_dist ? dist(func, a, b, c, flag, &st) : test_p_value(func, a, b, c, flag, f[7], f[8], &st);
-    CHECK_MSG(st == MCSTAT_OK, "%s(%s, %s, %s, %d): %s", func, f[2], f[3], f[4], flag, mcstat_strerror(st));
     /* the domain's probability band, as make_accuracy.py's band() */
     char domain[160];
     if (ends_with(func, "_logcdf"))
@@ -131,13 +130,20 @@ static void check_case(char **f, int nf, void *ctx)
         snprintf(domain, sizeof domain, "%s, %s", f[1],
                  (ends_with(func, "_quantile") ? a : ref) >= 1e-30 ? "p >= 1e-30" : "p < 1e-30");
     acc_row *row = acc_find(func, domain);
-    double e = ends_with(func, "_logcdf") ? acc_log_err(got, ref) : acc_rel(got, ref);
     row->seen++;
+    ncases++;
+    if (st != MCSTAT_OK || !isfinite(got)) {
+        /* allowed only as often as the table says (a known defect) */
+        if (++row->nfail > row->failed)
+            CHECK_MSG(0, "%s [%s] at (%s, %s, %s, flag %d): %s, result %g", func, domain, f[2], f[3], f[4], flag,
+                      mcstat_strerror(st), got);
+        return;
+    }
+    double e = ends_with(func, "_logcdf") ? acc_log_err(got, ref) : acc_rel(got, ref);
     if (e > row->worst)
         row->worst = e;
     CHECK_MSG(e <= row->bound, "%s [%s] at (%s, %s, %s, flag %d): %.17g, want %.17g: error %.3g > bound %g",
               func, domain, f[2], f[3], f[4], flag, got, ref, e, row->bound);
-    ncases++;
 }
 
 int main(void)
@@ -155,7 +161,8 @@ int main(void)
         CHECK_MSG(r->seen == r->cases, "%s / %s: %d cases checked, the table has %d", r->func, r->domain,
                   r->seen, r->cases);
         if (getenv("MCSTAT_VERBOSE"))
-            printf("%-20s %-60s %4d  worst %.3g  bound %g\n", r->func, r->domain, r->seen, r->worst, r->bound);
+            printf("%-20s %-60s %4d  worst %.3g  bound %g  failed %d\n", r->func, r->domain, r->seen, r->worst,
+                   r->bound, r->nfail);
     }
     printf("%d cases in %d domains\n", ncases, domains);
     return h_report("test_accuracy");
