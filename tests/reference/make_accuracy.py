@@ -12,7 +12,7 @@ Run from the repository root, on a built shared library:
   ... --refs
       first draws the cases afresh (fixed seeds) and recomputes their
       references with mpmath (mpref.py, the oracle of make_reference.py):
-      about a minute.
+      about 2 minutes (1 core).
 
 The library is called through ctypes; R is not needed.  The references of
 the tables already in tests/c/ref_data.h (make_reference.py's quantiles, log
@@ -73,6 +73,12 @@ class Result(ctypes.Structure):
                 ("reserved", ctypes.c_double * 7)]
 
 
+class KsOptions(ctypes.Structure):
+    _fields_ = [("size", ctypes.c_uint32), ("weight", ctypes.c_int32), ("method", ctypes.c_int32),
+                ("threads", ctypes.c_int32), ("n_sim", ctypes.c_int64), ("seed", ctypes.c_uint64),
+                ("cache", ctypes.c_void_p), ("critical", ctypes.c_int32), ("reserved", ctypes.c_int32)]
+
+
 class Lib:
     def __init__(self, path):
         self.so = ctypes.CDLL(path)
@@ -126,6 +132,16 @@ class Lib:
             st = so.mcstat_binom_test(int(args[0]), int(args[1]), args[2], flag, 0.05, ctypes.byref(r))
         else:
             raise ValueError(func)
+        return r.p_value if st == 0 else math.nan
+
+    def ks_exact(self, x, y, alternative, weight):
+        """The exact K-S p-value (alternative in mcstat's sense)."""
+        o = KsOptions()
+        self.so.mcstat_ks_options_init(ctypes.byref(o))
+        o.weight, o.method, o.critical = weight, 2, 0  # MCSTAT_METHOD_EXACT
+        r = Result()
+        st = self.so.mcstat_ks_test_2(self._arr(x), ctypes.c_size_t(len(x)), self._arr(y), ctypes.c_size_t(len(y)),
+                                      alternative, ctypes.c_double(0.05), ctypes.byref(o), ctypes.byref(r))
         return r.p_value if st == 0 else math.nan
 
     def moments_case(self, kind, null_value, alt, alpha, x, y):
@@ -693,7 +709,21 @@ def measure(lib):
         got_m = lib.moments_case(kind, nv, alt, alpha, x, y)
         for how, got in (("array", got_a), ("moments", got_m)):
             stat(func, dom).add(rel(got, p), f"{xn} {yn or '-'} {how} null={nv!r} {ALT_NAMES[alt]} got={got!r} ref={p!r}")
+    # the exact K-S p-values of tests/c/ref_ks.h against make_ks_exact.py's
+    # exact fractions (tests/c/ref_ks_exact.h); R's alternatives name the CDF
+    import make_ks_exact as mk
+    with open(os.path.join(ROOT, "tests", "c", "ref_ks_exact.h")) as f:
+        exact = [tuple(float.fromhex(v) for v in m) for m in re.findall(r"\{(0x[0-9a-fp.+-]+), (0x[0-9a-fp.+-]+)\}", f.read())]
+    r_alt = {0: 0, 1: 2, 2: 1}
+    for k, ((x, y, alt), ps) in enumerate(zip(mk.parse(), exact)):
+        for weight, p, dom in ((0, ps[0], KS_DOMAINS[0]), (1, ps[1], KS_DOMAINS[1])):
+            got = lib.ks_exact(x, y, r_alt[alt], weight)
+            stat("ks_test_2", dom).add(rel(got, p), f"REF_KS[{k}] nx={len(x)} ny={len(y)} R alternative {alt}"
+                                                    f" got={got!r} ref={p!r}")
     return [(f, d, table[(f, d)]) for f, d in order]
+
+
+KS_DOMAINS = ("ref_ks.h cases, exact method, unweighted", "ref_ks.h cases, exact method, Canner's weight")
 
 
 def read_bounds():
@@ -710,7 +740,7 @@ def read_bounds():
 
 FUNC_ORDER = ["t_cdf", "t_logcdf", "t_quantile", "chisq_cdf", "chisq_logcdf", "chisq_quantile",
               "f_cdf", "f_logcdf", "f_quantile", "t_test_1", "t_test_2", "var_test_1", "var_test_2",
-              "equivalence_test_1", "equivalence_test_2", "binom_test"]
+              "equivalence_test_1", "equivalence_test_2", "binom_test", "ks_test_2"]
 
 C_NAMES = {"t_cdf": "mcstat_t_cdf", "t_logcdf": "mcstat_t_logcdf", "t_quantile": "mcstat_t_quantile",
            "chisq_cdf": "mcstat_chisq_cdf", "chisq_logcdf": "mcstat_chisq_logcdf",
@@ -744,7 +774,8 @@ def write_table(results, lib_path):
               "and domain, measured on the library built from this tree "
               f"({platform.machine()}, {' '.join(platform.libc_ver())}). "
               "`bound` is what the tests enforce (tests/c/test_accuracy.c on every case below, "
-              "tests/c/test_reference.c on the ref_data.h rows): 2 to 3 times the measured peak, "
+              "tests/c/test_reference.c on the ref_data.h rows, tests/c/test_ks.c on the ref_ks.h rows): "
+              "2 to 3 times the measured peak, "
               "at least 5e-16. `failed`: cases where the library returned an error status or a "
               "non-finite value (the tests allow no more than the table's count).\n")
     md.append("Error measures: |got - ref| / |ref| for probabilities, quantiles and p-values "
@@ -760,9 +791,10 @@ def write_table(results, lib_path):
               "lattices x_i = base + ((i mult + off) mod m) 2^-s (exact values, near-uniform, any "
               "location and scale: the p-value depends on the moments only); references from the samples' "
               "exact rational moments. The ref_data.h rows are make_reference.py's tables "
-              "(extreme degrees of freedom to 1e20, NIST StRD and other stiff data sets).\n")
+              "(extreme degrees of freedom to 1e20, NIST StRD and other stiff data sets); the ref_ks.h "
+              "rows are R's K-S cases (tests/c/ref_ks.h) against make_ks_exact.py's exact fractions.\n")
     md.append("Regenerate: `make accuracy` (re-measures on the committed cases, seconds); "
-              "`make accuracy-refs` draws the cases and recomputes their references (about a minute). "
+              "`make accuracy-refs` draws the cases and recomputes their references (about 2 minutes). "
               "A rerun that would loosen a committed bound fails unless `--accept-looser` is given.\n")
     cur = None
     for func, dom, s in results:
