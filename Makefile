@@ -22,6 +22,7 @@ APT_PACKAGES += clang libclang-rt-14-dev
 
 .PHONY: asan-test tsan-test valgrind-test
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
+.PHONY: accuracy accuracy-refs
 .PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
@@ -195,6 +196,19 @@ references: python-deps
 	Rscript tests/reference/make_power_ref.R
 	# issue 9: R's binom.test for the binomial meta-test
 	Rscript tests/reference/make_binom_ref.R
+
+# The accuracy table libmcstat/ACCURACY.md and tests/data/accuracy.tsv (the
+# bounds test_accuracy and test_reference enforce): the built library against
+# 50-digit mpmath references, through ctypes (no R).  accuracy re-measures on
+# the committed cases (seconds); accuracy-refs draws the cases and recomputes
+# their references first (about 2 minutes on 2 cores).  Either refuses to
+# loosen a committed bound unless ACCURACY_FLAGS=--accept-looser.
+ACCURACY_FLAGS ?=
+accuracy: build python-deps
+	$(PY) tests/reference/make_accuracy.py --lib $(BUILD)/libmcstat/libmcstat.so $(ACCURACY_FLAGS)
+
+accuracy-refs: build python-deps
+	$(PY) tests/reference/make_accuracy.py --lib $(BUILD)/libmcstat/libmcstat.so --refs $(ACCURACY_FLAGS)
 
 # ---- fuzzing (tests/fuzz/README.md) -------------------------------------------
 # libFuzzer harnesses built by clang with ASan + UBSan in $(BUILD)-fuzz; each

@@ -65,3 +65,21 @@ def values(name):
     _, n, base, mult, mod = d
     i = np.arange(n, dtype=np.int64)
     return base + ((i * mult) % mod).astype(np.float64) * 2.0 ** -20
+
+
+# The bounds of the accuracy table (tests/data/accuracy.tsv, written by
+# tests/reference/make_accuracy.py, explained in libmcstat/ACCURACY.md).
+ACCURACY_TSV = os.path.join(ROOT, "tests", "data", "accuracy.tsv")
+STIFF_DOMAIN = "ref_data.h stiff data sets (arrays and accumulators)"
+# The fields other than the p-value: 2-4 times their measured worst error
+# (tests/c/test_reference.c prints it), as test_reference.c holds them.
+TOL_STATISTIC, TOL_DF, TOL_CRITICAL, TOL_CONF_INT, TOL_ESTIMATE = 1e-13, 1e-15, 1e-14, 8e-14, 4e-15
+
+
+def accuracy_bound(func, domain):
+    with open(ACCURACY_TSV) as f:
+        for line in f:
+            r = line.rstrip("\n").split("\t")
+            if not line.startswith("#") and r[0] == func and r[1] == domain:
+                return float(r[5])
+    raise KeyError(f"accuracy.tsv has no row {func} / {domain}")
