@@ -117,9 +117,10 @@ test: fuzz-ci
 # ---- ABI (part of make test) -------------------------------------------------
 # The shared library built with debug information (Release flags plus -g) in
 # $(BUILD)-abi, its ABI compared by abidiff with the baseline of the first
-# release of this SOVERSION (libmcstat/abi/README.md): any change other than
-# an addition fails.
-ABI_BASELINE := libmcstat/abi/libmcstat.so.0.abi
+# release of this SOVERSION (libmcstat/abi/README.md; MCSTAT_SOVERSION in
+# mcstat.h names the file): any change other than an addition fails.
+MCSTAT_SOVERSION := $(shell sed -n 's/^\#define MCSTAT_SOVERSION \([0-9]*\)$$/\1/p' libmcstat/include/mcstat.h)
+ABI_BASELINE := libmcstat/abi/libmcstat.so.$(MCSTAT_SOVERSION).abi
 abi-check: system-deps
 	cmake -S . -B $(BUILD)-abi -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g \
 	  -DMCSTAT_BUILD_TESTS=OFF -DMCSTAT_BUILD_EXAMPLES=OFF -DMCSTAT_BUILD_ESTIMATORS=OFF
