@@ -27,6 +27,15 @@
 extern "C" {
 #endif
 
+/* mcstat_result's anonymous unions of anonymous structs are standard C11,
+ * an extension in C99 and C++: marked, so that callers building with
+ * -Wpedantic get no warning (tests/c/check_header.sh). */
+#if defined(__GNUC__) || defined(__clang__)
+#  define MCSTAT_ANONYMOUS __extension__
+#else
+#  define MCSTAT_ANONYMOUS
+#endif
+
 #if defined(_WIN32) && defined(MCSTAT_SHARED_BUILD)
 #  define MCSTAT_API __declspec(dllexport)
 #elif defined(__GNUC__) || defined(__clang__)
@@ -210,7 +219,7 @@ typedef struct mcstat_result {
                               _EQUAL (0), _GREATER (+1) */
     /* Per-test integer outputs, 0 for tests that set none; read only those of
      * `test`.  reserved_i is 0.1.0's name of the same storage. */
-    union {
+    MCSTAT_ANONYMOUS union {
         int32_t reserved_i[3];
         struct {
             int32_t ks_weight;         /* KS_2: enum mcstat_ks_weight */
@@ -232,7 +241,7 @@ typedef struct mcstat_result {
     /* Per-test outputs (described with each test below), 0 for tests that set
      * none.  The structs share storage: read only those of `test`.  reserved
      * is 0.1.0's name of the same storage. */
-    union {
+    MCSTAT_ANONYMOUS union {
         double reserved[7];
         struct {                      /* KS_2 */
             double ks_critical_se;    /* Monte Carlo standard error of critical[1] */
