@@ -490,10 +490,11 @@ MCSTAT_API size_t mcstat_sizeof_power_options(void);
 MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power);
 /* *out <- *o with the field named by `unknown` (enum mcstat_power_unknown)
  * solved for; the other three must be valid (the unknown's field is
- * ignored).  out receives o->size bytes (out may equal o).  Solving for n also sets out->power to the power at that n
- * (>= the target).  MCSTAT_EINVAL as above, and when no value reaches the
- * power (an effect of 0; a power at or below what alpha alone gives; n
- * beyond 1e15); MCSTAT_ENUMERIC. */
+ * ignored); out receives o->size bytes, the caller's version of the
+ * struct (out may equal o).  Solving for n also sets out->power to the
+ * power at that n (>= the target).  MCSTAT_EINVAL as above, and when no
+ * value reaches the power (an effect of 0; a power at or below what alpha
+ * alone gives; n beyond 1e15); MCSTAT_ENUMERIC. */
 MCSTAT_API int mcstat_power_solve(const mcstat_power_options *o, int unknown,
                                   mcstat_power_options *out);
 /* R's print.power.htest block ("Two-sample t test power calculation", the
