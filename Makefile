@@ -118,7 +118,8 @@ test: fuzz-ci
 # The shared library built with debug information (Release flags plus -g) in
 # $(BUILD)-abi, its ABI compared by abidiff with the baseline of the first
 # release of this SOVERSION (libmcstat/abi/README.md; MCSTAT_SOVERSION in
-# mcstat.h names the file): any change other than an addition fails.
+# mcstat.h names the file): any change other than an addition fails.  About
+# 20 s on 2 cores.
 MCSTAT_SOVERSION := $(shell sed -n 's/^\#define MCSTAT_SOVERSION \([0-9]*\)$$/\1/p' libmcstat/include/mcstat.h)
 ABI_BASELINE := libmcstat/abi/libmcstat.so.$(MCSTAT_SOVERSION).abi
 abi-check: system-deps
