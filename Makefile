@@ -19,8 +19,10 @@ APT_PACKAGES += valgrind
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 # clang and its runtimes (libFuzzer, ASan, UBSan) for `make fuzz` (tests/fuzz).
 APT_PACKAGES += clang libclang-rt-14-dev
+# abidw and abidiff for `make abi-check` (libmcstat/abi)
+APT_PACKAGES += abigail-tools
 
-.PHONY: asan-test tsan-test valgrind-test
+.PHONY: asan-test tsan-test valgrind-test abi-check
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
 .PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
@@ -109,9 +111,23 @@ mitsuba-test: install-test python-deps
 	    $(PY) -m pytest -q -rs -p no:cacheprovider examples/mitsuba; \
 	fi
 
-test: deps ctest pytest install-test ctypes-test rust-test go-test mitsuba-test
+test: deps ctest pytest install-test ctypes-test rust-test go-test mitsuba-test abi-check
 test: asan-test tsan-test valgrind-test
 test: fuzz-replay fuzz-report
+
+# ---- ABI (part of make test) -------------------------------------------------
+# The shared library built with debug information (Release flags plus -g) in
+# $(BUILD)-abi, its ABI compared by abidiff with the baseline of the first
+# release of this SOVERSION (libmcstat/abi/README.md; MCSTAT_SOVERSION in
+# mcstat.h names the file): any change other than an addition fails.  About
+# 20 s on 2 cores.
+MCSTAT_SOVERSION := $(shell sed -n 's/^\#define MCSTAT_SOVERSION \([0-9]*\)$$/\1/p' libmcstat/include/mcstat.h)
+ABI_BASELINE := libmcstat/abi/libmcstat.so.$(MCSTAT_SOVERSION).abi
+abi-check: system-deps
+	cmake -S . -B $(BUILD)-abi -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g \
+	  -DMCSTAT_BUILD_TESTS=OFF -DMCSTAT_BUILD_EXAMPLES=OFF -DMCSTAT_BUILD_ESTIMATORS=OFF
+	cmake --build $(BUILD)-abi -j $(JOBS) --target mcstat
+	libmcstat/abi/check.sh $(ABI_BASELINE) $(BUILD)-abi/libmcstat/libmcstat.so libmcstat/include
 
 # ---- sanitizers and valgrind (part of make test) ---------------------------
 # asan-test: every C test of libmcstat and libmcest, built with AddressSanitizer
@@ -240,4 +256,4 @@ fuzz-report: fuzz-build
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-bench $(BUILD)-fuzz
-	rm -rf $(BUILD)-asan $(BUILD)-tsan
+	rm -rf $(BUILD)-asan $(BUILD)-tsan $(BUILD)-abi

@@ -181,6 +181,7 @@ static void bench_error(void)
                 for (int k = 0; k < reps; k++) {
                     mcstat_ks_options os = MCSTAT_KS_OPTIONS_INIT;
                     os.method = MCSTAT_METHOD_SIMULATE;
+                    os.threads = 2; /* the table's heading: not the default (1) */
                     os.n_sim = B;
                     os.seed = (uint64_t)k * 7919 + 1;
                     os.critical = 0;

@@ -357,6 +357,15 @@ func (c *KSCache) Stats() (hits, misses, entries uint64) {
 	return uint64(h), uint64(m), uint64(e)
 }
 
+// ksOptionsInit is libmcstat's default options, initialised for the size of
+// the struct this package was compiled against (cgo cannot call the
+// header's mcstat_ks_options_init macro).
+func ksOptionsInit() C.mcstat_ks_options {
+	var o C.mcstat_ks_options
+	C.mcstat_ks_options_init_size(&o, C.size_t(unsafe.Sizeof(o)))
+	return o
+}
+
 // KSOptions are the K-S test's options; start from DefaultKSOptions.
 type KSOptions struct {
 	Weight   KSWeight
@@ -369,10 +378,10 @@ type KSOptions struct {
 }
 
 // DefaultKSOptions returns libmcstat's defaults (Canner's weight, method
-// auto, 2 threads, 10000 simulations, seed 0, critical value computed).
+// auto, 1 thread (none started), 10000 simulations, seed 0, critical value
+// computed).
 func DefaultKSOptions() KSOptions {
-	var o C.mcstat_ks_options
-	C.mcstat_ks_options_init(&o)
+	o := ksOptionsInit()
 	return KSOptions{Weight: KSWeight(o.weight), Method: Method(o.method), Threads: int(o.threads),
 		NSim: int64(o.n_sim), Seed: uint64(o.seed), Critical: o.critical != 0}
 }
@@ -380,8 +389,7 @@ func DefaultKSOptions() KSOptions {
 // KSTest2 is the two-sample Kolmogorov-Smirnov test of x against y; opt nil
 // means DefaultKSOptions().
 func KSTest2(x, y []float64, alt Alternative, alpha float64, opt *KSOptions) (*Result, error) {
-	var o C.mcstat_ks_options
-	C.mcstat_ks_options_init(&o)
+	o := ksOptionsInit()
 	if opt != nil {
 		o.weight = C.int32_t(opt.Weight)
 		o.method = C.int32_t(opt.Method)

@@ -10,6 +10,7 @@ import (
 	"errors"
 	"math"
 	"os"
+	"regexp"
 	"strconv"
 	"strings"
 	"testing"
@@ -270,8 +271,38 @@ func TestMomentsMergeBinaryAndErrors(t *testing.T) {
 	if _, err := ParseAlternative("sideways"); !errors.Is(err, ErrInvalidArgument) {
 		t.Errorf("ParseAlternative: %v", err)
 	}
-	if Version() != "0.1.0" || TwoSided.String() != "two-sided" || DecisionGreater.String() != "greater" {
+	if Version() != headerVersion(t) || TwoSided.String() != "two-sided" || DecisionGreater.String() != "greater" {
 		t.Errorf("names: %s %s %s", Version(), TwoSided, DecisionGreater)
+	}
+}
+
+// headerVersion is MAJOR.MINOR.PATCH of the repository's mcstat.h, the one
+// source of the version.
+func headerVersion(t *testing.T) string {
+	text, err := os.ReadFile("../../libmcstat/include/mcstat.h")
+	if err != nil {
+		t.Fatal(err)
+	}
+	var parts []string
+	for _, name := range []string{"MAJOR", "MINOR", "PATCH"} {
+		m := regexp.MustCompile(`(?m)^#define MCSTAT_VERSION_` + name + ` +([0-9]+)$`).FindSubmatch(text)
+		if m == nil {
+			t.Fatalf("MCSTAT_VERSION_%s not in mcstat.h", name)
+		}
+		parts = append(parts, string(m[1]))
+	}
+	return strings.Join(parts, ".")
+}
+
+func TestVersionIsTheHeaderVersion(t *testing.T) {
+	if v := headerVersion(t); Version() != v {
+		t.Errorf("linked libmcstat %s, mcstat.h %s", Version(), v)
+	}
+}
+
+func TestDefaultKSOptionsStartNoThread(t *testing.T) {
+	if o := DefaultKSOptions(); o.Threads != 1 || o.NSim != 10000 || !o.Critical {
+		t.Errorf("defaults %+v", o)
 	}
 }
 

@@ -25,14 +25,51 @@ class Moments(ctypes.Structure):
                 ("max", ctypes.c_double), ("reserved", ctypes.c_double * 7)]
 
 
+# The per-test outputs: anonymous unions over the reserved storage, as in C.
+class _ResultInts(ctypes.Structure):
+    _fields_ = [("ks_weight", ctypes.c_int32), ("chisq_cells", ctypes.c_int32),
+                ("chisq_n_estimated", ctypes.c_int32)]
+
+
+class _ResultKs(ctypes.Structure):
+    _fields_ = [("ks_critical_se", ctypes.c_double), ("ks_n_sim", ctypes.c_double)]
+
+
+class _ResultTost(ctypes.Structure):
+    _fields_ = [("tost_t_lower", ctypes.c_double), ("tost_t_upper", ctypes.c_double),
+                ("tost_p_lower", ctypes.c_double), ("tost_p_upper", ctypes.c_double),
+                ("tost_lower", ctypes.c_double), ("tost_upper", ctypes.c_double)]
+
+
+class _ResultBinom(ctypes.Structure):
+    _fields_ = [("binom_unused_", ctypes.c_double * 2), ("binom_log_p_value", ctypes.c_double)]
+
+
+class _ResultChisq(ctypes.Structure):
+    _fields_ = [("chisq_unused_", ctypes.c_double * 2), ("chisq_cells_given", ctypes.c_double),
+                ("chisq_min_expected", ctypes.c_double), ("chisq_pool_below", ctypes.c_double)]
+
+
+class _ResultIntUnion(ctypes.Union):
+    _anonymous_ = ("_s",)
+    _fields_ = [("reserved_i", ctypes.c_int32 * 3), ("_s", _ResultInts)]
+
+
+class _ResultUnion(ctypes.Union):
+    _anonymous_ = ("_ks", "_tost", "_binom", "_chisq")
+    _fields_ = [("reserved", ctypes.c_double * 7), ("_ks", _ResultKs), ("_tost", _ResultTost),
+                ("_binom", _ResultBinom), ("_chisq", _ResultChisq)]
+
+
 class Result(ctypes.Structure):
+    _anonymous_ = ("_ints", "_extras")
     _fields_ = [("test", ctypes.c_int32), ("method", ctypes.c_int32), ("alternative", ctypes.c_int32),
-                ("reject", ctypes.c_int32), ("decision", ctypes.c_int32), ("reserved_i", ctypes.c_int32 * 3),
+                ("reject", ctypes.c_int32), ("decision", ctypes.c_int32), ("_ints", _ResultIntUnion),
                 ("n", ctypes.c_uint64 * 2), ("statistic", ctypes.c_double), ("df", ctypes.c_double * 2),
                 ("p_value", ctypes.c_double), ("p_value_se", ctypes.c_double),
                 ("conf_int", ctypes.c_double * 2), ("estimate", ctypes.c_double * 2),
                 ("null_value", ctypes.c_double), ("alpha", ctypes.c_double), ("critical", ctypes.c_double * 2),
-                ("std_error", ctypes.c_double), ("reserved", ctypes.c_double * 7)]
+                ("std_error", ctypes.c_double), ("_extras", _ResultUnion)]
 
 
 class KsOptions(ctypes.Structure):
@@ -46,6 +83,7 @@ TWO_SIDED, LESS, GREATER = 0, 1, 2
 ALTERNATIVES = {"two-sided": TWO_SIDED, "less": LESS, "greater": GREATER}
 KS_WEIGHT_NONE, KS_WEIGHT_CANNER = 0, 1
 METHOD_AUTO, METHOD_EXACT, METHOD_SIMULATE, METHOD_ASYMPTOTIC = 1, 2, 3, 4
+DECISION_LESS, DECISION_EQUAL, DECISION_GREATER = -1, 0, 1
 
 
 class McstatError(ValueError):
@@ -97,6 +135,10 @@ def load(path=None):
         "mcstat_t_test_2_moments": (I, [M, M, D, I, D, R]),
         "mcstat_var_test_1_moments": (I, [M, D, I, D, R]),
         "mcstat_var_test_2_moments": (I, [M, M, D, I, D, R]),
+        # FFI callers initialise options for their struct's size (the header's
+        # mcstat_ks_options_init is a macro doing that); the plain symbol is
+        # 0.1.0's and writes 0.1.0's size.
+        "mcstat_ks_options_init_size": (I, [ctypes.POINTER(KsOptions), S]),
         "mcstat_ks_options_init": (I, [ctypes.POINTER(KsOptions)]),
         "mcstat_ks_test_2": (I, [P, S, P, S, I, D, ctypes.POINTER(KsOptions), R]),
         "mcstat_result_format": (I, [R, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, S,
@@ -161,7 +203,7 @@ def var_test_2(lib, x, y, ratio=1.0, alternative="two-sided", alpha=0.05):
 def ks_test_2(lib, x, y, alternative="two-sided", alpha=0.05, weight=KS_WEIGHT_CANNER, method=METHOD_AUTO,
               n_sim=None, seed=0):
     o = KsOptions()
-    check(lib, lib.mcstat_ks_options_init(ctypes.byref(o)))
+    check(lib, lib.mcstat_ks_options_init_size(ctypes.byref(o), ctypes.sizeof(o)))
     o.weight, o.method, o.seed = weight, method, seed
     if n_sim is not None:
         o.n_sim = n_sim

@@ -179,6 +179,16 @@ def main():
     r = mc.ks_test_2(lib, x, y, "two-sided", 0.05, method=mc.METHOD_SIMULATE, n_sim=4000, seed=7)
     expect(r.method == mc.METHOD_SIMULATE and r.p_value_se > 0, "simulated p-value has a standard error")
     expect(abs(r.p_value - p_canner) < 5 * r.p_value_se + 1e-3, "simulated p near the exact one")
+    # the per-test outputs by name, over the storage 0.1.0 called reserved
+    expect(r.ks_n_sim == 4000 and r.reserved[1] == 4000 and r.ks_weight == mc.KS_WEIGHT_CANNER,
+           "K-S per-test fields")
+    expect(r.decision in (mc.DECISION_LESS, mc.DECISION_EQUAL, mc.DECISION_GREATER), "decision value")
+    # options: the sized initialiser, and 0.1.0's entry point still exported
+    o, o_old = mc.KsOptions(), mc.KsOptions()
+    mc.check(lib, lib.mcstat_ks_options_init_size(ctypes.byref(o), ctypes.sizeof(o)))
+    mc.check(lib, lib.mcstat_ks_options_init(ctypes.byref(o_old)))
+    expect(bytes(o) == bytes(o_old) and o.size == ctypes.sizeof(o) and o.threads == 1, "K-S options defaults")
+    expect(lib.mcstat_ks_options_init_size(ctypes.byref(o), ctypes.sizeof(o) + 8) == 1, "unknown size refused")
 
     # R's printed blocks
     for test, xname, yname, null, alt, alpha, text, x, y in blocks:

@@ -27,6 +27,15 @@
 extern "C" {
 #endif
 
+/* mcstat_result's anonymous unions of anonymous structs are standard C11,
+ * an extension in C99 and C++: marked, so that callers building with
+ * -Wpedantic get no warning (tests/c/check_header.sh). */
+#if defined(__GNUC__) || defined(__clang__)
+#  define MCSTAT_ANONYMOUS __extension__
+#else
+#  define MCSTAT_ANONYMOUS
+#endif
+
 #if defined(_WIN32) && defined(MCSTAT_SHARED_BUILD)
 #  define MCSTAT_API __declspec(dllexport)
 #elif defined(__GNUC__) || defined(__clang__)
@@ -36,13 +45,41 @@ extern "C" {
 #endif
 
 /* ------------------------------------------------------------------------ */
-/* Versions.                                                                 */
-/* The release number (MAJOR.MINOR.PATCH) is separate from the shared        */
-/* library's SOVERSION, which changes only when the ABI breaks.              */
+/* Versions and compatibility.                                               */
+/* MCSTAT_VERSION_MAJOR/MINOR/PATCH is the release, written here only: the   */
+/* build (CMakeLists.txt), the Python package (pyproject.toml) read it from  */
+/* this header, and the Rust and Go bindings' tests check theirs against it. */
+/* MCSTAT_SOVERSION is the ABI: the shared library is libmcstat.so.N.  It    */
+/* changes only with an incompatible change, one that breaks a binary built  */
+/* against an earlier release with this SOVERSION (a function removed or its */
+/* signature changed, a public struct's size or layout changed, an enum     */
+/* value renumbered), never with the release number alone; additions keep   */
+/* it.  libmcstat/abi/ holds the ABI (abidw) of the first release of this   */
+/* SOVERSION and `make abi-check` compares every build against it.          */
+/*                                                                           */
+/* Options structs grow.  Each starts with `uint32_t size`, which its        */
+/* initialiser sets to the struct's sizeof as the caller compiled it; new    */
+/* fields are only appended.  The library accepts the size of every release */
+/* (MCSTAT_<NAME>_OPTIONS_SIZE_<release>), reads only that many bytes and    */
+/* gives the fields the caller's version lacks their defaults: a program     */
+/* built against an older header runs unchanged against a newer library.    */
+/* Any other size is MCSTAT_EINVAL (a header newer than the library, or a   */
+/* struct cut short).  mcstat_<name>_options_init(opt) is a macro passing   */
+/* sizeof *opt to mcstat_<name>_options_init_size(opt, size), which writes  */
+/* only `size` bytes; FFI callers call the latter with their struct's size. */
+/*                                                                           */
+/* Results do not grow.  mcstat_result (and mcstat_diagnostics) are written */
+/* in full by the library, in arrays by the row-wise calls, and carry no    */
+/* size field: 0.1.0 binaries allocate them without one, so the library     */
+/* could not trust it.  Their size is fixed for this SOVERSION; new outputs */
+/* use the per-test storage (the named unions in mcstat_result), or a new   */
+/* function with its own struct.                                             */
 /* ------------------------------------------------------------------------ */
 #define MCSTAT_VERSION_MAJOR 0
 #define MCSTAT_VERSION_MINOR 1
 #define MCSTAT_VERSION_PATCH 0
+/* The shared library's ABI version (its SOVERSION; see above). */
+#define MCSTAT_SOVERSION 0
 #define MCSTAT_VERSION_NUMBER \
     (MCSTAT_VERSION_MAJOR * 10000 + MCSTAT_VERSION_MINOR * 100 + MCSTAT_VERSION_PATCH)
 
@@ -178,8 +215,18 @@ typedef struct mcstat_result {
     int32_t method;        /* enum mcstat_method: how the p-value was obtained */
     int32_t alternative;   /* enum mcstat_alternative */
     int32_t reject;        /* 1 if H0 is rejected at level alpha against `alternative` */
-    int32_t decision;      /* the paper's three-way outcome: -1 less, 0 equal, +1 greater */
-    int32_t reserved_i[3];
+    int32_t decision;      /* the paper's three-way outcome: MCSTAT_DECISION_LESS (-1),
+                              _EQUAL (0), _GREATER (+1) */
+    /* Per-test integer outputs, 0 for tests that set none; read only those of
+     * `test`.  reserved_i is 0.1.0's name of the same storage. */
+    MCSTAT_ANONYMOUS union {
+        int32_t reserved_i[3];
+        struct {
+            int32_t ks_weight;         /* KS_2: enum mcstat_ks_weight */
+            int32_t chisq_cells;       /* CHISQ_GOF: cells after pooling */
+            int32_t chisq_n_estimated; /* CHISQ_GOF: parameters estimated (n_estimated) */
+        };
+    };
     uint64_t n[2];         /* sample sizes (n[1] = 0 for one-sample tests) */
     double statistic;      /* t, X-squared or F */
     double df[2];          /* degrees of freedom (df[1] NaN unless F) */
@@ -191,12 +238,64 @@ typedef struct mcstat_result {
     double alpha;          /* significance level used for reject/decision/critical/conf_int */
     double critical[2];    /* reject when statistic < critical[0] or > critical[1] */
     double std_error;      /* standard error of the estimate (t tests); NaN otherwise */
-    double reserved[7];
+    /* Per-test outputs (described with each test below), 0 for tests that set
+     * none.  The structs share storage: read only those of `test`.  reserved
+     * is 0.1.0's name of the same storage. */
+    MCSTAT_ANONYMOUS union {
+        double reserved[7];
+        struct {                      /* KS_2 */
+            double ks_critical_se;    /* Monte Carlo standard error of critical[1] */
+            double ks_n_sim;          /* replicates simulated (0 unless simulated) */
+        };
+        struct {                      /* EQUIV_1, EQUIV_2 */
+            double tost_t_lower;      /* t for H1: mean > lower bound */
+            double tost_t_upper;      /* t for H1: mean < upper bound */
+            double tost_p_lower;      /* their one-sided p-values */
+            double tost_p_upper;
+            double tost_lower;        /* the bounds tested */
+            double tost_upper;
+        };
+        struct {                      /* BINOM */
+            double binom_unused_[2];
+            double binom_log_p_value; /* log(p_value), finite where p_value underflows */
+        };
+        struct {                      /* CHISQ_GOF */
+            double chisq_unused_[2];
+            double chisq_cells_given;  /* k */
+            double chisq_min_expected; /* smallest expected count after pooling */
+            double chisq_pool_below;   /* min_expected, 0 when pooling was off */
+        };
+    };
 } mcstat_result;
 
+/* Values of mcstat_result.decision. */
+#define MCSTAT_DECISION_LESS (-1)
+#define MCSTAT_DECISION_EQUAL 0
+#define MCSTAT_DECISION_GREATER 1
+
+/* Deprecated (0.1.0) accessors of the per-test outputs, kept so that old
+ * code compiles: use the named fields (MCSTAT_RESULT_KS_WEIGHT(r) is
+ * r->ks_weight, MCSTAT_RESULT_N_SIM(r) r->ks_n_sim, ...). */
+#define MCSTAT_RESULT_TOST_T_LOWER(r) ((r)->tost_t_lower)
+#define MCSTAT_RESULT_TOST_T_UPPER(r) ((r)->tost_t_upper)
+#define MCSTAT_RESULT_TOST_P_LOWER(r) ((r)->tost_p_lower)
+#define MCSTAT_RESULT_TOST_P_UPPER(r) ((r)->tost_p_upper)
+#define MCSTAT_RESULT_TOST_LOWER(r) ((r)->tost_lower)
+#define MCSTAT_RESULT_TOST_UPPER(r) ((r)->tost_upper)
+#define MCSTAT_RESULT_KS_WEIGHT(r) ((r)->ks_weight)
+#define MCSTAT_RESULT_CRITICAL_SE(r) ((r)->ks_critical_se)
+#define MCSTAT_RESULT_N_SIM(r) ((r)->ks_n_sim)
+#define MCSTAT_RESULT_LOG_P_VALUE(r) ((r)->binom_log_p_value)
+#define MCSTAT_RESULT_CHISQ_CELLS(r) ((r)->chisq_cells)
+#define MCSTAT_RESULT_CHISQ_ESTIMATED(r) ((r)->chisq_n_estimated)
+#define MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r) ((r)->chisq_cells_given)
+#define MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r) ((r)->chisq_min_expected)
+#define MCSTAT_RESULT_CHISQ_POOL_BELOW(r) ((r)->chisq_pool_below)
+
 /* The decision rule (ERRATA 6): `reject` is the test against the chosen
- * alternative at level alpha; `decision` is 0 when H0 is not rejected, else
- * the sign of the estimate's deviation from the null value.  With the
+ * alternative at level alpha; `decision` is 0 (MCSTAT_DECISION_EQUAL) when
+ * H0 is not rejected, else the sign of the estimate's deviation from the
+ * null value (MCSTAT_DECISION_LESS or _GREATER).  With the
  * two-sided alternative this is the paper's less / equal / greater outcome. */
 
 /* Writes the R-style block (the layout and number formatting of R's
@@ -276,25 +375,16 @@ MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_m
 /* difference at least as large as the bounds is rejected); decision is 0   */
 /* then, else -1 when the lower bound's test is the one that failed (the   */
 /* mean may lie at or below the lower bound), +1 when the upper bound's did. */
-/* Reserved fields used:                                                     */
-/*   MCSTAT_RESULT_TOST_T_LOWER(r) reserved[0]  t for H1: mean > lower bound */
-/*   MCSTAT_RESULT_TOST_T_UPPER(r) reserved[1]  t for H1: mean < upper bound */
-/*   MCSTAT_RESULT_TOST_P_LOWER(r) reserved[2]  their one-sided p-values     */
-/*   MCSTAT_RESULT_TOST_P_UPPER(r) reserved[3]                               */
-/*   MCSTAT_RESULT_TOST_LOWER(r)   reserved[4]  the bounds: mu0 + lower and  */
-/*   MCSTAT_RESULT_TOST_UPPER(r)   reserved[5]  mu0 + upper (or lower, upper) */
+/* Per-test fields:                                                          */
+/*   tost_t_lower, tost_t_upper  t for H1: mean > lower bound, mean < upper  */
+/*   tost_p_lower, tost_p_upper  their one-sided p-values                    */
+/*   tost_lower, tost_upper      the bounds: mu0 + lower and mu0 + upper (or */
+/*                               lower, upper)                               */
 /* mcstat_result_format prints both one-sided tests and "equivalent" or     */
 /* "not equivalent" as the decision.                                         */
 /* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0, 0.5), bounds not finite */
 /* or lower >= upper, mu0 not finite), then those of mcstat_t_test_1 / _2.  */
 /* ------------------------------------------------------------------------ */
-#define MCSTAT_RESULT_TOST_T_LOWER(r) ((r)->reserved[0])
-#define MCSTAT_RESULT_TOST_T_UPPER(r) ((r)->reserved[1])
-#define MCSTAT_RESULT_TOST_P_LOWER(r) ((r)->reserved[2])
-#define MCSTAT_RESULT_TOST_P_UPPER(r) ((r)->reserved[3])
-#define MCSTAT_RESULT_TOST_LOWER(r) ((r)->reserved[4])
-#define MCSTAT_RESULT_TOST_UPPER(r) ((r)->reserved[5])
-
 /* Is mean(x) within [mu0 + lower, mu0 + upper]?  (lower < upper; typically
  * lower = -margin < 0 < upper = margin.) */
 MCSTAT_API int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lower,
@@ -359,8 +449,9 @@ enum mcstat_power_unknown {
     MCSTAT_POWER_SOLVE_ALPHA = 3
 };
 
-/* Grows by appending fields: always start from the initialiser (n, effect
- * and power start at 0: unset, invalid until given). */
+/* Grows by appending fields (see Versions and compatibility): always start
+ * from the initialiser (n, effect and power start at 0: unset, invalid
+ * until given). */
 typedef struct mcstat_power_options {
     uint32_t size;       /* sizeof(mcstat_power_options): set by the initialiser */
     int32_t test;        /* enum mcstat_power_test; default T_1 */
@@ -379,8 +470,19 @@ typedef struct mcstat_power_options {
     {sizeof(mcstat_power_options), MCSTAT_POWER_T_1, MCSTAT_TWO_SIDED, 1, 0.0, 1.0, 1.0, 0.0, \
      0.05, 0.0, {0.0, 0.0, 0.0, 0.0}}
 
-/* Sets *o to MCSTAT_POWER_OPTIONS_INIT.  MCSTAT_EINVAL for NULL. */
-MCSTAT_API int mcstat_power_options_init(mcstat_power_options *o);
+/* sizeof(mcstat_power_options) in each release that changed it. */
+#define MCSTAT_POWER_OPTIONS_SIZE_0_1 96u
+/* Sets the first `size` bytes of *o to MCSTAT_POWER_OPTIONS_INIT, with
+ * o->size = size: `size` is sizeof(mcstat_power_options) as the caller
+ * compiled it (FFI callers: their struct's size), so nothing beyond the
+ * caller's struct is written.  MCSTAT_EINVAL (nothing written) for NULL or
+ * a size no release had. */
+MCSTAT_API int mcstat_power_options_init_size(mcstat_power_options *o, size_t size);
+/* 0.1.0's initialiser, still exported for binaries built against it:
+ * writes MCSTAT_POWER_OPTIONS_SIZE_0_1 bytes.  Source code calling
+ * mcstat_power_options_init(&o) gets the macro, which passes sizeof o. */
+MCSTAT_API int(mcstat_power_options_init)(mcstat_power_options *o);
+#define mcstat_power_options_init(o) mcstat_power_options_init_size((o), sizeof *(o))
 MCSTAT_API size_t mcstat_sizeof_power_options(void);
 /* *power <- the power at o->n, o->effect, o->alpha (o->power is ignored).
  * MCSTAT_EINVAL (NULL, bad enum or size, n < 2, ny < 2, an effect out of
@@ -388,10 +490,11 @@ MCSTAT_API size_t mcstat_sizeof_power_options(void);
 MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power);
 /* *out <- *o with the field named by `unknown` (enum mcstat_power_unknown)
  * solved for; the other three must be valid (the unknown's field is
- * ignored).  Solving for n also sets out->power to the power at that n
- * (>= the target).  MCSTAT_EINVAL as above, and when no value reaches the
- * power (an effect of 0; a power at or below what alpha alone gives; n
- * beyond 1e15); MCSTAT_ENUMERIC. */
+ * ignored); out receives o->size bytes, the caller's version of the
+ * struct (out may equal o).  Solving for n also sets out->power to the
+ * power at that n (>= the target).  MCSTAT_EINVAL as above, and when no
+ * value reaches the power (an effect of 0; a power at or below what alpha
+ * alone gives; n beyond 1e15); MCSTAT_ENUMERIC. */
 MCSTAT_API int mcstat_power_solve(const mcstat_power_options *o, int unknown,
                                   mcstat_power_options *out);
 /* R's print.power.htest block ("Two-sample t test power calculation", the
@@ -443,20 +546,16 @@ MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, siz
 /* is rejected at alpha (reject == statistic > critical[1] == p <= alpha),   */
 /* critical[0] = -Inf; decision is 0, or -1 ("less": x tends to be smaller, */
 /* its CDF lies above where the (weighted) deviation is largest) or +1.  df, */
-/* estimate, conf_int, null_value, std_error are NaN.  Reserved fields used: */
-/*   MCSTAT_RESULT_KS_WEIGHT(r)     reserved_i[0]: enum mcstat_ks_weight     */
-/*   MCSTAT_RESULT_CRITICAL_SE(r)   reserved[0]: Monte Carlo standard error  */
-/*                                  of critical[1] (0 unless simulated)      */
-/*   MCSTAT_RESULT_N_SIM(r)         reserved[1]: replicates simulated        */
+/* estimate, conf_int, null_value, std_error are NaN.  Per-test fields:     */
+/*   ks_weight       enum mcstat_ks_weight                                   */
+/*   ks_critical_se  Monte Carlo standard error of critical[1] (0 unless     */
+/*                   simulated)                                              */
+/*   ks_n_sim        replicates simulated                                    */
 /* ------------------------------------------------------------------------ */
 enum mcstat_ks_weight {
     MCSTAT_KS_WEIGHT_NONE = 0,  /* the classical (Smirnov) statistic */
     MCSTAT_KS_WEIGHT_CANNER = 1 /* Canner's [z(1-z)]^(-1/2) (the paper's) */
 };
-
-#define MCSTAT_RESULT_KS_WEIGHT(r) ((r)->reserved_i[0])
-#define MCSTAT_RESULT_CRITICAL_SE(r) ((r)->reserved[0])
-#define MCSTAT_RESULT_N_SIM(r) ((r)->reserved[1])
 
 /* Size limits of the exact method, in lattice cells (min(nx,ny)+1)(nx+ny+1).
  * The recursion only visits the band of points that the threshold has not
@@ -482,12 +581,14 @@ MCSTAT_API void mcstat_ks_cache_free(mcstat_ks_cache *cache);
 MCSTAT_API int mcstat_ks_cache_stats(const mcstat_ks_cache *cache, uint64_t *hits,
                                      uint64_t *misses, uint64_t *entries);
 
-/* Options; grows by appending fields, so always start from the initialiser. */
+/* Options; grows by appending fields (see Versions and compatibility), so
+ * always start from the initialiser. */
 typedef struct mcstat_ks_options {
     uint32_t size;          /* sizeof(mcstat_ks_options): set by the initialiser */
     int32_t weight;         /* enum mcstat_ks_weight; default CANNER */
     int32_t method;         /* MCSTAT_METHOD_AUTO (default), _EXACT, _SIMULATE, _ASYMPTOTIC */
-    int32_t threads;        /* simulation threads, 1..64; default 2 */
+    int32_t threads;        /* threads for simulation and sorting, 1..64; default 1:
+                               no thread is started unless the caller asks */
     int64_t n_sim;          /* replicates when simulating, >= 1; default 10000 */
     uint64_t seed;          /* simulation seed; default 0 */
     mcstat_ks_cache *cache; /* simulated distributions to reuse; NULL: none */
@@ -497,11 +598,22 @@ typedef struct mcstat_ks_options {
 } mcstat_ks_options;
 
 #define MCSTAT_KS_OPTIONS_INIT \
-    {sizeof(mcstat_ks_options), MCSTAT_KS_WEIGHT_CANNER, MCSTAT_METHOD_AUTO, 2, \
+    {sizeof(mcstat_ks_options), MCSTAT_KS_WEIGHT_CANNER, MCSTAT_METHOD_AUTO, 1, \
      MCSTAT_KS_DEFAULT_N_SIM, 0u, NULL, 1, 0}
 
-/* Sets *opt to MCSTAT_KS_OPTIONS_INIT (for callers that cannot use macros). */
-MCSTAT_API int mcstat_ks_options_init(mcstat_ks_options *opt);
+/* sizeof(mcstat_ks_options) in each release that changed it. */
+#define MCSTAT_KS_OPTIONS_SIZE_0_1 48u
+/* Sets the first `size` bytes of *opt to MCSTAT_KS_OPTIONS_INIT, with
+ * opt->size = size: `size` is sizeof(mcstat_ks_options) as the caller
+ * compiled it (FFI callers: their struct's size), so nothing beyond the
+ * caller's struct is written.  MCSTAT_EINVAL (nothing written) for NULL or
+ * a size no release had. */
+MCSTAT_API int mcstat_ks_options_init_size(mcstat_ks_options *opt, size_t size);
+/* 0.1.0's initialiser, still exported for binaries built against it:
+ * writes MCSTAT_KS_OPTIONS_SIZE_0_1 bytes.  Source code calling
+ * mcstat_ks_options_init(&o) gets the macro, which passes sizeof o. */
+MCSTAT_API int(mcstat_ks_options_init)(mcstat_ks_options *opt);
+#define mcstat_ks_options_init(opt) mcstat_ks_options_init_size((opt), sizeof *(opt))
 MCSTAT_API size_t mcstat_sizeof_ks_options(void);
 
 /* The two-sample K-S test of x against y.  opt may be NULL (the defaults).
@@ -533,17 +645,14 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
 /* (one-sided for one-sided alternatives, as R), critical = the acceptance  */
 /* region of counts [critical[0], critical[1]] (reject iff x < critical[0]  */
 /* or x > critical[1]; -Inf / +Inf for the open side), decision the sign of */
-/* x - n p when rejected; df and std_error NaN.  Reserved field used:       */
-/*   MCSTAT_RESULT_LOG_P_VALUE(r)  reserved[2]: log(p_value), finite where   */
-/*                                 p_value underflows to 0                   */
+/* x - n p when rejected; df and std_error NaN.  Per-test field:           */
+/*   binom_log_p_value  log(p_value), finite where p_value underflows to 0   */
 /* Statuses: MCSTAT_EINVAL (out NULL, bad enum, alpha outside (0,1), p      */
 /* outside [0,1] or NaN, x > n), MCSTAT_ETOOFEW (n == 0), MCSTAT_ETOOBIG     */
 /* (n > 2^53), MCSTAT_ENUMERIC.  Cost: O(log^2 n) incomplete-beta and       */
 /* density evaluations (the critical counts are bisections): measured       */
 /* 0.02 ms at n = 1e3, 0.1-0.8 ms at n = 1e9 (through Python).              */
 /* ------------------------------------------------------------------------ */
-#define MCSTAT_RESULT_LOG_P_VALUE(r) ((r)->reserved[2])
-
 MCSTAT_API int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha,
                                  mcstat_result *out);
 /* The battery meta-test: `rejections` among k tests each at level `level`
@@ -594,7 +703,8 @@ MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, dou
 /* ------------------------------------------------------------------------ */
 #define MCSTAT_DIAG_DEFAULT_M 30u /* batch means when neither k nor m is given */
 
-/* Options; grows by appending fields, so always start from the initialiser. */
+/* Options; grows by appending fields (see Versions and compatibility), so
+ * always start from the initialiser. */
 typedef struct mcstat_diag_options {
     uint32_t size;         /* sizeof(mcstat_diag_options): set by the initialiser */
     int32_t reserved_i;    /* zero */
@@ -630,8 +740,19 @@ typedef struct mcstat_diagnostics {
     double reserved[4];
 } mcstat_diagnostics;
 
-/* Sets *opt to MCSTAT_DIAG_OPTIONS_INIT (for callers that cannot use macros). */
-MCSTAT_API int mcstat_diag_options_init(mcstat_diag_options *opt);
+/* sizeof(mcstat_diag_options) in each release that changed it. */
+#define MCSTAT_DIAG_OPTIONS_SIZE_0_1 88u
+/* Sets the first `size` bytes of *opt to MCSTAT_DIAG_OPTIONS_INIT, with
+ * opt->size = size: `size` is sizeof(mcstat_diag_options) as the caller
+ * compiled it (FFI callers: their struct's size), so nothing beyond the
+ * caller's struct is written.  MCSTAT_EINVAL (nothing written) for NULL or
+ * a size no release had. */
+MCSTAT_API int mcstat_diag_options_init_size(mcstat_diag_options *opt, size_t size);
+/* 0.1.0's initialiser, still exported for binaries built against it:
+ * writes MCSTAT_DIAG_OPTIONS_SIZE_0_1 bytes.  Source code calling
+ * mcstat_diag_options_init(&o) gets the macro, which passes sizeof o. */
+MCSTAT_API int(mcstat_diag_options_init)(mcstat_diag_options *opt);
+#define mcstat_diag_options_init(opt) mcstat_diag_options_init_size((opt), sizeof *(opt))
 MCSTAT_API size_t mcstat_sizeof_diag_options(void);
 MCSTAT_API size_t mcstat_sizeof_diagnostics(void);
 
@@ -683,14 +804,12 @@ MCSTAT_API int mcstat_batch_size_recommend(double skewness, double kurtosis, uin
 /* (rounded), df[0]; critical[1] the upper alpha quantile of chi^2(df),      */
 /* critical[0] = -Inf; reject = p <= alpha; decision +1 when rejected (the   */
 /* counts stray further from expectation than chance allows), else 0.       */
-/* conf_int, estimate, null_value, std_error are NaN.  Reserved fields used: */
-/*   MCSTAT_RESULT_CHISQ_CELLS(r)        reserved_i[1]: cells after pooling  */
-/*   MCSTAT_RESULT_CHISQ_ESTIMATED(r)    reserved_i[2]: n_estimated          */
-/*   MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r)  reserved[2]: k                      */
-/*   MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r) reserved[3]: smallest expected      */
-/*                                       count after pooling                 */
-/*   MCSTAT_RESULT_CHISQ_POOL_BELOW(r)   reserved[4]: min_expected, 0 when   */
-/*                                       pooling was off                     */
+/* conf_int, estimate, null_value, std_error are NaN.  Per-test fields:     */
+/*   chisq_cells         cells after pooling                                 */
+/*   chisq_n_estimated   n_estimated                                         */
+/*   chisq_cells_given   k                                                   */
+/*   chisq_min_expected  smallest expected count after pooling               */
+/*   chisq_pool_below    min_expected, 0 when pooling was off                */
 /* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0,1), bad option, an        */
 /* options size this library does not know, a negative count or            */
 /* expectation, a zero expectation without pooling, sums that do not match */
@@ -705,13 +824,8 @@ enum mcstat_chisq_expected {
 
 #define MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED 5.0
 
-#define MCSTAT_RESULT_CHISQ_CELLS(r) ((r)->reserved_i[1])
-#define MCSTAT_RESULT_CHISQ_ESTIMATED(r) ((r)->reserved_i[2])
-#define MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r) ((r)->reserved[2])
-#define MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r) ((r)->reserved[3])
-#define MCSTAT_RESULT_CHISQ_POOL_BELOW(r) ((r)->reserved[4])
-
-/* Options; grows by appending fields, so always start from the initialiser. */
+/* Options; grows by appending fields (see Versions and compatibility), so
+ * always start from the initialiser. */
 typedef struct mcstat_chisq_options {
     uint32_t size;        /* sizeof(mcstat_chisq_options): set by the initialiser */
     int32_t expected;     /* enum mcstat_chisq_expected; default PROBABILITIES */
@@ -726,8 +840,19 @@ typedef struct mcstat_chisq_options {
     {sizeof(mcstat_chisq_options), MCSTAT_CHISQ_PROBABILITIES, 1, 0, \
      MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED, 0, 0}
 
-/* Sets *opt to MCSTAT_CHISQ_OPTIONS_INIT (for callers that cannot use macros). */
-MCSTAT_API int mcstat_chisq_options_init(mcstat_chisq_options *opt);
+/* sizeof(mcstat_chisq_options) in each release that changed it. */
+#define MCSTAT_CHISQ_OPTIONS_SIZE_0_1 32u
+/* Sets the first `size` bytes of *opt to MCSTAT_CHISQ_OPTIONS_INIT, with
+ * opt->size = size: `size` is sizeof(mcstat_chisq_options) as the caller
+ * compiled it (FFI callers: their struct's size), so nothing beyond the
+ * caller's struct is written.  MCSTAT_EINVAL (nothing written) for NULL or
+ * a size no release had. */
+MCSTAT_API int mcstat_chisq_options_init_size(mcstat_chisq_options *opt, size_t size);
+/* 0.1.0's initialiser, still exported for binaries built against it:
+ * writes MCSTAT_CHISQ_OPTIONS_SIZE_0_1 bytes.  Source code calling
+ * mcstat_chisq_options_init(&o) gets the macro, which passes sizeof o. */
+MCSTAT_API int(mcstat_chisq_options_init)(mcstat_chisq_options *opt);
+#define mcstat_chisq_options_init(opt) mcstat_chisq_options_init_size((opt), sizeof *(opt))
 MCSTAT_API size_t mcstat_sizeof_chisq_options(void);
 MCSTAT_API double mcstat_chisq_default_min_expected(void);
 

@@ -223,7 +223,7 @@ int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double 
         (st = conf_int(&b, (double)x, alternative, alpha, r.conf_int)) ||
         (st = critical(&b, alternative, alpha, r.critical)))
         return st;
-    MCSTAT_RESULT_LOG_P_VALUE(&r) = logp;
+    r.binom_log_p_value = logp;
     r.reject = r.p_value <= alpha;
     double dev = (double)x - b.n * p;
     r.decision = r.reject ? (dev < 0.0 ? -1 : 1) : 0;

@@ -25,13 +25,22 @@
 /* R's chisq.test: |sum(p) - 1| > sqrt(.Machine$double.eps) is an error. */
 #define SUM_TOL 1.4901161193847656e-08
 
-int mcstat_chisq_options_init(mcstat_chisq_options *opt)
+/* Every size mcstat_chisq_options has had, oldest first (options.c). */
+static const uint32_t CHISQ_SIZES[] = {MCSTAT_CHISQ_OPTIONS_SIZE_0_1};
+_Static_assert(sizeof(mcstat_chisq_options) == MCSTAT_CHISQ_OPTIONS_SIZE_0_1,
+               "a grown mcstat_chisq_options needs its size appended to CHISQ_SIZES");
+
+int mcstat_chisq_options_init_size(mcstat_chisq_options *opt, size_t size)
 {
-    if (!opt)
-        return MCSTAT_EINVAL;
-    mcstat_chisq_options d = MCSTAT_CHISQ_OPTIONS_INIT;
-    *opt = d;
-    return MCSTAT_OK;
+    const mcstat_chisq_options d = MCSTAT_CHISQ_OPTIONS_INIT;
+    return mcstat__options_init(opt, size, &d, sizeof d, CHISQ_SIZES, sizeof CHISQ_SIZES / sizeof *CHISQ_SIZES);
+}
+
+/* 0.1.0's entry point: its callers' structs are 0.1.0's size (the name is
+ * parenthesised against the header's macro). */
+int(mcstat_chisq_options_init)(mcstat_chisq_options *opt)
+{
+    return mcstat_chisq_options_init_size(opt, MCSTAT_CHISQ_OPTIONS_SIZE_0_1);
 }
 
 size_t mcstat_sizeof_chisq_options(void) { return sizeof(mcstat_chisq_options); }
@@ -66,11 +75,8 @@ int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
                      const mcstat_chisq_options *opt, double alpha, mcstat_result *out)
 {
     mcstat_chisq_options o = MCSTAT_CHISQ_OPTIONS_INIT;
-    if (opt) {
-        if (opt->size != sizeof(mcstat_chisq_options))
-            return MCSTAT_EINVAL;
-        o = *opt;
-    }
+    if (opt && mcstat__options_read(&o, sizeof o, opt, CHISQ_SIZES, sizeof CHISQ_SIZES / sizeof *CHISQ_SIZES))
+        return MCSTAT_EINVAL;
     if (!out || (k > 0 && (!observed || !expected)) || !valid_alpha(alpha))
         return MCSTAT_EINVAL;
     if ((o.expected != MCSTAT_CHISQ_PROBABILITIES && o.expected != MCSTAT_CHISQ_COUNTS) ||
@@ -150,11 +156,11 @@ int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
     r.n[0] = n < 0x1p63 ? (uint64_t)llround(n) : UINT64_MAX; /* llround overflows beyond */
     r.statistic = ksum_get(&stat);
     r.df[0] = df;
-    MCSTAT_RESULT_CHISQ_CELLS(&r) = groups > INT32_MAX ? INT32_MAX : (int32_t)groups;
-    MCSTAT_RESULT_CHISQ_ESTIMATED(&r) = o.n_estimated;
-    MCSTAT_RESULT_CHISQ_CELLS_GIVEN(&r) = (double)k;
-    MCSTAT_RESULT_CHISQ_MIN_EXPECTED(&r) = emin;
-    MCSTAT_RESULT_CHISQ_POOL_BELOW(&r) = o.pool ? o.min_expected : 0.0;
+    r.chisq_cells = groups > INT32_MAX ? INT32_MAX : (int32_t)groups;
+    r.chisq_n_estimated = o.n_estimated;
+    r.chisq_cells_given = (double)k;
+    r.chisq_min_expected = emin;
+    r.chisq_pool_below = o.pool ? o.min_expected : 0.0;
 
     mcstat_tails t;
     int st = mcstat__chisq_tails(r.statistic, df, &t);

@@ -162,13 +162,22 @@ int mcstat_batch_size_recommend(double skewness, double kurtosis, uint64_t m, do
 }
 
 /* ---- everything at once ---------------------------------------------------- */
-int mcstat_diag_options_init(mcstat_diag_options *opt)
+/* Every size mcstat_diag_options has had, oldest first (options.c). */
+static const uint32_t DIAG_SIZES[] = {MCSTAT_DIAG_OPTIONS_SIZE_0_1};
+_Static_assert(sizeof(mcstat_diag_options) == MCSTAT_DIAG_OPTIONS_SIZE_0_1,
+               "a grown mcstat_diag_options needs its size appended to DIAG_SIZES");
+
+int mcstat_diag_options_init_size(mcstat_diag_options *opt, size_t size)
 {
-    if (!opt)
-        return MCSTAT_EINVAL;
-    mcstat_diag_options d = MCSTAT_DIAG_OPTIONS_INIT;
-    *opt = d;
-    return MCSTAT_OK;
+    const mcstat_diag_options d = MCSTAT_DIAG_OPTIONS_INIT;
+    return mcstat__options_init(opt, size, &d, sizeof d, DIAG_SIZES, sizeof DIAG_SIZES / sizeof *DIAG_SIZES);
+}
+
+/* 0.1.0's entry point: its callers' structs are 0.1.0's size (the name is
+ * parenthesised against the header's macro). */
+int(mcstat_diag_options_init)(mcstat_diag_options *opt)
+{
+    return mcstat_diag_options_init_size(opt, MCSTAT_DIAG_OPTIONS_SIZE_0_1);
 }
 
 size_t mcstat_sizeof_diag_options(void) { return sizeof(mcstat_diag_options); }
@@ -177,11 +186,8 @@ size_t mcstat_sizeof_diagnostics(void) { return sizeof(mcstat_diagnostics); }
 int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt, mcstat_diagnostics *out)
 {
     mcstat_diag_options o = MCSTAT_DIAG_OPTIONS_INIT;
-    if (opt) {
-        if (opt->size != sizeof o)
-            return MCSTAT_EINVAL;
-        o = *opt;
-    }
+    if (opt && mcstat__options_read(&o, sizeof o, opt, DIAG_SIZES, sizeof DIAG_SIZES / sizeof *DIAG_SIZES))
+        return MCSTAT_EINVAL;
     if (!x || !out || !valid_alpha(o.alpha) || !(o.tolerance > 0.0 && o.tolerance < 1.0) ||
         !(o.tail_threshold > 0.0) || (o.k > 0 && o.k > n))
         return MCSTAT_EINVAL;

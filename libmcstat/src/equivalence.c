@@ -36,12 +36,12 @@ static void combine(int test, const mcstat_result *lo, const mcstat_result *hi, 
     r.critical[1] = lo->critical[1]; /* +t(1-alpha, df) */
     r.reject = r.p_value <= alpha;
     r.decision = r.reject ? 0 : upper_binds ? 1 : -1;
-    MCSTAT_RESULT_TOST_T_LOWER(&r) = lo->statistic;
-    MCSTAT_RESULT_TOST_T_UPPER(&r) = hi->statistic;
-    MCSTAT_RESULT_TOST_P_LOWER(&r) = lo->p_value;
-    MCSTAT_RESULT_TOST_P_UPPER(&r) = hi->p_value;
-    MCSTAT_RESULT_TOST_LOWER(&r) = lbound;
-    MCSTAT_RESULT_TOST_UPPER(&r) = ubound;
+    r.tost_t_lower = lo->statistic;
+    r.tost_t_upper = hi->statistic;
+    r.tost_p_lower = lo->p_value;
+    r.tost_p_upper = hi->p_value;
+    r.tost_lower = lbound;
+    r.tost_upper = ubound;
     *out = r;
 }
 

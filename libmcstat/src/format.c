@@ -118,7 +118,7 @@ static void format_ks(const mcstat_result *r, const char *x_name, const char *y_
 {
     static const char *how[] = {"Exact", "Monte-Carlo", "Asymptotic"};
     int m = r->method == MCSTAT_METHOD_SIMULATE ? 1 : r->method == MCSTAT_METHOD_ASYMPTOTIC ? 2 : 0;
-    int canner = MCSTAT_RESULT_KS_WEIGHT(r) == MCSTAT_KS_WEIGHT_CANNER;
+    int canner = r->ks_weight == MCSTAT_KS_WEIGHT_CANNER;
     sb_printf(s, "\n\t%s two-sample Kolmogorov-Smirnov test%s\n\n", how[m], canner ? " with Canner's weight" : "");
     sb_printf(s, "data:  %s and %s\n", x_name, y_name);
     char a[64], line[512];
@@ -131,7 +131,7 @@ static void format_ks(const mcstat_result *r, const char *x_name, const char *y_
     sb_wrapped(s, line);
     if (r->method == MCSTAT_METHOD_SIMULATE) {
         mcstat__rformat1(r->p_value_se, 2, a, sizeof a);
-        sb_printf(s, "Monte Carlo standard error of the p-value: %s (%.0f replicates)\n", a, MCSTAT_RESULT_N_SIM(r));
+        sb_printf(s, "Monte Carlo standard error of the p-value: %s (%.0f replicates)\n", a, r->ks_n_sim);
     }
     static const char *alt[] = {"two-sided", "the CDF of x lies below that of y", "the CDF of x lies above that of y"};
     sb_printf(s, "alternative hypothesis: %s\n", alt[cdf_alt]);
@@ -154,11 +154,11 @@ static void format_chisq(const mcstat_result *r, const char *x_name, sbuf *s)
     mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
     snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
     sb_wrapped(s, line);
-    double given = MCSTAT_RESULT_CHISQ_CELLS_GIVEN(r);
-    int cells = MCSTAT_RESULT_CHISQ_CELLS(r), est = MCSTAT_RESULT_CHISQ_ESTIMATED(r);
+    double given = r->chisq_cells_given;
+    int cells = r->chisq_cells, est = r->chisq_n_estimated;
     if ((double)cells != given || est > 0) {
-        mcstat__rformat1(MCSTAT_RESULT_CHISQ_POOL_BELOW(r), R_DIGITS, a, sizeof a);
-        mcstat__rformat1(MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r), 4, b, sizeof b);
+        mcstat__rformat1(r->chisq_pool_below, R_DIGITS, a, sizeof a);
+        mcstat__rformat1(r->chisq_min_expected, 4, b, sizeof b);
         ll = (size_t)snprintf(line, sizeof line, "cells: %.0f given, %d after pooling expected counts below %s "
                               "(smallest expected count %s)", given, cells, a, b);
         if (est > 0)
@@ -192,9 +192,9 @@ static void format_equiv(const mcstat_result *r, const char *x_name, const char 
     sb_wrapped(s, line);
     static const char *side[] = {"lower", "upper"};
     for (int k = 0; k < 2; k++) {
-        double t = k ? MCSTAT_RESULT_TOST_T_UPPER(r) : MCSTAT_RESULT_TOST_T_LOWER(r);
-        double p = k ? MCSTAT_RESULT_TOST_P_UPPER(r) : MCSTAT_RESULT_TOST_P_LOWER(r);
-        double bound = k ? MCSTAT_RESULT_TOST_UPPER(r) : MCSTAT_RESULT_TOST_LOWER(r);
+        double t = k ? r->tost_t_upper : r->tost_t_lower;
+        double p = k ? r->tost_p_upper : r->tost_p_lower;
+        double bound = k ? r->tost_upper : r->tost_lower;
         mcstat__rformat1(bound, R_DIGITS, b, sizeof b);
         mcstat__rformat1(t, R_DIGITS - 2, a, sizeof a);
         ll = (size_t)snprintf(line, sizeof line, "%s bound %s: t = %s", side[k], b, a);
@@ -202,8 +202,8 @@ static void format_equiv(const mcstat_result *r, const char *x_name, const char 
         snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
         sb_wrapped(s, line);
     }
-    mcstat__rformat1(MCSTAT_RESULT_TOST_LOWER(r), R_DIGITS, a, sizeof a);
-    mcstat__rformat1(MCSTAT_RESULT_TOST_UPPER(r), R_DIGITS, b, sizeof b);
+    mcstat__rformat1(r->tost_lower, R_DIGITS, a, sizeof a);
+    mcstat__rformat1(r->tost_upper, R_DIGITS, b, sizeof b);
     sb_printf(s, "alternative hypothesis: true %s is between %s and %s\n", two ? "difference in means" : "mean", a, b);
     mcstat__rformat1(100.0 * (1.0 - 2.0 * r->alpha), R_DIGITS, a, sizeof a);
     sb_printf(s, "%s percent confidence interval:\n", a);
@@ -341,9 +341,10 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
 /* ---- power (R's print.power.htest) ------------------------------------------
  * The method line, then "name = value" with the names right-justified to 15
  * columns, the values at 7 significant digits, then a NOTE. */
-int mcstat_power_format(const mcstat_power_options *o, char *buf, size_t size, size_t *length)
+int mcstat_power_format(const mcstat_power_options *opt, char *buf, size_t size, size_t *length)
 {
-    if (!o || (!buf && size > 0) || o->size != sizeof *o || o->test < MCSTAT_POWER_T_1 ||
+    mcstat_power_options full, *o = &full;
+    if (mcstat__power_options_read(opt, o) || (!buf && size > 0) || o->test < MCSTAT_POWER_T_1 ||
         o->test > MCSTAT_POWER_VAR_2 || !valid_alternative(o->alternative))
         return MCSTAT_EINVAL;
     static const char *method[] = {"", "One-sample t test power calculation", "Two-sample t test power calculation",

@@ -156,6 +156,25 @@ typedef int (*mcstat_quantile_fn)(double p, int upper, const void *ctx, double *
 MCSTAT_HIDDEN int mcstat__finish(mcstat_result *r, const mcstat_tails *tails,
                                  mcstat_quantile_fn quantile, const void *ctx);
 MCSTAT_HIDDEN void mcstat__result_clear(mcstat_result *r);
+/* ---- options structs that grow (options.c) --------------------------------
+ * known[0..n_known) are the sizes of every released version of a struct
+ * (MCSTAT_*_OPTIONS_SIZE_*), the last its current sizeof.
+ * _read: *dst holds the defaults (dst_size bytes, the current struct); the
+ *   caller's struct src (starting with its uint32_t size) is copied over its
+ *   first `size` bytes, so fields src's version lacks keep their defaults;
+ *   dst's size field is then the caller's.  MCSTAT_EINVAL (nothing copied)
+ *   for src NULL or a size not in known.
+ * _init: writes the first `size` bytes of `defaults` (a current struct) to
+ *   dst, with size in its size field; MCSTAT_EINVAL for an unknown size. */
+MCSTAT_HIDDEN int mcstat__options_size_known(size_t size, const uint32_t *known, size_t n_known);
+MCSTAT_HIDDEN int mcstat__options_read(void *dst, size_t dst_size, const void *src, const uint32_t *known,
+                                       size_t n_known);
+MCSTAT_HIDDEN int mcstat__options_init(void *dst, size_t size, const void *defaults, size_t defaults_size,
+                                       const uint32_t *known, size_t n_known);
+/* *r <- the caller's power options o read as above (power.c); used by
+ * format.c too.  MCSTAT_EINVAL for NULL or an unknown size. */
+MCSTAT_HIDDEN int mcstat__power_options_read(const mcstat_power_options *o, mcstat_power_options *r);
+
 
 /* ---- quantile reuse (t_test.c, var_test.c, batch.c) -----------------------
  * The critical values depend only on alpha, the alternative and the degrees

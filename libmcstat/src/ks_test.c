@@ -18,13 +18,22 @@
 
 #define PARALLEL_SORT_MIN 65536 /* below this a second thread costs more than it saves */
 
-int mcstat_ks_options_init(mcstat_ks_options *opt)
+/* Every size mcstat_ks_options has had, oldest first (options.c). */
+static const uint32_t KS_SIZES[] = {MCSTAT_KS_OPTIONS_SIZE_0_1};
+_Static_assert(sizeof(mcstat_ks_options) == MCSTAT_KS_OPTIONS_SIZE_0_1,
+               "a grown mcstat_ks_options needs its size appended to KS_SIZES");
+
+int mcstat_ks_options_init_size(mcstat_ks_options *opt, size_t size)
 {
-    if (!opt)
-        return MCSTAT_EINVAL;
-    mcstat_ks_options o = MCSTAT_KS_OPTIONS_INIT;
-    *opt = o;
-    return MCSTAT_OK;
+    const mcstat_ks_options d = MCSTAT_KS_OPTIONS_INIT;
+    return mcstat__options_init(opt, size, &d, sizeof d, KS_SIZES, sizeof KS_SIZES / sizeof *KS_SIZES);
+}
+
+/* 0.1.0's entry point: its callers' structs are 0.1.0's size (the name is
+ * parenthesised against the header's macro). */
+int(mcstat_ks_options_init)(mcstat_ks_options *opt)
+{
+    return mcstat_ks_options_init_size(opt, MCSTAT_KS_OPTIONS_SIZE_0_1);
 }
 
 size_t mcstat_sizeof_ks_options(void) { return sizeof(mcstat_ks_options); }
@@ -291,8 +300,6 @@ static int scan(const uint64_t *kx, const uint64_t *ky, mcstat__ks_data *d, uint
 
 static int check_options(const mcstat_ks_options *o)
 {
-    if (o->size != sizeof(mcstat_ks_options))
-        return 0;
     if (o->weight != MCSTAT_KS_WEIGHT_NONE && o->weight != MCSTAT_KS_WEIGHT_CANNER)
         return 0;
     if (o->method != MCSTAT_METHOD_AUTO && o->method != MCSTAT_METHOD_EXACT &&
@@ -327,7 +334,7 @@ static int finish_simulated(const mcstat__ks_data *d, const double *keys, int64_
     double p = (1.0 + ge) / (B + 1.0);
     r->p_value = p;
     r->p_value_se = sqrt(p * (1.0 - p) / B);
-    MCSTAT_RESULT_N_SIM(r) = B;
+    r->ks_n_sim = B;
     if (!critical)
         return MCSTAT_OK;
     /* p <= alpha  <=>  #{key* >= key} <= m = floor(alpha (B + 1) - 1)  <=>  key > the
@@ -335,7 +342,7 @@ static int finish_simulated(const mcstat__ks_data *d, const double *keys, int64_
     double mf = floor(r->alpha * (B + 1.0) - 1.0);
     if (mf < 0.0) { /* even the largest statistic gives p = 1/(B+1) > alpha */
         r->critical[1] = INFINITY;
-        MCSTAT_RESULT_CRITICAL_SE(r) = NAN;
+        r->ks_critical_se = NAN;
         return MCSTAT_OK;
     }
     size_t k = (size_t)n_sim - 1 - (size_t)mf; /* 0-based index of the (B-m)-th smallest */
@@ -345,7 +352,7 @@ static int finish_simulated(const mcstat__ks_data *d, const double *keys, int64_
     double a = 1.0 - ((double)k + 1.0) / B;
     size_t delta = (size_t)ceil(sqrt(B * a * (1.0 - a)));
     size_t klo = k > delta ? k - delta : 0, khi = k + delta < (size_t)n_sim ? k + delta : (size_t)n_sim - 1;
-    MCSTAT_RESULT_CRITICAL_SE(r) =
+    r->ks_critical_se =
         0.5 * (mcstat__ks_key_statistic(d, keys[khi]) - mcstat__ks_key_statistic(d, keys[klo]));
     return MCSTAT_OK;
 }
@@ -374,10 +381,9 @@ int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny, int
                      const mcstat_ks_options *opt, mcstat_result *out)
 {
     mcstat_ks_options o = MCSTAT_KS_OPTIONS_INIT;
-    if (opt)
-        o = *opt; /* size is checked before any other field is trusted */
-    if (!x || !y || !out || !valid_alternative(alternative) || !valid_alpha(alpha) ||
-        (opt && opt->size != sizeof(mcstat_ks_options)) || !check_options(&o))
+    if (opt && mcstat__options_read(&o, sizeof o, opt, KS_SIZES, sizeof KS_SIZES / sizeof *KS_SIZES))
+        return MCSTAT_EINVAL;
+    if (!x || !y || !out || !valid_alternative(alternative) || !valid_alpha(alpha) || !check_options(&o))
         return MCSTAT_EINVAL;
     if (nx == 0 || ny == 0)
         return MCSTAT_ETOOFEW;
@@ -426,9 +432,9 @@ int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny, int
     r.n[1] = ny;
     r.statistic = mcstat__ks_key_statistic(&d, d.key);
     r.critical[0] = -INFINITY;
-    MCSTAT_RESULT_KS_WEIGHT(&r) = d.weight;
-    MCSTAT_RESULT_CRITICAL_SE(&r) = 0.0;
-    MCSTAT_RESULT_N_SIM(&r) = 0.0;
+    r.ks_weight = d.weight;
+    r.ks_critical_se = 0.0;
+    r.ks_n_sim = 0.0;
     r.p_value_se = 0.0;
 
     if (d.obs.u == 0 && method != MCSTAT_METHOD_ASYMPTOTIC) {

@@ -24,13 +24,29 @@
 
 #define N_MAX 1e15 /* solving for n gives up beyond this (MCSTAT_EINVAL) */
 
-int mcstat_power_options_init(mcstat_power_options *o)
+/* Every size mcstat_power_options has had, oldest first (options.c). */
+static const uint32_t POWER_SIZES[] = {MCSTAT_POWER_OPTIONS_SIZE_0_1};
+_Static_assert(sizeof(mcstat_power_options) == MCSTAT_POWER_OPTIONS_SIZE_0_1,
+               "a grown mcstat_power_options needs its size appended to POWER_SIZES");
+
+int mcstat_power_options_init_size(mcstat_power_options *o, size_t size)
 {
-    if (!o)
-        return MCSTAT_EINVAL;
-    mcstat_power_options d = MCSTAT_POWER_OPTIONS_INIT;
-    *o = d;
-    return MCSTAT_OK;
+    const mcstat_power_options d = MCSTAT_POWER_OPTIONS_INIT;
+    return mcstat__options_init(o, size, &d, sizeof d, POWER_SIZES, sizeof POWER_SIZES / sizeof *POWER_SIZES);
+}
+
+/* 0.1.0's entry point: its callers' structs are 0.1.0's size (the name is
+ * parenthesised against the header's macro). */
+int(mcstat_power_options_init)(mcstat_power_options *o)
+{
+    return mcstat_power_options_init_size(o, MCSTAT_POWER_OPTIONS_SIZE_0_1);
+}
+
+int mcstat__power_options_read(const mcstat_power_options *o, mcstat_power_options *r)
+{
+    const mcstat_power_options d = MCSTAT_POWER_OPTIONS_INIT;
+    *r = d;
+    return mcstat__options_read(r, sizeof *r, o, POWER_SIZES, sizeof POWER_SIZES / sizeof *POWER_SIZES);
 }
 
 size_t mcstat_sizeof_power_options(void) { return sizeof(mcstat_power_options); }
@@ -50,7 +66,7 @@ static int valid_n(const mcstat_power_options *o, double n)
 /* Options every computation needs, whatever is being solved for. */
 static int check_common(const mcstat_power_options *o)
 {
-    if (!o || o->size != sizeof(mcstat_power_options) || !valid_test(o->test) ||
+    if (!valid_test(o->test) ||
         !valid_alternative(o->alternative) || (o->strict != 0 && o->strict != 1))
         return MCSTAT_EINVAL;
     if (two_sizes(o->test) && !(o->n_ratio > 0.0 && isfinite(o->n_ratio)))
@@ -136,10 +152,11 @@ static int power_at(const mcstat_power_options *o, double n, double effect, doub
     return MCSTAT_OK;
 }
 
-int mcstat_power_compute(const mcstat_power_options *o, double *power)
+int mcstat_power_compute(const mcstat_power_options *opt, double *power)
 {
-    int st = check_common(o);
-    if (st)
+    mcstat_power_options full, *o = &full;
+    int st = mcstat__power_options_read(opt, o);
+    if (st || (st = check_common(o)))
         return st;
     if (!power || !valid_n(o, o->n) || !valid_effect(o, o->effect) || !valid_alpha(o->alpha))
         return MCSTAT_EINVAL;
@@ -265,10 +282,11 @@ static int solve_n(const mcstat_power_options *o, double *n, double *achieved)
     return MCSTAT_OK;
 }
 
-int mcstat_power_solve(const mcstat_power_options *o, int unknown, mcstat_power_options *out)
+int mcstat_power_solve(const mcstat_power_options *opt, int unknown, mcstat_power_options *out)
 {
-    int st = check_common(o);
-    if (st)
+    mcstat_power_options full, *o = &full;
+    int st = mcstat__power_options_read(opt, o);
+    if (st || (st = check_common(o)))
         return st;
     if (!out)
         return MCSTAT_EINVAL;
@@ -296,6 +314,6 @@ int mcstat_power_solve(const mcstat_power_options *o, int unknown, mcstat_power_
     }
     if (st)
         return st;
-    *out = r;
+    memcpy(out, &r, r.size); /* the caller's version of the struct: o->size bytes */
     return MCSTAT_OK;
 }

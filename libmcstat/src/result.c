@@ -53,7 +53,7 @@ int mcstat__finish(mcstat_result *r, const mcstat_tails *t, mcstat_quantile_fn q
     r->critical[0] = c0;
     r->critical[1] = c1;
     r->reject = r->p_value <= alpha;
-    r->decision = r->reject ? (low_side ? -1 : 1) : 0;
+    r->decision = r->reject ? (low_side ? MCSTAT_DECISION_LESS : MCSTAT_DECISION_GREATER) : MCSTAT_DECISION_EQUAL;
     return MCSTAT_OK;
 }
 

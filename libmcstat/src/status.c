@@ -66,9 +66,9 @@ const char *mcstat_alternative_name(int alternative)
 const char *mcstat_decision_name(int decision)
 {
     switch (decision) {
-    case -1: return "less";
-    case 0: return "equal";
-    case 1: return "greater";
+    case MCSTAT_DECISION_LESS: return "less";
+    case MCSTAT_DECISION_EQUAL: return "equal";
+    case MCSTAT_DECISION_GREATER: return "greater";
     default: return NULL;
     }
 }

@@ -12,7 +12,8 @@ fi
 # is exported: the list comes from the header, so a new entry point is checked
 # without editing this script.
 header="$2"
-api=$(tr '\n' ' ' < "$header" | grep -o 'MCSTAT_API[^;{]*(' | grep -o 'mcstat_[a-z0-9_]*[[:space:]]*($' | tr -d ' (' | sort -u)
+# (a name in parentheses, int (mcstat_x_init)(...), is one a macro of the same name covers)
+api=$(tr '\n' ' ' < "$header" | grep -o 'MCSTAT_API[^;{]*(' | grep -o 'mcstat_[a-z0-9_]*)\{0,1\}[[:space:]]*($' | tr -d ' ()' | sort -u)
 [ -n "$api" ] || { echo "no MCSTAT_API declarations found in $header"; exit 1; }
 for s in $api; do
     printf '%s\n' "$syms" | grep -qx "$s" || { echo "missing export: $s (declared in $header)"; exit 1; }

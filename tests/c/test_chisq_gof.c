@@ -122,7 +122,8 @@ static void test_bad_input(void)
     mcstat_chisq_options o2;
     CHECK_INT(mcstat_chisq_options_init(&o2), MCSTAT_OK);
     CHECK(memcmp(&o2, &(mcstat_chisq_options)MCSTAT_CHISQ_OPTIONS_INIT, sizeof o2) == 0);
-    CHECK_INT(mcstat_chisq_options_init(NULL), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_chisq_options_init_size(NULL, sizeof o2), MCSTAT_EINVAL);
+    CHECK_INT((mcstat_chisq_options_init)(NULL), MCSTAT_EINVAL);
     CHECK(mcstat_sizeof_chisq_options() == sizeof(mcstat_chisq_options));
     CHECK(mcstat_chisq_default_min_expected() == 5.0);
 }

@@ -505,7 +505,8 @@ static void test_bad_inputs(void)
     memset(&f, 0, sizeof f);
     CHECK_INT(mcstat_ks_options_init(&f), MCSTAT_OK);
     CHECK(!memcmp(&f, &o, sizeof f));
-    CHECK_INT(mcstat_ks_options_init(NULL), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_ks_options_init_size(NULL, sizeof f), MCSTAT_EINVAL);
+    CHECK_INT((mcstat_ks_options_init)(NULL), MCSTAT_EINVAL);
     CHECK_INT(mcstat_sizeof_ks_options(), sizeof(mcstat_ks_options));
     CHECK_INT(mcstat_ks_cache_new(10, NULL), MCSTAT_EINVAL);
     CHECK_INT(mcstat_ks_cache_stats(NULL, NULL, NULL, NULL), MCSTAT_EINVAL);

@@ -39,6 +39,7 @@ static void calibration(const char *what, double (*draw)(void), int nx, int ny, 
         mcstat_ks_options o = MCSTAT_KS_OPTIONS_INIT;
         o.weight = w;
         o.method = method;
+        o.threads = 2; /* simulation threads, as before the default became 1 (make tsan-test runs this) */
         o.n_sim = 999;
         o.critical = 0;
         int rej = 0;

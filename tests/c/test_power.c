@@ -194,7 +194,8 @@ static void test_statuses(void)
     CHECK_INT(mcstat_power_compute(&o, &p), MCSTAT_OK);
     CHECK_INT(mcstat_power_compute(NULL, &p), MCSTAT_EINVAL);
     CHECK_INT(mcstat_power_compute(&o, NULL), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_power_options_init(NULL), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_power_options_init_size(NULL, sizeof r), MCSTAT_EINVAL);
+    CHECK_INT((mcstat_power_options_init)(NULL), MCSTAT_EINVAL);
     CHECK_INT(mcstat_power_options_init(&r), MCSTAT_OK);
     CHECK(r.size == sizeof r && r.test == MCSTAT_POWER_T_1 && r.alpha == 0.05 && r.strict == 1);
     CHECK(mcstat_sizeof_power_options() == sizeof(mcstat_power_options));

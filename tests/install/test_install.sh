@@ -51,8 +51,12 @@ grep -q "checks on" "$work/integrator.log" || fail "integrator built without che
 
 # 2. pkg-config
 export PKG_CONFIG_PATH="$libdir/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
-[ "$(pkg-config --modversion mcstat)" = "$(sed -n 's/^project(mcstat VERSION \([0-9.]*\).*/\1/p' CMakeLists.txt)" ] \
-    || fail "pkg-config version"
+# the version and the SOVERSION are the installed header's (their one source)
+hdr_version=$(for p in MAJOR MINOR PATCH; do sed -n "s/^#define MCSTAT_VERSION_$p \([0-9]*\)$/\1/p" "$stage/include/mcstat.h"; done | paste -sd.)
+hdr_soversion=$(sed -n 's/^#define MCSTAT_SOVERSION \([0-9]*\)$/\1/p' "$stage/include/mcstat.h")
+[ -n "$hdr_soversion" ] && [ "$(pkg-config --modversion mcstat)" = "$hdr_version" ] || fail "pkg-config version"
+[ -f "$libdir/libmcstat.so.$hdr_soversion" ] && [ -f "$libdir/libmcstat.so.$hdr_version" ] \
+    || fail "libmcstat.so.$hdr_soversion / libmcstat.so.$hdr_version not installed"
 cc=${CC:-cc}
 # shellcheck disable=SC2046
 $cc -O2 -o "$work/demo-pc" examples/c/demo.c $(pkg-config --cflags --libs mcstat) -Wl,-rpath,"$libdir" -lm

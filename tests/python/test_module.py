@@ -81,11 +81,30 @@ print(mcstat.gsl_handler_was_default, prev == ctypes.cast(h, ctypes.c_void_p).va
     assert out.stdout.split() == ["False", "True"]
 
 
+def header_version(path, prefix):
+    """MAJOR.MINOR.PATCH from a C header's version macros: the one source."""
+    import re
+    text = open(os.path.join(os.path.dirname(__file__), "..", "..", path)).read()
+    parts = [re.search(rf"^#define {prefix}_VERSION_{p} +(\d+)$", text, re.M) for p in ("MAJOR", "MINOR", "PATCH")]
+    assert all(parts), path
+    return ".".join(m.group(1) for m in parts)
+
+
+def test_version_single_source():
+    """The package's version is the header's (pyproject.toml reads it with a
+    regex at build time), as is the linked library's."""
+    from importlib.metadata import version
+    want = header_version("libmcstat/include/mcstat.h", "MCSTAT")
+    assert mcstat.__version__ == want
+    assert version("mcstat") == want
+    assert mcstat.__libmcstat_version__ == want
+
+
 def test_package_surface():
     for name in ["t_test", "var_test", "Moments", "batch_means", "TestResult", "BatchResult",
                  "DegenerateDataError", "NonFiniteError", "TooFewObservationsError"]:
         assert name in mcstat.__all__ and hasattr(mcstat, name)
-    assert mcstat.__libmcstat_version__ == "0.1.0"
+    assert mcstat.__libmcstat_version__ == header_version("libmcstat/include/mcstat.h", "MCSTAT")
     pkg = os.path.dirname(mcstat.__file__)
     assert os.path.exists(os.path.join(pkg, "py.typed")) and os.path.exists(os.path.join(pkg, "_core.pyi"))
     assert "Welch" in mcstat.t_test.__doc__ and "Parameters" in mcstat.var_test.__doc__
@@ -117,5 +136,5 @@ def test_ks_and_estimators_surface():
     assert os.path.exists(os.path.join(pkg, "_estimators.pyi"))
     for name in est.__all__:
         assert hasattr(est, name), name
-    assert est.__libmcest_version__ == "0.1.0"
+    assert est.__libmcest_version__ == header_version("estimators/include/mcest.h", "MCEST")
     assert "Parameters" in est.irradiance.__doc__ and "first_index" in est.irradiance.__doc__

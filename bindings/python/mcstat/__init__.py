@@ -84,7 +84,14 @@ from ._power import (  # noqa: E402
 # issue 9: the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 
-__version__ = "0.1.0"
+# The distribution's version, which the build reads from mcstat.h (the same
+# header the linked libmcstat reports as __libmcstat_version__).
+try:
+    from importlib.metadata import PackageNotFoundError as _NotFound, version as _dist_version
+
+    __version__ = _dist_version("mcstat")
+except _NotFound:  # imported from a source tree without being installed
+    __version__ = __libmcstat_version__
 
 __all__ = [
     "t_test",

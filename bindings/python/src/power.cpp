@@ -78,9 +78,9 @@ py::dict equivalence(py::object x, py::object y, double mu0, double lower, doubl
     d["statistic"] = r.statistic;
     d["df"] = r.df[0];
     d["pvalue"] = r.p_value;
-    d["statistics"] = py::make_tuple(MCSTAT_RESULT_TOST_T_LOWER(&r), MCSTAT_RESULT_TOST_T_UPPER(&r));
-    d["pvalues"] = py::make_tuple(MCSTAT_RESULT_TOST_P_LOWER(&r), MCSTAT_RESULT_TOST_P_UPPER(&r));
-    d["bounds"] = py::make_tuple(MCSTAT_RESULT_TOST_LOWER(&r), MCSTAT_RESULT_TOST_UPPER(&r));
+    d["statistics"] = py::make_tuple(r.tost_t_lower, r.tost_t_upper);
+    d["pvalues"] = py::make_tuple(r.tost_p_lower, r.tost_p_upper);
+    d["bounds"] = py::make_tuple(r.tost_lower, r.tost_upper);
     d["conf_int"] = py::make_tuple(r.conf_int[0], r.conf_int[1]);
     d["estimate"] = two ? py::object(py::make_tuple(r.estimate[0], r.estimate[1])) : py::object(py::float_(r.estimate[0]));
     d["null_value"] = r.null_value;

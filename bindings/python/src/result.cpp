@@ -182,7 +182,7 @@ y_name)`` names them.
         .def_property_readonly("pvalue", [](const Result &s) { return s.r.p_value; })
         .def_property_readonly("log_pvalue", [](const Result &s) {
             // the binomial test keeps it where the p-value underflows
-            return s.r.test == MCSTAT_TEST_BINOM ? MCSTAT_RESULT_LOG_P_VALUE(&s.r) : std::log(s.r.p_value);
+            return s.r.test == MCSTAT_TEST_BINOM ? s.r.binom_log_p_value : std::log(s.r.p_value);
         })
         .def_property_readonly("conf_int", [](const Result &s) { return pair(s.r.conf_int[0], s.r.conf_int[1]); })
         .def_property_readonly("estimate", [](const Result &s) -> py::object {
@@ -194,9 +194,9 @@ y_name)`` names them.
         .def_property_readonly("method", [](const Result &s) { return py::str(method_name(s.r)); })
         .def_property_readonly("pvalue_method", [](const Result &s) { return py::str(pvalue_method_name(s.r.method)); })
         .def_property_readonly("critical_se",
-                               [](const Result &s) { return is_ks(s.r) ? MCSTAT_RESULT_CRITICAL_SE(&s.r) : 0.0; })
+                               [](const Result &s) { return is_ks(s.r) ? s.r.ks_critical_se : 0.0; })
         .def_property_readonly("n_sim", [](const Result &s) {
-            return is_ks(s.r) ? static_cast<int64_t>(MCSTAT_RESULT_N_SIM(&s.r)) : int64_t{0};
+            return is_ks(s.r) ? static_cast<int64_t>(s.r.ks_n_sim) : int64_t{0};
         })
         .def_property_readonly("seed", [](const Result &s) -> py::object {
             return s.has_seed ? py::object(py::int_(s.seed)) : py::object(py::none());
@@ -204,13 +204,13 @@ y_name)`` names them.
         .def_property_readonly("weight", [](const Result &s) -> py::object {
             if (!is_ks(s.r))
                 return py::none();
-            return py::str(MCSTAT_RESULT_KS_WEIGHT(&s.r) == MCSTAT_KS_WEIGHT_CANNER ? "canner" : "none");
+            return py::str(s.r.ks_weight == MCSTAT_KS_WEIGHT_CANNER ? "canner" : "none");
         })
         // chi-squared goodness of fit (issue 9): cells after pooling, None for other tests
         .def_property_readonly("cells", [](const Result &s) -> py::object {
             if (s.r.test != MCSTAT_TEST_CHISQ_GOF)
                 return py::none();
-            return py::int_(MCSTAT_RESULT_CHISQ_CELLS(&s.r));
+            return py::int_(s.r.chisq_cells);
         })
         .def_property_readonly("alpha", [](const Result &s) { return s.r.alpha; })
         .def_property_readonly("reject", [](const Result &s) { return s.r.reject != 0; })
@@ -241,7 +241,7 @@ y_name)`` names them.
                 std::string t = std::string("<TestResult ") + method_name(r) + ": statistic=" + short_num(r.statistic) +
                                 ", pvalue=" + short_num(r.p_value);
                 if (r.method == MCSTAT_METHOD_SIMULATE)
-                    t += " (se " + short_num(r.p_value_se) + ", n_sim=" + short_num(MCSTAT_RESULT_N_SIM(&r)) + ")";
+                    t += " (se " + short_num(r.p_value_se) + ", n_sim=" + short_num(r.ks_n_sim) + ")";
                 return t + ", alternative='" + mcstat_alternative_name(r.alternative) + "', decision='" +
                        mcstat_decision_name(r.decision) + "' at alpha=" + short_num(r.alpha) + ">";
             }

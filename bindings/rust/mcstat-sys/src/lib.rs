@@ -24,6 +24,11 @@ pub const MCSTAT_TWO_SIDED: c_int = 0;
 pub const MCSTAT_LESS: c_int = 1;
 pub const MCSTAT_GREATER: c_int = 2;
 
+// ---- values of mcstat_result.decision ---------------------------------------
+pub const MCSTAT_DECISION_LESS: i32 = -1;
+pub const MCSTAT_DECISION_EQUAL: i32 = 0;
+pub const MCSTAT_DECISION_GREATER: i32 = 1;
+
 pub const MCSTAT_TEST_T_1: i32 = 1;
 pub const MCSTAT_TEST_T_2: i32 = 2;
 pub const MCSTAT_TEST_VAR_1: i32 = 3;
@@ -71,6 +76,8 @@ pub struct mcstat_result {
     pub alternative: i32,
     pub reject: i32,
     pub decision: i32,
+    /// The per-test integer outputs (C names them in a union over this
+    /// storage): `[0]` ks_weight, `[1]` chisq_cells, `[2]` chisq_n_estimated.
     pub reserved_i: [i32; 3],
     pub n: [u64; 2],
     pub statistic: f64,
@@ -83,6 +90,11 @@ pub struct mcstat_result {
     pub alpha: f64,
     pub critical: [f64; 2],
     pub std_error: f64,
+    /// The per-test outputs (C names them in a union over this storage):
+    /// K-S `[0]` ks_critical_se, `[1]` ks_n_sim; TOST `[0..6]` tost_t_lower,
+    /// tost_t_upper, tost_p_lower, tost_p_upper, tost_lower, tost_upper;
+    /// binomial `[2]` binom_log_p_value; chi-squared `[2..5]`
+    /// chisq_cells_given, chisq_min_expected, chisq_pool_below.
     pub reserved: [f64; 7],
 }
 
@@ -92,7 +104,8 @@ pub struct mcstat_ks_cache {
     _private: [u8; 0],
 }
 
-/// `mcstat_ks_options`; start from `mcstat_ks_options_init`.
+/// `mcstat_ks_options`; start from `mcstat_ks_options_init_size(&mut o,
+/// size_of::<mcstat_ks_options>())`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct mcstat_ks_options {
@@ -186,6 +199,9 @@ extern "C" {
     pub fn mcstat_ks_cache_new(max_bytes: usize, cache: *mut *mut mcstat_ks_cache) -> c_int;
     pub fn mcstat_ks_cache_free(cache: *mut mcstat_ks_cache);
     pub fn mcstat_ks_cache_stats(cache: *const mcstat_ks_cache, hits: *mut u64, misses: *mut u64, entries: *mut u64) -> c_int;
+    /// Writes the defaults into the first `size` bytes (the caller's struct).
+    pub fn mcstat_ks_options_init_size(opt: *mut mcstat_ks_options, size: usize) -> c_int;
+    /// 0.1.0's initialiser: writes 0.1.0's size (`MCSTAT_KS_OPTIONS_SIZE_0_1`).
     pub fn mcstat_ks_options_init(opt: *mut mcstat_ks_options) -> c_int;
     pub fn mcstat_sizeof_ks_options() -> usize;
     pub fn mcstat_ks_test_2(
@@ -232,10 +248,41 @@ mod tests {
         }
     }
 
+    /// MAJOR.MINOR.PATCH of the repository's mcstat.h, the one source of
+    /// the version: Cargo.toml's must follow it.
+    fn header_version() -> (u32, u32, u32) {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../libmcstat/include/mcstat.h");
+        let text = std::fs::read_to_string(path).expect("the repository's mcstat.h");
+        let get = |name: &str| -> u32 {
+            let key = format!("#define MCSTAT_VERSION_{name} ");
+            let line = text.lines().find(|l| l.starts_with(&key)).expect("a version macro");
+            line[key.len()..].trim().parse().expect("a number")
+        };
+        (get("MAJOR"), get("MINOR"), get("PATCH"))
+    }
+
     #[test]
     fn version_is_the_header_version() {
+        let (major, minor, patch) = header_version();
+        let want = format!("{major}.{minor}.{patch}");
+        assert_eq!(env!("CARGO_PKG_VERSION"), want, "Cargo.toml's version differs from mcstat.h's");
         let v = unsafe { std::ffi::CStr::from_ptr(mcstat_version()) };
-        assert_eq!(v.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
-        assert_eq!(unsafe { mcstat_version_number() }, 100);
+        assert_eq!(v.to_str().unwrap(), want);
+        assert_eq!(unsafe { mcstat_version_number() }, major * 10000 + minor * 100 + patch);
+    }
+
+    #[test]
+    fn ks_options_initialiser_writes_the_callers_size() {
+        // a buffer larger than the struct: the sized initialiser writes the
+        // struct, nothing beyond; the default starts no thread
+        let n = std::mem::size_of::<mcstat_ks_options>();
+        let mut buf = [0xABu8; 128];
+        let st = unsafe { mcstat_ks_options_init_size(buf.as_mut_ptr() as *mut mcstat_ks_options, n) };
+        assert_eq!(st, MCSTAT_OK);
+        assert!(buf[n..].iter().all(|&b| b == 0xAB));
+        let o: mcstat_ks_options = unsafe { std::ptr::read_unaligned(buf.as_ptr() as *const mcstat_ks_options) };
+        assert_eq!((o.size as usize, o.threads), (n, 1));
+        let st = unsafe { mcstat_ks_options_init_size(buf.as_mut_ptr() as *mut mcstat_ks_options, n + 8) };
+        assert_eq!(st, MCSTAT_EINVAL);
     }
 }

@@ -463,8 +463,8 @@ impl Drop for KsCache {
     }
 }
 
-/// K-S options; `Default` is libmcstat's (Canner's weight, method auto, 2
-/// threads, 10000 simulations, seed 0, critical value computed).
+/// K-S options; `Default` is libmcstat's (Canner's weight, method auto, 1
+/// thread (none started), 10000 simulations, seed 0, critical value computed).
 #[derive(Clone, Copy)]
 pub struct KsOptions<'a> {
     pub weight: KsWeight,
@@ -480,7 +480,7 @@ impl Default for KsOptions<'_> {
     fn default() -> Self {
         let mut o = std::mem::MaybeUninit::<sys::mcstat_ks_options>::zeroed();
         let o = unsafe {
-            sys::mcstat_ks_options_init(o.as_mut_ptr());
+            sys::mcstat_ks_options_init_size(o.as_mut_ptr(), std::mem::size_of::<sys::mcstat_ks_options>());
             o.assume_init()
         };
         KsOptions {
@@ -499,7 +499,7 @@ impl Default for KsOptions<'_> {
 pub fn ks_test_2(x: &[f64], y: &[f64], alternative: Alternative, alpha: f64, opt: &KsOptions) -> Result<TestResult> {
     let mut o = std::mem::MaybeUninit::<sys::mcstat_ks_options>::zeroed();
     let mut o = unsafe {
-        sys::mcstat_ks_options_init(o.as_mut_ptr());
+        sys::mcstat_ks_options_init_size(o.as_mut_ptr(), std::mem::size_of::<sys::mcstat_ks_options>());
         o.assume_init()
     };
     o.weight = match opt.weight {

@@ -1,0 +1,34 @@
+#!/bin/sh
+# The public headers compile without a warning under -Wpedantic -Werror as
+# C11, C99 and (when a C++ compiler is found) C++11: renderers include them
+# from C++.  usage: check_header.sh CC INCLUDE_DIR
+set -eu
+cc="$1" inc="$2"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+cat > "$tmp/use.c" <<'SRC'
+#include <mcstat.h>
+#include <mcstat_check.h>
+int use(mcstat_result *r);
+int use(mcstat_result *r)
+{
+    mcstat_ks_options o = MCSTAT_KS_OPTIONS_INIT;
+    (void)mcstat_ks_options_init(&o);
+    return r->ks_weight + (int)r->ks_n_sim + (int)r->reserved[1] + r->reserved_i[0] + o.threads +
+           (r->decision == MCSTAT_DECISION_LESS);
+}
+SRC
+for std in c11 c99; do
+    "$cc" -std=$std -Wall -Wextra -Wpedantic -Werror -I "$inc" -c "$tmp/use.c" -o "$tmp/use.o" \
+        || { echo "mcstat.h: warnings as $std"; exit 1; }
+done
+for cxx in c++ g++ clang++; do
+    if command -v "$cxx" > /dev/null 2>&1; then
+        cp "$tmp/use.c" "$tmp/use.cpp"
+        "$cxx" -std=c++11 -Wall -Wextra -Wpedantic -Werror -I "$inc" -c "$tmp/use.cpp" -o "$tmp/use.o" \
+            || { echo "mcstat.h: warnings as C++11 ($cxx)"; exit 1; }
+        echo "mcstat.h: clean as C11, C99 and C++11 ($cxx)"
+        exit 0
+    fi
+done
+echo "mcstat.h: clean as C11 and C99 (no C++ compiler found)"
