@@ -102,7 +102,8 @@ enum mcstat_status {
     MCSTAT_EBUFSIZE = 7,    /* the caller's buffer is too small */
     MCSTAT_ECORRUPT = 8,    /* serialized bytes are corrupt, truncated or of an unknown version */
     MCSTAT_ETOOBIG = 9      /* the sizes are too large for the requested method (e.g. an exact
-                               K-S p-value whose lattice would not fit): choose another method */
+                               K-S p-value whose lattice would not fit): choose another method;
+                               also an observation count that would pass 2^64 - 1 */
 };
 
 /* A sentence describing status (static storage; never NULL). */
@@ -160,6 +161,8 @@ typedef struct mcstat_moments {
 
 /* Empties m. */
 MCSTAT_API int mcstat_moments_init(mcstat_moments *m);
+/* Adding and merging refuse with MCSTAT_ETOOBIG (m unchanged) when the
+ * count n would pass 2^64 - 1. */
 /* Adds one value. MCSTAT_ENONFINITE (m unchanged) for NaN or +-Inf. */
 MCSTAT_API int mcstat_moments_add(mcstat_moments *m, double x);
 /* Adds n values. MCSTAT_ENONFINITE (m unchanged) if any is NaN or +-Inf. */
@@ -983,7 +986,8 @@ MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
  * images stored pixel-major (k values per pixel) is n = k, x_stride = k.
  * flags: MCSTAT_ROWS_OMIT_NAN skips NaN values (+-Inf remains an error).
  * status[i] (may be NULL) receives row i's status; a row that fails
- * (MCSTAT_ENONFINITE) is left unchanged and the other rows are still added.
+ * (MCSTAT_ENONFINITE, or MCSTAT_ETOOBIG when its count would pass 2^64 - 1)
+ * is left unchanged and the other rows are still added.
  * Returns MCSTAT_OK, the status of the first row that failed, or
  * MCSTAT_EINVAL (nothing changed) for NULL pointers, unknown flags or an
  * uninitialised accumulator. */
@@ -993,7 +997,8 @@ MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const dou
 /* dst[i] <- dst[i] merged with src[i], for i < rows (mcstat_moments_merge
  * element-wise).  src may equal dst; the arrays must not otherwise overlap.
  * MCSTAT_EINVAL (nothing changed) for NULL pointers or an uninitialised
- * accumulator in either array. */
+ * accumulator in either array, MCSTAT_ETOOBIG (nothing changed) when a
+ * row's count would pass 2^64 - 1. */
 MCSTAT_API int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows);
 
 /* The array as rows * MCSTAT_MOMENTS_BYTES bytes: the records of
@@ -1097,7 +1102,8 @@ typedef struct mcstat_stream {
     uint32_t count;          /* values waiting in buf (< MCSTAT_STREAM_CAPACITY) */
     uint32_t version;        /* MCSTAT_STREAM_VERSION once initialised */
     uint64_t n_nonfinite;    /* NaN and +-Inf values seen (and left out) */
-    uint64_t reserved[2];    /* zero */
+    uint64_t n_overflow;     /* values left out because the count would pass 2^64 - 1 */
+    uint64_t reserved[1];    /* zero */
     double buf[MCSTAT_STREAM_CAPACITY];
 } mcstat_stream;
 
@@ -1105,12 +1111,15 @@ typedef struct mcstat_stream {
 MCSTAT_API int mcstat_stream_init(mcstat_stream *s);
 /* Adds the buffered values to s->moments and empties the buffer (non-finite
  * values are counted in n_nonfinite instead).  MCSTAT_EINVAL for NULL or an
- * uninitialised stream. */
+ * uninitialised stream.  MCSTAT_ETOOBIG when the count would pass 2^64 - 1:
+ * the buffered values are then left out and counted in n_overflow, and every
+ * check on the stream returns MCSTAT_ETOOBIG. */
 MCSTAT_API int mcstat_stream_flush(mcstat_stream *s);
 /* dst <- dst merged with src: its moments, its buffered values and its
  * non-finite count; src is not modified (it may equal dst).  Merging a
  * thread's stream into a frame total and re-initialising the thread's
- * stream is the end-of-frame step.  MCSTAT_EINVAL. */
+ * stream is the end-of-frame step.  MCSTAT_EINVAL; MCSTAT_ETOOBIG (dst
+ * unchanged) when a count would pass 2^64 - 1. */
 MCSTAT_API int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src);
 /* *out <- the moments of every value s has seen (flushed or buffered),
  * without modifying s.  MCSTAT_EINVAL. */

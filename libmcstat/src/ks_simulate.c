@@ -364,6 +364,13 @@ int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t se
     const uint64_t N = d->N;
     if (N > UINT32_MAX) /* the 32-bit label draw needs N - s < 2^32 */
         return MCSTAT_ETOOBIG;
+    if ((uint64_t)n_sim > SIZE_MAX / (2 * sizeof(uint64_t)))
+        return MCSTAT_ETOOBIG;
+    /* Everything is allocated before the simulation starts: a sort buffer
+     * refused after minutes of simulating wastes them all. */
+    uint64_t *k = malloc(2 * (size_t)n_sim * sizeof *k);
+    if (!k)
+        return MCSTAT_ENOMEM;
     sim_job job;
     job.d = d;
     job.n_sim = n_sim;
@@ -382,8 +389,10 @@ int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t se
     /* w and mask are indexed by the point s; the statistic is looked at only
      * at the end of a tie block (all points when there are no ties) */
     double *w = malloc((N + 1) * (sizeof *w + sizeof(int64_t) + sizeof(int32_t)));
-    if (!w)
+    if (!w) {
+        free(k);
         return MCSTAT_ENOMEM;
+    }
     int64_t *mask = (int64_t *)(w + N + 1);
     int32_t *mask32 = (int32_t *)(mask + N + 1);
     for (uint64_t s = 0; s <= N; s++) {
@@ -416,13 +425,12 @@ int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t se
         pthread_join(th[t], NULL);
     pthread_mutex_destroy(&job.lock);
     free(w);
-    if (job.status)
+    if (job.status) {
+        free(k);
         return job.status;
+    }
 
     /* sort the keys (non-negative doubles: their order keys sort alike) */
-    uint64_t *k = malloc(2 * (size_t)n_sim * sizeof *k);
-    if (!k)
-        return MCSTAT_ENOMEM;
     for (int64_t i = 0; i < n_sim; i++)
         k[i] = mcstat__order_key(keys[i]);
     int st = mcstat__radix_sort_u64(k, (size_t)n_sim, k + n_sim);

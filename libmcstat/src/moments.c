@@ -345,6 +345,8 @@ int mcstat_moments_merge(mcstat_moments *dst, const mcstat_moments *src)
         return MCSTAT_EINVAL;
     if (src->n == 0)
         return MCSTAT_OK;
+    if (src->n > UINT64_MAX - dst->n) /* the count would wrap */
+        return MCSTAT_ETOOBIG;
     mcstat_moments copy = *src; /* src may alias dst */
     merge_into(dst, &copy);
     return MCSTAT_OK;
@@ -356,6 +358,8 @@ int mcstat_moments_add(mcstat_moments *m, double x)
         return MCSTAT_EINVAL;
     if (!isfinite(x))
         return MCSTAT_ENONFINITE;
+    if (m->n == UINT64_MAX)
+        return MCSTAT_ETOOBIG;
     mcstat_moments one;
     memset(&one, 0, sizeof one);
     one.version = MCSTAT_MOMENTS_VERSION;
@@ -374,6 +378,10 @@ static int add_array(mcstat_moments *m, const double *x, size_t n, int omit_nan,
 {
     if (!is_valid(m) || (!x && n > 0))
         return MCSTAT_EINVAL;
+    /* Counts must not wrap: refused before any work when even the values
+     * kept would not fit; with omit_nan the exact count is checked below. */
+    if (!omit_nan && (uint64_t)n > UINT64_MAX - m->n)
+        return MCSTAT_ETOOBIG;
     mcstat_moments stack[TREE_DEPTH];
     uint64_t count[TREE_DEPTH]; /* blocks merged into stack[k] */
     int top = 0;
@@ -417,6 +425,8 @@ static int add_array(mcstat_moments *m, const double *x, size_t n, int omit_nan,
         mcstat_moments total = stack[top - 1];
         for (int k = top - 2; k >= 0; k--)
             merge_into(&stack[k], &total), total = stack[k];
+        if (total.n > UINT64_MAX - m->n)
+            return MCSTAT_ETOOBIG;
         merge_into(m, &total);
     }
     if (n_omitted)

@@ -75,7 +75,10 @@ int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, si
     if (!all_valid(dst, rows) || !all_valid(src, rows))
         return MCSTAT_EINVAL;
     for (size_t i = 0; i < rows; i++)
-        mcstat_moments_merge(&dst[i], &src[i]); /* cannot fail: both checked */
+        if (src[i].n > UINT64_MAX - dst[i].n) /* a count would wrap: nothing merged */
+            return MCSTAT_ETOOBIG;
+    for (size_t i = 0; i < rows; i++)
+        mcstat_moments_merge(&dst[i], &src[i]); /* cannot fail: all checked */
     return MCSTAT_OK;
 }
 

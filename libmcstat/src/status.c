@@ -33,7 +33,7 @@ const char *mcstat_strerror(int status)
     case MCSTAT_ENUMERIC: return "numerical failure: an iteration did not converge";
     case MCSTAT_EBUFSIZE: return "the output buffer is too small";
     case MCSTAT_ECORRUPT: return "serialized data are truncated, corrupt or of an unknown version";
-    case MCSTAT_ETOOBIG: return "the sizes are too large for the requested method (e.g. an exact K-S p-value): choose another";
+    case MCSTAT_ETOOBIG: return "the sizes are too large for the requested method (e.g. an exact K-S p-value): choose another; or an observation count would pass 2^64 - 1";
     default: return "unknown status code";
     }
 }

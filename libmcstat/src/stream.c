@@ -52,6 +52,14 @@ int mcstat_stream_flush(mcstat_stream *s)
 {
     if (!is_valid(s))
         return MCSTAT_EINVAL;
+    if (s->count > UINT64_MAX - s->moments.n) {
+        /* The count would wrap.  The buffer must still empty (the inline
+         * mcstat_stream_add writes past a full one), so the values are left
+         * out and counted; the checks then refuse the stream. */
+        s->n_overflow = s->count > UINT64_MAX - s->n_overflow ? UINT64_MAX : s->n_overflow + s->count;
+        s->count = 0;
+        return MCSTAT_ETOOBIG;
+    }
     int st = add_values(&s->moments, s->buf, s->count, &s->n_nonfinite);
     if (st == MCSTAT_OK)
         s->count = 0;
@@ -68,6 +76,14 @@ int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src)
     memcpy(tmp, src->buf, n * sizeof *tmp);
     mcstat_moments sm = src->moments;
     uint64_t bad = src->n_nonfinite;
+    /* Counts must not wrap: refused with dst unchanged.  (Buffered values
+     * count as both finite and not: at most 2 * 492 too strict.) */
+    uint64_t buffered = (uint64_t)dst->count + n;
+    if (sm.n > UINT64_MAX - dst->moments.n || buffered > UINT64_MAX - dst->moments.n - sm.n ||
+        bad > UINT64_MAX - dst->n_nonfinite || buffered > UINT64_MAX - dst->n_nonfinite - bad ||
+        src->n_overflow > UINT64_MAX - dst->n_overflow)
+        return MCSTAT_ETOOBIG;
+    uint64_t overflow = src->n_overflow;
     int st = mcstat_stream_flush(dst);
     if (st != MCSTAT_OK)
         return st;
@@ -76,6 +92,7 @@ int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src)
     if ((st = add_values(&dst->moments, tmp, n, &bad)) != MCSTAT_OK)
         return st;
     dst->n_nonfinite += bad;
+    dst->n_overflow += overflow;
     return MCSTAT_OK;
 }
 
@@ -98,6 +115,8 @@ static int stream_moments_checked(const mcstat_stream *s, mcstat_moments *m)
     int st = mcstat_stream_moments(s, m);
     if (st != MCSTAT_OK)
         return st;
+    if (s->n_overflow > 0)
+        return MCSTAT_ETOOBIG;
     if (s->n_nonfinite > 0)
         return MCSTAT_ENONFINITE;
     for (uint32_t i = 0; i < s->count; i++)

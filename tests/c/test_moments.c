@@ -347,6 +347,59 @@ static void test_bytes(void)
     CHECK(!memcmp(&e, &back, sizeof e));
 }
 
+/* The count never wraps: adds and merges that would pass 2^64 - 1 are
+ * refused with m unchanged (they used to give n = 2 or 0 and MCSTAT_OK). */
+static void test_count_overflow(void)
+{
+    double v[3] = {0, 1, 2};
+    mcstat_moments big, small, before;
+    mcstat_moments_init(&small);
+    CHECK_INT(mcstat_moments_add_array(&small, v, 3), MCSTAT_OK);
+    big = small;
+    big.n = UINT64_MAX; /* as from_bytes may deliver it */
+    before = big;
+    CHECK_INT(mcstat_moments_merge(&big, &small), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(&big, &before, sizeof big));
+    CHECK_INT(mcstat_moments_add(&big, 1.0), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(&big, &before, sizeof big));
+    CHECK_INT(mcstat_moments_add_array(&big, v, 3), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(&big, &before, sizeof big));
+    size_t omitted = 99;
+    CHECK_INT(mcstat_moments_add_array_omit_nan(&big, v, 3, &omitted), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(&big, &before, sizeof big));
+    CHECK_INT(omitted, 99);
+    /* NaN only: nothing is added, so nothing overflows */
+    double nan3[3] = {NAN, NAN, NAN};
+    CHECK_INT(mcstat_moments_add_array_omit_nan(&big, nan3, 3, &omitted), MCSTAT_OK);
+    CHECK_INT(omitted, 3);
+    CHECK(!memcmp(&big, &before, sizeof big));
+    /* an empty array and an empty accumulator change nothing either way */
+    CHECK_INT(mcstat_moments_add_array(&big, v, 0), MCSTAT_OK);
+    mcstat_moments e;
+    mcstat_moments_init(&e);
+    CHECK_INT(mcstat_moments_merge(&big, &e), MCSTAT_OK);
+    CHECK(!memcmp(&big, &before, sizeof big));
+    /* small merged into big from the other side: refused too */
+    mcstat_moments s0 = small;
+    CHECK_INT(mcstat_moments_merge(&small, &big), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(&small, &s0, sizeof small));
+    /* 2^63 merged with itself would be 0 */
+    mcstat_moments half = s0;
+    half.n = (uint64_t)1 << 63;
+    before = half;
+    CHECK_INT(mcstat_moments_merge(&half, &half), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(&half, &before, sizeof half));
+    /* the last representable count is still reached */
+    mcstat_moments edge = s0;
+    edge.n = UINT64_MAX - 4;
+    CHECK_INT(mcstat_moments_add_array(&edge, v, 3), MCSTAT_OK);
+    CHECK(edge.n == UINT64_MAX - 1);
+    CHECK_INT(mcstat_moments_add(&edge, 1.0), MCSTAT_OK);
+    CHECK(edge.n == UINT64_MAX);
+    CHECK_INT(mcstat_moments_add(&edge, 1.0), MCSTAT_ETOOBIG);
+    CHECK(edge.n == UINT64_MAX);
+}
+
 int main(void)
 {
     test_against_long_double();
@@ -356,5 +409,6 @@ int main(void)
     test_nonfinite_and_omit();
     test_empty_and_zeroed();
     test_bytes();
+    test_count_overflow();
     return h_report("test_moments");
 }

@@ -329,6 +329,38 @@ static void test_tests_on_rows(void)
     CHECK(isnan(out[0].p_value));
 }
 
+/* A row whose count would pass 2^64 - 1: add_rows refuses that row alone
+ * (the others are added), merge_rows refuses the whole call, changing
+ * nothing; both used to wrap the count silently. */
+static void test_count_overflow_rows(void)
+{
+    static double a[PIX * K];
+    fill(a, PIX, K, 7, 0.0);
+    static mcstat_moments m[PIX], before[PIX], src[PIX];
+    int32_t status[PIX];
+    mcstat_moments_init_rows(m, PIX);
+    CHECK_INT(mcstat_moments_add_rows(m, PIX, a, K, K, 0, NULL), MCSTAT_OK);
+    m[3].n = UINT64_MAX - (K - 1); /* one short of room for K more */
+    memcpy(before, m, sizeof m);
+    CHECK_INT(mcstat_moments_add_rows(m, PIX, a, K, K, 0, status), MCSTAT_ETOOBIG);
+    CHECK_INT(status[3], MCSTAT_ETOOBIG);
+    CHECK(same_m(&m[3], &before[3]));
+    CHECK(status[2] == MCSTAT_OK && m[2].n == 2 * K && status[4] == MCSTAT_OK && m[4].n == 2 * K);
+    CHECK_INT(mcstat_moments_add_rows(m, PIX, a, K, K, MCSTAT_ROWS_OMIT_NAN, status), MCSTAT_ETOOBIG);
+    CHECK_INT(status[3], MCSTAT_ETOOBIG);
+    CHECK(same_m(&m[3], &before[3]));
+
+    memcpy(src, m, sizeof m);
+    memcpy(before, m, sizeof m);
+    CHECK_INT(mcstat_moments_merge_rows(m, src, PIX), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(m, before, sizeof m));
+    CHECK_INT(mcstat_moments_merge_rows(m, m, PIX), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(m, before, sizeof m));
+    src[3].n = 0; /* now every row fits */
+    CHECK_INT(mcstat_moments_merge_rows(m, src, PIX), MCSTAT_OK);
+    CHECK(m[3].n == UINT64_MAX - (K - 1) && m[4].n == 6 * K);
+}
+
 int main(void)
 {
     test_add_is_add_array_then_merge();
@@ -337,5 +369,6 @@ int main(void)
     test_nonfinite_rows();
     test_bytes();
     test_tests_on_rows();
+    test_count_overflow_rows();
     return h_report("test_moments_rows");
 }

@@ -233,6 +233,59 @@ static void test_calibration(void)
            "(expect %.0f)\n", reps, alpha, rej_edge, reps * alpha / 2, rej_in, rej_zero, reps * alpha);
 }
 
+/* Counts never wrap.  Merging a stream into itself doubles it: after 63
+ * doublings the next is refused with the stream unchanged (it used to wrap
+ * n to 0).  A flush that would pass 2^64 - 1 leaves its values out, counts
+ * them, keeps the buffer usable, and the checks refuse the stream. */
+static void test_count_overflow(void)
+{
+    mcstat_stream s, before;
+    mcstat_stream_init(&s);
+    mcstat_stream_add(&s, 1.0);
+    mcstat_stream_add(&s, NAN);
+    CHECK_INT(mcstat_stream_flush(&s), MCSTAT_OK);
+    mcstat_stream_add(&s, 2.0);
+    mcstat_stream_add(&s, 4.0);
+    int k = 0, st;
+    while ((st = mcstat_stream_merge(&s, &s)) == MCSTAT_OK && k < 100)
+        k++;
+    CHECK_INT(st, MCSTAT_ETOOBIG);
+    CHECK_INT(k, 62); /* 3 * 2^62 values would not fit */
+    CHECK(s.moments.n == (uint64_t)3 << 62 && s.n_nonfinite == (uint64_t)1 << 62);
+    before = s;
+    CHECK_INT(mcstat_stream_merge(&s, &s), MCSTAT_ETOOBIG);
+    CHECK(!memcmp(&s, &before, sizeof s));
+
+    mcstat_stream t;
+    mcstat_stream_init(&t);
+    for (int i = 0; i < 10; i++)
+        mcstat_stream_add(&t, (double)i);
+    CHECK_INT(mcstat_stream_flush(&t), MCSTAT_OK);
+    t.moments.n = UINT64_MAX - 100; /* room for 100 more values */
+    for (int i = 0; i < 50; i++)
+        mcstat_stream_add(&t, (double)i);
+    CHECK_INT(mcstat_stream_flush(&t), MCSTAT_OK);
+    CHECK(t.moments.n == UINT64_MAX - 50);
+    mcstat_moments m0 = t.moments;
+    for (unsigned i = 0; i < MCSTAT_STREAM_CAPACITY + 5; i++) /* the automatic flush overflows */
+        mcstat_stream_add(&t, (double)i);
+    CHECK_INT(t.count, 5);
+    CHECK_INT(t.n_overflow, MCSTAT_STREAM_CAPACITY);
+    CHECK(!memcmp(&t.moments, &m0, sizeof m0));
+    mcstat_result r;
+    CHECK_INT(mcstat_stream_check_mean(&t, 4.5, 0.0, 0.05, &r), MCSTAT_ETOOBIG);
+    CHECK_INT(mcstat_stream_check_var(&t, 100.0, 0.05, &r), MCSTAT_ETOOBIG);
+    failures_reported = 0;
+    CHECK_INT(MCSTAT_CHECK_MEAN(t, 4.5, 0.0, 0.05), 1);
+    CHECK_INT(failures_reported, 1);
+    /* the overflow is carried by a merge */
+    mcstat_stream u;
+    mcstat_stream_init(&u);
+    CHECK_INT(mcstat_stream_merge(&u, &t), MCSTAT_OK);
+    CHECK_INT(u.n_overflow, MCSTAT_STREAM_CAPACITY);
+    CHECK_INT(mcstat_stream_check_var(&u, 100.0, 0.05, &r), MCSTAT_ETOOBIG);
+}
+
 int main(void)
 {
     test_layout();
@@ -241,5 +294,6 @@ int main(void)
     test_merge();
     test_checks();
     test_calibration();
+    test_count_overflow();
     return h_report("test_stream");
 }

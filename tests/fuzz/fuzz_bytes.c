@@ -67,17 +67,26 @@ static void use_moments(const mcstat_moments *m, fz_input *in)
     fz_check_result(mcstat_var_test_2_moments(m, &my, fabs(v), alt, alpha, &r), &r, MCSTAT_TEST_VAR_2, alt, alpha,
                     0);
 
-    /* Merges both ways and with itself: counts add, extremes combine, and the
-     * merged accumulator is again one that serializes and deserializes. */
+    /* Merges both ways and with itself: counts add (or the merge is refused
+     * with MCSTAT_ETOOBIG, unchanged, when the sum would pass 2^64 - 1),
+     * extremes combine, and the merged accumulator is again one that
+     * serializes and deserializes. */
     mcstat_moments c[3] = {*m, my, *m};
-    FZ_ASSERT(mcstat_moments_merge(&c[0], &my) == MCSTAT_OK, "merge");
-    FZ_ASSERT(mcstat_moments_merge(&c[1], m) == MCSTAT_OK, "merge");
-    FZ_ASSERT(mcstat_moments_merge(&c[2], &c[2]) == MCSTAT_OK, "self merge");
+    const mcstat_moments before[3] = {*m, my, *m};
+    int mst[3];
+    mst[0] = mcstat_moments_merge(&c[0], &my);
+    mst[1] = mcstat_moments_merge(&c[1], m);
+    mst[2] = mcstat_moments_merge(&c[2], &c[2]);
     for (int i = 0; i < 3; i++) {
-        uint64_t want = i < 2 ? m->n + my.n : 2 * m->n;
-        FZ_ASSERT(c[i].n == want, "merged n %llu, want %llu", (unsigned long long)c[i].n, (unsigned long long)want);
-        if (c[i].n < m->n) /* the count wrapped: nothing more is promised */
+        uint64_t add = i == 0 ? my.n : m->n, had = before[i].n;
+        if (add > UINT64_MAX - had) {
+            FZ_ASSERT(mst[i] == MCSTAT_ETOOBIG, "merge %d past 2^64 - 1: status %d", i, mst[i]);
+            FZ_ASSERT(memcmp(&c[i], &before[i], sizeof c[i]) == 0, "refused merge %d changed dst", i);
             continue;
+        }
+        FZ_ASSERT(mst[i] == MCSTAT_OK, "merge %d: status %d", i, mst[i]);
+        FZ_ASSERT(c[i].n == had + add, "merged n %llu, want %llu", (unsigned long long)c[i].n,
+                  (unsigned long long)(had + add));
         unsigned char b[NB];
         mcstat_moments back;
         FZ_ASSERT(mcstat_moments_to_bytes(&c[i], b, NB) == MCSTAT_OK, "to_bytes merged");
@@ -98,6 +107,8 @@ static void use_moments(const mcstat_moments *m, fz_input *in)
     fz_check_status(st);
     if (st == MCSTAT_OK)
         FZ_ASSERT(d.n == m->n + 1, "add: n");
+    if (m->n == UINT64_MAX && isfinite(v))
+        FZ_ASSERT(st == MCSTAT_ETOOBIG && memcmp(&d, m, sizeof d) == 0, "add past 2^64 - 1: status %d", st);
     mcstat_stream s;
     mcstat_stream_init(&s);
     s.moments = *m;

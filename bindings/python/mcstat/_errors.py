@@ -108,7 +108,8 @@ class TooBigError(McstatError):
     an exact K-S p-value whose lattice would take too long (more than
     ``(min(nx, ny) + 1) * (nx + ny + 1) = 2e11`` cells), or ``nx * ny``
     beyond 2**62.  Choose another method (``"simulate"`` or, unweighted,
-    ``"asymptotic"``)."""
+    ``"asymptotic"``).  Also raised when adding or merging would take an
+    accumulator's count past 2**64 - 1 (the accumulator is unchanged)."""
 
     status = 9
 

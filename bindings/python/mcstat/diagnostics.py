@@ -18,6 +18,7 @@ import numpy as np
 
 from . import _core
 from ._errors import InvalidArgumentError
+from ._power import _real
 
 __all__ = ["binom_test", "battery_test", "diagnose", "Diagnostics", "t_size_edgeworth", "batch_size_recommend"]
 
@@ -47,7 +48,7 @@ def binom_test(x: int, n: int, p: float = 0.5, *, alternative: str = "two-sided"
         when x < c0 or x > c1), ``log_pvalue`` finite far below 1e-308;
         ``str()`` is R's block plus the decision line.
     """
-    return _core._binom_test(operator.index(x), operator.index(n), float(p), alternative, float(alpha))
+    return _core._binom_test(operator.index(x), operator.index(n), _real(p, "p"), alternative, _real(alpha, "alpha"))
 
 
 def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, alternative: str = "two-sided",
@@ -79,6 +80,7 @@ def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, al
     -------
     TestResult of the binomial test (``statistic`` = rejections).
     """
+    alpha, meta_alpha = _real(alpha, "alpha"), _real(meta_alpha, "meta_alpha")
     if isinstance(tests, (int, np.integer)) and not isinstance(tests, (bool, np.bool_)):
         if n is None:
             raise TypeError("battery_test: n (the number of tests) is required with a count of rejections")
@@ -87,7 +89,7 @@ def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, al
         return binom_test(int(tests), n, alpha, alternative=alternative, alpha=meta_alpha)
     if n is not None:
         raise TypeError("battery_test: n is only for a count of rejections")
-    a = np.asarray(tests)
+    a = _core._real_array(tests, "tests")
     if a.dtype == np.bool_:
         flags = a.ravel()
         if not (0.0 < alpha < 1.0):
@@ -96,8 +98,7 @@ def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, al
     if a.dtype.kind in "iu":
         # 0/1 integers are ambiguous: flags (1 = rejected) or p-values (0 = rejected)?
         raise TypeError("battery_test: pass reject flags as bool and p-values as float, not integers")
-    return _core._battery_test_pvalues(np.ascontiguousarray(a, dtype=float).ravel(), float(alpha), alternative,
-                                       float(meta_alpha))
+    return _core._battery_test_pvalues(a.ravel(), alpha, alternative, meta_alpha)
 
 
 def t_size_edgeworth(skewness: float, kurtosis: float, k: int, m: int, alpha: float = 0.05) -> Tuple[float, float]:
@@ -105,14 +106,16 @@ def t_size_edgeworth(skewness: float, kurtosis: float, k: int, m: int, alpha: fl
     the two-sided t test at `alpha` on m batch means of k values of the given
     skewness and excess kurtosis (Hall's Edgeworth expansion; each is
     alpha/2 for normal data).  See mcstat.h, "Estimator diagnostics"."""
-    return _core._t_size_edgeworth(float(skewness), float(kurtosis), int(k), int(m), float(alpha))
+    return _core._t_size_edgeworth(_real(skewness, "skewness"), _real(kurtosis, "kurtosis"), int(k), int(m),
+                                   _real(alpha, "alpha"))
 
 
 def batch_size_recommend(skewness: float, kurtosis: float, m: int, alpha: float = 0.05,
                          tolerance: float = 0.2) -> int:
     """The smallest batch size k whose `t_size_edgeworth` tails are both
     within tolerance * alpha/2 of alpha/2, for m batch means."""
-    return _core._batch_size_recommend(float(skewness), float(kurtosis), int(m), float(alpha), float(tolerance))
+    return _core._batch_size_recommend(_real(skewness, "skewness"), _real(kurtosis, "kurtosis"), int(m),
+                                       _real(alpha, "alpha"), _real(tolerance, "tolerance"))
 
 
 @dataclass
@@ -237,15 +240,16 @@ def diagnose(x: Any, *, k: Optional[int] = None, m: Optional[int] = None, alpha:
     normality : bool
         Run the normality tests of the batch means (needs SciPy).
     """
-    a = np.ascontiguousarray(x, dtype=float)
+    a = _core._float_array(x, "x")
     if k is not None and operator.index(k) < 1:
         raise InvalidArgumentError(f"diagnose: k must be >= 1, got {k!r}")
     if m is not None and operator.index(m) < 2:
         raise InvalidArgumentError(f"diagnose: m must be >= 2, got {m!r}")
     if tail_k is not None and operator.index(tail_k) < 1:
         raise InvalidArgumentError(f"diagnose: tail_k must be >= 1, got {tail_k!r}")
-    d = _core._diagnose(a, int(k or 0), int(m or 0), float(alpha), float(tolerance), int(tail_k or 0),
-                        float(tail_threshold))
+    alpha, tolerance = _real(alpha, "alpha"), _real(tolerance, "tolerance")
+    d = _core._diagnose(a, int(k or 0), int(m or 0), alpha, tolerance, int(tail_k or 0),
+                        _real(tail_threshold, "tail_threshold"))
     out = Diagnostics(**d)
     if out.heavy_tail:
         out.warnings.append(

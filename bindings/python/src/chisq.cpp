@@ -61,7 +61,7 @@ TooFewObservationsError
 py::object chisq_gof(py::object observed, py::object expected, const std::string &kind, bool pool,
                      double min_expected, int n_estimated, bool rescale, double alpha)
 {
-    py::array o = as_contiguous_array(observed), e = as_contiguous_array(expected);
+    py::array o = as_contiguous_array(observed, "observed"), e = as_contiguous_array(expected, "expected");
     if (o.ndim() != 1 || e.ndim() != 1)
         throw_invalid("observed and expected must be 1-D arrays");
     if (o.size() != e.size())

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "mcstat.h"
+#include "real_array.hpp"
 
 namespace py = pybind11;
 
@@ -59,11 +60,16 @@ template <typename F> PyObject *guarded(F f)
 }
 
 // ---- input arrays (tests.cpp) ---------------------------------------------
-// obj as a float64 array: the same object when it already is one (any
-// layout), else converted once; NumPy's own error when it cannot be.
-py::array as_float_array(py::handle obj);
+// Every array argument goes through these.  obj as a float64 array: the same
+// object when it already is one (any layout), else converted once; NumPy's
+// own error when it cannot be.  TypeError naming `name` for complex,
+// datetime64, timedelta64, object, string and other non-real dtypes (bool
+// and integers are accepted).
+py::array as_float_array(py::handle obj, const char *name);
 // The same, C-contiguous (a copy only when obj is not).
-py::array as_contiguous_array(py::handle obj);
+py::array as_contiguous_array(py::handle obj, const char *name);
+// Only the dtype check, real_array(obj, name) (real_array.hpp): obj as NumPy
+// reads it, not converted to float64.
 
 // ---- accumulators (moments.cpp) ---------------------------------------------
 struct Moments {
@@ -119,7 +125,9 @@ struct TestArgs {
 // BatchResult built by mcstat._result (which also raises for bad rows).
 py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two);
 
-// Worker threads for row-wise work (mcstat.set_num_threads).
+// Worker threads for row-wise work (mcstat.set_num_threads: 0 = the
+// default, else 1..MAX_THREADS).
+constexpr int MAX_THREADS = 1024;
 int num_threads();
 void set_num_threads(int n);
 

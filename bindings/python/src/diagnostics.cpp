@@ -24,10 +24,19 @@ uint64_t count(py::handle o, const char *name)
 {
     if (PyBool_Check(o.ptr()) || !PyIndex_Check(o.ptr()))
         throw py::type_error(std::string(name) + " must be an integer, not " + repr(o.ptr()));
-    py::int_ v = py::reinterpret_borrow<py::object>(o);
+    py::int_ v = py::reinterpret_steal<py::int_>(PyNumber_Index(o.ptr()));
+    if (!v)
+        throw py::error_already_set();
     if (PyObject_RichCompareBool(v.ptr(), py::int_(0).ptr(), Py_LT) == 1)
         throw_invalid(std::string(name) + " must be >= 0, got " + repr(o.ptr()));
-    return v.cast<uint64_t>();
+    unsigned long long u = PyLong_AsUnsignedLongLong(v.ptr());
+    if (u == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
+        PyErr_Clear();
+        PyErr_SetString(PyExc_OverflowError,
+                        (std::string(name) + " must be below 2**64, got " + repr(o.ptr())).c_str());
+        throw py::error_already_set();
+    }
+    return static_cast<uint64_t>(u);
 }
 
 } // namespace
@@ -49,7 +58,7 @@ void register_diagnostics(py::module_ &mod)
     mod.def(
         "_battery_test_pvalues",
         [](py::object pv, double level, const std::string &alternative, double alpha) {
-            py::array a = as_contiguous_array(pv);
+            py::array a = as_contiguous_array(pv, "tests");
             mcstat_result r;
             int st = mcstat_battery_test_pvalues(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()),
                                                  level, parse_alternative(alternative), alpha, &r);
@@ -63,7 +72,7 @@ void register_diagnostics(py::module_ &mod)
         "_diagnose",
         [](py::object x, uint64_t k, uint64_t m, double alpha, double tolerance, uint64_t tail_k,
            double tail_threshold) {
-            py::array a = as_contiguous_array(x);
+            py::array a = as_contiguous_array(x, "x");
             if (a.ndim() != 1)
                 throw_invalid("diagnose: x must be one-dimensional, got " + std::to_string(a.ndim()) + " dimensions");
             mcstat_diag_options o = MCSTAT_DIAG_OPTIONS_INIT;

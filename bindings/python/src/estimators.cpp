@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "mcest.h"
+#include "real_array.hpp"
 
 namespace py = pybind11;
 
@@ -111,7 +112,7 @@ void fixed(py::handle o, const char *name, size_t count, double *out, const char
 {
     if (o.is_none())
         throw py::type_error(std::string(name) + " is required (" + shape + ")");
-    carray a = carray::ensure(o);
+    carray a = carray::ensure(mcs::real_array(o, name));
     if (!a)
         throw py::type_error(std::string(name) + " must be array-like of numbers " + shape + ", got " + show(o));
     if (static_cast<size_t>(a.size()) != count || (count == 3 && a.ndim() != 1) ||
@@ -135,7 +136,7 @@ const char *SCENE_RULES = "triangle, point and normal must be finite, the normal
 // Directions: an array of shape (..., 3), C-contiguous float64; k = count.
 carray directions(py::handle o, const char *name, size_t &k)
 {
-    carray a = carray::ensure(o);
+    carray a = carray::ensure(mcs::real_array(o, name));
     if (!a)
         throw py::type_error(std::string(name) + " must be array-like of shape (..., 3), got " + show(o));
     if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3)
@@ -492,7 +493,7 @@ int cells_depth(py::handle o)
 
 carray cell_splits(py::handle o, int depth)
 {
-    carray a = carray::ensure(o);
+    carray a = carray::ensure(mcs::real_array(o, "split"));
     if (!a || a.ndim() != 1 || static_cast<size_t>(a.size()) != (size_t{1} << depth) - 1)
         throw_invalid("split must be a 1-D array of 2**depth - 1 values");
     return a;

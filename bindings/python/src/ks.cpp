@@ -147,7 +147,7 @@ void ks_parse(PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames, KSPars
 // A 1-D C-contiguous float64 view (a copy only when needed).
 carray sample_of(PyObject *o, const char *name)
 {
-    carray a = as_contiguous_array(o);
+    carray a = as_contiguous_array(o, name);
     if (a.ndim() != 1)
         throw_invalid(std::string("ks_test takes 1-D samples; ") + name + " is " + std::to_string(a.ndim()) + "-D");
     return a;

@@ -19,11 +19,25 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_p_adjust(mod);
     mcs::register_summary_rows(mod);
 
-    mod.def("set_num_threads", &mcs::set_num_threads, py::arg("n"),
-            R"doc(Sets the number of threads for row-wise tests (0 = the default).
+    mod.def(
+        "set_num_threads",
+        [](py::handle n) {
+            if (PyBool_Check(n.ptr()) || !PyIndex_Check(n.ptr()))
+                throw py::type_error("n must be an int, got " + mcs::repr(n.ptr()));
+            py::int_ v = py::reinterpret_steal<py::int_>(PyNumber_Index(n.ptr()));
+            int overflow = 0;
+            long long t = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+            if (overflow || t < 0 || t > mcs::MAX_THREADS)
+                mcs::throw_invalid("n must be 0 (the default) or a number of threads in 1.." +
+                                   std::to_string(mcs::MAX_THREADS) + ", got " + mcs::repr(n.ptr()));
+            mcs::set_num_threads(static_cast<int>(t));
+        },
+        py::arg("n"),
+        R"doc(Sets the number of threads for row-wise tests: 1 to 1024, or 0 for the default.
 
 The default is the MCSTAT_NUM_THREADS environment variable, else the number
-of CPUs.  Results do not depend on it.)doc");
+of CPUs.  Results do not depend on it.  Raises `InvalidArgumentError` (a
+ValueError) outside 0..1024.)doc");
     mod.def("get_num_threads", &mcs::num_threads, "The number of threads row-wise tests use.");
     mod.def("strerror", &mcstat_strerror, py::arg("status"), "libmcstat's sentence for a status code.");
     mod.attr("__libmcstat_version__") = mcstat_version();

@@ -30,7 +30,7 @@ void push_values(mcstat_moments &m, py::handle values, bool omit)
 {
     if (values.is_none())
         throw py::type_error("Moments.push() needs numbers, not None");
-    carray a = as_contiguous_array(values);
+    carray a = as_contiguous_array(values, "values");
     const double *p = a.data();
     size_t n = static_cast<size_t>(a.size());
     mcstat_moments local;
@@ -246,7 +246,7 @@ format version or internally inconsistent.)doc")
                 throw_invalid("k must be a positive integer, got " + std::to_string(k));
             if (remainder != "drop" && remainder != "raise")
                 throw_invalid("remainder must be 'drop' or 'raise', got '" + remainder + "'");
-            py::array a = as_float_array(x);
+            py::array a = as_float_array(x, "x");
             int nd = static_cast<int>(a.ndim());
             if (nd < 1)
                 throw_invalid("x must be at least 1-D");
@@ -256,7 +256,7 @@ format version or internally inconsistent.)doc")
             if (axis < 0)
                 axis += nd;
             py::module_ np = py::module_::import("numpy");
-            carray c = as_contiguous_array(np.attr("moveaxis")(a, axis, -1));
+            carray c = as_contiguous_array(np.attr("moveaxis")(a, axis, -1), "x");
             size_t n = static_cast<size_t>(c.shape(nd - 1));
             size_t rows = n ? static_cast<size_t>(c.size()) / n : 0;
             if (remainder == "raise" && n % static_cast<size_t>(k) != 0)

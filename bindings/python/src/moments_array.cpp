@@ -30,17 +30,33 @@ std::string shape_str(const std::vector<py::ssize_t> &s)
     return out + ")";
 }
 
+// One dimension: an int (or NumPy integer), OverflowError naming `shape`
+// beyond Py_ssize_t.
+py::ssize_t dimension(py::handle d, py::handle shape)
+{
+    if (!PyLong_Check(d.ptr()) && !py::isinstance(d, py::module_::import("numpy").attr("integer")))
+        throw py::type_error("shape must be an int or a tuple of ints, got " + repr(shape.ptr()));
+    py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(d.ptr()));
+    if (!i)
+        throw py::error_already_set();
+    Py_ssize_t v = PyLong_AsSsize_t(i.ptr());
+    if (v == -1 && PyErr_Occurred()) {
+        PyErr_Clear();
+        PyErr_SetString(PyExc_OverflowError, ("shape " + repr(shape.ptr()) + ": dimension " + repr(d.ptr()) +
+                                              " is too large").c_str());
+        throw py::error_already_set();
+    }
+    return v;
+}
+
 std::vector<py::ssize_t> parse_shape(py::handle shape)
 {
     std::vector<py::ssize_t> s;
     if (PyLong_Check(shape.ptr())) {
-        s.push_back(shape.cast<py::ssize_t>());
+        s.push_back(dimension(shape, shape));
     } else {
-        for (py::handle d : py::iter(shape)) {
-            if (!PyLong_Check(d.ptr()) && !py::isinstance(d, py::module_::import("numpy").attr("integer")))
-                throw py::type_error("shape must be an int or a tuple of ints, got " + repr(shape.ptr()));
-            s.push_back(d.cast<py::ssize_t>());
-        }
+        for (py::handle d : py::iter(shape))
+            s.push_back(dimension(d, shape));
     }
     for (auto d : s)
         if (d < 0)
@@ -48,11 +64,22 @@ std::vector<py::ssize_t> parse_shape(py::handle shape)
     return s;
 }
 
+// The number of pixels, refused (naming the shape) when the accumulators'
+// bytes would not fit in memory's address range: unchecked, (2**32, 2**32)
+// wrapped to 0 pixels and indexing read out of bounds.
 size_t count_of(const std::vector<py::ssize_t> &s)
 {
-    size_t n = 1;
     for (auto d : s)
+        if (d == 0)
+            return 0;
+    const size_t limit = static_cast<size_t>(PY_SSIZE_T_MAX) / sizeof(mcstat_moments);
+    size_t n = 1;
+    for (auto d : s) {
+        if (static_cast<size_t>(d) > limit / n)
+            throw_invalid("shape " + shape_str(s) + " has too many pixels: their accumulators would take more "
+                          "than " + std::to_string(PY_SSIZE_T_MAX) + " bytes");
         n *= static_cast<size_t>(d);
+    }
     return n;
 }
 
@@ -90,7 +117,7 @@ template <typename F> void parallel_rows(size_t rows, F f)
 carray pixel_rows(const MomentsArray &s, py::handle images, size_t *k)
 {
     py::module_ np = py::module_::import("numpy");
-    py::array a = as_float_array(images);
+    py::array a = as_float_array(images, "images");
     size_t nd = static_cast<size_t>(a.ndim()), sd = s.shape.size();
     std::vector<py::ssize_t> got(a.shape(), a.shape() + nd);
     if (nd == sd && got == s.shape) {
@@ -128,6 +155,17 @@ void push(MomentsArray &s, py::handle images, bool omit)
     if (bad)
         throw_status(MCSTAT_ENONFINITE, std::to_string(bad) + " value(s), the first at flat pixel index " +
                                             std::to_string(where) + "; the accumulators are unchanged");
+    // Nor may a count pass 2**64 - 1 (add_rows would refuse that pixel alone).
+    for (size_t i = 0; i < P; i++) {
+        if (s.m[i].n <= UINT64_MAX - k)
+            continue;
+        uint64_t add = 0;
+        for (size_t j = 0; j < k; j++)
+            add += !std::isnan(x[i * k + j]);
+        if (add > UINT64_MAX - s.m[i].n)
+            throw_status(MCSTAT_ETOOBIG, "pixel at flat index " + std::to_string(i) + " would count more than "
+                                         "2**64 - 1 values; the accumulators are unchanged");
+    }
     std::atomic<int> first{MCSTAT_OK};
     {
         py::gil_scoped_release nogil;
@@ -158,7 +196,7 @@ void merge(MomentsArray &a, const MomentsArray &b)
         st = mcstat_moments_merge_rows(a.m.data(), b.m.data(), a.m.size());
     }
     if (st)
-        throw_status(st);
+        throw_status(st, "the accumulators are unchanged");
 }
 
 py::bytes to_bytes(const MomentsArray &s)
@@ -187,16 +225,32 @@ MomentsArray from_bytes(py::handle data, py::handle shape)
         PyBuffer_Release(&view);
         throw;
     }
-    size_t P = count_of(out.shape);
-    out.m.resize(P);
+    size_t P;
+    try {
+        P = count_of(out.shape);
+    } catch (...) {
+        PyBuffer_Release(&view);
+        throw;
+    }
+    // The length is checked before allocating: 3 bytes for shape (10**7,)
+    // used to allocate 1.28 GB first.  P * 96 < P * 128 fits (count_of).
+    if (len != P * MCSTAT_MOMENTS_BYTES) {
+        PyBuffer_Release(&view);
+        char detail[200];
+        std::snprintf(detail, sizeof detail, "%zu bytes given; %zu accumulators of %u bytes (shape %s) are %zu", len,
+                      P, MCSTAT_MOMENTS_BYTES, shape_str(out.shape).c_str(), P * MCSTAT_MOMENTS_BYTES);
+        throw_status(MCSTAT_ECORRUPT, detail);
+    }
+    try {
+        out.m.resize(P);
+    } catch (...) {
+        PyBuffer_Release(&view);
+        throw;
+    }
     int st = mcstat_moments_from_bytes_rows(static_cast<const unsigned char *>(view.buf), len, P, out.m.data());
     PyBuffer_Release(&view);
-    if (st) {
-        char detail[160];
-        std::snprintf(detail, sizeof detail, "%zu bytes given; %zu accumulators of %u bytes are %zu", len, P,
-                      MCSTAT_MOMENTS_BYTES, P * MCSTAT_MOMENTS_BYTES);
-        throw_status(st, st == MCSTAT_ECORRUPT && len != P * MCSTAT_MOMENTS_BYTES ? detail : "");
-    }
+    if (st)
+        throw_status(st);
     return out;
 }
 

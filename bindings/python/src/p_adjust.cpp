@@ -21,7 +21,7 @@ void register_p_adjust(py::module_ &mod)
             if (mcstat_p_adjust_method_parse(method.c_str(), &m))
                 throw_invalid("method must be one of 'holm', 'hochberg', 'hommel', 'bonferroni', 'BH' "
                               "('bh', 'fdr'), 'BY' ('by') or 'none', got '" + method + "'");
-            py::array a = as_float_array(p);
+            py::array a = as_float_array(p, "p");
             // The output, C-ordered, is also the input: adjusted in place.
             py::array_t<double> out(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
             py::module_::import("numpy").attr("copyto")(out, a);

@@ -23,7 +23,7 @@ mcstat_moments to_moments(py::handle obj, bool omit, const char *name)
         throw py::type_error(std::string(name) + " must be array-like or an mcstat.Moments, not None");
     if (const mcstat_moments *m = as_moments(obj))
         return *m;
-    carray a = as_contiguous_array(obj);
+    carray a = as_contiguous_array(obj, name);
     if (a.ndim() != 1)
         throw_invalid(std::string("equivalence_test: ") + name + " must be 1-D, got " + std::to_string(a.ndim()) +
                       "-D");

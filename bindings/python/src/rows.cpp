@@ -30,7 +30,7 @@ int default_threads()
     if (const char *e = std::getenv("MCSTAT_NUM_THREADS")) {
         int v = std::atoi(e);
         if (v > 0)
-            return v;
+            return v < MAX_THREADS ? v : MAX_THREADS;
     }
     unsigned h = std::thread::hardware_concurrency();
     return h ? static_cast<int>(h) : 1;

@@ -123,9 +123,9 @@ void common_args(const Parsed &p, TestArgs &a)
 }
 
 // Moments of a 1-D array-like (for a test that mixes an accumulator and an array).
-mcstat_moments moments_of(py::handle obj, bool omit)
+mcstat_moments moments_of(py::handle obj, bool omit, const char *name)
 {
-    carray a = as_contiguous_array(obj);
+    carray a = as_contiguous_array(obj, name);
     if (a.ndim() != 1)
         throw_invalid("an array tested against an mcstat.Moments must be 1-D, got " + std::to_string(a.ndim()) +
                       "-D");
@@ -187,11 +187,11 @@ py::object run(const Parsed &p, TestArgs &a)
     if (mx || my) { // accumulators (an array beside one is turned into moments)
         mcstat_moments bx, by;
         if (!mx) {
-            bx = moments_of(p.x, a.omit_nan);
+            bx = moments_of(p.x, a.omit_nan, "x");
             mx = &bx;
         }
         if (two && !my) {
-            by = moments_of(p.y, a.omit_nan);
+            by = moments_of(p.y, a.omit_nan, "y");
             my = &by;
         }
         int st = call_moments(a, mx, my, &r);
@@ -199,9 +199,9 @@ py::object run(const Parsed &p, TestArgs &a)
             throw_status(st, st == MCSTAT_ETOOFEW ? sizes_detail(a, mx->n, my ? my->n : 0) : "");
         return make_result(r);
     }
-    py::array xa = as_float_array(p.x), ya;
+    py::array xa = as_float_array(p.x, "x"), ya;
     if (two)
-        ya = as_float_array(p.y);
+        ya = as_float_array(p.y, "y");
     int nd = static_cast<int>(xa.ndim());
     if (nd == 0 || (two && ya.ndim() == 0))
         throw_invalid("x and y must be at least 1-D arrays (got a scalar)");
@@ -211,9 +211,9 @@ py::object run(const Parsed &p, TestArgs &a)
         throw_invalid("axis " + std::to_string(a.axis) + " is out of range for 1-D input");
     // One test: contiguous float64 is read in place, anything else converted once.
     if (!(xa.flags() & py::array::c_style))
-        xa = as_contiguous_array(xa);
+        xa = as_contiguous_array(xa, "x");
     if (two && !(ya.flags() & py::array::c_style))
-        ya = as_contiguous_array(ya);
+        ya = as_contiguous_array(ya, "y");
     const double *x = static_cast<const double *>(xa.data()), *y = two ? static_cast<const double *>(ya.data()) : nullptr;
     size_t nx = static_cast<size_t>(xa.size()), ny = two ? static_cast<size_t>(ya.size()) : 0;
     int st;
@@ -311,23 +311,19 @@ bool match(PyObject *name, const char *s)
     return PyUnicode_CompareWithASCIIString(name, s) == 0;
 }
 
-py::array as_float_array(py::handle obj)
+py::array as_float_array(py::handle obj, const char *name)
 {
-    py::array a = farray::ensure(obj);
-    if (!a) // pybind11 swallowed NumPy's error: let NumPy raise it again
-        py::module_::import("numpy").attr("asarray")(obj, "float64");
+    py::array a = farray::ensure(real_array(obj, name));
     if (!a)
-        throw py::type_error("cannot convert " + repr(obj.ptr()) + " to a float64 array");
+        throw py::type_error(std::string(name) + ": cannot convert " + repr(obj.ptr()) + " to a float64 array");
     return a;
 }
 
-py::array as_contiguous_array(py::handle obj)
+py::array as_contiguous_array(py::handle obj, const char *name)
 {
-    py::array a = carray::ensure(obj);
+    py::array a = carray::ensure(real_array(obj, name));
     if (!a)
-        py::module_::import("numpy").attr("ascontiguousarray")(obj, "float64");
-    if (!a)
-        throw py::type_error("cannot convert " + repr(obj.ptr()) + " to a float64 array");
+        throw py::type_error(std::string(name) + ": cannot convert " + repr(obj.ptr()) + " to a float64 array");
     return a;
 }
 
@@ -340,6 +336,14 @@ void register_tests(py::module_ &mod)
             throw py::error_already_set();
         mod.add_object(d->ml_name, py::reinterpret_steal<py::object>(f));
     }
+    // The same conversions for the Python layer (mcstat.diagnostics).
+    mod.def(
+        "_real_array", [](py::handle obj, const std::string &name) { return real_array(obj, name.c_str()); },
+        py::arg("obj"), py::arg("name"), "obj as an array, TypeError unless its values are real (float, int, bool).");
+    mod.def(
+        "_float_array",
+        [](py::handle obj, const std::string &name) { return as_contiguous_array(obj, name.c_str()); },
+        py::arg("obj"), py::arg("name"), "obj as a C-contiguous float64 array (the checks of _real_array).");
 }
 
 } // namespace mcs
