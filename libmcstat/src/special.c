@@ -452,8 +452,14 @@ static void gamma_temme(double a, double x, mcstat_tails *t)
 double mcstat__log_gamma_prefactor(double a, double x)
 {
     double u = (x - a) / a; /* x - a is exact near the centre (Sterbenz) */
+    double tail = -0.5 * log(2.0 * M_PI * a) - mcstat__log_gammastar(a);
+    /* u overflows for a < 1 and x near DBL_MAX (chi-squared at df 1/32,
+     * x = DBL_MAX: Inf - log1p(Inf) = NaN, MCSTAT_ENUMERIC; found by
+     * tests/fuzz/fuzz_dist): a dev(u) = (x - a) - a log(x/a), formed apart */
+    if (!(u < 1e300))
+        return -((x - a) - a * (log(x) - log(a))) + tail;
     double l1u = u > -0.5 ? log1p(u) : log(x) - log(a);
-    return -mcstat__dev(a, u, l1u) - 0.5 * log(2.0 * M_PI * a) - mcstat__log_gammastar(a);
+    return -mcstat__dev(a, u, l1u) + tail;
 }
 
 int mcstat__gamma_inc(double a, double x, mcstat_tails *t)

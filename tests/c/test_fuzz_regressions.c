@@ -333,8 +333,26 @@ static void test_f_huge_df1_small_df2_monotone(void)
     CHECK_REL(b, 5.4841186279191246e-2, 1e-14, "F(1 + 2^-52; 0x1.ffp+48, 1/32)");
 }
 
+/* fuzz_dist (once MCSTAT_ENUMERIC counted as a failure in the documented
+ * df range): chi-squared at df = 1/32 and x = DBL_MAX returned
+ * MCSTAT_ENUMERIC: the prefactor's u = (x/2 - a)/a overflowed and
+ * Inf - log1p(Inf) gave NaN.  Input: regressions/fuzz_dist/
+ * chisq_df_1_32_at_dbl_max_enumeric.  Oracle: log Q(a, z) = -z + (a - 1)
+ * log z - log Gamma(a) + O(1/z), z = x/2 (DLMF 8.11.2), here -z to 1e-300. */
+static void test_chisq_small_df_at_dbl_max(void)
+{
+    double p = -1.0, lq = 1.0;
+    CHECK_INT(mcstat_chisq_cdf(DBL_MAX, 0.03125, 0, &p), MCSTAT_OK);
+    CHECK(p == 1.0);
+    CHECK_INT(mcstat_chisq_logcdf(DBL_MAX, 0.03125, 1, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -0.5 * DBL_MAX, 1e-15, "log P[chi2(1/32) > DBL_MAX]");
+    CHECK_INT(mcstat_chisq_logcdf(0.25 * DBL_MAX, 0.001, 1, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -0.125 * DBL_MAX, 1e-15, "log P[chi2(0.001) > DBL_MAX/4]");
+}
+
 int main(void)
 {
+    test_chisq_small_df_at_dbl_max();
     test_f_huge_df1_small_df2_monotone();
     test_f_small_df1_large_df2();
     test_t_interval_huge_critical();
