@@ -256,6 +256,21 @@ static void test_f_one_small_df_sweep(void)
     }
 }
 
+/* One df huge and the other moderate, deep in a tail: the prefactor's
+ * log(1 + u_y) was formed as log y + log1p(a/b), which cancel (-29.3 +
+ * 28.2 at df 1e15, 562, f = 3) and b = 281 times the lost digits put the
+ * tail 8e-13 off.  Oracle: mpmath at 50 digits (mpref.py f_tails). */
+static void test_f_one_huge_df(void)
+{
+    double p;
+    CHECK_INT(mcstat_f_cdf(3.0, 1e15, 562, 1, &p), MCSTAT_OK);
+    CHECK_REL(p, 6.8886518357706296e-55, TAIL_TOL(p), "F(1e15, 562) upper at 3");
+    CHECK_INT(mcstat_f_cdf(1.0 / 3.0, 562, 1e15, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 6.8886518357705578e-55, TAIL_TOL(p), "F(562, 1e15) lower at 1/3");
+    CHECK_INT(mcstat_f_cdf(10.0, 1e15, 100, 1, &p), MCSTAT_OK);
+    CHECK_REL(p, 2.1810592140828176e-32, TAIL_TOL(p), "F(1e15, 100) upper at 10");
+}
+
 static void test_boundaries(void)
 {
     double x, p;
@@ -315,6 +330,7 @@ int main(void)
     test_boundaries();
     test_f_one_small_df();
     test_f_one_small_df_sweep();
+    test_f_one_huge_df();
     test_log_gammastar();
     return h_report("test_dist");
 }
