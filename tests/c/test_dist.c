@@ -271,6 +271,34 @@ static void test_f_one_huge_df(void)
     CHECK_REL(p, 2.1810592140828176e-32, TAIL_TOL(p), "F(1e15, 100) upper at 10");
 }
 
+/* Far out, where the beta argument on the small side leaves the normal
+ * range (df2 / (df1 f) < 1e-300): y rounded to 0 and the cdf came out 1
+ * (F(3.5e13, 0.001) at 1.2e307, where it is 0.30), so the median, near
+ * 1e597, was returned as 1.2e307; log tails were -Inf where finite.  Oracle:
+ * mpmath at 50 digits (mpref.py f_tails). */
+static void test_f_far_tails(void)
+{
+    double p, q, lq, x;
+    CHECK_INT(mcstat_f_cdf(1.2e307, 3.5e13, 1e-3, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 0.30026250507182151, 1e-14, "F(3.5e13, 0.001) lower at 1.2e307");
+    CHECK_INT(mcstat_f_cdf(1.2e307, 3.5e13, 1e-3, 1, &q), MCSTAT_OK);
+    CHECK_REL(q, 0.69973749492817849, 1e-14, "F(3.5e13, 0.001) upper at 1.2e307");
+    CHECK_INT(mcstat_f_quantile(0.5, 3.5e13, 1e-3, 0, &x), MCSTAT_OK);
+    CHECK(x == INFINITY); /* the median, 1e597, is beyond DBL_MAX */
+    CHECK_INT(mcstat_f_cdf(1e305, 1, 1e-3, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 0.2990304568215625, 1e-14, "F(1, 0.001) lower at 1e305");
+    CHECK_INT(mcstat_f_cdf(1e-303, 0.001, 5, 1, &q), MCSTAT_OK);
+    CHECK_REL(q, 0.29704345048044429, 1e-14, "F(0.001, 5) upper at 1e-303");
+    CHECK_INT(mcstat_f_logcdf(1e303, 1, 1, 1, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -349.29322429388738, 1e-15, "log F(1, 1) upper at 1e303");
+    CHECK_INT(mcstat_f_cdf(1e303, 1, 1, 1, &q), MCSTAT_OK);
+    CHECK_REL(q, 2.0131684841794814e-152, TAIL_TOL(q), "F(1, 1) upper at 1e303");
+    CHECK_INT(mcstat_f_logcdf(1e303, 100, 3, 1, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -1046.1939596015896, 1e-15, "log F(100, 3) upper at 1e303");
+    CHECK_INT(mcstat_f_logcdf(1e-303, 3, 100, 0, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -1046.1939596015896, 1e-15, "log F(3, 100) lower at 1e-303");
+}
+
 static void test_boundaries(void)
 {
     double x, p;
@@ -331,6 +359,7 @@ int main(void)
     test_f_one_small_df();
     test_f_one_small_df_sweep();
     test_f_one_huge_df();
+    test_f_far_tails();
     test_log_gammastar();
     return h_report("test_dist");
 }
