@@ -743,11 +743,11 @@ MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, 
 /* invert these by safeguarded Newton iteration.  Promised for degrees of    */
 /* freedom in [1e-3, 1e15] (F: both), x anywhere: F measured against mpmath  */
 /* (tests/reference/scan_f_small_df.py) below 4e-14 where the smaller tail   */
-/* is above 1e-30, and deeper, where the error grows with |log P| ulps, up   */
-/* to 3e-13 near 1e-300.  `upper` selects the tail: 0 gives P[X <= x],       */
-/* 1 gives P[X > x]; a quantile solves that tail's probability = p.          */
+/* is above 1e-30; deeper the error grows with |log P|: below 6e-16 |log P|  */
+/* (4e-13 near 1e-300).  `upper` selects the tail: 0 gives P[X <= x], 1      */
+/* gives P[X > x]; a quantile solves that tail's probability = p.            */
 /* Statuses: MCSTAT_EINVAL for NaN or out-of-domain arguments,               */
-/* MCSTAT_ENUMERIC if an iteration fails (never in the range above: the     */
+/* MCSTAT_ENUMERIC if an iteration fails (never in the range above: the      */
 /* fuzz harness treats it as a failure there).                               */
 /* ------------------------------------------------------------------------ */
 MCSTAT_API int mcstat_t_cdf(double x, double df, int upper, double *p);
