@@ -350,8 +350,26 @@ static void test_chisq_small_df_at_dbl_max(void)
     CHECK_REL(lq, -0.125 * DBL_MAX, 1e-15, "log P[chi2(0.001) > DBL_MAX/4]");
 }
 
+/* fuzz_dist (once MCSTAT_ENUMERIC counted as a failure in the documented
+ * range; the harness had accepted it): F with df1 = 0.001, df2 = 562 at
+ * x = 1.5 and the upper quantile at p = 1e-300 returned it, the continued
+ * fraction for I_y(281, 0.0005) not converging.  Input:
+ * regressions/fuzz_dist/f_df1_0001_enumeric.  Oracle: mpmath at 50 digits
+ * (mpref.py f_tails, quantile). */
+static void test_f_df1_0001_answers(void)
+{
+    double p = -1.0, q = -1.0, x = -1.0;
+    CHECK_INT(mcstat_f_cdf(1.5, 0.001, 562, 1, &q), MCSTAT_OK);
+    CHECK_REL(q, 0.0033051069838228338, 1e-14, "P[F(0.001, 562) > 1.5]");
+    CHECK_INT(mcstat_f_cdf(2.0, 0.001, 562, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 0.9968381444657125, 1e-15, "P[F(0.001, 562) <= 2]");
+    CHECK_INT(mcstat_f_quantile(1e-300, 0.001, 562, 1, &x), MCSTAT_OK);
+    CHECK_REL(x, 5.7047112680203527e+6, 1e-13, "upper 1e-300 quantile of F(0.001, 562)");
+}
+
 int main(void)
 {
+    test_f_df1_0001_answers();
     test_chisq_small_df_at_dbl_max();
     test_f_huge_df1_small_df2_monotone();
     test_f_small_df1_large_df2();
