@@ -869,10 +869,9 @@ MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, 
 /* Distributions.                                                           */
 /* Tail probabilities are computed from whichever tail is small (never as   */
 /* 1 - P); log versions stay finite where the probability underflows.       */
-/* Quantiles invert these by safeguarded Newton iteration, for any degrees  */
-/* of freedom from 1e-3 to 1e12 or more.  `upper` selects the tail: 0       */
-/* gives P[X <= x], 1 gives P[X > x]; a quantile solves that tail's         */
-/* probability = p.                                                         */
+/* Quantiles invert these by safeguarded Newton iteration.  `upper`        */
+/* selects the tail: 0 gives P[X <= x], 1 gives P[X > x]; a quantile solves */
+/* that tail's probability = p.                                             */
 /* Accuracy: relative error against 50-digit references, the bounds the     */
 /* tests enforce (2-3 times the measured peak; per-domain tables, rms and   */
 /* worst cases in libmcstat/ACCURACY.md), by tail probability p:            */
@@ -887,13 +886,11 @@ MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, 
 /*   log cdf: 8e-16 (t), 5e-15 (chi^2), 8e-15 (F) relative error of log p,  */
 /*   or of p where |log p| < 1.  chi^2 beyond df 1e9: cdf 4e-13, log 2e-13. */
 /* Small p lose more because p = exp(log p) inherits |log p| times the      */
-/* rounding of log p.  F with a df below 1e-2 is a known defect, a fix of   */
-/* the incomplete beta with one tiny parameter pending: errors up to 2e-9   */
-/* and MCSTAT_ENUMERIC at some x when the other df is 1e3 to 1e6 (e.g.      */
-/* x = 1, df 1000 and 0.001); the tests hold it only to 1e-8 and to the     */
-/* failures ACCURACY.md records.                                            */
+/* rounding of log p.  The range promised: df in [1e-3, 1e15] (F: both),    */
+/* x anywhere; F with a df below 1e-2 is in the table's own rows.           */
 /* Statuses: MCSTAT_EINVAL for NaN or out-of-domain arguments,               */
-/* MCSTAT_ENUMERIC if an iteration fails (not expected).                     */
+/* MCSTAT_ENUMERIC if an iteration fails (never in the range above: the      */
+/* fuzz harness treats it as a failure there).                               */
 /* ------------------------------------------------------------------------ */
 MCSTAT_API int mcstat_t_cdf(double x, double df, int upper, double *p);
 MCSTAT_API int mcstat_t_logcdf(double x, double df, int upper, double *logp);

@@ -216,8 +216,36 @@ int mcstat__f_tails(double f, double df1, double df2, mcstat_tails *out)
         out->p = c.q; out->logp = c.logq; out->q = c.p; out->logq = c.logp; out->logk = c.logk;
         return st;
     }
+    /* Far out the beta argument on the small side leaves the normal range:
+     * F(3.5e13, 0.001) at f = 1.2e307 has y = 2e-324, rounded to 0, and P
+     * came out 1 where it is 0.3.  There I_y(b, a) = y^b x^a / (b B(a, b))
+     * (1 + O((a+b) y)) (DLMF 8.17.8) with x^a = 1 to double precision, and
+     * log y = log(b/a) - log f - O(y): from the prefactor at the centre
+     * (x, y) = (a, b)/(a+b),
+     *   log Q = (a+b) log1p(b/a) - b log f - log b + log K(centre),
+     * and likewise log P as f -> 0. */
+    double a = 0.5 * df1, b = 0.5 * df2;
+    double s_up = (df2 / df1) / f, r_lo = (df1 / df2) * f; /* y ~ s_up, x ~ r_lo there */
+    if (s_up < 1e-300 || r_lo < 1e-300) {
+        int upper = s_up < 1e-300;
+        double c = a + b, small = upper ? b : a, big = upper ? a : b;
+        double lc = mcstat__log_beta_prefactor_u(a, b, a / c, b / c, 0.0, 0.0);
+        double lf = upper ? -log(f) : log(f);
+        double lv = c * log1p(small / big) + small * lf - log(small) + lc;
+        if (!(lv < 0.0))
+            lv = 0.0; /* only by rounding, where the other tail is below an ulp */
+        double v = exp(lv), other = -expm1(lv);
+        double lother = other < 0.5 ? log(other) : log1p(-v);
+        if (upper) {
+            out->q = v; out->logq = lv; out->p = other; out->logp = lother;
+        } else {
+            out->p = v; out->logp = lv; out->q = other; out->logq = lother;
+        }
+        out->logk = lv + log(small); /* x f(x) = K = small * tail, to O(y) */
+        return MCSTAT_OK;
+    }
     f_args g = f_xy(f, df1, df2);
-    return mcstat__beta_inc_u(0.5 * df1, 0.5 * df2, g.x, g.y, g.ux, g.uy, out);
+    return mcstat__beta_inc_u(a, b, g.x, g.y, g.ux, g.uy, out);
 }
 
 /* ---- the quantile solver ------------------------------------------------ */

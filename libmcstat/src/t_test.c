@@ -36,9 +36,12 @@ static double ci_bound(mcstat_dd est, double c, double se, int e)
         return c > 0 ? -INFINITY : INFINITY;
     /* A critical value beyond 2^900 (df = 1 at alpha = 1e-308 gives -1.4e307)
      * would overflow Dekker's split in dd_two_prod into NaN (found by
-     * tests/fuzz/fuzz_rows).  The estimate (O(1) in these units) is then
-     * far below the product's rounding, so plain doubles, scaled, suffice. */
-    if (fabs(c) > 0x1p900)
+     * tests/fuzz/fuzz_rows), and so does a product c se beyond 2^900 in these
+     * units (t_test_1({0, 1e47}) at alpha = 1e-268: c = 6.4e267, se = 5e46:
+     * the product's error term was Inf - Inf, a NaN interval with status
+     * OK).  The estimate is then far below the product's rounding, so plain
+     * doubles, scaled, suffice; a bound beyond DBL_MAX is -+Inf. */
+    if (fabs(c) > 0x1p900 || !(fabs(c) * se <= 0x1p900))
         return scale2(scale2(-c, -900) * se + scale2(est.hi + est.lo, -900), e + 900);
     mcstat_dd p = dd_two_prod(-c, se);
     mcstat_dd b = dd_add(est, p);

@@ -153,6 +153,156 @@ static void test_quantile_round_trips(void)
     }
 }
 
+/* F with one degree of freedom small (1e-3 to 1/8, the bottom of the
+ * documented range) against the other anywhere in it.  The incomplete beta's
+ * continued fraction gave MCSTAT_ENUMERIC here (f_cdf(1.5; 0.001, 100)),
+ * stopped early (2e-10 off at df 630784, 0.00103) and was not monotone where
+ * its two tails meet at f = 1; the small-parameter series fixes all three.
+ * Oracle: mpmath at 50 digits (tests/reference/mpref.py f_tails), the
+ * smaller tail. */
+/* The F accuracy mcstat.h states (measured by scan_f_small_df.py): 4e-14
+ * where the smaller tail is above 1e-30, 6e-16 |log p| below. */
+#define F_TOL(p) ((p) >= 1e-30 ? 4e-14 : 6e-16 * fabs(log(p)))
+
+static void test_f_one_small_df(void)
+{
+    static const struct {
+        double x, df1, df2;
+        int upper;
+        double want;
+    } v[] = {
+        {1.5, 0.001, 100, 1, 3.3092177248228761e-3},
+        {1, 159.98, 0.00164, 0, 5.3457890088082708e-3},
+        {1, 630784, 0.00103, 0, 3.5959787969763044e-3},
+        {1, 0x1.ffp+48, 0.03125, 0, 5.4841186279191243e-2},
+        {1, 5.6e14, 0.03125, 0, 5.4841186279191243e-2},
+        {1, 1000, 0.00390625, 0, 1.1004743170101922e-2},
+        {1000.0, 0.001, 1e15, 1, 2.7996010257139439e-4},
+        {0.001, 1e15, 0.001, 0, 2.7996010257139439e-4},
+        {1e6, 0.001, 1000.0, 1, 6.1163498438148817e-157},
+        {1e-8, 0.001, 0.001, 0, 4.9541617602931338e-1},
+        {1e8, 0.001, 0.001, 1, 4.9541617602931338e-1},
+        {1, 0.003, 1e11, 1, 8.8522924308362659e-3},
+        {2, 1e12, 0.001, 0, 3.8513120847970881e-3},
+        {1e-30, 0.001, 0.001, 0, 4.8302563798615587e-1},
+        {0.5, 0.00164, 3162277660168.3794, 1, 5.9055350076439798e-3},
+    };
+    for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
+        double p = -1.0, q = -1.0, lp = 1.0;
+        CHECK_INT(mcstat_f_cdf(v[i].x, v[i].df1, v[i].df2, v[i].upper, &p), MCSTAT_OK);
+        CHECK_REL(p, v[i].want, F_TOL(v[i].want), "F(%g, %g) tail %d at %g", v[i].df1, v[i].df2, v[i].upper,
+                  v[i].x);
+        CHECK_INT(mcstat_f_logcdf(v[i].x, v[i].df1, v[i].df2, v[i].upper, &lp), MCSTAT_OK);
+        CHECK_REL(lp, log(v[i].want), 1e-14, "log F(%g, %g) tail %d at %g", v[i].df1, v[i].df2, v[i].upper, v[i].x);
+        CHECK_INT(mcstat_f_cdf(v[i].x, v[i].df1, v[i].df2, !v[i].upper, &q), MCSTAT_OK);
+        CHECK_REL(q, 1.0 - v[i].want, 1e-15, "F(%g, %g) other tail at %g", v[i].df1, v[i].df2, v[i].x);
+    }
+    /* quantiles, against mpmath's root of the same tail */
+    static const struct {
+        double p, df1, df2;
+        int upper;
+        double want;
+    } w[] = {
+        {1e-300, 0.001, 562, 1, 5.7047112680203527e+6},
+        {1e-10, 0.001, 1e6, 1, 2.5612547548902873e+4},
+        {1e-5, 1e12, 0.002, 0, 3.1132596527653558e-4},
+    };
+    for (size_t i = 0; i < sizeof w / sizeof w[0]; i++) {
+        double x = -1.0;
+        CHECK_INT(mcstat_f_quantile(w[i].p, w[i].df1, w[i].df2, w[i].upper, &x), MCSTAT_OK);
+        CHECK_REL(x, w[i].want, 1e-13, "F(%g, %g) quantile %g tail %d", w[i].df1, w[i].df2, w[i].p, w[i].upper);
+    }
+}
+
+/* The same corner swept: every call answers, the cdf never decreases in x
+ * (over 80 decades and at 1 -+ 4 ulps, where large-df F lives), and the
+ * quantiles answer for p down to 1e-300 in both tails. */
+static void test_f_one_small_df_sweep(void)
+{
+    const double small[] = {0.001, 0.00103, 0.00164, 0.003, 1.0 / 256, 0.01, 1.0 / 32, 0.125};
+    const double ps[] = {0.5, 0.05, 1e-5, 1e-20, 1e-100, 1e-300};
+    for (size_t i = 0; i < sizeof small / sizeof small[0]; i++) {
+        for (int k = -6; k <= 30; k++) {
+            double other = pow(10.0, 0.5 * k);
+            for (int swap = 0; swap < 2; swap++) {
+                double d1 = swap ? other : small[i], d2 = swap ? small[i] : other;
+                double prev = 0.0, prev_x = 0.0, p;
+                double xs[9];
+                xs[4] = 1.0;
+                for (int j = 1; j <= 4; j++) {
+                    xs[4 - j] = nextafter(xs[5 - j], 0.0);
+                    xs[4 + j] = nextafter(xs[3 + j], 2.0);
+                }
+                for (int j = 0; j < 9; j++) {
+                    CHECK_INT(mcstat_f_cdf(xs[j], d1, d2, 0, &p), MCSTAT_OK);
+                    if (j)
+                        CHECK_MSG(prev <= p * (1.0 + 1e-14), "F(%g, %g) cdf %.17g at %.17g > %.17g at %.17g", d1, d2,
+                                  prev, prev_x, p, xs[j]);
+                    prev = p;
+                    prev_x = xs[j];
+                }
+                prev = 0.0;
+                for (int j = -160; j <= 160; j++) {
+                    double x = pow(10.0, 0.25 * j);
+                    CHECK_INT(mcstat_f_cdf(x, d1, d2, 0, &p), MCSTAT_OK);
+                    CHECK_MSG(prev <= p * (1.0 + 1e-14), "F(%g, %g) cdf %.17g at %.17g > %.17g at %.17g", d1, d2,
+                              prev, prev_x, p, x);
+                    prev = p;
+                    prev_x = x;
+                }
+                for (size_t j = 0; j < sizeof ps / sizeof ps[0]; j++)
+                    for (int up = 0; up <= 1; up++) {
+                        double x;
+                        CHECK_INT(mcstat_f_quantile(ps[j], d1, d2, up, &x), MCSTAT_OK);
+                    }
+            }
+        }
+    }
+}
+
+/* One df huge and the other moderate, deep in a tail: the prefactor's
+ * log(1 + u_y) was formed as log y + log1p(a/b), which cancel (-29.3 +
+ * 28.2 at df 1e15, 562, f = 3) and b = 281 times the lost digits put the
+ * tail 8e-13 off.  Oracle: mpmath at 50 digits (mpref.py f_tails). */
+static void test_f_one_huge_df(void)
+{
+    double p;
+    CHECK_INT(mcstat_f_cdf(3.0, 1e15, 562, 1, &p), MCSTAT_OK);
+    CHECK_REL(p, 6.8886518357706296e-55, F_TOL(p), "F(1e15, 562) upper at 3");
+    CHECK_INT(mcstat_f_cdf(1.0 / 3.0, 562, 1e15, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 6.8886518357705578e-55, F_TOL(p), "F(562, 1e15) lower at 1/3");
+    CHECK_INT(mcstat_f_cdf(10.0, 1e15, 100, 1, &p), MCSTAT_OK);
+    CHECK_REL(p, 2.1810592140828176e-32, F_TOL(p), "F(1e15, 100) upper at 10");
+}
+
+/* Far out, where the beta argument on the small side leaves the normal
+ * range (df2 / (df1 f) < 1e-300): y rounded to 0 and the cdf came out 1
+ * (F(3.5e13, 0.001) at 1.2e307, where it is 0.30), so the median, near
+ * 1e597, was returned as 1.2e307; log tails were -Inf where finite.  Oracle:
+ * mpmath at 50 digits (mpref.py f_tails). */
+static void test_f_far_tails(void)
+{
+    double p, q, lq, x;
+    CHECK_INT(mcstat_f_cdf(1.2e307, 3.5e13, 1e-3, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 0.30026250507182151, 1e-14, "F(3.5e13, 0.001) lower at 1.2e307");
+    CHECK_INT(mcstat_f_cdf(1.2e307, 3.5e13, 1e-3, 1, &q), MCSTAT_OK);
+    CHECK_REL(q, 0.69973749492817849, 1e-14, "F(3.5e13, 0.001) upper at 1.2e307");
+    CHECK_INT(mcstat_f_quantile(0.5, 3.5e13, 1e-3, 0, &x), MCSTAT_OK);
+    CHECK(x == INFINITY); /* the median, 1e597, is beyond DBL_MAX */
+    CHECK_INT(mcstat_f_cdf(1e305, 1, 1e-3, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 0.2990304568215625, 1e-14, "F(1, 0.001) lower at 1e305");
+    CHECK_INT(mcstat_f_cdf(1e-303, 0.001, 5, 1, &q), MCSTAT_OK);
+    CHECK_REL(q, 0.29704345048044429, 1e-14, "F(0.001, 5) upper at 1e-303");
+    CHECK_INT(mcstat_f_logcdf(1e303, 1, 1, 1, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -349.29322429388738, 1e-15, "log F(1, 1) upper at 1e303");
+    CHECK_INT(mcstat_f_cdf(1e303, 1, 1, 1, &q), MCSTAT_OK);
+    CHECK_REL(q, 2.0131684841794814e-152, F_TOL(q), "F(1, 1) upper at 1e303");
+    CHECK_INT(mcstat_f_logcdf(1e303, 100, 3, 1, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -1046.1939596015896, 1e-15, "log F(100, 3) upper at 1e303");
+    CHECK_INT(mcstat_f_logcdf(1e-303, 3, 100, 0, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -1046.1939596015896, 1e-15, "log F(3, 100) lower at 1e-303");
+}
+
 static void test_boundaries(void)
 {
     double x, p;
@@ -210,6 +360,10 @@ int main(void)
     test_symmetry_and_complements();
     test_quantile_round_trips();
     test_boundaries();
+    test_f_one_small_df();
+    test_f_one_small_df_sweep();
+    test_f_one_huge_df();
+    test_f_far_tails();
     test_log_gammastar();
     return h_report("test_dist");
 }

@@ -299,9 +299,8 @@ static void test_merge_extreme_means(void)
  * continued fraction converges slowly there and its iteration cap (from
  * min(a, b) = 1/16) returned MCSTAT_ENUMERIC for 1.2% of points.  Oracle:
  * mpmath 1.3 at 40 digits, betainc(df1/2, df2/2, 0, df1 f/(df1 f + df2),
- * regularized=True).  The tolerance, 1e-12, is what this corner achieves
- * (measured 5e-13; the slow fraction stops early), looser than the 1e-13
- * of the bulk. */
+ * regularized=True).  The slow fraction then stopped early (5e-13 off);
+ * a = 1/16 now takes the small-parameter series (3e-16 against mpmath). */
 static void test_f_small_df1_large_df2(void)
 {
     const double f[3] = {1.0110785291877413, 1.1946665533426208, 2.5};
@@ -311,13 +310,68 @@ static void test_f_small_df1_large_df2(void)
         double p = -1.0, q = -1.0;
         CHECK_INT(mcstat_f_cdf(f[i], 0.125, 536870912.0, 0, &p), MCSTAT_OK);
         CHECK_INT(mcstat_f_cdf(f[i], 0.125, 536870912.0, 1, &q), MCSTAT_OK);
-        CHECK_REL(p, lower[i], 1e-12, "P[F(0.125, 2^29) <= %g]", f[i]);
-        CHECK_REL(q, upper[i], 1e-12, "P[F(0.125, 2^29) > %g]", f[i]);
+        CHECK_REL(p, lower[i], 1e-14, "P[F(0.125, 2^29) <= %g]", f[i]);
+        CHECK_REL(q, upper[i], 1e-14, "P[F(0.125, 2^29) > %g]", f[i]);
     }
+}
+
+/* fuzz_dist (a clean-clone CI run of make fuzz-ci): F with df1 = 0x1.ffp+48,
+ * df2 = 1/32 was not monotone at 1: F(1) = 0.054841186279286872 >
+ * F(1 + 2^-52) = 0.054841186279192211.  At f = 1 exactly the incomplete
+ * beta took its lower-tail continued fraction, one ulp above the upper
+ * tail's, and the two disagreed by 1.7e-12 (each stopping early with
+ * b = 1/64).  Input: regressions/fuzz_dist/f_huge_df1_df2_1_32_not_monotone.
+ * Oracle: mpmath at 50 digits (tests/reference/mpref.py f_tails). */
+static void test_f_huge_df1_small_df2_monotone(void)
+{
+    const double df1 = 0x1.ffp+48, df2 = 0.03125, up = 1.0000000000000002;
+    double a = -1.0, b = -1.0;
+    CHECK_INT(mcstat_f_cdf(1.0, df1, df2, 0, &a), MCSTAT_OK);
+    CHECK_INT(mcstat_f_cdf(up, df1, df2, 0, &b), MCSTAT_OK);
+    CHECK(a <= b);
+    CHECK_REL(a, 5.4841186279191243e-2, 1e-14, "F(1; 0x1.ffp+48, 1/32)");
+    CHECK_REL(b, 5.4841186279191246e-2, 1e-14, "F(1 + 2^-52; 0x1.ffp+48, 1/32)");
+}
+
+/* fuzz_dist (once MCSTAT_ENUMERIC counted as a failure in the documented
+ * df range): chi-squared at df = 1/32 and x = DBL_MAX returned
+ * MCSTAT_ENUMERIC: the prefactor's u = (x/2 - a)/a overflowed and
+ * Inf - log1p(Inf) gave NaN.  Input: regressions/fuzz_dist/
+ * chisq_df_1_32_at_dbl_max_enumeric.  Oracle: log Q(a, z) = -z + (a - 1)
+ * log z - log Gamma(a) + O(1/z), z = x/2 (DLMF 8.11.2), here -z to 1e-300. */
+static void test_chisq_small_df_at_dbl_max(void)
+{
+    double p = -1.0, lq = 1.0;
+    CHECK_INT(mcstat_chisq_cdf(DBL_MAX, 0.03125, 0, &p), MCSTAT_OK);
+    CHECK(p == 1.0);
+    CHECK_INT(mcstat_chisq_logcdf(DBL_MAX, 0.03125, 1, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -0.5 * DBL_MAX, 1e-15, "log P[chi2(1/32) > DBL_MAX]");
+    CHECK_INT(mcstat_chisq_logcdf(0.25 * DBL_MAX, 0.001, 1, &lq), MCSTAT_OK);
+    CHECK_REL(lq, -0.125 * DBL_MAX, 1e-15, "log P[chi2(0.001) > DBL_MAX/4]");
+}
+
+/* fuzz_dist (once MCSTAT_ENUMERIC counted as a failure in the documented
+ * range; the harness had accepted it): F with df1 = 0.001, df2 = 562 at
+ * x = 1.5 and the upper quantile at p = 1e-300 returned it, the continued
+ * fraction for I_y(281, 0.0005) not converging.  Input:
+ * regressions/fuzz_dist/f_df1_0001_enumeric.  Oracle: mpmath at 50 digits
+ * (mpref.py f_tails, quantile). */
+static void test_f_df1_0001_answers(void)
+{
+    double p = -1.0, q = -1.0, x = -1.0;
+    CHECK_INT(mcstat_f_cdf(1.5, 0.001, 562, 1, &q), MCSTAT_OK);
+    CHECK_REL(q, 0.0033051069838228338, 1e-14, "P[F(0.001, 562) > 1.5]");
+    CHECK_INT(mcstat_f_cdf(2.0, 0.001, 562, 0, &p), MCSTAT_OK);
+    CHECK_REL(p, 0.9968381444657125, 1e-15, "P[F(0.001, 562) <= 2]");
+    CHECK_INT(mcstat_f_quantile(1e-300, 0.001, 562, 1, &x), MCSTAT_OK);
+    CHECK_REL(x, 5.7047112680203527e+6, 1e-13, "upper 1e-300 quantile of F(0.001, 562)");
 }
 
 int main(void)
 {
+    test_f_df1_0001_answers();
+    test_chisq_small_df_at_dbl_max();
+    test_f_huge_df1_small_df2_monotone();
     test_f_small_df1_large_df2();
     test_t_interval_huge_critical();
     test_merge_extreme_means();

@@ -217,6 +217,74 @@ static void test_edges(void)
     CHECK_REL(r.statistic, 16.0, 1e-15, "F with n = 2");
 }
 
+/* Confidence intervals at extreme alpha are finite or -+Inf, never NaN with
+ * status OK: t_test_1({0, 1e47}) at alpha = 1e-268 gave (NaN, NaN), the
+ * product of the critical value 6.4e267 and se 5e46 overflowing inside the
+ * exact product; one-sided tests gave (-Inf, NaN), Welch and the
+ * equivalence test (which share the bound) likewise.  Where the true bound
+ * is beyond DBL_MAX it is -+Inf; where it is not, it is est -+ c se. */
+static void check_interval(int st, const mcstat_result *r, const char *what, double scale, double alpha, int alt)
+{
+    CHECK_INT(st, MCSTAT_OK);
+    CHECK_MSG(!isnan(r->conf_int[0]) && !isnan(r->conf_int[1]) && r->conf_int[0] <= r->conf_int[1],
+              "%s: data scale %g, alpha %g, alternative %d: conf_int (%g, %g)", what, scale, alpha, alt,
+              r->conf_int[0], r->conf_int[1]);
+}
+
+static void test_interval_extreme_alpha(void)
+{
+    mcstat_result r;
+    const double x47[2] = {0.0, 1e47}, y1[2] = {0.0, 1.0};
+    CHECK_INT(mcstat_t_test_1(x47, 2, 0.0, MCSTAT_TWO_SIDED, 1e-268, &r), MCSTAT_OK);
+    CHECK(r.conf_int[0] == -INFINITY && r.conf_int[1] == INFINITY); /* 5e46 -+ 3.2e314 */
+    CHECK_INT(mcstat_t_test_2(x47, 2, y1, 2, 0.0, MCSTAT_TWO_SIDED, 1e-268, &r), MCSTAT_OK);
+    CHECK(r.conf_int[0] == -INFINITY && r.conf_int[1] == INFINITY);
+    CHECK_INT(mcstat_equivalence_test_1(x47, 2, 0.0, -1.0, 1.0, 1e-268, &r), MCSTAT_OK);
+    CHECK(r.conf_int[0] == -INFINITY && r.conf_int[1] == INFINITY);
+    const double x60[2] = {0.0, 1e60};
+    CHECK_INT(mcstat_t_test_1(x60, 2, 0.0, MCSTAT_LESS, 1e-250, &r), MCSTAT_OK);
+    CHECK(r.conf_int[0] == -INFINITY && r.conf_int[1] == INFINITY); /* 5e59 + 1.6e309 */
+    CHECK_INT(mcstat_t_test_1(x60, 2, 0.0, MCSTAT_GREATER, 1e-250, &r), MCSTAT_OK);
+    CHECK(r.conf_int[0] == -INFINITY && r.conf_int[1] == INFINITY);
+    /* c se = 3.2e307 is past 2^900 but finite: est -+ c se to rounding */
+    const double x40[2] = {0.0, 1e40};
+    CHECK_INT(mcstat_t_test_1(x40, 2, 0.0, MCSTAT_TWO_SIDED, 1e-268, &r), MCSTAT_OK);
+    CHECK_REL(r.conf_int[0], r.estimate[0] - r.critical[1] * r.std_error, 1e-15, "lower bound, c se = 3e307");
+    CHECK_REL(r.conf_int[1], r.estimate[0] - r.critical[0] * r.std_error, 1e-15, "upper bound, c se = 3e307");
+    CHECK(isfinite(r.conf_int[0]) && isfinite(r.conf_int[1]));
+    /* a sweep: data scales 1e-300 .. 1e300, alpha 1e-1 .. 1e-320, every
+     * alternative, through every test and entry point that forms intervals */
+    for (int k = -300; k <= 300; k += 20) {
+        double s = pow(10.0, k), x[3] = {0.0, s, 0.25 * s}, y[2] = {s, 0.5 * s}, z[2] = {0.0, 1.0};
+        for (int m = 1; m <= 320; m += 7) {
+            double alpha = pow(10.0, -m);
+            for (int alt = 0; alt < 3; alt++) {
+                check_interval(mcstat_t_test_1(x, 2, 0.0, alt, alpha, &r), &r, "t_test_1", s, alpha, alt);
+                check_interval(mcstat_t_test_1(x, 3, 0.0, alt, alpha, &r), &r, "t_test_1 n 3", s, alpha, alt);
+                check_interval(mcstat_t_test_2(x, 2, z, 2, 0.0, alt, alpha, &r), &r, "t_test_2", s, alpha, alt);
+                check_interval(mcstat_t_test_2(z, 2, x, 3, 0.0, alt, alpha, &r), &r, "t_test_2 swapped", s, alpha,
+                               alt);
+                check_interval(mcstat_var_test_1(x, 2, 1.0, alt, alpha, &r), &r, "var_test_1", s, alpha, alt);
+                check_interval(mcstat_var_test_2(x, 3, y, 2, 1.0, alt, alpha, &r), &r, "var_test_2", s, alpha, alt);
+                check_interval(mcstat_var_test_2(z, 2, x, 2, 1.0, alt, alpha, &r), &r, "var_test_2 swapped", s,
+                               alpha, alt);
+                mcstat_result rows[1];
+                int32_t rst[1];
+                CHECK_INT(mcstat_t_test_1_rows(x, 1, 2, 2, 0.0, alt, alpha, 0, rows, rst), MCSTAT_OK);
+                check_interval(rst[0], rows, "t_test_1_rows", s, alpha, alt);
+                CHECK_INT(mcstat_t_test_2_rows(x, 2, 2, z, 2, 2, 1, 0.0, alt, alpha, 0, rows, rst), MCSTAT_OK);
+                check_interval(rst[0], rows, "t_test_2_rows", s, alpha, alt);
+            }
+            if (alpha < 0.5) {
+                check_interval(mcstat_equivalence_test_1(x, 2, 0.0, -1.0, 1.0, alpha, &r), &r, "equivalence_1", s,
+                               alpha, 0);
+                check_interval(mcstat_equivalence_test_2(x, 2, z, 2, -1.0, 1.0, alpha, &r), &r, "equivalence_2", s,
+                               alpha, 0);
+            }
+        }
+    }
+}
+
 int main(void)
 {
     gsl_rng_env_setup();
@@ -228,6 +296,7 @@ int main(void)
     test_calibration();
     test_power();
     test_edges();
+    test_interval_extreme_alpha();
     gsl_rng_free(rng);
     return h_report("test_tests");
 }

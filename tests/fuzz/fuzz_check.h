@@ -38,6 +38,17 @@ static inline void fz_check_status(int st)
     FZ_ASSERT(s && *s, "strerror(%d)", st);
 }
 
+/* MCSTAT_ENUMERIC ("an iteration fails (not expected)", mcstat.h) is a
+ * failure wherever the header promises an answer.  The distribution
+ * functions answer for df in [1e-3, 1e15] (fuzz_dist checks them), and an
+ * analytic test's degrees of freedom lie in [1, n_total - 2] (Welch's between
+ * min(nx, ny) - 1 and nx + ny - 2): a test over at most 1e15 values must not
+ * return it. */
+static inline void fz_check_not_enumeric(int st, double n_total, const char *what)
+{
+    FZ_ASSERT(!(st == MCSTAT_ENUMERIC && n_total <= 1e15), "%s: MCSTAT_ENUMERIC with %.17g values", what, n_total);
+}
+
 /* The R-style block of a result the library produced always fits a 4 KiB
  * buffer, and its reported length is the string's. */
 static inline void fz_check_format(const mcstat_result *r)
