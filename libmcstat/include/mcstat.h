@@ -878,16 +878,15 @@ MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, 
 /*                                      p >= 1e-30   1e-300 <= p < 1e-30    */
 /*   t cdf, df in [1e-3, 1e13]             3e-14          6e-13             */
 /*   chi^2 cdf, df in [1e-3, 1e9]        1.5e-13          5e-13             */
-/*   F cdf, df1, df2 in [1e-2, 1e3]        3e-14          3e-13             */
-/*   F cdf, a df in (1e3, 1e9]             4e-14          2e-12             */
-/*   quantiles (F: both df >= 1e-2)        3e-13        1.5e-13             */
+/*   F cdf, df1, df2 in [1e-3, 1e9]        4e-14          6e-13             */
+/*   quantiles                             3e-13          3e-13             */
 /*   p-values of the t, Welch, chi^2 tests 1e-13          4e-13             */
 /*   p-values of the F test                1e-13          3e-12             */
 /*   log cdf: 8e-16 (t), 5e-15 (chi^2), 8e-15 (F) relative error of log p,  */
 /*   or of p where |log p| < 1.  chi^2 beyond df 1e9: cdf 4e-13, log 2e-13. */
 /* Small p lose more because p = exp(log p) inherits |log p| times the      */
 /* rounding of log p.  The range promised: df in [1e-3, 1e15] (F: both),    */
-/* x anywhere; F with a df below 1e-2 is in the table's own rows.           */
+/* x anywhere (F with one df in [1e-4, 1e-3) too: ACCURACY.md's rows).      */
 /* Statuses: MCSTAT_EINVAL for NaN or out-of-domain arguments,               */
 /* MCSTAT_ENUMERIC if an iteration fails (never in the range above: the      */
 /* fuzz harness treats it as a failure there).                               */
