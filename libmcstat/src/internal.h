@@ -246,8 +246,8 @@ static inline double mcstat__ks_key(int weight, uint64_t u, uint64_t q)
     return weight == MCSTAT_KS_WEIGHT_NONE ? du : du * du / (double)q;
 }
 MCSTAT_HIDDEN double mcstat__ks_key_statistic(const mcstat__ks_data *d, double key);
-/* -1, 0, +1 as a < b, a == b, a > b exactly (u < 2^63, products < 2^128 or
- * compared in long double beyond). */
+/* -1, 0, +1 as a < b, a == b, a > b exactly (the cross products u^2 q,
+ * below 2^192, in integers). */
 MCSTAT_HIDDEN int mcstat__ks_point_cmp(int weight, mcstat__ks_point a, mcstat__ks_point b);
 
 /* Exact (ks_exact.c).  MCSTAT_ETOOBIG beyond the work limit. */
