@@ -15,9 +15,24 @@
 
 #define MCSTAT_HIDDEN __attribute__((visibility("hidden")))
 
+/* The algorithms rely on IEEE arithmetic as written, so the library refuses
+ * to be built without it rather than give wrong numbers quietly (built with
+ * -ffast-math, every variance came out 0):
+ * - compensated sums and the double-double helpers below are exact only if
+ *   the compiler does not reassociate them (-fassociative-math turns
+ *   (a + b) - a into b);
+ * - NaN and infinity checks on the caller's data are how bad input gets its
+ *   status code (-ffinite-math-only deletes them);
+ * - divisions are correctly rounded (-freciprocal-math is not).
+ * Code that includes mcstat.h may use any flags: this is libmcstat's own. */
+#if defined(__FAST_MATH__) || (defined(__FINITE_MATH_ONLY__) && __FINITE_MATH_ONLY__) || \
+    defined(__ASSOCIATIVE_MATH__) || defined(__RECIPROCAL_MATH__)
+#error "libmcstat must be compiled with IEEE floating-point semantics: remove -ffast-math / -Ofast (or -ffinite-math-only, -fassociative-math, -freciprocal-math, -funsafe-math-optimizations) from the flags for libmcstat; its compensated sums, double-double arithmetic and NaN checks depend on them (see src/internal.h)"
+#endif
+
 /* ---- double-double arithmetic (Dekker, Knuth) ----------------------------
  * Exact when the compiler neither reorders nor contracts these operations;
- * the build passes -ffp-contract=off and never -ffast-math. */
+ * the build passes -ffp-contract=off, and -ffast-math is refused above. */
 typedef struct {
     double hi, lo;
 } mcstat_dd;
