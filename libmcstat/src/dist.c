@@ -418,6 +418,7 @@ static int store_tail(const mcstat_tails *t, int upper, int logscale, double *ou
 
 static int t_cdf(double x, double df, int upper, int logscale, double *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out || isnan(x) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     mcstat_tails t;
@@ -430,6 +431,7 @@ int mcstat_t_logcdf(double x, double df, int upper, double *p) { return t_cdf(x,
 
 static int chisq_cdf(double x, double df, int upper, int logscale, double *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out || isnan(x) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     mcstat_tails t;
@@ -442,6 +444,7 @@ int mcstat_chisq_logcdf(double x, double df, int upper, double *p) { return chis
 
 static int f_cdf(double x, double df1, double df2, int upper, int logscale, double *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out || isnan(x) || !valid_df(df1) || !valid_df(df2) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     mcstat_tails t;
@@ -454,6 +457,7 @@ int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *p) { re
 
 int mcstat_t_quantile(double p, double df, int upper, double *x)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     /* Work with the lower-tail probability pl; T is symmetric. */
@@ -488,6 +492,7 @@ int mcstat_t_quantile(double p, double df, int upper, double *x)
 
 int mcstat_chisq_quantile(double p, double df, int upper, double *x)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     if (p == 0.0 || p == 1.0) {
@@ -514,6 +519,7 @@ int mcstat_chisq_quantile(double p, double df, int upper, double *x)
 
 int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df1) || !valid_df(df2) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     if (p == 0.0 || p == 1.0) {

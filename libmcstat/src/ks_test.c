@@ -387,6 +387,7 @@ static int run_simulation(const mcstat__ks_data *d, const mcstat_ks_options *o, 
 int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny, int alternative, double alpha,
                      const mcstat_ks_options *opt, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_ks_options o = MCSTAT_KS_OPTIONS_INIT;
     if (opt)
         o = *opt; /* size is checked before any other field is trusted */

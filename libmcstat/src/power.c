@@ -138,6 +138,7 @@ static int power_at(const mcstat_power_options *o, double n, double effect, doub
 
 int mcstat_power_compute(const mcstat_power_options *o, double *power)
 {
+    MCSTAT_IEEE_SCOPE();
     int st = check_common(o);
     if (st)
         return st;
@@ -267,6 +268,7 @@ static int solve_n(const mcstat_power_options *o, double *n, double *achieved)
 
 int mcstat_power_solve(const mcstat_power_options *o, int unknown, mcstat_power_options *out)
 {
+    MCSTAT_IEEE_SCOPE();
     int st = check_common(o);
     if (st)
         return st;

@@ -193,8 +193,6 @@ static uint64_t x80_nearbyint(x80 a) /* 1 <= a < 2^63: to nearest, ties to even 
  * 1e+04, but 9996).  Step for step R's computation on x86-64. */
 static void scientific(double x, int R, int *neg, int *kpower, int *nsig, int *roundingwidens)
 {
-    /* x == 0 compares true for a subnormal x when the caller's process
-     * treats denormals as zero (DAZ): it is formatted as the 0 it computes with */
     if (x == 0.0) {
         *kpower = 0;
         *nsig = 1;
@@ -241,6 +239,7 @@ static void scientific(double x, int R, int *neg, int *kpower, int *nsig, int *r
 
 void mcstat__rformat_layout(const double *x, int n, int digits, mcstat_rlayout *f)
 {
+    MCSTAT_IEEE_SCOPE(); /* a subnormal is not 0 here, whatever the caller's DAZ */
     int neg = 0, rgt = INT_MIN, mxsl = INT_MIN, mxe = INT_MIN, mne = INT_MAX, mxns = INT_MIN;
     int naflag = 0, posinf = 0, neginf = 0;
     for (int i = 0; i < n; i++) {
