@@ -13,6 +13,7 @@
 #include <fenv.h>
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #if defined(__x86_64__)
 #include <xmmintrin.h>
@@ -88,6 +89,14 @@ static int same(const digest *a, const digest *b, const char *what)
 
 int main(void)
 {
+#if defined(__x86_64__)
+    /* make portability-test runs every test with FTZ and DAZ set from the
+     * start (tests/ftz/ftz_daz.c) and says so: then the mode must be on */
+    int started_ftz = (_mm_getcsr() & 0x8040) == 0x8040;
+    printf("test_fpenv: started %s FTZ/DAZ\n", started_ftz ? "with" : "without");
+    if (getenv("MCSTAT_EXPECT_FTZ"))
+        CHECK_MSG(started_ftz, "MCSTAT_EXPECT_FTZ is set but the process did not start with FTZ and DAZ");
+#endif
     digest ref, got;
     run_all(&ref);
     CHECK(ref.v[0] == 0.0 && ref.v[1] == INFINITY && ref.st[0] == MCSTAT_OK && ref.st[1] == MCSTAT_OK);
@@ -104,20 +113,28 @@ int main(void)
 #if defined(__GLIBC__)
     /* exceptions that trap: the library's own Inf and NaN must not fire them */
     feenableexcept(FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW);
-    run_all(&got);
-    CHECK_INT(fegetexcept(), FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW);
+    if (fegetexcept() != (FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW)) { /* valgrind ignores it */
+        printf("test_fpenv: skipped trapping exceptions: this machine does not enable them\n");
+    } else {
+        run_all(&got);
+        CHECK_INT(fegetexcept(), FE_DIVBYZERO | FE_INVALID | FE_OVERFLOW);
+        fedisableexcept(FE_ALL_EXCEPT);
+        same(&ref, &got, "with exceptions trapping");
+    }
     fedisableexcept(FE_ALL_EXCEPT);
-    same(&ref, &got, "with exceptions trapping");
 #endif
 #if defined(__x86_64__)
     unsigned csr = _mm_getcsr();
     _mm_setcsr(csr | 0x8040); /* FTZ and DAZ */
     volatile double tiny = 0x1p-1074;
-    CHECK(tiny == 0.0); /* the mode is on: a subnormal reads as zero here */
-    run_all(&got);
-    CHECK_INT(_mm_getcsr() & 0x8040, 0x8040);
+    if (!(tiny == 0.0)) { /* valgrind keeps the bits but not the behaviour */
+        printf("test_fpenv: skipped FTZ/DAZ: this machine does not honour them (a subnormal is not 0)\n");
+    } else {
+        run_all(&got);
+        CHECK_INT(_mm_getcsr() & 0x8040, 0x8040);
+        same(&ref, &got, "with FTZ and DAZ");
+    }
     _mm_setcsr(csr);
-    same(&ref, &got, "with FTZ and DAZ");
 #else
     printf("test_fpenv: no FTZ/DAZ control on this architecture; rounding directions only\n");
 #endif
