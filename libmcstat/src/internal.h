@@ -108,7 +108,7 @@ static inline void mcstat__fpenv_leave(const mcstat__fpenv *r)
 }
 #endif
 #define MCSTAT_IEEE_SCOPE() \
-    __attribute__((cleanup(mcstat__fpenv_leave))) const mcstat__fpenv mcstat__fpenv_saved = mcstat__fpenv_enter()
+    __attribute__((cleanup(mcstat__fpenv_leave), unused)) const mcstat__fpenv mcstat__fpenv_saved = mcstat__fpenv_enter()
 
 /* ---- double-double arithmetic (Dekker, Knuth) ----------------------------
  * Exact when the compiler neither reorders nor contracts these operations;

@@ -42,7 +42,7 @@ typedef struct {
     int e;
 } x80;
 
-typedef unsigned __int128 u128;
+__extension__ typedef unsigned __int128 u128;
 
 static int bits128(u128 v)
 {
