@@ -78,17 +78,17 @@ typedef uint64_t mcstat__fpenv;
 static inline mcstat__fpenv mcstat__fpenv_enter(void)
 {
     uint64_t c;
-    __asm__ __volatile__("mrs %0, fpcr" : "=r"(c));
+    __asm__ __volatile__("mrs %0, fpcr" : "=r"(c) : : "memory");
     if (__builtin_expect((c & MCSTAT__FPCR_MODES) != 0, 0)) {
         uint64_t d = c & ~MCSTAT__FPCR_MODES;
-        __asm__ __volatile__("msr fpcr, %0" : : "r"(d));
+        __asm__ __volatile__("msr fpcr, %0" : : "r"(d) : "memory");
     }
     return c;
 }
 static inline void mcstat__fpenv_leave(const mcstat__fpenv *c)
 {
     if (__builtin_expect((*c & MCSTAT__FPCR_MODES) != 0, 0))
-        __asm__ __volatile__("msr fpcr, %0" : : "r"(*c));
+        __asm__ __volatile__("msr fpcr, %0" : : "r"(*c) : "memory");
 }
 #else
 /* elsewhere the rounding direction only (no portable flush-to-zero control) */
