@@ -25,7 +25,7 @@ for (d in c(4L, 5L, 7L)) for (x in vals)
 # Values next to a rounding tie, where R's own arithmetic decides the digits:
 # it scales in x87 long double (64-bit significand), its 10^23 ... 10^27 are
 # doubles and larger powers come from powl.  Found by comparing 290,000
-# near-tie values (digits 1 to 15) with R.
+# near-tie values (digits 1 to 15) with R: tests/reference/rformat_stress.R.
 near <- matrix(c(0x1.6db337291ac91p-71, 2, 0x1.5b3585185482ap+89, 3, 0x1.6a4e1b93d29e9p+86, 3,
   0x1.d6b7abf06269p+92, 3, 0x1.4d35ce4b01a97p-69, 3, 0x1.0867c1b32c75p-65, 4,
   0x1.983bfbdbda046p+89, 4, 0x1.5c99ee6ce233dp+99, 5, 0x1.8b22ecab8842bp+92, 5,
