@@ -14,6 +14,11 @@
  *     error handler (see mcstat_gsl_handler_off), there is no global state:
  *     every function is thread-safe on distinct objects.
  *   - No function allocates on the accumulator path.
+ *   - Results do not depend on the caller's floating-point environment:
+ *     each call computes with IEEE defaults (round to nearest, subnormals
+ *     kept, even under flush-to-zero) and restores the caller's mode.  The
+ *     library itself must be built without -ffast-math (its sources refuse
+ *     it); code including this header may use any flags.
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */

@@ -97,12 +97,14 @@ static int rows_2(test_2_fn test, const double *x, size_t nx, size_t x_stride, c
 int mcstat_t_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double mu0, int alternative,
                          double alpha, unsigned flags, mcstat_result *out, int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     return rows_1(mcstat__t_test_1, x, rows, n, x_stride, mu0, alternative, alpha, flags, out, status);
 }
 
 int mcstat_var_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double sigma2,
                            int alternative, double alpha, unsigned flags, mcstat_result *out, int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     return rows_1(mcstat__var_test_1, x, rows, n, x_stride, sigma2, alternative, alpha, flags, out, status);
 }
 
@@ -110,6 +112,7 @@ int mcstat_t_test_2_rows(const double *x, size_t nx, size_t x_stride, const doub
                          size_t y_stride, size_t rows, double mu0, int alternative, double alpha, unsigned flags,
                          mcstat_result *out, int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     return rows_2(mcstat__t_test_2, x, nx, x_stride, y, ny, y_stride, rows, mu0, alternative, alpha, flags, out,
                   status);
 }
@@ -118,6 +121,7 @@ int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_stride, const do
                            size_t y_stride, size_t rows, double ratio, int alternative, double alpha,
                            unsigned flags, mcstat_result *out, int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     return rows_2(mcstat__var_test_2, x, nx, x_stride, y, ny, y_stride, rows, ratio, alternative, alpha, flags,
                   out, status);
 }
@@ -157,6 +161,7 @@ static int moments_rows(test_1_fn test1, test_2_fn test2, const mcstat_moments *
 int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative, double alpha,
                                  unsigned flags, mcstat_result *out, int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     return moments_rows(mcstat__t_test_1, NULL, x, NULL, rows, mu0, alternative, alpha, flags, out, status);
 }
 
@@ -164,12 +169,14 @@ int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *
                                  int alternative, double alpha, unsigned flags, mcstat_result *out,
                                  int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     return moments_rows(NULL, mcstat__t_test_2, x, y, rows, mu0, alternative, alpha, flags, out, status);
 }
 
 int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2, int alternative,
                                    double alpha, unsigned flags, mcstat_result *out, int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     return moments_rows(mcstat__var_test_1, NULL, x, NULL, rows, sigma2, alternative, alpha, flags, out, status);
 }
 
@@ -177,5 +184,6 @@ int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments
                                    int alternative, double alpha, unsigned flags, mcstat_result *out,
                                    int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     return moments_rows(NULL, mcstat__var_test_2, x, y, rows, ratio, alternative, alpha, flags, out, status);
 }

@@ -199,6 +199,7 @@ static int critical(const binom *b, int alternative, double alpha, double c[2])
 
 int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out || !valid_alternative(alternative) || !valid_alpha(alpha) || !(p >= 0.0 && p <= 1.0) || x > n)
         return MCSTAT_EINVAL;
     if (n == 0)
@@ -234,6 +235,7 @@ int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double 
 int mcstat_battery_test(uint64_t rejections, uint64_t k, double level, int alternative, double alpha,
                         mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!(level > 0.0 && level < 1.0))
         return MCSTAT_EINVAL;
     return mcstat_binom_test(rejections, k, level, alternative, alpha, out);
@@ -242,6 +244,7 @@ int mcstat_battery_test(uint64_t rejections, uint64_t k, double level, int alter
 int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative, double alpha,
                                 mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if ((!p_values && k > 0) || !out || !(level > 0.0 && level < 1.0))
         return MCSTAT_EINVAL;
     uint64_t rejections = 0;

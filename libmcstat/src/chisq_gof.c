@@ -74,6 +74,7 @@ static inline double pearson_term(double o, double e)
 int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
                      const mcstat_chisq_options *opt, double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_chisq_options o = MCSTAT_CHISQ_OPTIONS_INIT;
     if (opt && mcstat__options_read(&o, sizeof o, opt, CHISQ_SIZES, sizeof CHISQ_SIZES / sizeof *CHISQ_SIZES))
         return MCSTAT_EINVAL;

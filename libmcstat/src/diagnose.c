@@ -87,6 +87,7 @@ static int tail_index(const double *x, size_t n, size_t k, double index[2], size
 
 int mcstat_tail_index(const double *x, size_t n, size_t tail_k, double index[2])
 {
+    MCSTAT_IEEE_SCOPE();
     return tail_index(x, n, tail_k, index, NULL);
 }
 
@@ -121,6 +122,7 @@ static int valid_shape(double g, double c)
 int mcstat_t_size_edgeworth(double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha,
                             double size[2])
 {
+    MCSTAT_IEEE_SCOPE();
     if (!size || !valid_shape(skewness, kurtosis) || !valid_alpha(alpha) || k == 0)
         return MCSTAT_EINVAL;
     if (m < 2)
@@ -139,6 +141,7 @@ int mcstat_t_size_edgeworth(double skewness, double kurtosis, uint64_t k, uint64
 int mcstat_batch_size_recommend(double skewness, double kurtosis, uint64_t m, double alpha, double tolerance,
                                 uint64_t *k)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!k || !valid_shape(skewness, kurtosis) || !valid_alpha(alpha) || !(tolerance > 0.0 && tolerance < 1.0))
         return MCSTAT_EINVAL;
     if (m < 2)
@@ -185,6 +188,7 @@ size_t mcstat_sizeof_diagnostics(void) { return sizeof(mcstat_diagnostics); }
 
 int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt, mcstat_diagnostics *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_diag_options o = MCSTAT_DIAG_OPTIONS_INIT;
     if (opt && mcstat__options_read(&o, sizeof o, opt, DIAG_SIZES, sizeof DIAG_SIZES / sizeof *DIAG_SIZES))
         return MCSTAT_EINVAL;

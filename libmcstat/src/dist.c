@@ -446,6 +446,7 @@ static int store_tail(const mcstat_tails *t, int upper, int logscale, double *ou
 
 static int t_cdf(double x, double df, int upper, int logscale, double *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out || isnan(x) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     mcstat_tails t;
@@ -458,6 +459,7 @@ int mcstat_t_logcdf(double x, double df, int upper, double *p) { return t_cdf(x,
 
 static int chisq_cdf(double x, double df, int upper, int logscale, double *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out || isnan(x) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     mcstat_tails t;
@@ -470,6 +472,7 @@ int mcstat_chisq_logcdf(double x, double df, int upper, double *p) { return chis
 
 static int f_cdf(double x, double df1, double df2, int upper, int logscale, double *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out || isnan(x) || !valid_df(df1) || !valid_df(df2) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     mcstat_tails t;
@@ -482,6 +485,7 @@ int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *p) { re
 
 int mcstat_t_quantile(double p, double df, int upper, double *x)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     /* Work with the lower-tail probability pl; T is symmetric. */
@@ -516,6 +520,7 @@ int mcstat_t_quantile(double p, double df, int upper, double *x)
 
 int mcstat_chisq_quantile(double p, double df, int upper, double *x)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     if (p == 0.0 || p == 1.0) {
@@ -542,6 +547,7 @@ int mcstat_chisq_quantile(double p, double df, int upper, double *x)
 
 int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df1) || !valid_df(df2) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     if (p == 0.0 || p == 1.0) {

@@ -48,6 +48,7 @@ static void combine(int test, const mcstat_result *lo, const mcstat_result *hi, 
 int mcstat_equivalence_test_1_moments(const mcstat_moments *x, double mu0, double lower, double upper,
                                       double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !out || !isfinite(mu0) || !valid_bounds(lower, upper) || !(alpha > 0.0 && alpha < 0.5))
         return MCSTAT_EINVAL;
     double lb = mu0 + lower, ub = mu0 + upper;
@@ -68,6 +69,7 @@ int mcstat_equivalence_test_1_moments(const mcstat_moments *x, double mu0, doubl
 int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double lower,
                                       double upper, double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !y || !out || !valid_bounds(lower, upper) || !(alpha > 0.0 && alpha < 0.5))
         return MCSTAT_EINVAL;
     mcstat_result lo, hi, ci;
@@ -85,6 +87,7 @@ int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const mcstat_mome
 int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lower, double upper, double alpha,
                               mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !out)
         return MCSTAT_EINVAL;
     mcstat_moments m;
@@ -96,6 +99,7 @@ int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lowe
 int mcstat_equivalence_test_2(const double *x, size_t nx, const double *y, size_t ny, double lower, double upper,
                               double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !y || !out)
         return MCSTAT_EINVAL;
     mcstat_moments mx, my;

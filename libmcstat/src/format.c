@@ -235,6 +235,7 @@ static void format_equiv(const mcstat_result *r, const char *x_name, const char 
 int mcstat_result_format(const mcstat_result *r, const char *x_name, const char *y_name, char *buf,
                          size_t size, size_t *length)
 {
+    MCSTAT_IEEE_SCOPE();
     test_text tt;
     if (r && r->test == MCSTAT_TEST_CHISQ_GOF) {
         if (!buf && size > 0)
@@ -343,6 +344,7 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
  * columns, the values at 7 significant digits, then a NOTE. */
 int mcstat_power_format(const mcstat_power_options *opt, char *buf, size_t size, size_t *length)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_power_options full, *o = &full;
     if (mcstat__power_options_read(opt, o) || (!buf && size > 0) || o->test < MCSTAT_POWER_T_1 ||
         o->test > MCSTAT_POWER_VAR_2 || !valid_alternative(o->alternative))

@@ -51,6 +51,15 @@ static int bits(uint64_t v)
     return v ? 64 - __builtin_clzll(v) : 0;
 }
 
+/* u^2 q exactly, as hi * 2^64 + lo (below 2^192 for any 64-bit u and q) */
+static void square_times(uint64_t u, uint64_t q, unsigned __int128 *hi, uint64_t *lo)
+{
+    unsigned __int128 s = (unsigned __int128)u * u;
+    unsigned __int128 p0 = (unsigned __int128)(uint64_t)s * q, p1 = (s >> 64) * q;
+    *lo = (uint64_t)p0;
+    *hi = p1 + (p0 >> 64);
+}
+
 int mcstat__ks_point_cmp(int weight, mcstat__ks_point a, mcstat__ks_point b)
 {
     if (weight == MCSTAT_KS_WEIGHT_NONE)
@@ -62,8 +71,13 @@ int mcstat__ks_point_cmp(int weight, mcstat__ks_point a, mcstat__ks_point b)
         unsigned __int128 lq = l * b.q, rq = r * a.q;
         return (lq > rq) - (lq < rq);
     }
-    long double l = (long double)a.u * a.u * b.q, r = (long double)b.u * b.u * a.q;
-    return (l > r) - (l < r);
+    unsigned __int128 lh, rh;
+    uint64_t ll, rl;
+    square_times(a.u, b.q, &lh, &ll);
+    square_times(b.u, a.q, &rh, &rl);
+    if (lh != rh)
+        return lh > rh ? 1 : -1;
+    return (ll > rl) - (ll < rl);
 }
 
 typedef struct {
@@ -380,6 +394,7 @@ static int run_simulation(const mcstat__ks_data *d, const mcstat_ks_options *o, 
 int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny, int alternative, double alpha,
                      const mcstat_ks_options *opt, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_ks_options o = MCSTAT_KS_OPTIONS_INIT;
     if (opt && mcstat__options_read(&o, sizeof o, opt, KS_SIZES, sizeof KS_SIZES / sizeof *KS_SIZES))
         return MCSTAT_EINVAL;

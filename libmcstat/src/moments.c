@@ -341,6 +341,7 @@ int mcstat_moments_init(mcstat_moments *m)
 
 int mcstat_moments_merge(mcstat_moments *dst, const mcstat_moments *src)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(dst) || !is_valid(src))
         return MCSTAT_EINVAL;
     if (src->n == 0)
@@ -354,6 +355,7 @@ int mcstat_moments_merge(mcstat_moments *dst, const mcstat_moments *src)
 
 int mcstat_moments_add(mcstat_moments *m, double x)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(m))
         return MCSTAT_EINVAL;
     if (!isfinite(x))
@@ -436,11 +438,13 @@ static int add_array(mcstat_moments *m, const double *x, size_t n, int omit_nan,
 
 int mcstat_moments_add_array(mcstat_moments *m, const double *x, size_t n)
 {
+    MCSTAT_IEEE_SCOPE();
     return add_array(m, x, n, 0, NULL);
 }
 
 int mcstat_moments_add_array_omit_nan(mcstat_moments *m, const double *x, size_t n, size_t *n_omitted)
 {
+    MCSTAT_IEEE_SCOPE();
     return add_array(m, x, n, 1, n_omitted);
 }
 
@@ -448,11 +452,13 @@ int mcstat_moments_add_array_omit_nan(mcstat_moments *m, const double *x, size_t
 
 double mcstat_moments_mean(const mcstat_moments *m)
 {
+    MCSTAT_IEEE_SCOPE();
     return (is_valid(m) && m->n > 0) ? m->mean : NAN;
 }
 
 double mcstat_moments_var(const mcstat_moments *m)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(m) || m->n < 2)
         return NAN;
     return scale2(m->m2 / (double)(m->n - 1), 2 * m->scale);
@@ -460,6 +466,7 @@ double mcstat_moments_var(const mcstat_moments *m)
 
 double mcstat_moments_sd(const mcstat_moments *m)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(m) || m->n < 2)
         return NAN;
     return scale2(sqrt(m->m2 / (double)(m->n - 1)), m->scale);
@@ -467,6 +474,7 @@ double mcstat_moments_sd(const mcstat_moments *m)
 
 double mcstat_moments_skewness(const mcstat_moments *m)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(m) || m->n < 2 || !(m->m2 > 0.0))
         return NAN;
     return sqrt((double)m->n) * m->m3 / (m->m2 * sqrt(m->m2));
@@ -474,6 +482,7 @@ double mcstat_moments_skewness(const mcstat_moments *m)
 
 double mcstat_moments_kurtosis(const mcstat_moments *m)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(m) || m->n < 2 || !(m->m2 > 0.0))
         return NAN;
     return (double)m->n * m->m4 / (m->m2 * m->m2) - 3.0;

@@ -42,6 +42,7 @@ int mcstat_moments_init_rows(mcstat_moments *m, size_t rows)
 int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, size_t n, size_t x_stride,
                             unsigned flags, int32_t *status)
 {
+    MCSTAT_IEEE_SCOPE();
     if (rows > 0 && (!m || (n > 0 && !x)))
         return MCSTAT_EINVAL;
     if (flags & ~(unsigned)MCSTAT_ROWS_OMIT_NAN)
@@ -70,6 +71,7 @@ int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, siz
 
 int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows)
 {
+    MCSTAT_IEEE_SCOPE();
     if (rows > 0 && (!dst || !src))
         return MCSTAT_EINVAL;
     if (!all_valid(dst, rows) || !all_valid(src, rows))
@@ -100,6 +102,7 @@ int mcstat_moments_to_bytes_rows(const mcstat_moments *m, size_t rows, unsigned 
 
 int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t size, size_t rows, mcstat_moments *m)
 {
+    MCSTAT_IEEE_SCOPE();
     if (rows > 0 && (!buf || !m))
         return MCSTAT_EINVAL;
     if (rows > SIZE_MAX / MCSTAT_MOMENTS_BYTES || size != rows * MCSTAT_MOMENTS_BYTES)

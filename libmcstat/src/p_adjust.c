@@ -252,6 +252,7 @@ int mcstat_p_adjust_work_size(size_t n, int method, size_t *bytes)
 int mcstat_p_adjust(const double *p, size_t n, int method, void *work, size_t work_bytes,
                     double *adjusted)
 {
+    MCSTAT_IEEE_SCOPE();
     size_t need;
     int st = mcstat_p_adjust_work_size(n, method, &need);
     if (st)

@@ -154,6 +154,7 @@ static int power_at(const mcstat_power_options *o, double n, double effect, doub
 
 int mcstat_power_compute(const mcstat_power_options *opt, double *power)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_power_options full, *o = &full;
     int st = mcstat__power_options_read(opt, o);
     if (st || (st = check_common(o)))
@@ -284,6 +285,7 @@ static int solve_n(const mcstat_power_options *o, double *n, double *achieved)
 
 int mcstat_power_solve(const mcstat_power_options *opt, int unknown, mcstat_power_options *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_power_options full, *o = &full;
     int st = mcstat__power_options_read(opt, o);
     if (st || (st = check_common(o)))

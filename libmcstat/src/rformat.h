@@ -11,7 +11,8 @@
 #define MCSTAT_HIDDEN_RF __attribute__((visibility("hidden")))
 
 /* The common layout R's format(x, digits) gives a vector: width w, d digits
- * after the point (fixed) or in the mantissa, e = 0 fixed, 1 or 2 scientific. */
+ * after the point (fixed) or in the mantissa, e = 0 fixed, 1 or 2 scientific.
+ * 1 <= digits <= 15 (R formats 16 and more through sprintf, not done here). */
 typedef struct {
     int w, d, e;
 } mcstat_rlayout;

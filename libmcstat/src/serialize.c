@@ -169,6 +169,7 @@ static int consistent(const mcstat_moments *m)
 
 int mcstat_moments_from_bytes(const unsigned char *buf, size_t size, mcstat_moments *m)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!buf || !m)
         return MCSTAT_EINVAL;
     if (size != MCSTAT_MOMENTS_BYTES || memcmp(buf, "MCSM", 4) != 0 || get_u32(buf + 4) != FORMAT_VERSION ||

@@ -40,6 +40,7 @@ static int add_values(mcstat_moments *m, double *x, size_t n, uint64_t *n_nonfin
 
 int mcstat_stream_init(mcstat_stream *s)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!s)
         return MCSTAT_EINVAL;
     memset(s, 0, sizeof *s);
@@ -50,6 +51,7 @@ int mcstat_stream_init(mcstat_stream *s)
 
 int mcstat_stream_flush(mcstat_stream *s)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(s))
         return MCSTAT_EINVAL;
     if (s->count > UINT64_MAX - s->moments.n) {
@@ -68,6 +70,7 @@ int mcstat_stream_flush(mcstat_stream *s)
 
 int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(dst) || !is_valid(src))
         return MCSTAT_EINVAL;
     /* src's buffer goes through a copy: src stays untouched (and may be dst) */
@@ -98,6 +101,7 @@ int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src)
 
 int mcstat_stream_moments(const mcstat_stream *s, mcstat_moments *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!is_valid(s) || !out)
         return MCSTAT_EINVAL;
     double tmp[MCSTAT_STREAM_CAPACITY];
@@ -128,6 +132,7 @@ static int stream_moments_checked(const mcstat_stream *s, mcstat_moments *m)
 int mcstat_stream_check_mean(const mcstat_stream *s, double reference, double tolerance, double alpha,
                              mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out || !isfinite(reference) || !isfinite(tolerance) || !(tolerance >= 0.0))
         return MCSTAT_EINVAL;
     mcstat_moments m;
@@ -152,6 +157,7 @@ int mcstat_stream_check_mean(const mcstat_stream *s, double reference, double to
 
 int mcstat_stream_check_var(const mcstat_stream *s, double bound, double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!out)
         return MCSTAT_EINVAL;
     mcstat_moments m;

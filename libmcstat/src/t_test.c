@@ -183,6 +183,7 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
 int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative, double alpha,
                             mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__t_test_1(x, mu0, alternative, alpha, &qc, out);
@@ -191,6 +192,7 @@ int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative
 int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double mu0,
                             int alternative, double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__t_test_2(x, y, mu0, alternative, alpha, &qc, out);
@@ -198,6 +200,7 @@ int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, do
 
 int mcstat_t_test_1(const double *x, size_t n, double mu0, int alternative, double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
     mcstat_moments m;
@@ -209,6 +212,7 @@ int mcstat_t_test_1(const double *x, size_t n, double mu0, int alternative, doub
 int mcstat_t_test_2(const double *x, size_t nx, const double *y, size_t ny, double mu0, int alternative,
                     double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !y || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
     mcstat_moments mx, my;

@@ -113,6 +113,7 @@ int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double 
 int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2, int alternative, double alpha,
                               mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__var_test_1(x, sigma2, alternative, alpha, &qc, out);
@@ -121,6 +122,7 @@ int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2, int altern
 int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, double ratio,
                               int alternative, double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__var_test_2(x, y, ratio, alternative, alpha, &qc, out);
@@ -129,6 +131,7 @@ int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, 
 int mcstat_var_test_1(const double *x, size_t n, double sigma2, int alternative, double alpha,
                       mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !out)
         return MCSTAT_EINVAL;
     mcstat_moments m;
@@ -140,6 +143,7 @@ int mcstat_var_test_1(const double *x, size_t n, double sigma2, int alternative,
 int mcstat_var_test_2(const double *x, size_t nx, const double *y, size_t ny, double ratio,
                       int alternative, double alpha, mcstat_result *out)
 {
+    MCSTAT_IEEE_SCOPE();
     if (!x || !y || !out)
         return MCSTAT_EINVAL;
     mcstat_moments mx, my;

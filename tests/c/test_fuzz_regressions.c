@@ -206,21 +206,34 @@ static void test_from_bytes_consistency(void)
 /* fuzz_bytes: the t statistics formed mean - mu0 before scaling to the
  * data's units, so mean(y) = 1.4e300 against mu0 = 1.8e308 overflowed to
  * -Inf and the statistic came out NaN with status OK (ordinary arrays reach
- * it).  Oracle: the statistic in long double, whose exponent range holds it. */
+ * it).  Oracle: the statistic in units of 2^1000, where every term is a
+ * double (whatever the width of long double). */
+static void scaled_mean_var(const double *v, int n, double *m, double *var)
+{
+    const double S = 0x1p-1000;
+    *m = 0.0;
+    for (int i = 0; i < n; i++)
+        *m += v[i] * S;
+    *m /= n;
+    *var = 0.0;
+    for (int i = 0; i < n; i++)
+        *var += (v[i] * S - *m) * (v[i] * S - *m);
+    *var /= n - 1;
+}
+
 static void test_t_null_value_near_overflow(void)
 {
+    const double S = 0x1p-1000;
     const double x[4] = {1.0, 2.0, 3.0, 4.0}, y[4] = {1e300, 2e300, 1.5e300, 1.2e300};
-    long double mx = 2.5L, my = (1e300L + 2e300L + 1.5e300L + 1.2e300L) / 4, vx = 5.0L / 3.0L, vy = 0;
-    for (int i = 0; i < 4; i++)
-        vy += ((long double)y[i] - my) * ((long double)y[i] - my);
-    vy /= 3;
+    double mx, my, vx, vy; /* in units of 2^1000: x's variance underflows, 1e-600 of y's */
+    scaled_mean_var(x, 4, &mx, &vx);
+    scaled_mean_var(y, 4, &my, &vy);
     mcstat_result r;
     CHECK_INT(mcstat_t_test_2(x, 4, y, 4, DBL_MAX, MCSTAT_TWO_SIDED, 0.05, &r), MCSTAT_OK);
-    CHECK_REL(r.statistic, (double)((mx - my - (long double)DBL_MAX) / sqrtl(vx / 4 + vy / 4)), 1e-12,
-              "Welch t, mu0 = DBL_MAX");
+    CHECK_REL(r.statistic, (mx - my - DBL_MAX * S) / sqrt(vx / 4 + vy / 4), 1e-12, "Welch t, mu0 = DBL_MAX");
     CHECK(r.p_value < 1e-20 && r.reject == 1 && r.decision == -1);
     CHECK_INT(mcstat_t_test_1(y, 4, -DBL_MAX, MCSTAT_TWO_SIDED, 0.05, &r), MCSTAT_OK);
-    CHECK_REL(r.statistic, (double)((my + (long double)DBL_MAX) / sqrtl(vy / 4)), 1e-12, "t, mu0 = -DBL_MAX");
+    CHECK_REL(r.statistic, (my + DBL_MAX * S) / sqrt(vy / 4), 1e-12, "t, mu0 = -DBL_MAX");
     CHECK(r.reject == 1 && r.decision == 1);
     /* and the other way (fuzz_tests): subnormal data (scale 2^-1026) against
      * mu0 = -50: scaling mu0 first overflowed to Inf, the statistic was NaN.
@@ -229,17 +242,15 @@ static void test_t_null_value_near_overflow(void)
     CHECK_INT(mcstat_t_test_1(s, 3, -50.2, MCSTAT_GREATER, 0.25, &r), MCSTAT_OK);
     CHECK(r.statistic == INFINITY && r.p_value == 0.0 && r.reject == 1);
     CHECK_INT(mcstat_t_test_2(s, 3, x, 4, -50.2, MCSTAT_TWO_SIDED, 0.25, &r), MCSTAT_OK);
-    CHECK_REL(r.statistic, (double)((-mx + 50.2L) / sqrtl(vx / 4)), 1e-12, "Welch t, subnormal x");
+    CHECK_REL(r.statistic, (-2.5 + 50.2) / sqrt((5.0 / 3.0) / 4), 1e-12, "Welch t, subnormal x");
     /* (fuzz_rows) means near -DBL_MAX and +DBL_MAX/2: mean(x) - mean(y)
      * itself overflowed unscaled; the statistic was NaN. */
     const double u[3] = {-DBL_MAX, -DBL_MAX, -0.5 * DBL_MAX}, w[3] = {0.5 * DBL_MAX, 0.25 * DBL_MAX, 0.0};
-    long double mu = -2.5L * DBL_MAX / 3, mw = 0.75L * DBL_MAX / 3, vu = 0, vw = 0;
-    for (int i = 0; i < 3; i++) {
-        vu += ((long double)u[i] - mu) * ((long double)u[i] - mu);
-        vw += ((long double)w[i] - mw) * ((long double)w[i] - mw);
-    }
+    double mu, mw, vu, vw;
+    scaled_mean_var(u, 3, &mu, &vu);
+    scaled_mean_var(w, 3, &mw, &vw);
     CHECK_INT(mcstat_t_test_2(u, 3, w, 3, 0.0, MCSTAT_TWO_SIDED, 0.05, &r), MCSTAT_OK);
-    CHECK_REL(r.statistic, (double)((mu - mw) / sqrtl(vu / 6 + vw / 6)), 1e-12, "Welch t, means near -+DBL_MAX");
+    CHECK_REL(r.statistic, (mu - mw) / sqrt(vu / 3 + vw / 3), 1e-12, "Welch t, means near -+DBL_MAX");
     CHECK(r.conf_int[0] == -INFINITY && r.conf_int[1] < 0.0);
 }
 

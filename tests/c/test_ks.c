@@ -535,6 +535,74 @@ static void test_format_simulated(void)
     CHECK(strstr(buf, "decision at alpha = 0.01: ") != NULL);
 }
 
+/* u^2 q in 32-bit limbs (least significant first): an independent oracle for
+ * the cross products of mcstat__ks_point_cmp. */
+static void limbs_u2q(uint64_t u, uint64_t q, uint32_t out[6])
+{
+    uint32_t a[2] = {(uint32_t)u, (uint32_t)(u >> 32)}, b[2] = {(uint32_t)q, (uint32_t)(q >> 32)};
+    uint32_t s[4] = {0}, r[6] = {0};
+    for (int i = 0; i < 2; i++) {
+        uint64_t c = 0;
+        for (int j = 0; j < 2; j++) {
+            uint64_t t = (uint64_t)a[i] * a[j] + s[i + j] + c;
+            s[i + j] = (uint32_t)t;
+            c = t >> 32;
+        }
+        s[i + 2] = (uint32_t)c;
+    }
+    for (int i = 0; i < 4; i++) {
+        uint64_t c = 0;
+        for (int j = 0; j < 2; j++) {
+            uint64_t t = (uint64_t)s[i] * b[j] + r[i + j] + c;
+            r[i + j] = (uint32_t)t;
+            c = t >> 32;
+        }
+        r[i + 2] = (uint32_t)c;
+    }
+    memcpy(out, r, sizeof r);
+}
+
+static int ref_point_cmp(mcstat__ks_point a, mcstat__ks_point b)
+{
+    uint32_t l[6], r[6];
+    limbs_u2q(a.u, b.q, l);
+    limbs_u2q(b.u, a.q, r);
+    for (int i = 5; i >= 0; i--)
+        if (l[i] != r[i])
+            return l[i] > r[i] ? 1 : -1;
+    return 0;
+}
+
+/* Canner keys u^2/q compared exactly where the cross products pass 2^128
+ * (samples of millions): long double rounded them to 64 (or 53) bits and
+ * called unequal keys equal. */
+static void test_point_cmp_wide(void)
+{
+    const uint64_t U = (1ull << 62) + 1, Q = UINT64_MAX;
+    struct { mcstat__ks_point a, b; int want; } c[] = {
+        {{U, Q}, {U, Q - 1}, -1},                      /* same u, q one apart */
+        {{U, Q - 1}, {U, Q}, 1},
+        {{(1ull << 61) + 1, (1ull << 62) - 1}, {(1ull << 62) + 2, UINT64_MAX - 3}, 0}, /* u, q and 2u, 4q */
+        {{U + 1, Q}, {U, Q}, 1},
+        {{3037000499ull * 1000, 1ull << 63}, {3037000499ull * 1000 + 1, (1ull << 63) + 1}, -1},
+    };
+    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
+        CHECK_MSG(mcstat__ks_point_cmp(MCSTAT_KS_WEIGHT_CANNER, c[i].a, c[i].b) == c[i].want, "case %zu", i);
+        CHECK_INT(ref_point_cmp(c[i].a, c[i].b), c[i].want);
+    }
+    /* random wide points, and pairs one unit apart, against the limb oracle */
+    for (int k = 0; k < 2000; k++) {
+        mcstat__ks_point a, b;
+        a.u = (uint64_t)(unif() * 0x1p62) + 1;
+        a.q = (uint64_t)(unif() * 0x1p63) + 1;
+        b.u = k & 1 ? a.u + (k & 2 ? 1 : 0) : (uint64_t)(unif() * 0x1p62) + 1;
+        b.q = k & 1 ? a.q + (k & 4 ? 1 : 0) : (uint64_t)(unif() * 0x1p63) + 1;
+        CHECK_MSG(mcstat__ks_point_cmp(MCSTAT_KS_WEIGHT_CANNER, a, b) == ref_point_cmp(a, b),
+                  "u %llu q %llu vs u %llu q %llu", (unsigned long long)a.u, (unsigned long long)a.q,
+                  (unsigned long long)b.u, (unsigned long long)b.q);
+    }
+}
+
 int main(void)
 {
     test_reference_r();
@@ -546,5 +614,6 @@ int main(void)
     test_methods_and_edges();
     test_bad_inputs();
     test_format_simulated();
+    test_point_cmp_wide();
     return h_report("test_ks");
 }

@@ -22,6 +22,23 @@ out <- c(out, "typedef struct { double x; int digits; const char *text; } ref_rf
          "static const ref_rfmt1 REF_RFMT1[] = {")
 for (d in c(4L, 5L, 7L)) for (x in vals)
   out <- c(out, sprintf("    {%s, %d, %s},", hex(x), d, cstr(format(x, digits = d))))
+# Values next to a rounding tie, where R's own arithmetic decides the digits:
+# it scales in x87 long double (64-bit significand), its 10^23 ... 10^27 are
+# doubles and larger powers come from powl.  Found by comparing 290,000
+# near-tie values (digits 1 to 15) with R: tests/reference/rformat_stress.R.
+near <- matrix(c(0x1.6db337291ac91p-71, 2, 0x1.5b3585185482ap+89, 3, 0x1.6a4e1b93d29e9p+86, 3,
+  0x1.d6b7abf06269p+92, 3, 0x1.4d35ce4b01a97p-69, 3, 0x1.0867c1b32c75p-65, 4,
+  0x1.983bfbdbda046p+89, 4, 0x1.5c99ee6ce233dp+99, 5, 0x1.8b22ecab8842bp+92, 5,
+  0x1.0061da2478554p-64, 6, 0x1.a3b218cb67cfap+97, 7, 0x1.adea175655149p+122, 10,
+  0x1.88aa5992e7fbfp+120, 11, 0x1.bff3c27e8077dp-41, 11, 0x1.2e62817caaa38p-41, 13,
+  0x1.8b11c54a74968p+128, 14, 0x1.7a54cfb60d055p+121, 14, 0x1.b025d725fe5eep-39, 14,
+  0x1.65347816e57bdp+129, 14, 0x1.57ab059c8e2d2p+121, 14, 0x1.b8585d96edfc3p-72, 15,
+  0x1.5ada1f11f543dp+130, 15, 0x1.761c3e13a9ddep-35, 15, 0x1.ec298561211b2p-39, 15,
+  0x1.19fd5239f846p+132, 15, -0x1.b8585d96edfc3p-72, 15,
+  485.1, 4, 485.1, 7, 9.999, 7, 4.9406564584124654e-324, 7, 2.2250738585072014e-308, 7), ncol = 2, byrow = TRUE)
+for (i in seq_len(nrow(near)))
+  out <- c(out, sprintf("    {%s, %d, %s},", hex(near[i, 1]), as.integer(near[i, 2]),
+                        cstr(format(near[i, 1], digits = near[i, 2]))))
 out <- c(out, "};", "#define REF_NRFMT1 (sizeof REF_RFMT1 / sizeof REF_RFMT1[0])", "")
 
 pairs <- list(c(-Inf, 0.7401679), c(0.2327369, Inf), c(-1.35384727, -0.07342546),

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Runs every ctest test of a build tree under valgrind's memcheck.
 
-    tests/valgrind/memcheck.py BUILD_DIR [-j JOBS] [-R REGEX] [-E REGEX] [--long-double REGEX]
+    tests/valgrind/memcheck.py BUILD_DIR [-j JOBS] [-R REGEX] [-E REGEX]
 
 The list of tests, their commands, working directories and environments
 come from `ctest --show-only=json-v1`, so a test added to CMake is covered
@@ -17,12 +17,7 @@ exports check) are not memory-checked; they are listed as such.  Extra
 valgrind options may be given in VALGRIND_OPTS (e.g. --track-origins=yes to
 find where an uninitialised value came from).
 
---long-double REGEX names tests whose numbers depend on x87 80-bit long
-double arithmetic (R-style formatting): valgrind does that arithmetic in 64
-bits (a documented valgrind limitation), so their own checks may fail under
-it.  For those only memcheck's verdict (exit status 86) counts; their
-functional result is what the ordinary ctest run checks.  Exit status: 0 when every
-test passed under memcheck, 1 otherwise.
+Exit status: 0 when every test passed under memcheck, 1 otherwise.
 """
 import argparse
 import concurrent.futures
@@ -81,8 +76,6 @@ def main():
     ap.add_argument("-j", "--jobs", type=int, default=os.cpu_count() or 2)
     ap.add_argument("-R", "--regex", default="", help="only the tests whose name matches")
     ap.add_argument("-E", "--exclude", default="", help="not the tests whose name matches")
-    ap.add_argument("--long-double", default="",
-                    help="tests whose own checks need 80-bit long double: only memory errors count")
     a = ap.parse_args()
     tests = [t for t in load_tests(a.build) if not t["disabled"] and re.search(a.regex, t["name"])
              and not (a.exclude and re.search(a.exclude, t["name"]))]
@@ -96,10 +89,6 @@ def main():
             name, checked, rc, secs, output = fut.result()
             what = "memcheck" if checked else "not an ELF executable: run without valgrind"
             verdict = "ok" if rc == 0 else ("MEMORY ERROR" if rc == 86 and checked else f"FAILED ({rc})")
-            if rc not in (0, 86) and checked and a.long_double and re.search(a.long_double, name):
-                verdict = "ok"
-                what += "; no memory errors, own checks skipped: valgrind has no 80-bit long double"
-                rc = 0
             print(f"{name:32s} {verdict:14s} {secs:7.1f} s  ({what})", flush=True)
             if rc != 0:
                 failed.append(name)
