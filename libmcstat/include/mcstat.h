@@ -1103,8 +1103,14 @@ typedef struct mcstat_stream {
     uint32_t count;          /* values waiting in buf (< MCSTAT_STREAM_CAPACITY) */
     uint32_t version;        /* MCSTAT_STREAM_VERSION once initialised */
     uint64_t n_nonfinite;    /* NaN and +-Inf values seen (and left out) */
-    uint64_t n_overflow;     /* values left out because the count would pass 2^64 - 1 */
-    uint64_t reserved[1];    /* zero */
+    /* reserved is 0.1.0's name of this storage */
+    MCSTAT_ANONYMOUS union {
+        uint64_t reserved[2];
+        struct {
+            uint64_t n_overflow; /* values left out because the count would pass 2^64 - 1 */
+            uint64_t reserved_1; /* zero */
+        };
+    };
     double buf[MCSTAT_STREAM_CAPACITY];
 } mcstat_stream;
 

@@ -242,6 +242,10 @@ static void test_result_layout(void)
     CHECK_INT(offsetof(mcstat_result, chisq_cells_given), rd + 16);
     CHECK_INT(offsetof(mcstat_result, chisq_min_expected), rd + 24);
     CHECK_INT(offsetof(mcstat_result, chisq_pool_below), rd + 32);
+    /* the stream's overflow count lives in 0.1.0's reserved storage */
+    CHECK_INT(offsetof(mcstat_stream, n_overflow), offsetof(mcstat_stream, reserved));
+    CHECK_INT(offsetof(mcstat_stream, reserved_1), offsetof(mcstat_stream, reserved) + 8);
+    CHECK_INT(offsetof(mcstat_stream, buf), offsetof(mcstat_stream, reserved) + 16);
     /* the deprecated accessors still name the same storage */
     mcstat_result r;
     memset(&r, 0, sizeof r);
