@@ -1,43 +1,32 @@
 # The two commands of the README, on a fresh Debian machine:
 #   make demo   runs the main job: `mcstat reproduce` on the paper's scene,
 #               writing report/report.md (figures) and report/results.json
-#   make test   builds everything and passes the tests
-# Each first installs what it needs: Debian packages through apt-get (only
-# those missing), Python packages through pip into ./.venv.
+#   make test   builds everything and passes the tests (ci/test-steps.mk)
+# Only these two install anything: first the Debian packages they need
+# (tools/deps-debian.sh, only those missing), then the Python packages
+# through pip into ./.venv.  Every other target builds and runs with what is
+# there; `tools/deps-debian.sh TARGET` installs what TARGET needs.
 
 SHELL := /bin/bash
 BUILD ?= build
 VENV ?= .venv
 PY := $(VENV)/bin/python
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
-APT_PACKAGES := libgsl-dev cmake pkg-config build-essential python3-venv python3-dev
-# r-mathlib: libRmath (the noncentral t of mcstat_power_*), linked into libmcstat
-APT_PACKAGES += r-mathlib
-# asan-test, tsan-test (the sanitizer runtimes come with gcc) and valgrind-test
-APT_PACKAGES += valgrind
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
-# clang and its runtimes (libFuzzer, ASan, UBSan) for `make fuzz` (tests/fuzz).
-APT_PACKAGES += clang libclang-rt-14-dev
-# abidw and abidiff for `make abi-check` (libmcstat/abi)
-APT_PACKAGES += abigail-tools
 
 .PHONY: asan-test tsan-test valgrind-test abi-check portability-test
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
-.PHONY: all deps system-deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
 
 # ---- dependencies ----------------------------------------------------------
-system-deps:
-	@missing=""; for p in $(APT_PACKAGES); do \
-	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
-	done; \
-	if [ -n "$$missing" ]; then \
-	  echo "installing Debian packages:$$missing"; \
-	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq $$missing; \
-	fi
+# The Debian packages of make test (tools/deps-debian.sh lists them), and
+# requirements-dev.txt in .venv.
+deps:
+	tools/deps-debian.sh test
+	$(MAKE) python-deps
 
 $(VENV)/.installed: requirements-dev.txt
 	python3 -m venv $(VENV)
@@ -47,10 +36,8 @@ $(VENV)/.installed: requirements-dev.txt
 
 python-deps: $(VENV)/.installed
 
-deps: system-deps python-deps
-
 # ---- build, test, demo -------------------------------------------------------
-build: system-deps
+build:
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
 	cmake --build $(BUILD) -j $(JOBS)
 
@@ -59,7 +46,7 @@ ctest: build
 
 # The Python package, built by scikit-build-core through the same CMake
 # (build/python/), installed into .venv.
-python: system-deps python-deps
+python: python-deps
 	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PY) -m pip install -q --no-build-isolation .
 
 pytest: python
@@ -78,15 +65,13 @@ ctypes-test: install-test
 	python3 examples/ctypes/test_ctypes.py $(STAGE)/lib/libmcstat.so
 
 # Toolchains: the machine's (rustup's ~/.cargo/bin, /usr/local/go) when
-# present, else Debian's cargo/rustc and golang-go through apt-get.
+# present, else Debian's cargo/rustc and golang-go (tools/deps-debian.sh rust go).
 TOOL_PATH := $(HOME)/.cargo/bin:/usr/local/go/bin:$(PATH)
 rust-deps:
-	@export PATH="$(TOOL_PATH)"; command -v cargo > /dev/null || { echo "installing cargo and rustc (Debian)"; \
-	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq cargo rustc; }
+	@export PATH="$(TOOL_PATH)"; command -v cargo > /dev/null || { echo "no cargo: tools/deps-debian.sh rust installs it"; exit 1; }
 
 go-deps:
-	@export PATH="$(TOOL_PATH)"; command -v go > /dev/null || { echo "installing Go (Debian)"; \
-	  $(SUDO) apt-get update -qq && DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq golang-go; }
+	@export PATH="$(TOOL_PATH)"; command -v go > /dev/null || { echo "no go: tools/deps-debian.sh go installs it"; exit 1; }
 
 # Rust: against the staged libmcstat.so, then linked statically (no
 # LD_LIBRARY_PATH: the static feature must not need the shared library).
@@ -111,10 +96,13 @@ mitsuba-test: install-test python-deps
 	    $(PY) -m pytest -q -rs -p no:cacheprovider examples/mitsuba; \
 	fi
 
-test: deps ctest pytest install-test ctypes-test rust-test go-test mitsuba-test abi-check
-test: asan-test tsan-test valgrind-test
-test: portability-test
-test: fuzz-replay fuzz-report
+# make test: first what it needs (Debian packages, then .venv), then each
+# step of ci/test-steps.mk in order; the first failing step stops the run.
+include ci/test-steps.mk
+test:
+	tools/deps-debian.sh test
+	$(MAKE) python-deps
+	$(MAKE) $(TEST_STEPS)
 
 # ---- ABI (part of make test) -------------------------------------------------
 # The shared library built with debug information (Release flags plus -g) in
@@ -124,7 +112,7 @@ test: fuzz-replay fuzz-report
 # 20 s on 2 cores.
 MCSTAT_SOVERSION := $(shell sed -n 's/^\#define MCSTAT_SOVERSION \([0-9]*\)$$/\1/p' libmcstat/include/mcstat.h)
 ABI_BASELINE := libmcstat/abi/libmcstat.so.$(MCSTAT_SOVERSION).abi
-abi-check: system-deps
+abi-check:
 	cmake -S . -B $(BUILD)-abi -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g \
 	  -DMCSTAT_BUILD_TESTS=OFF -DMCSTAT_BUILD_EXAMPLES=OFF -DMCSTAT_BUILD_ESTIMATORS=OFF
 	cmake --build $(BUILD)-abi -j $(JOBS) --target mcstat
@@ -149,12 +137,12 @@ TSAN_ENV := TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1
 # the tests that run threads: their own, or mcstat_ks_test_2's simulation threads
 TSAN_TESTS := test_threads|test_ks$$|test_ks_calibration|test_stream|test_irradiance_mc|integrator_
 
-asan-test: system-deps
+asan-test:
 	cmake -S . -B $(BUILD)-asan $(SAN_CMAKE) -DMCSTAT_SANITIZE=address,undefined
 	cmake --build $(BUILD)-asan -j $(JOBS)
 	$(ASAN_ENV) $(SAN_SIZE) ctest --test-dir $(BUILD)-asan --output-on-failure --stop-on-failure -j $(JOBS)
 
-tsan-test: system-deps
+tsan-test:
 	cmake -S . -B $(BUILD)-tsan $(SAN_CMAKE) -DMCSTAT_SANITIZE=thread
 	cmake --build $(BUILD)-tsan -j $(JOBS)
 	$(TSAN_ENV) $(SAN_SIZE) ctest --test-dir $(BUILD)-tsan --output-on-failure --stop-on-failure -j $(JOBS) \
@@ -200,7 +188,9 @@ portability-test: build
 # The main job: the paper's case studies and the studies beyond it on its scene (full budgets, about
 # a minute on 2 cores), into $(REPORT)/.
 REPORT ?= report
-demo: python
+demo:
+	tools/deps-debian.sh demo
+	$(MAKE) python
 	$(VENV)/bin/mcstat reproduce --out $(REPORT)
 
 # The same with the reduced budgets that CI uses.
@@ -217,7 +207,7 @@ bench: python
 	$(PY) bench/run.py --build $(BUILD)-bench
 
 # Cost per sample of an embedded check (mcstat_stream); see bench/RESULTS_check.md.
-bench-check: system-deps
+bench-check:
 	cmake -S . -B $(BUILD)-bench -DCMAKE_BUILD_TYPE=Release -DMCSTAT_BUILD_BENCH=ON -DMCSTAT_BUILD_TESTS=OFF
 	cmake --build $(BUILD)-bench -j $(JOBS) --target bench_check
 	$(BUILD)-bench/bench/bench_check
@@ -261,7 +251,7 @@ accuracy-refs: build python-deps
 # regressions (a few seconds; ctest does the same in every build).
 FUZZ_SECONDS ?= 60
 FUZZ_BUILD := $(BUILD)-fuzz
-fuzz-build: system-deps
+fuzz-build:
 	CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMCSTAT_FUZZ=ON \
 	  -DMCSTAT_BUILD_TESTS=OFF -DMCSTAT_BUILD_EXAMPLES=OFF -DMCSTAT_BUILD_ESTIMATORS=OFF
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)

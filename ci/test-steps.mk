@@ -1,0 +1,27 @@
+# What `make test` runs, in this order (the Makefile's test target runs
+# tools/deps-debian.sh test and fills .venv first).  Each step is a Makefile
+# target, runnable alone; the first that fails stops the run.  A new kind of
+# check becomes a target in the Makefile and a line here.
+
+# the C tests of libmcstat and libmcest (tests/c, estimators/tests), ctest
+TEST_STEPS := ctest
+# the Python package built into .venv, and its tests (tests/python)
+TEST_STEPS += pytest
+# cmake --install into build/stage, and CMake and pkg-config consumers of it,
+# shared and static (tests/install)
+TEST_STEPS += install-test
+# the installed library through ctypes (examples/ctypes)
+TEST_STEPS += ctypes-test
+# the Rust and Go bindings against the installed library (bindings/rust, bindings/go)
+TEST_STEPS += rust-test go-test
+# a real renderer, Mitsuba 3 from PyPI (examples/mitsuba)
+TEST_STEPS += mitsuba-test
+# the shared library's ABI against the baseline of its SOVERSION (libmcstat/abi)
+TEST_STEPS += abi-check
+# every C test under ASan + UBSan, the threaded ones under TSan, memcheck
+TEST_STEPS += asan-test tsan-test valgrind-test
+# 64-bit long double, -ffast-math refused, flush-to-zero callers (tests/ftz)
+TEST_STEPS += portability-test
+# the committed fuzz corpus and regressions under clang's sanitizers, then a
+# short exploration that reports and never fails (tests/fuzz)
+TEST_STEPS += fuzz-replay fuzz-report
