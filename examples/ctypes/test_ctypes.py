@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Checks libmcstat through ctypes alone (standard library, no NumPy, no
 pybind11) against the reference numbers of the C tests
-(tests/data/ffi_ref.txt, made by tests/reference/make_ffi_ref.py from the
+(tests/data/ffi_ref.txt, made by tools/refgen/make_ffi_ref.py from the
 50-digit, exact-fraction and R references).
 
 usage: test_ctypes.py [path/to/libmcstat.so]    (or $MCSTAT_LIB, or pkg-config)

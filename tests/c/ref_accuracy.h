@@ -1,6 +1,6 @@
 /*
  * ref_accuracy.h - the accuracy table tests/data/accuracy.tsv (written by
- * tests/reference/make_accuracy.py, explained in libmcstat/ACCURACY.md): the
+ * tools/refgen/make_accuracy.py, explained in libmcstat/ACCURACY.md): the
  * bound each (function, domain) is held to, and the error measures it was
  * measured with.
  */
@@ -65,7 +65,7 @@ static inline acc_row *acc_find(const char *func, const char *domain)
     for (int i = 0; i < acc_nrows; i++)
         if (!strcmp(acc_rows[i].func, func) && !strcmp(acc_rows[i].domain, domain))
             return &acc_rows[i];
-    fprintf(stderr, "accuracy.tsv has no row %s / %s (rerun tests/reference/make_accuracy.py)\n", func, domain);
+    fprintf(stderr, "accuracy.tsv has no row %s / %s (rerun tools/refgen/make_accuracy.py)\n", func, domain);
     exit(2);
 }
 

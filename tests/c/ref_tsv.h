@@ -1,6 +1,6 @@
 /*
  * ref_tsv.h - reads the tab-separated reference tables of tests/data/
- * (written by the R scripts in tests/reference/): one row per line, '#' lines skipped.
+ * (written by the R scripts in tools/refgen/): one row per line, '#' lines skipped.
  */
 #ifndef MCSTAT_TEST_REF_TSV_H
 #define MCSTAT_TEST_REF_TSV_H

@@ -4,7 +4,7 @@
  * tests' p-values over the domains of libmcstat/ACCURACY.md, with 50-digit
  * references) within its domain's bound (tests/data/accuracy.tsv); and every
  * domain checked on as many cases as the table was measured on.
- * Both files are written by tests/reference/make_accuracy.py.
+ * Both files are written by tools/refgen/make_accuracy.py.
  */
 #include "harness.h"
 #include "mcstat.h"

@@ -1,6 +1,6 @@
 /*
  * test_binom.c - mcstat_binom_test and the battery meta-test against R's
- * binom.test (tests/c/ref_binom.h, made by tests/reference/make_binom_ref.R),
+ * binom.test (tests/data/ref_binom.h, made by tools/refgen/make_binom_ref.R),
  * the acceptance region against the p-values it summarises, and bad input.
  */
 #include "harness.h"

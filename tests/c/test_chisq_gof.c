@@ -1,6 +1,6 @@
 /*
  * test_chisq_gof.c - Pearson's chi-squared goodness of fit against R's
- * chisq.test (tests/c/ref_chisq.h, from tests/reference/make_chisq_ref.R),
+ * chisq.test (tests/data/ref_chisq.h, from tools/refgen/make_chisq_ref.R),
  * the R-style block, bad input, and calibration and power on multinomial
  * samples.
  */

@@ -158,7 +158,7 @@ static void test_quantile_round_trips(void)
  * continued fraction gave MCSTAT_ENUMERIC here (f_cdf(1.5; 0.001, 100)),
  * stopped early (2e-10 off at df 630784, 0.00103) and was not monotone where
  * its two tails meet at f = 1; the small-parameter series fixes all three.
- * Oracle: mpmath at 50 digits (tests/reference/mpref.py f_tails), the
+ * Oracle: mpmath at 50 digits (tools/refgen/mpref.py f_tails), the
  * smaller tail. */
 /* The F accuracy mcstat.h states (measured by scan_f_small_df.py): 4e-14
  * where the smaller tail is above 1e-30, 6e-16 |log p| below. */

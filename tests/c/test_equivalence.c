@@ -1,7 +1,7 @@
 /*
  * test_equivalence.c - TOST (equivalence.c) against R's two one-sided
  * t.test calls (tests/data/equivalence_ref.tsv, written by
- * tests/reference/make_power_ref.R); arrays against accumulators;
+ * tools/refgen/make_power_ref.R); arrays against accumulators;
  * calibration at the margin; the printed block; statuses.
  */
 #include "harness.h"

@@ -1,6 +1,6 @@
 /*
  * test_format.c - R-style text against R's own output (ref_rformat.h, made by
- * tests/reference/make_rformat.R): number formatting on ~1600 values, common
+ * tools/refgen/make_rformat.R): number formatting on ~1600 values, common
  * formatting of pairs, format.pval, and whole print.htest blocks.
  */
 #include "harness.h"

@@ -332,7 +332,7 @@ static void test_f_small_df1_large_df2(void)
  * beta took its lower-tail continued fraction, one ulp above the upper
  * tail's, and the two disagreed by 1.7e-12 (each stopping early with
  * b = 1/64).  Input: regressions/fuzz_dist/f_huge_df1_df2_1_32_not_monotone.
- * Oracle: mpmath at 50 digits (tests/reference/mpref.py f_tails). */
+ * Oracle: mpmath at 50 digits (tools/refgen/mpref.py f_tails). */
 static void test_f_huge_df1_small_df2_monotone(void)
 {
     const double df1 = 0x1.ffp+48, df2 = 0.03125, up = 1.0000000000000002;

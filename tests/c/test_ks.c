@@ -2,8 +2,8 @@
  * test_ks.c - the two-sample K-S test: statistic against R (unweighted) and
  * the direct O(N^2) definition (weighted); exact p-values against exact
  * rational ones (ref_ks_exact.h, big-integer path counts by
- * tests/reference/make_ks_exact.py, both weights), against R's exact ks.test
- * (ref_ks.h, made by tests/reference/make_ks_ref.R) and against a
+ * tools/refgen/make_ks_exact.py, both weights), against R's exact ks.test
+ * (ref_ks.h, made by tools/refgen/make_ks_ref.R) and against a
  * full enumeration of all arrangements (weighted and unweighted, with and
  * without ties); simulated p-values within 4.5 standard errors of exact;
  * critical values consistent with the p-values; bit-identical results for

@@ -1,6 +1,6 @@
 /*
  * test_p_adjust.c - mcstat_p_adjust against R's p.adjust (the records of
- * tests/data/p_adjust_ref.txt, made by tests/reference/make_p_adjust_ref.R),
+ * tests/data/p_adjust_ref.txt, made by tools/refgen/make_p_adjust_ref.R),
  * Hommel against R's O(n^2) loop transcribed here on random inputs with
  * ties, and the statuses of bad input.
  * Usage: test_p_adjust PATH/TO/p_adjust_ref.txt

@@ -1,7 +1,7 @@
 /*
  * test_power.c - power and sample size (power.c, noncentral.c) against R:
  * power.t.test and the closed forms of the chi-squared and F tests
- * (tests/data/power_ref.tsv, written by tests/reference/make_power_ref.R);
+ * (tests/data/power_ref.tsv, written by tools/refgen/make_power_ref.R);
  * symmetry of the alternatives; that libRmath's pnt never prints; statuses.
  */
 #include "harness.h"

@@ -1,11 +1,11 @@
 /*
  * test_reference.c - the four tests and the distributions against 50-digit
- * references (tests/reference/make_reference.py) on stiff data: NIST StRD
+ * references (tools/refgen/make_reference.py) on stiff data: NIST StRD
  * sets, NumAcc1-4, 1e9 offsets, magnitudes near 1e+-300, p-values far below
  * 1e-50, n = 2, and 1e6-value sets.  p-values, quantiles and tails are
  * held to the bounds of the accuracy table (tests/data/accuracy.tsv, rows
  * "ref_data.h ...", measured on these same cases by
- * tests/reference/make_accuracy.py; libmcstat/ACCURACY.md); the other
+ * tools/refgen/make_accuracy.py; libmcstat/ACCURACY.md); the other
  * fields to 2-4 times their measured worst error (printed at the end).
  */
 #include "harness.h"

@@ -1,6 +1,6 @@
-"""The 50-digit reference cases of tests/c/ref_data.h, read from the header.
+"""The 50-digit reference cases of tests/data/ref_data.h, read from the header.
 
-The header is written by tests/reference/make_reference.py (exact rational
+The header is written by tools/refgen/make_reference.py (exact rational
 moments, mpmath at 50 digits); parsing it here means the C and the Python
 tests check against the very same committed numbers.
 """
@@ -9,7 +9,7 @@ import re
 
 from conftest import ROOT
 
-HEADER = os.path.join(ROOT, "tests", "c", "ref_data.h")
+HEADER = os.path.join(ROOT, "tests", "data", "ref_data.h")
 
 
 def _num(tok):
@@ -68,7 +68,7 @@ def values(name):
 
 
 # The bounds of the accuracy table (tests/data/accuracy.tsv, written by
-# tests/reference/make_accuracy.py, explained in libmcstat/ACCURACY.md).
+# tools/refgen/make_accuracy.py, explained in libmcstat/ACCURACY.md).
 ACCURACY_TSV = os.path.join(ROOT, "tests", "data", "accuracy.tsv")
 STIFF_DOMAIN = "ref_data.h stiff data sets (arrays and accumulators)"
 # The fields other than the p-value: 2-4 times their measured worst error

@@ -1,5 +1,5 @@
 """mcstat.binom_test and mcstat.battery_test against R's binom.test
-(tests/python/data/binom_ref.csv, from tests/reference/make_binom_ref.R),
+(tests/data/binom_ref.csv, from tools/refgen/make_binom_ref.R),
 SciPy's binomtest, and mpmath for tails far below what doubles hold."""
 import csv
 import math
@@ -16,7 +16,7 @@ HERE = os.path.dirname(__file__)
 
 
 def _ref_rows():
-    with open(os.path.join(HERE, "data", "binom_ref.csv")) as f:
+    with open(os.path.join(HERE, "..", "data", "binom_ref.csv")) as f:
         return list(csv.DictReader(f))
 
 

@@ -1,5 +1,5 @@
-# mcstat.chisq_gof against R's chisq.test (tests/python/data/chisq_ref.json,
-# written by tests/reference/make_chisq_ref.R) and SciPy's chisquare.
+# mcstat.chisq_gof against R's chisq.test (tests/data/chisq_ref.json,
+# written by tools/refgen/make_chisq_ref.R) and SciPy's chisquare.
 import json
 import os
 
@@ -10,7 +10,7 @@ from scipy import stats
 import mcstat
 from conftest import HERE, rel_err
 
-with open(os.path.join(HERE, "data", "chisq_ref.json")) as f:
+with open(os.path.join(HERE, "..", "data", "chisq_ref.json")) as f:
     CASES = json.load(f)
 
 

@@ -82,7 +82,7 @@ for _m in "UCAS":
 @pytest.mark.parametrize("name", list(INFINITE))
 def test_infinite_variance_is_flagged(name):
     """Measured at n = 1e4: U^-1/2 (index exactly 2), Pareto 1.5, t_2 are
-    flagged in every sample (tests/reference/diagnose_rates.py); demand
+    flagged in every sample (tools/refgen/diagnose_rates.py); demand
     >= 90% of 60 samples.  The firefly mixture needs 1000 nonzero values."""
     rng = np.random.default_rng(sum(map(ord, name)))
     n = 100000 if "fireflies" in name else 10000

@@ -1,5 +1,5 @@
 """mcstat.equivalence_test (TOST) against R (tests/data/equivalence_ref.tsv,
-written by tests/reference/make_power_ref.R), statsmodels' ttost_paired /
+written by tools/refgen/make_power_ref.R), statsmodels' ttost_paired /
 ttost_ind(usevar="unequal") and, at a large offset, mpmath."""
 import math
 import os

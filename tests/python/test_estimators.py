@@ -1,6 +1,6 @@
 """mcstat.estimators: Lambert's formula against the 60-digit references of
-the C tests (estimators/tests/ref_irradiance.h, written by
-estimators/tests/reference/make_irradiance_reference.py and read from the
+the C tests (tests/data/ref_irradiance.h, written by
+tools/refgen/make_irradiance_reference.py and read from the
 header here), the estimators' means against it, the planted bugs caught
 by mcstat.t_test, determinism over seeds / first_index / threads, the BRDF
 samplers and reflected radiance, bad inputs, and a NumPy re-implementation
@@ -20,7 +20,7 @@ EPS = np.finfo(float).eps
 
 
 def _load_scenes():
-    text = open(os.path.join(ROOT, "estimators", "tests", "ref_irradiance.h")).read()
+    text = open(os.path.join(ROOT, "tests", "data", "ref_irradiance.h")).read()
     pat = (r'\{"(\w+)",\s*\{([^}]*)\},\s*\{([^}]*)\}, \{([^}]*)\}, (\S+),\s*(\S+), (\S+), (\S+),\s*"([^"]*)"\}')
     scenes = {}
     for m in re.finditer(pat, text):

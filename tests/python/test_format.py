@@ -1,7 +1,7 @@
 """str(result) and result.format() against R's own print.htest output.
 
-tests/python/data/r_blocks.json was written by
-tests/reference/make_rblocks_python.R (R 4.2.2): each entry holds the data,
+tests/data/r_blocks.json was written by
+tools/refgen/make_rblocks_python.R (R 4.2.2): each entry holds the data,
 the call's arguments, the names the data had in R, and R's printed text.
 mcstat's block is R's plus one decision line before the closing blank line.
 """
@@ -15,7 +15,7 @@ import pytest
 import mcstat
 from conftest import HERE
 
-BLOCKS = json.load(open(os.path.join(HERE, "data", "r_blocks.json")))
+BLOCKS = json.load(open(os.path.join(HERE, "..", "data", "r_blocks.json")))
 
 
 def run(b):

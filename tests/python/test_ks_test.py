@@ -2,8 +2,8 @@
 Canner's statistic, the exact p-values, and its own promises (reproducible
 simulation, the cache, calibration under H0, every bad input).
 
-R's cases are tests/c/ref_ks.h (tests/reference/make_ks_ref.R, R 4.2.2),
-their exact p-values tests/c/ref_ks_exact.h (tests/reference/make_ks_exact.py,
+R's cases are tests/data/ref_ks.h (tools/refgen/make_ks_ref.R, R 4.2.2),
+their exact p-values tests/data/ref_ks_exact.h (tools/refgen/make_ks_exact.py,
 big-integer path counts), read from the headers so that the C and the
 Python tests check against the very same numbers.
 """
@@ -25,7 +25,7 @@ MCSTAT_OF_R = {0: "two-sided", 1: "greater", 2: "less"}  # R's alternative -> mc
 
 
 def _load_r_cases():
-    text = open(os.path.join(ROOT, "tests", "c", "ref_ks.h")).read()
+    text = open(os.path.join(ROOT, "tests", "data", "ref_ks.h")).read()
     arrays = {m.group(1): [float.fromhex(v.strip()) for v in m.group(2).split(",") if v.strip()]
               for m in re.finditer(r"static const double (ks_[xy]\d+)\[\] = \{(.*?)\};", text, re.S)}
     cases = []
@@ -35,7 +35,7 @@ def _load_r_cases():
         r_text = m.group(8).encode().decode("unicode_escape")
         cases.append(dict(x=x, y=y, r_alt=int(m.group(5)), statistic=float.fromhex(m.group(6)),
                           p=float.fromhex(m.group(7)), text=r_text))
-    exact_text = open(os.path.join(ROOT, "tests", "c", "ref_ks_exact.h")).read()
+    exact_text = open(os.path.join(ROOT, "tests", "data", "ref_ks_exact.h")).read()
     pairs = re.findall(r"\{(\S+), (\S+)\},", exact_text)
     assert len(pairs) == len(cases) > 50
     for c, (a, b) in zip(cases, pairs):

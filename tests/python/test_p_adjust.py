@@ -1,5 +1,5 @@
 """mcstat.p_adjust against R's p.adjust (tests/data/p_adjust_ref.txt, made
-by tests/reference/make_p_adjust_ref.R) and statsmodels' multipletests;
+by tools/refgen/make_p_adjust_ref.R) and statsmodels' multipletests;
 shapes, NaN, and bad input."""
 import os
 import zlib

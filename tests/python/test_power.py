@@ -1,5 +1,5 @@
 """mcstat.power against R (tests/data/power_ref.tsv: power.t.test and the
-chi-squared / F closed forms, written by tests/reference/make_power_ref.R),
+chi-squared / F closed forms, written by tools/refgen/make_power_ref.R),
 statsmodels' TTestPower / TTestIndPower, SciPy's central chi^2 and F, a
 simulation of Welch's test; mcstat.ks_power against SciPy's ks_2samp on the
 same samples."""

@@ -145,7 +145,7 @@ def test_input_types_give_the_same_result(rng):
 @pytest.mark.parametrize("case", [c for c in CASES if c["kind"] in ("T_1", "T_2")],
                          ids=lambda c: f'{c["kind"]}-{c["x"]}-{c["y"]}')
 def test_stiff_references(case):
-    """The 50-digit references of issue 2 (tests/c/ref_data.h) through Python."""
+    """The 50-digit references of the C tests (tests/data/ref_data.h) through Python."""
     x = values(case["x"])
     alt = ALTS[case["alternative"]]
     if case["kind"] == "T_1":

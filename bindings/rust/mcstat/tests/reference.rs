@@ -1,5 +1,5 @@
 //! The safe API against the C tests' reference numbers (tests/data/ffi_ref.txt,
-//! written by tests/reference/make_ffi_ref.py from 50-digit mpmath values,
+//! written by tools/refgen/make_ffi_ref.py from 50-digit mpmath values,
 //! exact K-S fractions and R's printed blocks).
 use mcstat::*;
 use std::collections::HashMap;

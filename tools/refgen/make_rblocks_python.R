@@ -1,8 +1,8 @@
-# Writes tests/python/data/r_blocks.json: R's printed t.test / var.test
+# Writes tests/data/r_blocks.json: R's printed t.test / var.test
 # output for fixed data sets, with the data named as in a user's session
 # (the "data:" line), the oracle for str(result) and result.format() in
 # tests/python/test_format.py.  Run from the repository root:
-#   Rscript tests/reference/make_rblocks_python.R
+#   Rscript tools/refgen/make_rblocks_python.R
 # (R 4.2.2 produced the committed file; R is not needed at test time.)
 set.seed(424242)
 hex <- function(x) sprintf("\"%a\"", x)
@@ -54,5 +54,5 @@ for (i in 1:10) {
         mean(a) * 0.9, alt_py[[alt]], conf)
   }
 }
-dir.create("tests/python/data", showWarnings = FALSE, recursive = TRUE)
-writeLines(c("[", paste(blocks, collapse = ",\n"), "]"), "tests/python/data/r_blocks.json")
+dir.create("tests/data", showWarnings = FALSE, recursive = TRUE)
+writeLines(c("[", paste(blocks, collapse = ",\n"), "]"), "tests/data/r_blocks.json")

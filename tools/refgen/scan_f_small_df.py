@@ -6,7 +6,7 @@ Calls libmcstat through ctypes and reports, over a log-spaced grid of
   * monotonicity of the lower tail in x (on the x grid and at 1 -+ ulps),
     counted where F(x_lo) > F(x_hi) (1 + 1e-12), as tests/fuzz/fuzz_dist checks,
   * the peak relative error of the smaller tail (when in [1e-300, 1/2])
-    against mpmath at 50 digits (tests/reference/mpref.py: both tails
+    against mpmath at 50 digits (tools/refgen/mpref.py: both tails
     computed directly), for x in 1e-20..1e20: every pair with a df <= 0.03
     against the grid, and a sparser grid of ordinary pairs, split at tails
     of 1e-30 (deeper, the error grows like |log P| ulps),

@@ -1,6 +1,6 @@
 /*
  * rformat_stress.c - libmcstat's R-style number formatting against R's on the
- * file tests/reference/rformat_stress.R writes (how to run: see there).
+ * file tools/refgen/rformat_stress.R writes (how to run: see there).
  * Prints the first differences and exits 1 if there is any.
  */
 #include "rformat.h"

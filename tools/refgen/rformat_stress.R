@@ -2,9 +2,9 @@
 # decimal rounding ties N.5 * 10^k (N of d digits) and their two neighbouring
 # doubles, for k near 0 and near the ends of the double range, plus random
 # magnitudes.  Written as "hex<TAB>digits<TAB>text" to the file given;
-# tests/reference/rformat_stress.c compares libmcstat's formatting with it:
-#   Rscript tests/reference/rformat_stress.R /tmp/rformat_stress.tsv
-#   cc -O2 -Ilibmcstat/src -Ilibmcstat/include tests/reference/rformat_stress.c \
+# tools/refgen/rformat_stress.c compares libmcstat's formatting with it:
+#   Rscript tools/refgen/rformat_stress.R /tmp/rformat_stress.tsv
+#   cc -O2 -Ilibmcstat/src -Ilibmcstat/include tools/refgen/rformat_stress.c \
 #      libmcstat/src/rformat.c -lm -o /tmp/rformat_stress
 #   /tmp/rformat_stress /tmp/rformat_stress.tsv
 # (add -mlong-double-64 to check a 64-bit long double build).  Near-tie values

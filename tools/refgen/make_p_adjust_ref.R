@@ -1,6 +1,6 @@
 # Reference adjusted p-values from R's p.adjust, for tests/c/test_p_adjust.c
 # and tests/python/test_p_adjust.py.  Writes tests/data/p_adjust_ref.txt:
-#   Rscript tests/reference/make_p_adjust_ref.R
+#   Rscript tools/refgen/make_p_adjust_ref.R
 #
 # Format, one record per line, numbers as %.17g, NaN for R's NA:
 #   case NAME METHOD N       then a line "p ..." and a line "adj ..." (N values each)

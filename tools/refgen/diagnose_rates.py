@@ -4,7 +4,7 @@ alarms, on finite-variance data and the paper's estimators (irradiance U, C,
 A, S; reflected radiance off Ward's and Ashikhmin-Shirley's BRDFs), 200
 samples each at n = 1e3 and 1e4.  The figures are quoted in mcstat.h
 ("Estimator diagnostics"); tests/python/test_diagnose.py checks the same
-rates with binomial bounds.  Run: .venv/bin/python tests/reference/diagnose_rates.py
+rates with binomial bounds.  Run: .venv/bin/python tools/refgen/diagnose_rates.py
 """
 import math
 import sys
