@@ -221,15 +221,12 @@ bench-estimators: python-deps
 	cmake --build $(BUILD)-bench -j $(JOBS) --target bench_estimators
 	$(PY) bench/bench_estimators_numpy.py --c $(BUILD)-bench/bench/bench_estimators --write
 
-# Regenerates the committed reference numbers (needs R for the formatting).
-references: python-deps
-	$(PY) tests/reference/make_reference.py
-	Rscript tests/reference/make_rformat.R
-	Rscript tests/reference/make_rblocks_python.R
-	# equivalence (TOST) and power: tests/data/{power,equivalence}_ref.tsv
-	Rscript tests/reference/make_power_ref.R
-	# issue 9: R's binom.test for the binomial meta-test
-	Rscript tests/reference/make_binom_ref.R
+# Regenerates every committed reference number (tests/data/, and the
+# library's log_gammastar_cheb.h) with the generators of tools/refgen/, in
+# dependency order (tools/refgen/run.py --list shows it).  Needs R
+# (tools/deps-debian.sh references); no test needs this run.
+references: build python-deps
+	$(PY) tools/refgen/run.py --python $(PY) --lib $(BUILD)/libmcstat/libmcstat.so --build $(BUILD)
 
 # The accuracy table libmcstat/ACCURACY.md and tests/data/accuracy.tsv (the
 # bounds test_accuracy and test_reference enforce): the built library against
@@ -239,10 +236,10 @@ references: python-deps
 # loosen a committed bound unless ACCURACY_FLAGS=--accept-looser.
 ACCURACY_FLAGS ?=
 accuracy: build python-deps
-	$(PY) tests/reference/make_accuracy.py --lib $(BUILD)/libmcstat/libmcstat.so $(ACCURACY_FLAGS)
+	$(PY) tools/refgen/make_accuracy.py --lib $(BUILD)/libmcstat/libmcstat.so $(ACCURACY_FLAGS)
 
 accuracy-refs: build python-deps
-	$(PY) tests/reference/make_accuracy.py --lib $(BUILD)/libmcstat/libmcstat.so --refs $(ACCURACY_FLAGS)
+	$(PY) tools/refgen/make_accuracy.py --lib $(BUILD)/libmcstat/libmcstat.so --refs $(ACCURACY_FLAGS)
 
 # ---- fuzzing (tests/fuzz/README.md) -------------------------------------------
 # libFuzzer harnesses built by clang with ASan + UBSan in $(BUILD)-fuzz; each
