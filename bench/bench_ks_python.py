@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The two speed targets of the K-S test (issue 4), measured from Python in
+"""The two speed targets of the K-S test, measured from Python in
 one run on the same data:
 
 1. simulation of the null distribution at n1 = n2 = 1000: mcstat.ks_test(...,
@@ -135,7 +135,7 @@ def main():
         if BEGIN in old:
             new = re.sub(re.escape(BEGIN) + ".*?" + re.escape(END), lambda _: block, old, flags=re.S)
         else:
-            new = old.rstrip("\n") + "\n\n## From Python: the issue's two speed targets\n\n" + block + "\n"
+            new = old.rstrip("\n") + "\n\n## From Python: the two speed targets of the K-S test\n\n" + block + "\n"
         open(path, "w").write(new)
 
 

@@ -27,7 +27,7 @@ from common import fmt_bytes, machine, measure, peak_rss  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-# Issue 3's speed targets: (case prefix, minimum ratio).  The verdicts in
+# The speed targets of the Python API: (case prefix, minimum ratio).  The verdicts in
 # RESULTS_python.md are computed from this run's rows, never written by hand.
 TARGETS = [
     ("Welch t, n = 50 + 50 (one call)", 100.0),
@@ -55,7 +55,7 @@ NOTES = """## Where the time goes
 
 
 def verdicts(rows):
-    lines = ["## Targets (issue 3), as measured in this run\n", "| target | measured | verdict |", "|---|---:|---|"]
+    lines = ["## Targets, as measured in this run\n", "| target | measured | verdict |", "|---|---:|---|"]
     for prefix, want in TARGETS:
         got = [r for r in rows if r[0].strip().startswith(prefix)]
         if not got:

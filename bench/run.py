@@ -121,7 +121,7 @@ def main():
     # ---- moments: C against a plain sum; NumPy in the Python section ----------
     n = "1e6" if args.quick else "1e7"
     moments = run([exe["bench_moments"], n, "7"])
-    parts.append("## Moments and the one-sample t test (issue 2)\n\n"
+    parts.append("## Moments and the one-sample t test\n\n"
                  f"`{args.build}/bench/bench_moments {n} 7`: one pass over the array at a share of the machine's "
                  "memory read bandwidth (a plain sum of the same array in the same run; target: at least 50%), "
                  "and the accuracy of the variance against a long-double two-pass reference. The same "
@@ -130,7 +130,7 @@ def main():
 
     # ---- embedded checks: C only (no NumPy counterpart of a per-sample hook) ----
     out = run([exe["bench_check"], "7"])
-    parts.append("## Embedded checks: cost per sample (issue 7)\n\n"
+    parts.append("## Embedded checks: cost per sample\n\n"
                  f"`{args.build}/bench/bench_check 7` (one thread; target: < 2 ns per added sample; "
                  "bench/RESULTS_check.md explains the measurement). The baseline is the same Monte Carlo loop "
                  "without the check, in the same process; NumPy has no per-sample hook to compare with.\n\n"
@@ -151,7 +151,7 @@ def main():
 
     # ---- K-S: Python targets (SciPy / NumPy, same run), then the C program ----
     run([py, "bench/bench_ks_python.py", "--write", *quick])
-    ks_parts = ["## Two-sample K-S test (issue 4)\n\n"
+    ks_parts = ["## Two-sample K-S test\n\n"
                 "Narrative, targets and older measurements: bench/RESULTS_ks.md. Regenerated in this run:",
                 section(os.path.join(HERE, "RESULTS_ks.md"), "<!-- bench_ks_python begin -->",
                         "<!-- bench_ks_python end -->")]

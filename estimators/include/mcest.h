@@ -384,7 +384,7 @@ MCEST_API int mcest_direction_square(const double *w, size_t n, double *st);
 MCEST_API int mcest_direction_key(const double *w, size_t n, uint64_t *keys);
 
 /* ------------------------------------------------------------------------ */
-/* Planted bugs in the BRDF samplers (issue 9).                              */
+/* Planted bugs in the BRDF samplers: what a sampler test must catch.        */
 /* Realistic mistakes in the half-vector warps; the density the sampler      */
 /* claims (mcest_brdf_pdf) stays the correct one, so a goodness-of-fit test  */
 /* of the drawn directions against it should reject.  The cosine-weighted    */
@@ -423,7 +423,7 @@ MCEST_API int mcest_brdf_sample_bug(const mcest_brdf_plan *plan, int bug, uint64
                                     uint64_t first_index, size_t n, double *wi);
 
 /* ------------------------------------------------------------------------ */
-/* Cells of equal probability for chi-squared tests of a sampler (issue 9). */
+/* Cells of equal probability for chi-squared tests of a sampler.            */
 /* The sphere is mapped to Lambert's equal-area square of the Morton keys    */
 /* (s = (1 - z)/2, t = phi/(2 pi), solid angle 4 pi ds dt) and cut by a k-d  */
 /* tree of the given depth into 2^depth rectangles: the node at depth d      */

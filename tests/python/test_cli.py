@@ -148,7 +148,7 @@ def test_paper_samplers(paper):
 
 
 def test_paper_sampler_bugs(paper):
-    # 3.2+ (issue 9): every planted sampler bug caught by the chi-squared route at the largest quick size,
+    # 3.2+: every planted sampler bug caught by the chi-squared route at the largest quick size,
     # the correct samplers rejected at about alpha by both routes, chi-squared never later than K-S
     r = paper["res"]["studies"]["sampler_bugs"]
     assert r["sizes"] == [100, 300, 1000, 3000] and r["runs"] == 20 and r["alpha"] == 0.01
@@ -179,7 +179,7 @@ def test_paper_radiance_counts(paper):
 
 
 def test_paper_diagnostics(paper):
-    """Issue 9: every estimator the studies test is diagnosed; none of the
+    """Every estimator the studies test is diagnosed; none of the
     paper's has a heavy tail, the scene's k = 100 suffices for U, C, A, S,
     and the report has the section."""
     dg = paper["res"]["studies"]["diagnostics"]
