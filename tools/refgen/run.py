@@ -15,6 +15,13 @@ writing its inputs), so a new generator is one new entry.
                                                run them all (make references)
   python3 tools/refgen/run.py --only NAME...   run only these (still in order)
 
+Beside the generators (make_*): mpref.py, the mpmath oracle they share, and
+measurements run by hand, whose findings the code's comments cite:
+scan_f_small_df.py (the F distribution over its documented df range),
+rformat_stress.R and .c (libmcstat's number formatting against R's on
+290,000 values), diagnose_rates.py (how often the heavy-tail flag fires).
+The fuzz seed corpus has its own generator, tests/fuzz/make_corpus.py.
+
 Needs: Python with mpmath and numpy (requirements-dev.txt), Rscript
 (tools/deps-debian.sh references), and for `accuracy` a built shared
 library (--lib), rebuilt first when --build names its build directory (the
