@@ -65,10 +65,10 @@ GENERATORS = {
                "libmcest's Philox4x64 stream against NumPy"),
     "irradiance": ("python", [G + "make_irradiance_reference.py"], [], [D + "ref_irradiance.h"],
                    "libmcest's reference scenes (mpmath, 60 digits)"),
-    "accuracy": ("python", [G + "make_accuracy.py", "--refs"],
+    "accuracy": ("python", [G + "make_accuracy.py"],
                  ["libmcstat/src/log_gammastar_cheb.h", D + "ref_data.h", D + "ref_ks_exact.h"],
                  [D + "accuracy_cases.tsv", D + "accuracy.tsv", "libmcstat/ACCURACY.md"],
-                 "the accuracy table: the built library against mpmath"),
+                 "the accuracy table: the built library against mpmath (cases redrawn with --accuracy-refs)"),
 }
 
 
@@ -96,7 +96,8 @@ def order(names):
 def command(name, args):
     lang, argv = GENERATORS[name][0], list(GENERATORS[name][1])
     if name == "accuracy":
-        argv += ["--lib", args.lib] + (["--accept-looser"] if args.accept_looser else [])
+        argv += ["--lib", args.lib] + (["--refs"] if args.accuracy_refs else []) \
+            + (["--accept-looser"] if args.accept_looser else [])
     return ([args.python] if lang == "python" else [args.rscript]) + argv
 
 
@@ -109,6 +110,9 @@ def main():
     ap.add_argument("--only", nargs="+", metavar="NAME", choices=sorted(GENERATORS), help="run only these")
     ap.add_argument("--lib", help="the built libmcstat.so, for accuracy (without it, accuracy is skipped)")
     ap.add_argument("--build", help="rebuild libmcstat in this build directory before accuracy")
+    ap.add_argument("--accuracy-refs", action="store_true",
+                    help="accuracy draws its cases afresh (x from the library's own quantiles, so new "
+                         "cases whenever the library changed) and recomputes their references: 2 minutes")
     ap.add_argument("--accept-looser", action="store_true", help="passed to make_accuracy.py")
     ap.add_argument("--python", default=sys.executable, help="the Python with mpmath and numpy")
     ap.add_argument("--rscript", default="Rscript")
