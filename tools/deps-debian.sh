@@ -68,7 +68,7 @@ for t in "$@"; do need "$t"; done
 # each package once, in first-seen order
 mapfile -t pkgs < <(printf '%s\n' "${pkgs[@]}" | awk 'NF && !seen[$0]++')
 if [ "$mode" = list ]; then
-  printf '%s\n' "${pkgs[@]}"
+  [ ${#pkgs[@]} -eq 0 ] || printf '%s\n' "${pkgs[@]}"
   exit 0
 fi
 
