@@ -9,7 +9,7 @@ from typing import Any, Dict, List, Optional, TextIO
 import numpy as np
 
 import mcstat
-from .. import estimators as est
+from mcstat import estimators as est
 from . import bugs, irradiance, radiance, results, sampler_bugs, sampling, timing
 from . import diagnose  # issue 9
 from .context import Context

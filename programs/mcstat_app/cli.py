@@ -1,5 +1,5 @@
 # Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
-"""The ``mcstat`` command (also ``python -m mcstat``).
+"""The ``mcstat`` command (also ``python -m mcstat_app``).
 
     mcstat reproduce [--scene FILE] [--out DIR] [--seed N] [--quick]   the paper's case studies
     mcstat plan [SCENE] [--quick]       what reproduce would run on a scene, and what it leaves out
@@ -65,7 +65,7 @@ def _schema(a: argparse.Namespace) -> int:
 
 
 def _test(a: argparse.Namespace) -> int:
-    from ._samples import load_samples
+    from .samples import load_samples
 
     x = load_samples(a.x, a.column)
     y = load_samples(a.y, a.column) if a.y else None
@@ -215,8 +215,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Optional[List[str]] = None) -> int:
-    from ._samples import SampleFileError
-    from .estimators import EstimatorError
+    from .samples import SampleFileError
+    from mcstat.estimators import EstimatorError
     from .reproduce.scene import SceneError
 
     parser = build_parser()

@@ -1,5 +1,5 @@
 # Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
-"""``python -m mcstat``: the mcstat command (see mcstat.cli)."""
+"""``python -m mcstat_app``: the mcstat command (see mcstat_app.cli)."""
 import sys
 
 from .cli import main

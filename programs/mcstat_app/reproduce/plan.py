@@ -27,7 +27,7 @@ from __future__ import annotations
 import copy
 from typing import Any, Dict, List, Optional
 
-from .. import estimators as est
+from mcstat import estimators as est
 from .scene import Scene
 
 
