@@ -4,6 +4,9 @@
 One concern per module:
 
 =============  ==============================================================
+studies        the table of studies (key, section, title, module, report part,
+               schema part): a new study is one entry there, its module, its
+               report part, its schema entry and its rule in plan
 scene          scene files (JSON/TOML), the built-in paper scene, checks
 validate       the JSON Schema subset that checks scene files (schema.json)
 plan           which studies and tests a scene calls for, and why not others
