@@ -82,3 +82,38 @@ def test_compare_reading_files_is_deprecated_and_unchanged(tmp_path, rng):
         assert r.pvalue.tobytes() == want.pvalue.tobytes()
     with pytest.raises(mcstat.image.ImageInputError, match="got dict"):
         mcstat.image.compare({}, cand)
+
+
+def test_reproduce_imports_only_declared_packages(tmp_path):
+    """Every third-party package a reproduce run imports is a dependency of
+    mcstat or of its 'report' extra (a bare `pip install 'mcstat[report]'`
+    must run `mcstat reproduce`); here the diagnostics study, which needs SciPy."""
+    tomllib = __import__("pytest").importorskip("tomllib")
+    with open(os.path.join(ROOT, "pyproject.toml"), "rb") as f:
+        project = tomllib.load(f)["project"]
+    declared = {re.split(r"[<>=!~\[; ]", r, maxsplit=1)[0].lower()
+                for r in project["dependencies"] + project["optional-dependencies"]["report"]}
+    scene = tmp_path / "scene.json"
+    scene.write_text(json.dumps({
+        "emitters": [{"vertices": [[0, 0, 1], [1, 0, 1], [0, 1, 1]]}],
+        "receivers": [{"point": [0, 0, 0], "normal": [0, 0, 1]}],
+        "studies": {**{k: {"enabled": False} for k in ("irradiance", "sampling", "radiance", "bugs", "timing",
+                                                       "sampler_bugs")},
+                    "diagnostics": {"n": 2000}}}))
+    code = f"""
+import io, json, os, sys, contextlib
+from mcstat_app.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    rc = main(["reproduce", "--scene", {str(scene)!r}, "--no-report", "--no-progress", "--out", {str(tmp_path)!r}])
+third = set()
+for name, m in list(sys.modules.items()):
+    f = getattr(m, "__file__", None) or ""
+    if "." not in name and not name.startswith("_") and ("site-packages" in f or "dist-packages" in f):
+        third.add(name)
+print(json.dumps([rc, sorted(third)]))
+"""
+    rc, third = json.loads(_python(code))
+    assert rc == 0
+    dist = {"PIL": "pillow"}
+    undeclared = [m for m in third if m not in ("mcstat", "mcstat_app") and dist.get(m, m).lower() not in declared]
+    assert "scipy" in third and undeclared == []
