@@ -28,7 +28,7 @@ static void wo_of(double theta_deg, double phi_deg, double *wo)
     wo[0] = sin(t) * cos(p), wo[1] = sin(t) * sin(p), wo[2] = cos(t);
 }
 
-/* The paper scene's BRDFs (bindings/python/mcstat/reproduce/scene.py) and a mixture. */
+/* The paper scene's BRDFs (programs/mcstat_app/reproduce/scene.py) and a mixture. */
 static void plans(mcest_brdf_plan *p)
 {
     mcest_brdf b;

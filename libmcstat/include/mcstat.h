@@ -689,7 +689,7 @@ MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, dou
 /*           estimates that the sample variance misses until one arrives). */
 /*           heavy_tail = 1 when the smaller index is below tail_threshold  */
 /*           (default 2.2: index-2 tails scatter about 2).  Measured        */
-/*           (tests/reference/diagnose_rates.py; 200 samples each at n = 1e3 */
+/*           (tools/refgen/diagnose_rates.py; 200 samples each at n = 1e3 */
 /*           / 1e4): flagged U^-1/2 (index 2) 99.5% / 100%, Pareto 1.5 and  */
 /*           Cauchy 100% / 100%, t_2 95.5% / 100%, 99% zeros + 1% U^-1/2     */
 /*           (10 or 100 nonzero values) 22% / 81.5%; false alarms: uniform,  */

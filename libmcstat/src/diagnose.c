@@ -23,7 +23,7 @@
  * U^-1/2, whose index is 2, at the default k), on the safe side.  k: the
  * default max(10, min(4 sqrt(n), n/25)) balances the estimate's scatter
  * (alpha/sqrt(k)) against the bias of light tails, which look heavier the
- * deeper k reaches (tests/reference/diagnose_rates.py measured both).  An
+ * deeper k reaches (tools/refgen/diagnose_rates.py measured both).  An
  * estimator that is mostly constant (0 off the light source) with rare
  * large values - the firefly pattern - has fewer than k + 1 values beyond
  * its median: k is then reduced to their number minus one, if that leaves

@@ -16,8 +16,8 @@ import pytest
 
 import mcstat
 from conftest import ROOT
-from mcstat.cli import main
-from mcstat.reproduce import PAPER_SCENE, results as R
+from mcstat_app.cli import main
+from mcstat_app.reproduce import PAPER_SCENE, results as R
 
 SCENES = os.path.join(ROOT, "examples", "scenes")
 
@@ -239,7 +239,7 @@ def test_another_seed_other_numbers(tmp_path):
         got.append(strict_json(tmp_path / seed / "results.json"))
     # without matplotlib and tqdm (None in sys.modules makes their import fail): --no-report works,
     # and a report is refused with the command that installs them
-    blocked = "import sys; sys.modules['matplotlib'] = sys.modules['tqdm'] = None; from mcstat.cli import main; "
+    blocked = "import sys; sys.modules['matplotlib'] = sys.modules['tqdm'] = None; from mcstat_app.cli import main; "
     for extra, status in (["--no-report"], 0), ([], 2):
         argv = ["reproduce", "--scene", str(path), "--out", str(tmp_path / f"b{status}")] + extra
         p = subprocess.run([sys.executable, "-c", blocked + f"sys.exit(main({argv!r}))"], capture_output=True, text=True)
@@ -304,7 +304,7 @@ def test_bad_scene_file(tmp_path):
 
 
 def test_missing_report_packages(monkeypatch, tmp_path):
-    import mcstat.reproduce.run as run_mod
+    import mcstat_app.reproduce.run as run_mod
 
     monkeypatch.setattr(run_mod, "missing_report_packages", lambda: ["matplotlib"])
     code, _, err = run_cli("reproduce", "--out", str(tmp_path / "o"))
@@ -359,7 +359,7 @@ def test_test_subcommand(tmp_path):
 
 
 def test_entry_points():
-    v = subprocess.run([sys.executable, "-m", "mcstat", "--version"], capture_output=True, text=True)
+    v = subprocess.run([sys.executable, "-m", "mcstat_app", "--version"], capture_output=True, text=True)
     assert v.returncode == 0 and v.stdout.startswith(f"mcstat {mcstat.__version__}")
     script = os.path.join(os.path.dirname(sys.executable), "mcstat")
     if not os.path.exists(script):

@@ -14,7 +14,7 @@ def wo_of(theta, phi):
     return [np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)]
 
 
-# the paper scene's BRDFs (mcstat.reproduce.scene.PAPER_SCENE) and a mixture
+# the paper scene's BRDFs (mcstat_app.reproduce.scene.PAPER_SCENE) and a mixture
 PLANS = {
     "ward": lambda: est.ward(0.0, 0.6, 0.2, 0.05).plan(wo_of(70, 40)),
     "ashikhmin_shirley": lambda: est.ashikhmin_shirley(0.0, 0.2, 50, 500).plan(wo_of(30, 40)),

@@ -17,7 +17,8 @@ from scipy import stats
 
 import mcstat
 from mcstat import image as mi
-from mcstat.cli import main
+from mcstat_app import image as app_image
+from mcstat_app.cli import main
 
 
 def run_cli(*argv):
@@ -134,12 +135,12 @@ def test_summary_input_matches_samples(rng, tmp_path):
             np.savez(path, n=n, mean=mean, M2=m2)
         return str(path)
     pr, pc = summ(ref, tmp_path / "r.npz"), summ(cand, tmp_path / "c.npz", var=True)
-    a = mi.compare(pr, pc, channels="rgb")
+    a = app_image.compare(pr, pc, channels="rgb")
     b = mi.compare(ref, cand, channels="rgb")
     np.testing.assert_allclose(a.pvalue, b.pvalue, rtol=1e-10)
     np.testing.assert_array_equal(a.decision, b.decision)
     with pytest.raises(mi.ImageInputError, match="covariances"):
-        mi.compare(pr, pc)  # luminance of per-channel summaries
+        app_image.compare(pr, pc)  # luminance of per-channel summaries
 
 
 def test_accumulator_input_matches_samples(rng, tmp_path):
@@ -173,7 +174,7 @@ def test_accumulator_input_matches_samples(rng, tmp_path):
     bad[3, 4, 0, 10] ^= 1
     np.savez(tmp_path / "bad.npz", moments=bad)
     with pytest.raises(mi.ImageInputError, match="bad.npz"):
-        mi.compare(str(tmp_path / "r.npz"), str(tmp_path / "bad.npz"))
+        app_image.compare(str(tmp_path / "r.npz"), str(tmp_path / "bad.npz"))
 
 
 def _write_pfm(path, img):
@@ -231,7 +232,7 @@ def test_exr_input(tmp_path):
                               {"RGB": im}) as f:
                 f.write(p)
             files[side].append(p)
-    res = mi.compare(files["r"], files["c"])
+    res = app_image.compare(files["r"], files["c"])
     want = mi.compare(ref.astype(np.float32), cand.astype(np.float32))
     np.testing.assert_array_equal(res.pvalue, want.pvalue)
     assert (res.pixel_decision()[mask] == 1).mean() > 0.8
@@ -242,7 +243,7 @@ def test_exr_without_package(tmp_path, monkeypatch):
     p.write_bytes(b"\x76\x2f\x31\x01")
     monkeypatch.setitem(sys.modules, "OpenEXR", None)
     with pytest.raises(mi.ImageInputError, match="pip install OpenEXR"):
-        mi.read_image(str(p))
+        app_image.read_image(str(p))
 
 
 def test_constant_pixels_not_tested(rng):
@@ -290,4 +291,4 @@ def test_bad_inputs(tmp_path, rng):
     assert code == 2 and "unknown image format" in err
     (tmp_path / "t.pfm").write_bytes(b"PF\n4 4\n-1.0\n" + b"\0" * 20)
     with pytest.raises(mi.ImageInputError, match="PFM data"):
-        mi.read_image(str(tmp_path / "t.pfm"))
+        app_image.read_image(str(tmp_path / "t.pfm"))

@@ -1,9 +1,9 @@
-"""The exact binomial test and Clopper-Pearson intervals of mcstat.reproduce
+"""The exact binomial test and Clopper-Pearson intervals of mcstat_app.reproduce
 (now libmcstat's, through mcstat.binom_test) against SciPy's binomtest."""
 import pytest
 from scipy import stats
 
-from mcstat.reproduce.binomial import binom_test, clopper_pearson, format_binom
+from mcstat_app.reproduce.binomial import binom_test, clopper_pearson, format_binom
 
 CASES = [(14, 1000, 0.01), (0, 100, 0.05), (100, 100, 0.05), (3, 100, 0.05), (10, 1000, 0.01), (7, 20, 0.3),
          (50, 100, 0.5), (1, 5000, 0.001), (990, 1000, 0.99), (13, 40, 0.5), (0, 1, 0.5), (1, 1, 0.01),

@@ -9,9 +9,9 @@ import pytest
 
 from conftest import ROOT
 from mcstat import estimators as est
-from mcstat.reproduce import PAPER_SCENE, Plan, SceneError, load_scene, parse_scene
-from mcstat.reproduce.scene import schema, schema_text
-from mcstat.reproduce.validate import Validator
+from mcstat_app.reproduce import PAPER_SCENE, Plan, SceneError, load_scene, parse_scene
+from mcstat_app.reproduce.scene import schema, schema_text
+from mcstat_app.reproduce.validate import Validator
 
 SCENES = os.path.join(ROOT, "examples", "scenes")
 

@@ -13,7 +13,7 @@ import numpy as np
 
 import mcstat
 from mcstat import estimators as est
-from mcstat.reproduce.scene import load_scene
+from mcstat_app.reproduce.scene import load_scene
 sc = load_scene(None)
 tri = sc.triangles[0]; r0 = sc.receivers[0]
 seed = [100]

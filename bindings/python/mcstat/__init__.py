@@ -24,9 +24,11 @@ across a battery of tests.  `MomentsArray` keeps one accumulator per
 pixel (render farms: push images, ship bytes, merge, test per pixel).
 Errors are `ValueError` subclasses (see
 `mcstat._errors`).  The reference estimators of the paper's case studies
-are in the subpackage `mcstat.estimators`.
+are in the subpackage `mcstat.estimators`; the ``mcstat`` command and
+its case studies are the separate package ``mcstat_app``, which this
+package never imports.
 
-Beyond the paper (issue 9): `binom_test` (R's exact binomial test),
+Beyond the paper: `binom_test` (R's exact binomial test),
 `battery_test` (is a battery's rejection count consistent with its level?)
 and `diagnose` (skewness, kurtosis, heavy tails, the batch size the t test
 needs) in `mcstat.diagnostics`.
@@ -66,7 +68,7 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
     t_test,
     var_test,
 )
-from ._core import chisq_gof  # noqa: E402  (chi-squared goodness of fit, issue 9)
+from ._core import chisq_gof  # noqa: E402  (chi-squared goodness of fit)
 from ._result import BatchResult
 
 # Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
@@ -81,7 +83,7 @@ from ._power import (  # noqa: E402
     ks_sample_size,
     power,
 )
-# issue 9: the binomial meta-test and estimator diagnostics
+# the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 
 # The distribution's version, which the build reads from mcstat.h (the same

@@ -1,5 +1,5 @@
 # Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
-"""Beyond the paper (issue 9): the exact binomial test, the battery
+"""Beyond the paper: the exact binomial test, the battery
 meta-test, and diagnostics of an estimator's primary estimates.
 
 The numbers are libmcstat's (``mcstat_binom_test``, ``mcstat_battery_test``,

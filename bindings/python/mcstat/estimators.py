@@ -16,7 +16,7 @@ BRDF sampling (section 3.2)
     model's own sampler (with the true density), ``sample_exact`` from
     f cos / albedo by rejection (with the number of proposals), both with
     Morton keys; :func:`direction_keys`, :func:`direction_square`.
-Chi-squared tests of direction samplers (issue 9)
+Chi-squared tests of direction samplers
     :func:`direction_cells` cuts the sphere into cells of nearly equal
     probability under a plan's sampler density, with each cell's exact
     probability by cubature; :func:`direction_gof` tests directions against
@@ -76,7 +76,7 @@ __all__ = [
     "TrialLimitError",
     "EstimatorNumericalError",
     "NotReadyError",
-    # chi-squared route for direction samplers (issue 9)
+    # chi-squared route for direction samplers
     "SAMPLER_BUGS",
     "DirectionCells",
     "direction_cells",
@@ -184,7 +184,7 @@ from ._estimators import (  # noqa: E402  (the extension looks the errors up her
 )
 
 
-# ---- chi-squared route for direction samplers (issue 9) ------------------------------
+# ---- chi-squared route for direction samplers -----------------------------------------
 
 from ._estimators import _brdf_cells, cells_bounds, cells_count, cells_locate  # noqa: E402
 

@@ -9,26 +9,16 @@ with 2-D input), and the millions of p-values are adjusted together
 flagged, the expected fraction of false discoveries is at most alpha,
 where testing each pixel at alpha would flag alpha of all unchanged pixels.
 
-Inputs, per side (`load_side`):
+Inputs, per side, in memory: an array ``(seeds, H, W)`` or ``(seeds, H,
+W, C)`` of per-seed renders (``seed_axis`` says where the seeds are);
+`Samples`; `Summary` (per-pixel n, mean and M2); or a
+``mcstat.MomentsArray`` (a render farm's merged accumulators, see
+`save_moments`).  Files (EXR, PFM, .npy, .npz of summaries or
+accumulators), the significance map's PNG and the ``mcstat image-test``
+command belong to the application, ``mcstat_app.image``.
 
-- one ``.npy`` array with a seeds axis: ``(seeds, H, W)`` or ``(seeds, H,
-  W, C)`` (``seed_axis`` says where the seeds are);
-- several image files, one per seed: ``.exr`` (the ASWF ``OpenEXR``
-  package), ``.pfm`` (read here: Pillow reads only grey PFM), ``.npy``
-  holding one ``(H, W[, C])`` image;
-- one ``.npz`` of per-pixel summaries: ``n``, ``mean`` and ``M2`` (the sum
-  of squared deviations) or ``var`` (``M2 / (n - 1)``), each ``(H, W)`` or
-  ``(H, W, C)``; ``n`` may be a scalar;
-- one ``.npz`` of per-pixel accumulators (a render farm's merged
-  ``mcstat.MomentsArray``, written by `save_moments`): the key ``moments``,
-  a ``uint8`` array ``(H, W[, C], 96)`` of libmcstat's 96-byte records,
-  each checked (magic, version, checksum) when read.  In Python a
-  ``MomentsArray`` itself is accepted as a side.
-
-Each input kind is one reader function in ``_READERS`` returning
-`Samples` or `Summary`.
-
-Colour key of the significance map (`COLOR_KEY`): red, the candidate is
+Colour key of the application's significance map (`COLOR_KEY`, also in
+`ImageComparison.summary`): red, the candidate is
 significantly greater (brighter) than the reference after FDR control;
 blue, significantly less; yellow, channels disagree (some greater, some
 less); grey, not significant (the reference's tone-mapped luminance, so the
@@ -37,11 +27,11 @@ non-finite values, too few seeds).
 """
 from __future__ import annotations
 
-import json
 import os
 import time
+import warnings
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -52,12 +42,9 @@ __all__ = [
     "Samples",
     "Summary",
     "ImageComparison",
-    "load_side",
     "save_moments",
     "summary_of_moments",
-    "read_image",
     "compare",
-    "write_map",
     "COLOR_KEY",
     "LUMINANCE_WEIGHTS",
 ]
@@ -109,85 +96,8 @@ class Summary:
 Side = Union[Samples, Summary]
 
 
-# ---- readers -----------------------------------------------------------------
-def _as_hwc(img: np.ndarray, path: str) -> np.ndarray:
-    if img.ndim == 2:
-        return img[:, :, None]
-    if img.ndim == 3:
-        return img
-    raise ImageInputError(f"{path}: an image must be (H, W) or (H, W, C), got shape {img.shape}")
-
-
-def _read_pfm(path: str) -> np.ndarray:
-    """Portable float map: "PF" (RGB) or "Pf" (grey), width height, scale
-    (negative: little-endian), rows bottom to top."""
-    with open(path, "rb") as f:
-        tokens: List[bytes] = []
-        while len(tokens) < 4:
-            line = f.readline()
-            if not line:
-                raise ImageInputError(f"{path}: truncated PFM header")
-            tokens += line.split()
-        kind, w, h, scale = tokens[0], int(tokens[1]), int(tokens[2]), float(tokens[3])
-        if kind not in (b"PF", b"Pf") or w <= 0 or h <= 0 or scale == 0:
-            raise ImageInputError(f"{path}: not a PFM file")
-        c = 3 if kind == b"PF" else 1
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    if data.size != w * h * c:
-        raise ImageInputError(f"{path}: PFM data hold {data.size} values, the header says {w * h * c}")
-    return data.reshape(h, w, c)[::-1].astype(np.float32)
-
-
-def _read_exr(path: str) -> np.ndarray:
-    try:
-        import OpenEXR  # the ASWF package (pip install OpenEXR)
-    except ImportError as e:
-        raise ImageInputError(f"{path}: reading EXR needs the OpenEXR package (pip install OpenEXR): {e}") from e
-    try:
-        with OpenEXR.File(path) as f:
-            ch = f.channels()
-            if "RGB" in ch:
-                return np.asarray(ch["RGB"].pixels)
-            if "RGBA" in ch:
-                return np.asarray(ch["RGBA"].pixels)[..., :3]
-            for name in ("Y", "L", "R"):
-                if name in ch:
-                    return np.asarray(ch[name].pixels)
-            first = sorted(ch)[0]
-            return np.asarray(ch[first].pixels)
-    except ImageInputError:
-        raise
-    except Exception as e:  # OpenEXR raises plain exceptions for unreadable files
-        raise ImageInputError(f"{path}: cannot read EXR: {e}") from e
-
-
-def _read_npy_image(path: str) -> np.ndarray:
-    return np.load(path, allow_pickle=False)
-
-
-def read_image(path: str) -> np.ndarray:
-    """One image as ``(H, W, C)`` float (EXR, PFM or .npy)."""
-    ext = os.path.splitext(path)[1].lower()
-    readers: Dict[str, Callable[[str], np.ndarray]] = {".exr": _read_exr, ".pfm": _read_pfm, ".npy": _read_npy_image}
-    if ext not in readers:
-        raise ImageInputError(f"{path}: unknown image format {ext!r} (use .exr, .pfm or .npy)")
-    if not os.path.exists(path):
-        raise ImageInputError(f"{path}: no such file")
-    return _as_hwc(readers[ext](path), path)
-
-
 def _channel_names(c: int) -> List[str]:
     return ["R", "G", "B", "A"][:c] if c in (3, 4) else [f"c{i}" for i in range(c)]
-
-
-def _read_stack_npy(path: str, seed_axis: int) -> Samples:
-    a = np.load(path, allow_pickle=False)
-    if a.ndim not in (3, 4):
-        raise ImageInputError(f"{path}: a stack must be (seeds, H, W) or (seeds, H, W, C), got shape {a.shape}")
-    a = np.moveaxis(a, seed_axis, 0)
-    if a.ndim == 3:
-        a = a[..., None]
-    return Samples(a, _channel_names(a.shape[-1]))
 
 
 def summary_of_moments(acc: "MomentsArray") -> Summary:
@@ -206,96 +116,14 @@ def summary_of_moments(acc: "MomentsArray") -> Summary:
 
 
 def save_moments(path: str, acc: "MomentsArray") -> None:
-    """Writes a ``MomentsArray`` as the ``.npz`` that `load_side` and
-    ``mcstat image-test`` read: key ``moments``, ``uint8 (*shape, 96)``."""
+    """Writes a ``MomentsArray`` as the ``.npz`` that ``mcstat image-test``
+    (``mcstat_app.image.load_side``) reads: key ``moments``, ``uint8 (*shape, 96)``."""
     from ._core import MomentsArray
 
     if not isinstance(acc, MomentsArray):
         raise TypeError("save_moments expects a mcstat.MomentsArray")
     rec = np.frombuffer(acc.to_bytes(), dtype=np.uint8).reshape(tuple(acc.shape) + (-1,))
     np.savez(path, moments=rec)
-
-
-def _read_moments_npz(path: str, z) -> Summary:
-    from ._core import MomentsArray
-
-    rec = np.asarray(z["moments"])
-    if rec.dtype != np.uint8 or rec.ndim not in (3, 4):
-        raise ImageInputError(f"{path}: 'moments' must be a uint8 array (H, W[, C], record bytes), "
-                              f"got {rec.dtype} {rec.shape}")
-    try:
-        acc = MomentsArray.from_bytes(np.ascontiguousarray(rec).tobytes(), tuple(rec.shape[:-1]))
-    except ValueError as e:
-        raise ImageInputError(f"{path}: {e}") from e
-    return summary_of_moments(acc)
-
-
-def _read_summary_npz(path: str) -> Summary:
-    with np.load(path, allow_pickle=False) as z:
-        keys = set(z.files)
-        if "moments" in keys:
-            return _read_moments_npz(path, z)
-        if "mean" not in keys or "n" not in keys or not ({"M2", "m2", "var"} & keys):
-            raise ImageInputError(f"{path}: a summary .npz needs arrays 'n', 'mean' and 'M2' (or 'var'), "
-                                  f"found {sorted(keys)}")
-        mean = np.asarray(z["mean"], dtype=np.float64)
-        if mean.ndim not in (2, 3):
-            raise ImageInputError(f"{path}: 'mean' must be (H, W) or (H, W, C), got shape {mean.shape}")
-        if mean.ndim == 2:
-            mean = mean[..., None]
-        try:
-            n = np.asarray(z["n"], dtype=np.float64)
-            n = np.broadcast_to(n[..., None] if n.ndim == 2 else n, mean.shape)
-            if "var" in keys and not ({"M2", "m2"} & keys):
-                var = np.asarray(z["var"], dtype=np.float64)
-                var = var[..., None] if var.ndim == 2 else var
-                m2 = np.broadcast_to(var, mean.shape) * (n - 1)
-            else:
-                m2 = np.asarray(z["M2"] if "M2" in keys else z["m2"], dtype=np.float64)
-                m2 = np.broadcast_to(m2[..., None] if m2.ndim == 2 else m2, mean.shape)
-        except ValueError as e:
-            raise ImageInputError(f"{path}: the arrays' shapes do not match 'mean' {mean.shape}: {e}") from e
-    return Summary(np.ascontiguousarray(n), mean, np.ascontiguousarray(m2), _channel_names(mean.shape[-1]))
-
-
-# Input kinds: a reader per kind, given the side's paths.  A new kind (e.g.
-# serialized per-pixel accumulators) is one function returning Samples or
-# Summary, and one entry here.
-_READERS: Dict[str, Callable[[Sequence[str], int], Side]] = {
-    "stack": lambda paths, seed_axis: _read_stack_npy(paths[0], seed_axis),
-    "summary": lambda paths, seed_axis: _read_summary_npz(paths[0]),
-    "images": lambda paths, seed_axis: _stack_images(paths),
-}
-
-
-def _stack_images(paths: Sequence[str]) -> Samples:
-    imgs = [read_image(p) for p in paths]
-    for p, im in zip(paths, imgs):
-        if im.shape != imgs[0].shape:
-            raise ImageInputError(f"{p}: shape {im.shape} differs from {paths[0]}'s {imgs[0].shape}")
-    return Samples(np.stack(imgs), _channel_names(imgs[0].shape[-1]))
-
-
-def _kind_of(paths: Sequence[str]) -> str:
-    if not paths:
-        raise ImageInputError("no input files")
-    for p in paths:
-        if not os.path.exists(p):
-            raise ImageInputError(f"{p}: no such file")
-    ext = os.path.splitext(paths[0])[1].lower()
-    if len(paths) == 1 and ext == ".npz":
-        return "summary"
-    if len(paths) == 1 and ext == ".npy":
-        return "stack"
-    return "images"
-
-
-def load_side(paths: Union[str, Sequence[str]], *, seed_axis: int = 0) -> Side:
-    """Reads one side of a comparison (see the module's doc for the inputs)."""
-    if isinstance(paths, (str, os.PathLike)):
-        paths = [os.fspath(paths)]
-    paths = [os.fspath(p) for p in paths]
-    return _READERS[_kind_of(paths)](paths, seed_axis)
 
 
 def _as_side(x: Union[Side, np.ndarray, str, Sequence[str]], seed_axis: int) -> Side:
@@ -312,7 +140,17 @@ def _as_side(x: Union[Side, np.ndarray, str, Sequence[str]], seed_axis: int) -> 
         if a.ndim != 4:
             raise ImageInputError(f"an image stack must be (seeds, H, W) or (seeds, H, W, C), got shape {x.shape}")
         return Samples(a, _channel_names(a.shape[-1]))
-    return load_side(x, seed_axis=seed_axis)
+    if isinstance(x, (str, os.PathLike)) or (isinstance(x, Sequence) and x and
+                                             all(isinstance(p, (str, os.PathLike)) for p in x)):
+        # Files are the application's; reading them here is kept for one release.
+        warnings.warn("mcstat.image.compare reading files is deprecated: read them with "
+                      "mcstat_app.image.load_side, or call mcstat_app.image.compare", DeprecationWarning,
+                      stacklevel=3)
+        from mcstat_app.image import load_side
+
+        return load_side(x, seed_axis=seed_axis)
+    raise ImageInputError(f"a side must be an array (seeds, H, W[, C]), Samples, Summary or a MomentsArray, "
+                          f"got {type(x).__name__}")
 
 
 # ---- channels ------------------------------------------------------------------
@@ -480,9 +318,9 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     p-values adjusted together by `method` (``mcstat.p_adjust``'s names;
     BH controls the false discovery rate at `alpha`).
 
-    `reference`, `candidate`: `Samples`, `Summary`, an array ``(seeds, H, W[,
-    C])`` (`seed_axis` says where the seeds are), or path(s) for
-    `load_side`.  The alternative is a claim about the candidate
+    `reference`, `candidate`: `Samples`, `Summary`, a ``MomentsArray`` or an
+    array ``(seeds, H, W[, C])`` (`seed_axis` says where the seeds are);
+    ``mcstat_app.image.compare`` also takes file paths.  The alternative is a claim about the candidate
     ("greater": the candidate is brighter).  Pixels where the test is
     undefined (constant in both inputs, non-finite values) are not tested:
     NaN p-values, not counted by the adjustment.  NaN or infinite values
@@ -571,41 +409,16 @@ def _fmt_shape(s: Tuple[int, int, int]) -> str:
     return f"{s[1]} x {s[0]} pixels (width x height) with {s[2]} channel(s)"
 
 
-# ---- the significance map ------------------------------------------------------
-def map_rgb(res: ImageComparison) -> np.ndarray:
-    """The significance map as (H, W, 3) uint8 (see COLOR_KEY)."""
-    lum = res.reference_luminance
-    finite = np.isfinite(lum)
-    scale = np.percentile(lum[finite], 99) if finite.any() else 1.0
-    scale = scale if scale > 0 else 1.0
-    tm = np.where(finite, np.clip(lum, 0, None) / scale, 0.0)
-    tm = tm / (1.0 + tm)  # Reinhard
-    grey = (60 + 140 * tm).astype(np.uint8)
-    out = np.repeat(grey[..., None], 3, axis=2)
-    pd = res.pixel_decision()
-    out[pd == -2] = COLOR_KEY["not tested"]
-    out[pd == 1] = COLOR_KEY["greater"]
-    out[pd == -1] = COLOR_KEY["less"]
-    out[pd == 2] = COLOR_KEY["mixed"]
-    return out
+# The file readers, the map writer and the command moved to the application
+# (mcstat_app.image); these names resolve there for one release.
+_MOVED = ("load_side", "read_image", "map_rgb", "write_map", "run")
 
 
-def write_map(res: ImageComparison, path: str) -> None:
-    """Writes the significance map as PNG (Pillow)."""
-    from PIL import Image
+def __getattr__(name: str) -> Any:
+    if name in _MOVED:
+        warnings.warn(f"mcstat.image.{name} is deprecated: use mcstat_app.image.{name}", DeprecationWarning,
+                      stacklevel=2)
+        import mcstat_app.image
 
-    Image.fromarray(map_rgb(res), mode="RGB").save(path, format="PNG", compress_level=1)
-
-
-def run(reference, candidate, *, png: Optional[str] = None, json_path: Optional[str] = None, worst: int = 10,
-        **kw) -> ImageComparison:
-    """`compare`, then the PNG and the JSON summary when paths are given."""
-    res = compare(reference, candidate, **kw)
-    t = time.perf_counter()
-    if png:
-        write_map(res, png)
-    res.timings["png"] = time.perf_counter() - t
-    if json_path:
-        with open(json_path, "w") as f:
-            json.dump(res.summary(worst), f, indent=1)
-    return res
+        return getattr(mcstat_app.image, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -4,6 +4,9 @@
 One concern per module:
 
 =============  ==============================================================
+studies        the table of studies (key, section, title, module, report part,
+               schema part): a new study is one entry there, its module, its
+               report part, its schema entry and its rule in plan
 scene          scene files (JSON/TOML), the built-in paper scene, checks
 validate       the JSON Schema subset that checks scene files (schema.json)
 plan           which studies and tests a scene calls for, and why not others
@@ -14,7 +17,7 @@ radiance       3.3: reflected radiance, Welch per direction, binomial test
 bugs           3.4: the three planted bugs against the trusted estimator
 timing         error against run time; K-S p-value error against run time
 binomial       battery meta-test (libmcstat's exact binomial test), intervals
-diagnose       estimator diagnostics: shape, tails, batch size (issue 9)
+diagnose       estimator diagnostics: shape, tails, batch size
 results        results.json
 plots, report  the PNG figures and report.md
 run            the driver behind ``mcstat reproduce``
@@ -31,7 +34,7 @@ __all__ = ["Plan", "Scene", "SceneError", "PAPER_SCENE", "load_scene", "parse_sc
 
 
 def reproduce(*args, **kwargs):
-    """See :func:`mcstat.reproduce.run.reproduce`."""
+    """See :func:`mcstat_app.reproduce.run.reproduce`."""
     from .run import reproduce as _run
 
     return _run(*args, **kwargs)

@@ -26,7 +26,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 
 import mcstat
-from .. import estimators as est
+from mcstat import estimators as est
 from . import equivalence
 from .binomial import rate_of_counts
 from .context import Context

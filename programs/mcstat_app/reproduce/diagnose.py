@@ -118,7 +118,7 @@ def _fmt(v: Any, spec: str = ".3g") -> str:
     return format(v, spec)
 
 
-def report(res: Dict[str, Any], transcript: str) -> List[str]:
+def report(res: Dict[str, Any], fig: Any, transcript: str) -> List[str]:
     """The report's section (called by report.py)."""
     L = ["## Estimator diagnostics (beyond the paper)", "",
          f"{res['n']} primary estimates of every estimator, diagnosed by `mcstat.diagnose`: skewness and excess "

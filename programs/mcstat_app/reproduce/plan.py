@@ -27,26 +27,15 @@ from __future__ import annotations
 import copy
 from typing import Any, Dict, List, Optional
 
-from .. import estimators as est
+from mcstat import estimators as est
 from .scene import Scene
+from .studies import BY_KEY
 
 
 def equivalence_what() -> str:
     from .equivalence import WHAT  # equivalence.py imports the package; plan.py stays light
     return WHAT
 
-SECTIONS = {"irradiance": "3.1", "sampling": "3.2", "radiance": "3.3", "bugs": "3.4", "timing": "time"}
-SECTIONS["diagnostics"] = "diag"  # issue 9
-SECTIONS["sampler_bugs"] = "3.2+"  # beyond the paper (issue 9)
-TITLES = {
-    "irradiance": "Irradiance estimators (3.1)",
-    "sampling": "BRDF sampling (3.2)",
-    "radiance": "Reflected radiance (3.3)",
-    "bugs": "Planted bugs (3.4)",
-    "timing": "Error against run time",
-    "diagnostics": "Estimator diagnostics",
-    "sampler_bugs": "Planted sampler bugs: chi-squared against K-S (3.2+)",
-}
 
 #: --quick: (study, field, cap); list fields keep the values <= cap (at least the first).
 QUICK = [
@@ -117,10 +106,10 @@ class Plan:
             p[field] = new
 
     def _add(self, study: str, target: str, what: str) -> None:
-        self.steps.append(dict(study=study, section=SECTIONS[study], target=target, what=what))
+        self.steps.append(dict(study=study, section=BY_KEY[study].section, target=target, what=what))
 
     def _leave(self, study: str, target: str, what: str, reason: str) -> None:
-        self.left_out.append(dict(study=study, section=SECTIONS[study], target=target, what=what, reason=reason))
+        self.left_out.append(dict(study=study, section=BY_KEY[study].section, target=target, what=what, reason=reason))
 
     def runs(self, study: str, target: Optional[str] = None) -> bool:
         return any(s["study"] == study and (target is None or s["target"] == target) for s in self.steps)
@@ -134,7 +123,7 @@ class Plan:
     # -- the rules -------------------------------------------------------------
     def _disabled(self, study: str) -> bool:
         if not self.params[study]["enabled"]:
-            self._leave(study, "all", TITLES[study], f"disabled in the scene (studies.{study}.enabled = false)")
+            self._leave(study, "all", BY_KEY[study].title, f"disabled in the scene (studies.{study}.enabled = false)")
             return True
         return False
 
@@ -185,17 +174,17 @@ class Plan:
             return
         sc = self.scene
         if "A" not in sc.estimators:
-            self._leave("bugs", "all", TITLES["bugs"],
+            self._leave("bugs", "all", BY_KEY["bugs"].title,
                         "the scene does not list estimator A, in which the paper plants the three bugs")
             return
         if sc.trusted == "A":
-            self._leave("bugs", "all", TITLES["bugs"],
+            self._leave("bugs", "all", BY_KEY["bugs"].title,
                         "the trusted estimator is A itself; list another estimator (S in the paper) as `trusted`")
             return
         p = self.params["bugs"]
         for r in self.receivers:
             if not r["visible"]:
-                self._leave("bugs", r["name"], TITLES["bugs"], "no emitter is above this receiver's horizon")
+                self._leave("bugs", r["name"], BY_KEY["bugs"].title, "no emitter is above this receiver's horizon")
                 continue
             self._add("bugs", r["name"],
                       f"A with {', '.join(p['bugs'])} (and without, as a control) against {sc.trusted}: "
@@ -206,14 +195,14 @@ class Plan:
             return
         sc = self.scene
         if not sc.brdfs:
-            self._leave(study, "all", TITLES[study], "the scene has no BRDFs")
+            self._leave(study, "all", BY_KEY[study].title, "the scene has no BRDFs")
             return
         listed = self.params[study]["brdfs"]
         for b in sc.brdfs:
             if b["name"] in listed:
                 self._add(study, b["name"], what)
             else:
-                self._leave(study, b["name"], TITLES[study], f"not listed in studies.{study}.brdfs")
+                self._leave(study, b["name"], BY_KEY[study].title, f"not listed in studies.{study}.brdfs")
 
     def _timing(self) -> None:
         if self._disabled("timing"):
@@ -241,7 +230,7 @@ class Plan:
                         "section 3.2 does not run, so there are no direction samples to test")
 
     def _diagnostics(self) -> None:
-        """Issue 9: shape, tails and batch size of every estimator the other
+        """Shape, tails and batch size of every estimator the other
         studies test (irradiance at each receiver that sees an emitter; both
         reflected-radiance estimators of the BRDFs section 3.3 tests)."""
         if self._disabled("diagnostics"):

@@ -32,7 +32,7 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
-from .. import estimators as est
+from mcstat import estimators as est
 from .validate import Validator, show
 
 __all__ = ["SceneError", "Scene", "PAPER_SCENE", "load_scene", "parse_scene", "schema", "builtin_scene"]

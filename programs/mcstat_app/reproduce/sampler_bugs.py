@@ -1,5 +1,5 @@
 # Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
-"""Beyond the paper (issue 9): which test catches a buggy direction sampler first?
+"""Beyond the paper: which test catches a buggy direction sampler first?
 
 libmcest plants four realistic bugs in the BRDF samplers' half-vector warps
 (``BRDFPlan.sample_bug``; mcest.h): the lobe 10% too wide (``roughness``),
@@ -33,7 +33,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 
 import mcstat
-from .. import estimators as est
+from mcstat import estimators as est
 from .binomial import rate_summary
 from .context import Context
 from .plan import Plan

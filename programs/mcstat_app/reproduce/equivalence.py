@@ -1,5 +1,5 @@
 # Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
-"""Beyond the paper (issue 9): equivalence and sample size in section 3.1.
+"""Beyond the paper: equivalence and sample size in section 3.1.
 
 The paper's one-sample t test can only fail to find a bias; it never shows
 that an estimator's bias is small.  Where Lambert's formula gives the

@@ -9,17 +9,12 @@ from typing import Any, Dict, List, Optional, TextIO
 import numpy as np
 
 import mcstat
-from .. import estimators as est
-from . import bugs, irradiance, radiance, results, sampler_bugs, sampling, timing
-from . import diagnose  # issue 9
+from mcstat import estimators as est
+from . import results
 from .context import Context
 from .plan import Plan
 from .scene import load_scene
-
-STUDIES = [("irradiance", irradiance), ("sampling", sampling), ("radiance", radiance), ("bugs", bugs)]
-STUDIES.append(("diagnostics", diagnose))  # issue 9: estimator diagnostics
-# beyond the paper (issue 9): chi-squared against Morton-key K-S on planted sampler bugs
-STUDIES.append(("sampler_bugs", sampler_bugs))
+from .studies import STUDIES
 
 
 def missing_report_packages() -> List[str]:
@@ -31,6 +26,11 @@ def missing_report_packages() -> List[str]:
         except ImportError:
             missing.append(name)
     return missing
+
+
+def wall_clock_findings(res: Dict[str, Any]) -> List[str]:
+    """The findings of the wall-clock studies that ran (after the reproducible ones)."""
+    return [f for s in STUDIES if s.wall_clock for f in res.get(s.key, {}).get("findings", [])]
 
 
 def command_line(scene: Optional[str], seed: int, quick: bool) -> str:
@@ -59,21 +59,21 @@ def reproduce(scene_path: Optional[str], out_dir: str, seed: int, quick: bool = 
         scene=scene.data, plan=plan.to_dict(), studies={}, findings=[])
     transcripts: Dict[str, str] = {}
     findings: List[str] = []
-    for name, module in STUDIES:
-        if not plan.runs(name):
+    for study in STUDIES:
+        if not plan.runs(study.key):
             continue
+        module = study.module()
         t0, m0 = time.perf_counter(), ctx.mark()
-        res["studies"][name] = module.run(ctx, plan)
-        res["studies"][name]["wall_seconds"] = time.perf_counter() - t0
-        transcripts[name] = ctx.since(m0)
-        findings += module.findings(res["studies"][name])
-    if plan.runs("timing"):
-        t0, m0 = time.perf_counter(), ctx.mark()
-        res["timing"] = timing.run(ctx, plan)
-        res["timing"]["wall_seconds"] = time.perf_counter() - t0
-        transcripts["timing"] = ctx.since(m0)
-        # wall-clock findings stay with the timing study (out of the reproducible part)
-        res["timing"]["findings"] = timing.findings(res["timing"])
+        r = module.run(ctx, plan)
+        r["wall_seconds"] = time.perf_counter() - t0
+        transcripts[study.key] = ctx.since(m0)
+        if study.wall_clock:
+            # wall-clock results and findings stay apart from the reproducible part
+            res[study.key] = r
+            r["findings"] = module.findings(r)
+        else:
+            res["studies"][study.key] = r
+            findings += module.findings(r)
     res["findings"] = findings
     res["seeds"] = dict(ctx.seeds)
     res["wall_started"] = started
@@ -86,7 +86,7 @@ def reproduce(scene_path: Optional[str], out_dir: str, seed: int, quick: bool = 
         res["wall_seconds"] = time.perf_counter() - t_start
     results.write(os.path.join(out_dir, "results.json"), res)
     ctx.print("\n== Findings")
-    for f in findings + res.get("timing", {}).get("findings", []):
+    for f in findings + wall_clock_findings(res):
         ctx.print(f"- {f}")
     ctx.print(f"\nwrote {os.path.join(out_dir, 'results.json')}"
               + (f" and {os.path.join(out_dir, 'report.md')}" if report else "")

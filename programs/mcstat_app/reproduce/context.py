@@ -20,10 +20,7 @@ from typing import Any, Callable, Dict, Optional, TextIO
 
 import numpy as np
 
-#: Fixed numbers of the studies in the streams' keys (never reuse one).
-STUDY_KEYS = {"irradiance": 1, "sampling": 2, "radiance": 3, "bugs": 4, "timing": 5}
-STUDY_KEYS["diagnostics"] = 6  # issue 9
-STUDY_KEYS["sampler_bugs"] = 7  # issue 9
+from .studies import BY_KEY
 
 
 class _NoBar:
@@ -68,7 +65,7 @@ class Context:
 
     def stream(self, study: str, *key: int, label: str = "") -> int:
         """A 64-bit seed for libmcest or the K-S simulation, recorded under ``label``."""
-        ss = np.random.SeedSequence(self.seed, spawn_key=(STUDY_KEYS[study],) + tuple(int(k) for k in key))
+        ss = np.random.SeedSequence(self.seed, spawn_key=(BY_KEY[study].stream,) + tuple(int(k) for k in key))
         value = int(ss.generate_state(1, dtype=np.uint64)[0])
         name = label or "/".join([study] + [str(k) for k in key])
         self.seeds[name] = value

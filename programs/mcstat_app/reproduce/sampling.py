@@ -28,7 +28,7 @@ from typing import Any, Dict, List, Tuple
 import numpy as np
 
 import mcstat
-from .. import estimators as est
+from mcstat import estimators as est
 from .binomial import clopper_pearson, rate_summary
 from .context import Context
 from .plan import Plan

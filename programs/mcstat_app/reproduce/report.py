@@ -10,6 +10,7 @@ import os
 from typing import Any, Dict, List
 
 from . import plots
+from .studies import STUDIES
 
 
 def _fmt_vec(v: Any) -> str:
@@ -66,7 +67,8 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
           "`results.json` beside this file holds every test's fields; the same seed gives the same "
           "results.json apart from the wall-clock fields and the timing study.", ""]
     L += ["## Findings", ""]
-    all_findings = results["findings"] + results.get("timing", {}).get("findings", [])
+    all_findings = results["findings"] + [f for s in STUDIES if s.wall_clock
+                                          for f in results.get(s.key, {}).get("findings", [])]
     L += [f"- {f}" for f in all_findings] or ["- (no study ran)"]
     L += ["", "These sentences are computed from the runs (see each section); a rate is a count of rejections among "
               "repeated tests, given with its exact 95% (Clopper-Pearson) interval, and 'consistent with alpha' means "
@@ -106,21 +108,10 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
     L += ["", f"Estimators: {', '.join(sc['estimators'])}; trusted: {sc['trusted']}. The full scene, with "
               "every default filled in, is `scene` in results.json.", ""]
 
-    if "irradiance" in st:
-        L += _irradiance(st["irradiance"], fig, transcripts.get("irradiance", ""))
-    if "sampling" in st:
-        L += _sampling(st["sampling"], fig, transcripts.get("sampling", ""))
-    if "radiance" in st:
-        L += _radiance(st["radiance"], fig, transcripts.get("radiance", ""))
-    if "bugs" in st:
-        L += _bugs(st["bugs"], fig, transcripts.get("bugs", ""))
-    if "diagnostics" in st:  # issue 9
-        from . import diagnose
-        L += diagnose.report(st["diagnostics"], transcripts.get("diagnostics", ""))
-    if "sampler_bugs" in st:  # beyond the paper (issue 9)
-        L += _sampler_bugs(st["sampler_bugs"], fig, transcripts.get("sampler_bugs", ""))
-    if "timing" in results:
-        L += _timing(results["timing"], fig, transcripts.get("timing", ""))
+    for study in STUDIES:
+        r = results.get(study.key) if study.wall_clock else st.get(study.key)
+        if r is not None:
+            L += study.report_part()(r, fig, transcripts.get(study.key, ""))
 
     L += ["## Reproducing this run", "",
           f"`{results['command']}` again gives the same results.json except for the fields named `wall_*` and the "
@@ -135,7 +126,7 @@ def write(out_dir: str, results: Dict[str, Any], transcripts: Dict[str, str]) ->
     return files
 
 
-def _irradiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+def irradiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     L = ["## 3.1 Irradiance estimators", "",
          f"Each observation is a secondary estimate, the mean of k = {res['k']} primary estimates (ERRATA 7); "
          f"each sample has {res['secondary']} of them, and every test is repeated in {res['runs']} runs at "
@@ -221,7 +212,7 @@ def _equivalence(eq: Dict[str, Any], E: float) -> List[str]:
     return L
 
 
-def _sampling(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+def sampling(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     L = ["## 3.2 BRDF sampling", "",
          f"For each BRDF at its outgoing direction, n directions from the model's own sampler against n from exact "
          f"rejection sampling of f cos / albedo, by the two-sample K-S test with Canner's weight (two-sided, alpha = "
@@ -253,7 +244,7 @@ def _sampling(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     return L
 
 
-def _radiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+def radiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     L = ["## 3.3 Reflected radiance", "",
          f"At {res['directions']} outgoing directions spread evenly over the hemisphere, m = {res['m']} estimates of "
          "the reflected radiance under libmcest's analytic environment from BRDF sampling (weighted by the "
@@ -274,7 +265,7 @@ def _radiance(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     return L
 
 
-def _bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+def bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     L = ["## 3.4 Planted bugs", "",
          f"Estimator A with each of the paper's three bugs, and without (the control), against {res['trusted']}: "
          f"Welch's test at alpha = {res['alpha']:g} on {res['secondary']} secondary estimates per sample, "
@@ -296,7 +287,7 @@ def _bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     return L
 
 
-def _sampler_bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+def sampler_bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     depth = "about 2 n^0.4 cells per size (Mann and Wald)" if not res["depth"] else f"2^{res['depth']} cells"
     L = ["## 3.2+ Planted sampler bugs: chi-squared against K-S (beyond the paper)", "",
          "libmcest plants four bugs in the BRDF samplers' half-vector warps, while the density the sampler claims "
@@ -339,7 +330,7 @@ def _sampler_bugs(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     return L
 
 
-def _timing(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+def timing(res: Dict[str, Any], fig, transcript: str) -> List[str]:
     L = ["## Error against run time", "",
          f"Wall-clock times on {res['threads']} thread(s) of the machine that ran this report; on a shared machine "
          "they can be off by tens of percent. The errors themselves are reproducible.", ""]

@@ -175,7 +175,7 @@ def ks_error_time(ks: Dict[str, Any], path: str) -> None:
 
 
 def sampler_bug_power(b: Dict[str, Any], res: Dict[str, Any], path: str) -> None:
-    """3.2+ (issue 9): rejection rate against n, chi-squared and K-S, one panel per sampler variant."""
+    """3.2+: rejection rate against n, chi-squared and K-S, one panel per sampler variant."""
     variants = ["none"] + res["bugs"]
     fig, axes = plt.subplots(1, len(variants), figsize=(2.6 * len(variants), 2.9), sharey=True)
     n = np.array([r["n"] for r in b["sizes"]])

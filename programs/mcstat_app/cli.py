@@ -1,0 +1,242 @@
+# Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+"""The ``mcstat`` command (also ``python -m mcstat_app``).
+
+    mcstat reproduce [--scene FILE] [--out DIR] [--seed N] [--quick]   the paper's case studies
+    mcstat plan [SCENE] [--quick]       what reproduce would run on a scene, and what it leaves out
+    mcstat scene [SCENE]                a scene with every default filled in (JSON; the built-in one by default)
+    mcstat schema                       the scene format (JSON Schema)
+    mcstat test X [Y] [options]         one test on samples in .npy / .csv files, printed as R does
+    mcstat image-test -r REF... -c CAND... [options]   per-pixel Welch tests with FDR control: PNG map + JSON
+
+Exit status: 0 on success, 2 for bad input (a scene file, a sample file,
+an argument), 1 with ``mcstat test --fail-on-reject`` when H0 is rejected
+(``mcstat image-test --fail-on-reject``: when any pixel differs after the
+adjustment).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from typing import List, Optional
+
+import mcstat
+
+DEFAULT_SEED = 1
+
+
+def _reproduce(a: argparse.Namespace) -> int:
+    from .reproduce.run import missing_report_packages, reproduce
+
+    if not a.no_report:
+        missing = missing_report_packages()
+        if missing:
+            print(f"mcstat reproduce: the report needs {' and '.join(missing)}, which "
+                  f"{'is' if len(missing) == 1 else 'are'} not installed. Install them with\n"
+                  f"    pip install 'mcstat[report]'      (or: pip install matplotlib tqdm)\n"
+                  f"or run with --no-report to write results.json only.", file=sys.stderr)
+            return 2
+    reproduce(a.scene, a.out, a.seed, quick=a.quick, threads=a.threads, progress=a.progress,
+              report=not a.no_report)
+    return 0
+
+
+def _plan(a: argparse.Namespace) -> int:
+    from .reproduce.plan import Plan
+    from .reproduce.scene import load_scene
+
+    print(Plan(load_scene(a.scene), a.quick).text())
+    return 0
+
+
+def _scene(a: argparse.Namespace) -> int:
+    from .reproduce.scene import load_scene
+
+    print(json.dumps(load_scene(a.scene).data, indent=2))
+    return 0
+
+
+def _schema(a: argparse.Namespace) -> int:
+    from .reproduce.scene import schema_text
+
+    sys.stdout.write(schema_text())
+    return 0
+
+
+def _test(a: argparse.Namespace) -> int:
+    from .samples import load_samples
+
+    x = load_samples(a.x, a.column)
+    y = load_samples(a.y, a.column) if a.y else None
+    if a.batch:
+        x = mcstat.batch_means(x, a.batch)
+        y = mcstat.batch_means(y, a.batch) if y is not None else None
+    xn = os.path.basename(a.x)
+    yn = os.path.basename(a.y) if a.y else "y"
+    if a.test == "t":
+        r = mcstat.t_test(x, y, mu=a.mu, alternative=a.alternative, alpha=a.alpha, nan_policy=a.nan)
+    elif a.test == "var":
+        if y is None and a.sigma2 is None:
+            raise SystemExit("mcstat test: error: --test var on one sample needs --sigma2 (the variance under H0)")
+        null = dict(sigma2=a.sigma2) if y is None else dict(ratio=a.ratio)
+        r = mcstat.var_test(x, y, **null, alternative=a.alternative, alpha=a.alpha, nan_policy=a.nan)
+    else:
+        if y is None:
+            raise SystemExit("mcstat test: error: --test ks compares two samples: give X and Y")
+        r = mcstat.ks_test(x, y, weight=a.weight, alternative=a.alternative, alpha=a.alpha, method=a.method,
+                           n_sim=a.n_sim, seed=a.seed)
+    if a.json:
+        from .reproduce.results import test_fields
+
+        print(json.dumps(test_fields(r), indent=1))
+    else:
+        sys.stdout.write(r.format(xn, yn))
+    return 1 if (a.fail_on_reject and r.reject) else 0
+
+
+def _image_test(a: argparse.Namespace) -> int:
+    from .image import run
+
+    res = run(a.reference, a.candidate, png=a.png, json_path=a.json, worst=a.worst, alpha=a.alpha,
+              method=a.adjust, alternative=a.alternative, channels=a.channels, seed_axis=a.seed_axis,
+              nan_policy=a.nan)
+    if not a.quiet:
+        sys.stdout.write(res.text(a.worst))
+        if a.png:
+            print(f"\nsignificance map: {a.png} (red: candidate greater, blue: less, yellow: channels "
+                  "disagree, grey: not significant, black: not tested)")
+        if a.json:
+            print(f"summary: {a.json}")
+    return 1 if (a.fail_on_reject and int((res.padjusted <= res.alpha).sum()) > 0) else 0
+
+
+def _add_image_test(sub) -> None:
+    it = sub.add_parser(
+        "image-test", help="per-pixel Welch tests of a candidate against a reference, with FDR control",
+        description="Compares a candidate renderer's images with a reference's, pixel by pixel: Welch's t test "
+                    "on the renders of several seeds per side, p-values adjusted together (Benjamini-Hochberg "
+                    "by default, so that at most alpha of the flagged pixels are expected to be false "
+                    "discoveries). Writes a significance map (PNG) and a summary (text, JSON). Inputs per side: "
+                    "one .npy stack (seeds, H, W[, C]); or one image per seed (.exr, .pfm, .npy); or one .npz of "
+                    "per-pixel summaries n, mean, M2 (or var); or one .npz of per-pixel accumulators (key moments: "
+                    "mcstat.image.save_moments of a merged MomentsArray).")
+    it.add_argument("-r", "--reference", nargs="+", required=True, metavar="FILE", help="the reference's input")
+    it.add_argument("-c", "--candidate", nargs="+", required=True, metavar="FILE", help="the candidate's input")
+    it.add_argument("--png", metavar="FILE", default=None, help="write the significance map here")
+    it.add_argument("--json", metavar="FILE", default=None, help="write the summary here (JSON)")
+    it.add_argument("--alpha", type=float, default=0.05, help="level of the FDR (or FWER) (default: %(default)s)")
+    it.add_argument("--adjust", default="BH",
+                    choices=("BH", "BY", "holm", "hochberg", "hommel", "bonferroni", "none"),
+                    help="p-value adjustment (default: %(default)s, the false discovery rate)")
+    it.add_argument("--channels", choices=("luminance", "rgb"), default="luminance",
+                    help="test the luminance, or each channel (default: %(default)s)")
+    it.add_argument("--alternative", choices=("two-sided", "less", "greater"), default="two-sided",
+                    help="a claim about the candidate (default: %(default)s)")
+    it.add_argument("--seed-axis", type=int, default=0, help="the seeds axis of a .npy stack (default: 0)")
+    it.add_argument("--nan", choices=("raise", "omit"), default="raise",
+                    help="NaN values: an error, or left out of their pixel's sample (default: %(default)s)")
+    it.add_argument("--worst", type=int, default=10, help="list this many smallest p-values (default: 10)")
+    it.add_argument("--quiet", action="store_true", help="print nothing")
+    it.add_argument("--fail-on-reject", action="store_true",
+                    help="exit with status 1 when any pixel differs after the adjustment")
+    it.set_defaults(func=_image_test)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="mcstat", description="Statistical hypothesis tests for Monte Carlo estimators (Subr & Arvo).",
+        epilog="Run 'mcstat COMMAND --help' for a command's options.")
+    p.add_argument("--version", action="version",
+                   version=f"mcstat {mcstat.__version__} (libmcstat {mcstat.__libmcstat_version__})")
+    sub = p.add_subparsers(dest="command", metavar="COMMAND")
+
+    r = sub.add_parser("reproduce", help="run the paper's case studies on a scene and write a report",
+                       description="Runs the case studies of the paper's section 3 that the scene calls for "
+                                   "(see 'mcstat plan'), prints R-style summaries, and writes report.md with PNG "
+                                   "figures and results.json (every test's fields) into --out. The same --seed "
+                                   "gives the same results.json apart from wall-clock fields.")
+    r.add_argument("--scene", metavar="FILE", help="scene file (.json or .toml); default: the built-in paper scene "
+                                                   "(examples/scenes/paper.toml)")
+    r.add_argument("--out", metavar="DIR", default="report", help="output folder (default: %(default)s)")
+    r.add_argument("--seed", type=int, default=DEFAULT_SEED, help="seed of every random stream (default: %(default)s)")
+    r.add_argument("--quick", action="store_true", help="smaller budgets (CI: well under a minute on 2 cores)")
+    r.add_argument("--threads", type=int, default=None, metavar="N",
+                   help="threads for the estimators and K-S simulations (results do not depend on it)")
+    g = r.add_mutually_exclusive_group()
+    g.add_argument("--progress", dest="progress", action="store_true", default=None,
+                   help="always show progress bars (default: when stderr is a terminal)")
+    g.add_argument("--no-progress", dest="progress", action="store_false")
+    r.add_argument("--no-report", action="store_true", help="write results.json only (no matplotlib needed)")
+    r.set_defaults(func=_reproduce)
+
+    pl = sub.add_parser("plan", help="show what reproduce would run on a scene and what it would leave out")
+    pl.add_argument("scene", nargs="?", help="scene file (default: the built-in scene)")
+    pl.add_argument("--quick", action="store_true")
+    pl.set_defaults(func=_plan)
+
+    s = sub.add_parser("scene", help="print a scene with every default filled in (JSON)")
+    s.add_argument("scene", nargs="?", help="scene file (default: the built-in scene)")
+    s.set_defaults(func=_scene)
+
+    sc = sub.add_parser("schema", help="print the scene format (JSON Schema)")
+    sc.set_defaults(func=_schema)
+
+    t = sub.add_parser("test", help="test samples read from .npy / .csv files",
+                       description="One test on one or two samples, printed as R prints it, with the paper's "
+                                   "less / equal / greater decision. Files: .npy, or text with one number per line "
+                                   "or a table (.csv, .tsv, .txt; a header row is allowed; pick a column with "
+                                   "--column).")
+    t.add_argument("x", help="the first sample")
+    t.add_argument("y", nargs="?", help="the second sample (two-sample tests)")
+    t.add_argument("--test", choices=("t", "var", "ks"), default="t",
+                   help="t: one-sample or Welch t; var: chi-squared or F; ks: Kolmogorov-Smirnov (default: t)")
+    t.add_argument("--mu", type=float, default=0.0, help="mean under H0 (one-sample t)")
+    t.add_argument("--sigma2", type=float, default=None, help="variance under H0 (one-sample var)")
+    t.add_argument("--ratio", type=float, default=1.0, help="variance ratio under H0 (two-sample var)")
+    t.add_argument("--alternative", choices=("two-sided", "less", "greater"), default="two-sided",
+                   help="a claim about x (for ks the opposite of SciPy's and R's naming)")
+    t.add_argument("--alpha", type=float, default=0.05)
+    t.add_argument("--batch", type=int, default=None, metavar="K",
+                   help="test secondary estimates: means of K consecutive values")
+    t.add_argument("--column", default=None, help="the column of a table, by index or header name")
+    t.add_argument("--nan", choices=("raise", "omit"), default="raise", help="NaN policy (t and var)")
+    t.add_argument("--weight", choices=("canner", "none"), default="canner", help="K-S weight")
+    t.add_argument("--method", choices=("auto", "exact", "simulate", "asymptotic"), default="auto",
+                   help="K-S p-value")
+    t.add_argument("--n-sim", type=int, default=None, help="K-S simulation replicates")
+    t.add_argument("--seed", type=int, default=None, help="K-S simulation seed")
+    t.add_argument("--json", action="store_true", help="print the result's fields as JSON")
+    t.add_argument("--fail-on-reject", action="store_true", help="exit with status 1 when H0 is rejected")
+    t.set_defaults(func=_test)
+
+    _add_image_test(sub)
+    return p
+
+
+def main(argv: Optional[List[str]] = None) -> int:
+    from .samples import SampleFileError
+    from mcstat.estimators import EstimatorError
+    from .reproduce.scene import SceneError
+
+    parser = build_parser()
+    a = parser.parse_args(argv)
+    if not getattr(a, "func", None):
+        parser.print_help()
+        return 2
+    try:
+        return a.func(a)
+    except SceneError as e:
+        print(f"mcstat {a.command}: bad scene: {e}", file=sys.stderr)
+    except SampleFileError as e:
+        print(f"mcstat {a.command}: {e}", file=sys.stderr)
+    except (mcstat.McstatError, EstimatorError) as e:
+        print(f"mcstat {a.command}: {type(e).__name__}: {e}", file=sys.stderr)
+    except KeyboardInterrupt:
+        print(f"mcstat {a.command}: interrupted", file=sys.stderr)
+        return 130
+    return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
