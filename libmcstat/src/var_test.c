@@ -39,15 +39,22 @@ static double bound_p(const mcstat_result *r, int which, int *upper)
  * (chi-squared with df 1 or 2, F with a small df, at alpha ~ 1e-270), the
  * bound itself may well be representable (M2 = 1e-100 over c = 1e-400):
  * then it is formed from log c, c = 2^j e^rem, as num / e^rem * 2^(k - j).
- * Otherwise the plain quotient, so ordinary intervals are unchanged. */
+ * Otherwise the quotient, rounded as before, so ordinary intervals are
+ * unchanged. */
 static int var_bound(const mcstat_result *r, int which, double num, int k, double df1, double df2,
                      double *out)
 {
     double c = r->critical[which ? 0 : 1];
     int upper;
     double p = bound_p(r, which, &upper);
-    if ((c >= DBL_MIN && c <= DBL_MAX) || p == 0.0) {
+    if (p == 0.0) {
         *out = scale2(num / c, k);
+        return MCSTAT_OK;
+    }
+    if (c >= DBL_MIN && c <= DBL_MAX) {
+        /* num / c itself may overflow where k brings the bound back (data
+         * near 1e-300 against data near 1e300); otherwise the same bits */
+        *out = ratio_pow2(num, k, c);
         return MCSTAT_OK;
     }
     double z;

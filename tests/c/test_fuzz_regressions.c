@@ -436,9 +436,30 @@ static void test_var_interval_extreme_alpha(void)
     CHECK(r.conf_int[0] == 0.0 && r.conf_int[1] == 0.0);
 }
 
+/* Found by the duality check once it ran on saturated bounds: with data near
+ * 1e58 against data near 1e286, M2_x / M2_y in the accumulators' units
+ * (times 2^k, k = -1510 here) over a normal critical value 2.7e-199
+ * overflowed before the scaling, and the upper bound came out Inf for
+ * 5.3e-259.  mpmath, 50 digits: est = var{x} / var{y} from the exact
+ * values = 1.429330276341942670711915e-457; F(1, 3) lower quantile at alpha,
+ *   findroot(lambda z: log(betainc(1/2, 3/2, 0, exp(z)/(exp(z)+3), regularized=True)) - log(alpha), log(2.7e-199))
+ *   = 2.688607230755516502892913e-199; est / that = 5.316247981451315826321548e-259. */
+static void test_var_interval_quotient_overflow(void)
+{
+    double x[2] = {0x1.7044c66e6c48cp+193, -3.0};
+    double y[4] = {-4.0, -0x1.c64ddf9c4b662p+952, -0x1.007ce9f8ed42ap-379, -5.0};
+    mcstat_result r;
+    CHECK_INT(mcstat_var_test_2(x, 2, y, 4, 0x1.a203c3fc2d15dp-792, MCSTAT_LESS, 0x1.aadb36ec3d491p-331, &r),
+              MCSTAT_OK);
+    CHECK_REL(r.critical[0], 2.688607230755516502892913e-199, 1e-12, "F(1, 3) lower quantile");
+    CHECK(r.conf_int[0] == 0.0);
+    CHECK_REL(r.conf_int[1], 5.316247981451315826321548e-259, 1e-12, "upper bound");
+}
+
 int main(void)
 {
     test_var_interval_extreme_alpha();
+    test_var_interval_quotient_overflow();
     test_f_df1_0001_answers();
     test_chisq_small_df_at_dbl_max();
     test_f_huge_df1_small_df2_monotone();
