@@ -198,6 +198,27 @@ static f_args f_xy(double f, double df1, double df2)
  * incomplete beta's fraction does not converge usefully there. */
 #define F_LIMIT 1e20
 
+/* The far tails of F by the leading term of DLMF 8.17.8 (see below): the
+ * upper tail (upper = 1, lf = -log f) where y ~ (df2/df1)/f < 1e-300, the
+ * lower one (lf = log f) where x ~ (df1/df2) f < 1e-300. */
+static int f_far(double a, double b, int upper, double lf, mcstat_tails *out)
+{
+    double c = a + b, small = upper ? b : a, big = upper ? a : b;
+    double lc = mcstat__log_beta_prefactor_u(a, b, a / c, b / c, 0.0, 0.0);
+    double lv = c * log1p(small / big) + small * lf - log(small) + lc;
+    if (!(lv < 0.0))
+        lv = 0.0; /* only by rounding, where the other tail is below an ulp */
+    double v = exp(lv), other = -expm1(lv);
+    double lother = other < 0.5 ? log(other) : log1p(-v);
+    if (upper) {
+        out->q = v; out->logq = lv; out->p = other; out->logp = lother;
+    } else {
+        out->p = v; out->logp = lv; out->q = other; out->logq = lother;
+    }
+    out->logk = lv + log(small); /* x f(x) = K = small * tail, to O(y) */
+    return MCSTAT_OK;
+}
+
 int mcstat__f_tails(double f, double df1, double df2, mcstat_tails *out)
 {
     if (f <= 0.0) {
@@ -228,21 +249,7 @@ int mcstat__f_tails(double f, double df1, double df2, mcstat_tails *out)
     double s_up = (df2 / df1) / f, r_lo = (df1 / df2) * f; /* y ~ s_up, x ~ r_lo there */
     if (s_up < 1e-300 || r_lo < 1e-300) {
         int upper = s_up < 1e-300;
-        double c = a + b, small = upper ? b : a, big = upper ? a : b;
-        double lc = mcstat__log_beta_prefactor_u(a, b, a / c, b / c, 0.0, 0.0);
-        double lf = upper ? -log(f) : log(f);
-        double lv = c * log1p(small / big) + small * lf - log(small) + lc;
-        if (!(lv < 0.0))
-            lv = 0.0; /* only by rounding, where the other tail is below an ulp */
-        double v = exp(lv), other = -expm1(lv);
-        double lother = other < 0.5 ? log(other) : log1p(-v);
-        if (upper) {
-            out->q = v; out->logq = lv; out->p = other; out->logp = lother;
-        } else {
-            out->p = v; out->logp = lv; out->q = other; out->logq = lother;
-        }
-        out->logk = lv + log(small); /* x f(x) = K = small * tail, to O(y) */
-        return MCSTAT_OK;
+        return f_far(a, b, upper, upper ? -log(f) : log(f), out);
     }
     f_args g = f_xy(f, df1, df2);
     return mcstat__beta_inc_u(a, b, g.x, g.y, g.ux, g.uy, out);
@@ -265,11 +272,83 @@ static int eval_tails(const dist_ctx *d, double x, mcstat_tails *t)
 }
 
 /* L(z) = log T(e^z) - log p, T the chosen tail; also returns L'(z). */
+static double log_gamma(double a);
+
+/* Chi-squared tails at x = e^z where x is not a normal double: the leading
+ * terms in log x, exact to double precision there (x < DBL_MIN: P(a, x/2) =
+ * K (1 + O(x)); x > DBL_MAX: Q(a, x/2) = K a / (x/2) (1 + O(a/x)), with K =
+ * (x/2)^a e^(-x/2) / Gamma(a+1)). */
+static int chisq_tails_z(double z, double df, mcstat_tails *t)
+{
+    if (z >= Z_MIN && z <= Z_MAX)
+        return mcstat__chisq_tails(exp(z), df, t);
+    double a = 0.5 * df, lh = z - M_LN2, h = exp(lh);
+    double lk = a * lh - h - log_gamma(a + 1.0);
+    if (z < 0.0) {
+        t->logp = lk;
+        t->p = exp(lk);
+        t->q = 1.0 - t->p;
+        t->logq = log1p(-t->p);
+    } else {
+        t->logq = lk + log(a) - lh;
+        t->q = exp(t->logq);
+        t->p = 1.0 - t->q;
+        t->logp = log1p(-t->q);
+    }
+    t->logk = log(a) + lk;
+    return MCSTAT_OK;
+}
+
+/* F tails at f = e^z where f is not a normal double (z < Z_MIN or > Z_MAX),
+ * as mcstat__f_tails would compute them with f - 1 = -1 or f, from log f. */
+static int f_tails_z(double z, double df1, double df2, mcstat_tails *out)
+{
+    if (z >= Z_MIN && z <= Z_MAX)
+        return mcstat__f_tails(exp(z), df1, df2, out);
+    if (df2 >= F_LIMIT * df1)
+        return chisq_tails_z(log(df1) + z, df1, out);
+    if (df1 >= F_LIMIT * df2) {
+        mcstat_tails c;
+        int st = chisq_tails_z(log(df2) - z, df2, &c);
+        out->p = c.q; out->logp = c.logq; out->q = c.p; out->logq = c.logp; out->logk = c.logk;
+        return st;
+    }
+    double a = 0.5 * df1, b = 0.5 * df2;
+    double lr = log(df1 / df2) + z; /* log of r = (df1/df2) f; y ~ 1/r, x ~ r */
+    const double l300 = -690.77552789821368; /* log 1e-300, as in mcstat__f_tails */
+    if (-lr < l300)
+        return f_far(a, b, 1, -z, out);
+    if (lr < l300)
+        return f_far(a, b, 0, z, out);
+    double r = exp(lr);
+    f_args g;
+    if (r <= 1.0) { /* f tiny: f - 1 = -1 */
+        g.x = r / (1.0 + r);
+        g.y = 1.0 / (1.0 + r);
+        g.ux = -1.0 / (1.0 + r);
+        g.uy = (df1 / df2) / (1.0 + r);
+    } else { /* f huge: (f - 1)/f = 1 */
+        double sv = 1.0 / r;
+        g.x = 1.0 / (1.0 + sv);
+        g.y = sv / (1.0 + sv);
+        g.ux = (df2 / df1) / (1.0 + sv);
+        g.uy = -1.0 / (1.0 + sv);
+    }
+    return mcstat__beta_inc_u(a, b, g.x, g.y, g.ux, g.uy, out);
+}
+
 static int eval_L(const dist_ctx *d, double z, int upper, double logp, double *L, double *dL)
 {
-    double x = exp(z);
     mcstat_tails t;
-    int st = eval_tails(d, x, &t);
+    int st;
+    if (z >= Z_MIN && z <= Z_MAX)
+        st = eval_tails(d, exp(z), &t);
+    else if (d->kind == 1) /* only the log quantiles go here */
+        st = chisq_tails_z(z, d->df1, &t);
+    else if (d->kind == 2)
+        st = f_tails_z(z, d->df1, d->df2, &t);
+    else
+        st = MCSTAT_ENUMERIC;
     if (st)
         return st;
     double logT = upper ? t.logq : t.logp;
@@ -284,15 +363,15 @@ static int eval_L(const dist_ctx *d, double z, int upper, double logp, double *L
  * geometrically until it holds the root.  A Newton step is taken when it
  * stays inside the bracket and the previous one at least halved |L|;
  * otherwise the bracket is bisected (far out on a steep log-tail Newton
- * alone would crawl).  Roots below the smallest normal double give 0; above
- * DBL_MAX, +Inf (subnormal arguments lose the digits these tails need). */
-static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, double *out)
+ * alone would crawl).  *out is log x, -Inf for roots below e^zmin, +Inf
+ * above e^zmax. */
+static int solve_z(const dist_ctx *d, double logp, int upper, double x0, double zmin, double zmax, double *out)
 {
     const double sgn = upper ? -1.0 : 1.0; /* sgn * L is increasing in z */
-    double lo = Z_MIN, hi = Z_MAX;          /* sgn*L(lo) < 0 < sgn*L(hi) once known */
+    double lo = zmin, hi = zmax;            /* sgn*L(lo) < 0 < sgn*L(hi) once known */
     int lo_known = 0, hi_known = 0;
     double z = log(x0), step = 1.0, prev_abs_L = INFINITY;
-    if (!(z > Z_MIN && z < Z_MAX))
+    if (!(z > zmin && z < zmax))
         z = 0.0;
     for (int it = 0; it < 400; it++) {
         double L, dL;
@@ -300,7 +379,7 @@ static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, 
         if (st)
             return st;
         if (L == 0.0) {
-            *out = exp(z);
+            *out = z;
             return MCSTAT_OK;
         }
         if (sgn * L > 0.0) {
@@ -313,7 +392,7 @@ static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, 
         double tol = 4.0 * DBL_EPSILON * fmax(1.0, fabs(z));
         double newton = L / dL;
         if (fabs(newton) <= tol) { /* converged: the step is below z's resolution */
-            *out = exp(z - newton);
+            *out = z - newton;
             return MCSTAT_OK;
         }
         double zn = z - newton;
@@ -326,33 +405,53 @@ static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, 
             } else if (!hi_known) { /* root lies above: expand upwards */
                 zn = z + step;
                 step *= 2.0;
-                if (zn >= Z_MAX) {
-                    if (z >= Z_MAX - 1e-9) {
+                if (zn >= zmax) {
+                    if (z >= zmax - 1e-9) {
                         *out = INFINITY;
                         return MCSTAT_OK;
                     }
-                    zn = Z_MAX;
+                    zn = zmax;
                 }
             } else {
                 zn = z - step;
                 step *= 2.0;
-                if (zn <= Z_MIN) {
-                    if (z <= Z_MIN + 1e-9) {
-                        *out = 0.0;
+                if (zn <= zmin) {
+                    if (z <= zmin + 1e-9) {
+                        *out = -INFINITY;
                         return MCSTAT_OK;
                     }
-                    zn = Z_MIN;
+                    zn = zmin;
                 }
             }
         }
         z = zn;
         if (lo_known && hi_known && hi - lo <= tol) {
-            *out = exp(z);
+            *out = z;
             return MCSTAT_OK;
         }
     }
     return MCSTAT_ENUMERIC;
 }
+
+/* The root as x, within the normal doubles (0 below, +Inf above). */
+static int solve_positive(const dist_ctx *d, double logp, int upper, double x0, double *out)
+{
+    double z;
+    int st = solve_z(d, logp, upper, x0, Z_MIN, Z_MAX, &z);
+    if (!st)
+        *out = exp(z); /* exp(-Inf) = 0, exp(Inf) = Inf */
+    return st;
+}
+
+/* The root as log x, unclamped: the far tails are then evaluated from log x
+ * (chisq_tails_z, f_tails_z).  +-1e7 bounds log x for any df >= 1e-3 and
+ * p >= 2^-1074; beyond, -+Inf. */
+#define ZL_LIMIT 1e7
+static int solve_log(const dist_ctx *d, double logp, int upper, double x0, double *out)
+{
+    return solve_z(d, logp, upper, x0, -ZL_LIMIT, ZL_LIMIT, out);
+}
+
 
 /* Picks the better of two starting points (the one with smaller |L|). */
 static double better_start(const dist_ctx *d, double logp, int upper, double x1, double x2)
@@ -518,15 +617,10 @@ int mcstat_t_quantile(double p, double df, int upper, double *x)
     return MCSTAT_OK;
 }
 
-int mcstat_chisq_quantile(double p, double df, int upper, double *x)
+/* The chi-squared and F quantiles for p in (0, 1): x, or log x (logscale,
+ * unclamped) for the variance tests' intervals. */
+static int chisq_quantile(double p, double df, int upper, int logscale, double *x)
 {
-    MCSTAT_IEEE_SCOPE();
-    if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df) || (upper != 0 && upper != 1))
-        return MCSTAT_EINVAL;
-    if (p == 0.0 || p == 1.0) {
-        *x = ((p == 0.0) == (upper == 0)) ? 0.0 : INFINITY;
-        return MCSTAT_OK;
-    }
     dist_ctx d = {1, df, 0.0};
     /* Solve in whichever tail is smaller, so log p keeps its digits. */
     int up = upper;
@@ -542,18 +636,33 @@ int mcstat_chisq_quantile(double p, double df, int upper, double *x)
     wh = wh > 0.0 ? df * wh * wh * wh : NAN;
     double a = 0.5 * df;
     double small = up ? NAN : 2.0 * exp((logq + log_gamma(a + 1.0)) / a);
-    return solve_positive(&d, logq, up, better_start(&d, logq, up, wh, small), x);
+    double x0 = better_start(&d, logq, up, wh, small);
+    return logscale ? solve_log(&d, logq, up, x0, x) : solve_positive(&d, logq, up, x0, x);
 }
 
-int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x)
+int mcstat_chisq_quantile(double p, double df, int upper, double *x)
 {
     MCSTAT_IEEE_SCOPE();
-    if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df1) || !valid_df(df2) || (upper != 0 && upper != 1))
+    if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df) || (upper != 0 && upper != 1))
         return MCSTAT_EINVAL;
     if (p == 0.0 || p == 1.0) {
         *x = ((p == 0.0) == (upper == 0)) ? 0.0 : INFINITY;
         return MCSTAT_OK;
     }
+    return chisq_quantile(p, df, upper, 0, x);
+}
+
+int mcstat__chisq_log_quantile(double p, double df, int upper, double *z)
+{
+    if (p == 0.0 || p == 1.0) {
+        *z = ((p == 0.0) == (upper == 0)) ? -INFINITY : INFINITY;
+        return MCSTAT_OK;
+    }
+    return chisq_quantile(p, df, upper, 1, z);
+}
+
+static int f_quantile(double p, double df1, double df2, int upper, int logscale, double *x)
+{
     dist_ctx d = {2, df1, df2};
     int up = upper;
     double q = p;
@@ -565,5 +674,27 @@ int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x)
     /* log F is roughly normal with variance 2 (1/df1 + 1/df2) for large df. */
     double z = mcstat__norm_quantile(q, up);
     double g = exp(z * sqrt(2.0 / df1 + 2.0 / df2));
-    return solve_positive(&d, logq, up, better_start(&d, logq, up, g, 1.0), x);
+    double x0 = better_start(&d, logq, up, g, 1.0);
+    return logscale ? solve_log(&d, logq, up, x0, x) : solve_positive(&d, logq, up, x0, x);
+}
+
+int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x)
+{
+    MCSTAT_IEEE_SCOPE();
+    if (!x || !(p >= 0.0 && p <= 1.0) || !valid_df(df1) || !valid_df(df2) || (upper != 0 && upper != 1))
+        return MCSTAT_EINVAL;
+    if (p == 0.0 || p == 1.0) {
+        *x = ((p == 0.0) == (upper == 0)) ? 0.0 : INFINITY;
+        return MCSTAT_OK;
+    }
+    return f_quantile(p, df1, df2, upper, 0, x);
+}
+
+int mcstat__f_log_quantile(double p, double df1, double df2, int upper, double *z)
+{
+    if (p == 0.0 || p == 1.0) {
+        *z = ((p == 0.0) == (upper == 0)) ? -INFINITY : INFINITY;
+        return MCSTAT_OK;
+    }
+    return f_quantile(p, df1, df2, upper, 1, z);
 }

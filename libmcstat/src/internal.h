@@ -234,6 +234,13 @@ MCSTAT_HIDDEN double mcstat__norm_quantile(double p, int upper);
 MCSTAT_HIDDEN int mcstat__t_tails(double x, double df, mcstat_tails *t);
 MCSTAT_HIDDEN int mcstat__chisq_tails(double x, double df, mcstat_tails *t);
 MCSTAT_HIDDEN int mcstat__f_tails(double x, double df1, double df2, mcstat_tails *t);
+/* log of mcstat_chisq_quantile / mcstat_f_quantile (p in [0, 1], arguments
+ * valid), not clamped to the normal doubles: where the quantile itself is 0
+ * or Inf in double its logarithm is still finite (-Inf, +Inf only for p at
+ * 0 or 1).  Same solver and starting points, so within the normal range
+ * exp(*z) is the public function's result. */
+MCSTAT_HIDDEN int mcstat__chisq_log_quantile(double p, double df, int upper, double *z);
+MCSTAT_HIDDEN int mcstat__f_log_quantile(double p, double df1, double df2, int upper, double *z);
 
 /* ---- moments (moments.c) ------------------------------------------------ */
 /* The variance as v * 2^(2*e) with v finite: *v = m2/(n-1) in scaled units. */

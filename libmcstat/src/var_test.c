@@ -11,12 +11,70 @@
  */
 #include "internal.h"
 
+#include <float.h>
+
 /* num * 2^k / den, den > 0 finite, without intermediate over/underflow. */
 static double ratio_pow2(double num, int k, double den)
 {
     int kd;
     double fd = frexp(den, &kd);
     return scale2(num / fd, k - kd);
+}
+
+/* The quantile the critical value c of bound `which` (0: conf_int[0], from
+ * critical[1]; 1: conf_int[1], from critical[0]) was computed at: see
+ * mcstat__finish. */
+static double bound_p(const mcstat_result *r, int which, int *upper)
+{
+    *upper = which == 0;
+    if (r->alternative == MCSTAT_TWO_SIDED)
+        return 0.5 * r->alpha;
+    if (r->alternative == (which == 0 ? MCSTAT_GREATER : MCSTAT_LESS))
+        return r->alpha;
+    return 0.0; /* the end of the support: the bound is 0 or Inf */
+}
+
+/* A variance interval's bound num * 2^k / c, c the critical value.  Where c
+ * is 0, subnormal or Inf only because the quantile left the normal doubles
+ * (chi-squared with df 1 or 2, F with a small df, at alpha ~ 1e-270), the
+ * bound itself may well be representable (M2 = 1e-100 over c = 1e-400):
+ * then it is formed from log c, c = 2^j e^rem, as num / e^rem * 2^(k - j).
+ * Otherwise the quotient, rounded as before, so ordinary intervals are
+ * unchanged. */
+static int var_bound(const mcstat_result *r, int which, double num, int k, double df1, double df2,
+                     double *out)
+{
+    double c = r->critical[which ? 0 : 1];
+    int upper;
+    double p = bound_p(r, which, &upper);
+    if (p == 0.0) {
+        *out = scale2(num / c, k);
+        return MCSTAT_OK;
+    }
+    if (c >= DBL_MIN && c <= DBL_MAX) {
+        /* num / c itself may overflow where k brings the bound back (data
+         * near 1e-300 against data near 1e300); otherwise the same bits */
+        *out = ratio_pow2(num, k, c);
+        return MCSTAT_OK;
+    }
+    double z;
+    int st = r->test == MCSTAT_TEST_VAR_1 ? mcstat__chisq_log_quantile(p, df1, upper, &z)
+                                          : mcstat__f_log_quantile(p, df1, df2, upper, &z);
+    if (st)
+        return st;
+    if (!isfinite(z) || fabs(z) > 1e6) { /* not for df >= 1 (|z| < 2000); keeps j ln2_hi exact */
+        *out = scale2(num / c, k);
+        return MCSTAT_OK;
+    }
+    /* z = j ln 2 + rem, |rem| <= ln 2 / 2; j ln 2 exact with ln 2's leading 32 bits */
+    const double ln2_hi = 6.93147180369123816490e-01, ln2_lo = 1.90821492927058770002e-10;
+    double j = floor(z / M_LN2 + 0.5);
+    double rem = (z - j * ln2_hi) - j * ln2_lo;
+    /* k - j may leave int's range only where the bound over- or underflows anyway */
+    double e = (double)k - j;
+    int ei = e > 4000.0 ? 4000 : e < -4000.0 ? -4000 : (int)e;
+    *out = ldexp(num / exp(rem), ei);
+    return MCSTAT_OK;
 }
 
 int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, double alpha,
@@ -54,8 +112,9 @@ int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, 
         return MCSTAT_OK;
     }
     /* {sigma^2 : c0 <= M2 / sigma^2 <= c1} */
-    r.conf_int[0] = scale2(x->m2 / r.critical[1], 2 * x->scale);
-    r.conf_int[1] = scale2(x->m2 / r.critical[0], 2 * x->scale);
+    if ((st = var_bound(&r, 0, x->m2, 2 * x->scale, df, 0.0, &r.conf_int[0])) ||
+        (st = var_bound(&r, 1, x->m2, 2 * x->scale, df, 0.0, &r.conf_int[1])))
+        return st;
     *out = r;
     return MCSTAT_OK;
 }
@@ -104,8 +163,9 @@ int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double 
         return MCSTAT_OK;
     }
     /* {rho : c0 <= est / rho <= c1} */
-    r.conf_int[0] = scale2((vx / vy) / r.critical[1], k);
-    r.conf_int[1] = scale2((vx / vy) / r.critical[0], k);
+    if ((st = var_bound(&r, 0, vx / vy, k, df1, df2, &r.conf_int[0])) ||
+        (st = var_bound(&r, 1, vx / vy, k, df1, df2, &r.conf_int[1])))
+        return st;
     *out = r;
     return MCSTAT_OK;
 }

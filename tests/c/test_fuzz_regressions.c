@@ -378,8 +378,88 @@ static void test_f_df1_0001_answers(void)
     CHECK_REL(x, 5.7047112680203527e+6, 1e-13, "upper 1e-300 quantile of F(0.001, 562)");
 }
 
+/* fuzz_rows: variance intervals at extreme alpha.  A critical value below
+ * DBL_MIN came back 0 from the quantile (or above DBL_MAX, Inf), and the
+ * bound M2 / c became Inf (or 0) although the true bound is an ordinary
+ * double: at alpha = 9.2e-274, var_test_2 on {2.5e-312, 0} against 9 values
+ * up to 1e301 gave [0, Inf] with p = 0 rejecting ratio 4e86
+ * (regressions/fuzz_rows/var_ci_critical_below_dbl_min; both true bounds,
+ * 2.9e-1313 and 1.0e-697, underflow: [0, 0]).  The expected bounds are
+ * from mpmath at 50 digits:
+ *   F(1, 8) lower quantile at p = 1e-200/2 (the double 1e-200):
+ *     findroot(lambda z: log(betainc(1/2, 4, 0, exp(z)/(exp(z)+8), regularized=True)) - log(p), log(4e-401))
+ *     = 4.179591836734693727923826e-401; (1e-50)^2/2 / 7.5 / that = 1.595052083333333414731908e+299
+ *   chi2(1) lower quantile at the same p:
+ *     findroot(lambda z: log(gammainc(1/2, 0, exp(z)/2, regularized=True)) - log(p), log(4e-401))
+ *     = 3.926990816987241407494094e-401; (1e-50)^2/2 / that = 1.273239544735162751126932e+300
+ *   F(2, 1) upper quantile at p (betainc(1/2, 1, 0, 1/(2 f + 1), regularized=True) = p)
+ *     = 2.00000000000000007159895e+400; (1e100)^2 / (1/2) / that = 9.99999999999999996006307e-201;
+ *   at p = 1e-200 (one-sided), f = (1/p^2 - 1)/2 exactly: (1e100)^2 * 2 / f = 3.999999999999999984025228e-200
+ * (mpmath's 1e-50 and 1e100 are the doubles' exact values.) */
+static void test_var_interval_extreme_alpha(void)
+{
+    const double alpha = 1e-200;
+    double x[2] = {0.0, 1e-50}, y[9] = {1, 2, 3, 4, 5, 6, 7, 8, 9};
+    double x3[3] = {0.0, 1e100, 2e100}, y2[2] = {0.0, 1.0};
+    mcstat_result r, rows[1];
+
+    CHECK_INT(mcstat_var_test_2(x, 2, y, 9, 1.0, MCSTAT_TWO_SIDED, alpha, &r), MCSTAT_OK);
+    CHECK(r.critical[0] == 0.0); /* the reported critical value stays clamped */
+    CHECK_REL(r.conf_int[1], 1.595052083333333414731908e+299, 1e-12, "F(1, 8) upper bound at alpha 1e-200");
+    CHECK(r.conf_int[0] > 0.0 && r.conf_int[0] < r.conf_int[1]);
+    CHECK(!r.reject); /* ratio 1 lies inside */
+    CHECK_INT(mcstat_var_test_2_rows(x, 2, 2, y, 9, 9, 1, 1.0, MCSTAT_TWO_SIDED, alpha, 0, rows, NULL), MCSTAT_OK);
+    CHECK(memcmp(&rows[0], &r, sizeof r) == 0);
+
+    CHECK_INT(mcstat_var_test_1(x, 2, 1.0, MCSTAT_TWO_SIDED, alpha, &r), MCSTAT_OK);
+    CHECK(r.critical[0] == 0.0);
+    CHECK_REL(r.conf_int[1], 1.273239544735162751126932e+300, 1e-12, "chi2(1) upper bound at alpha 1e-200");
+    CHECK_INT(mcstat_var_test_1_rows(x, 1, 2, 2, 1.0, MCSTAT_TWO_SIDED, alpha, 0, rows, NULL), MCSTAT_OK);
+    CHECK(memcmp(&rows[0], &r, sizeof r) == 0);
+
+    /* the other side: the upper critical value overflows, the lower bound does not */
+    CHECK_INT(mcstat_var_test_2(x3, 3, y2, 2, 1.0, MCSTAT_TWO_SIDED, alpha, &r), MCSTAT_OK);
+    CHECK(r.critical[1] == INFINITY);
+    CHECK_REL(r.conf_int[0], 9.99999999999999996006307e-201, 1e-12, "F(2, 1) lower bound at alpha 1e-200");
+    CHECK(r.conf_int[1] == INFINITY); /* 2e200 / 5e-201 does overflow */
+    CHECK_INT(mcstat_var_test_2(x3, 3, y2, 2, 1.0, MCSTAT_GREATER, alpha, &r), MCSTAT_OK);
+    CHECK_REL(r.conf_int[0], 3.999999999999999984025228e-200, 1e-12, "one-sided: F(2, 1) upper quantile at alpha");
+    CHECK(r.conf_int[1] == INFINITY);
+
+    /* the fuzzer's input: both true bounds underflow */
+    double fx[2] = {0x0.00000000002ffp-1022, 0.0};
+    double fy[9] = {-0x1.f5c28f5c28f8p+1001, -0x1.f00ff99809a2p-1020, -0x1.47bp+6, 0x1.eb84p+6, -0x1.fd04p+382,
+                    0x1.0bff35c28f5c2p-215, 0x1.f5c8f8028f5c2p-1012, 0x1.9998p+5, -0x1.a9p+3};
+    CHECK_INT(mcstat_var_test_2(fx, 2, fy, 9, 0x1.b851eb880bfe7p+287, MCSTAT_TWO_SIDED, 0x1.ff2663f526666p-908, &r),
+              MCSTAT_OK);
+    CHECK(r.reject && r.p_value == 0.0);
+    CHECK(r.conf_int[0] == 0.0 && r.conf_int[1] == 0.0);
+}
+
+/* Found by the duality check once it ran on saturated bounds: with data near
+ * 1e58 against data near 1e286, M2_x / M2_y in the accumulators' units
+ * (times 2^k, k = -1510 here) over a normal critical value 2.7e-199
+ * overflowed before the scaling, and the upper bound came out Inf for
+ * 5.3e-259.  mpmath, 50 digits: est = var{x} / var{y} from the exact
+ * values = 1.429330276341942670711915e-457; F(1, 3) lower quantile at alpha,
+ *   findroot(lambda z: log(betainc(1/2, 3/2, 0, exp(z)/(exp(z)+3), regularized=True)) - log(alpha), log(2.7e-199))
+ *   = 2.688607230755516502892913e-199; est / that = 5.316247981451315826321548e-259. */
+static void test_var_interval_quotient_overflow(void)
+{
+    double x[2] = {0x1.7044c66e6c48cp+193, -3.0};
+    double y[4] = {-4.0, -0x1.c64ddf9c4b662p+952, -0x1.007ce9f8ed42ap-379, -5.0};
+    mcstat_result r;
+    CHECK_INT(mcstat_var_test_2(x, 2, y, 4, 0x1.a203c3fc2d15dp-792, MCSTAT_LESS, 0x1.aadb36ec3d491p-331, &r),
+              MCSTAT_OK);
+    CHECK_REL(r.critical[0], 2.688607230755516502892913e-199, 1e-12, "F(1, 3) lower quantile");
+    CHECK(r.conf_int[0] == 0.0);
+    CHECK_REL(r.conf_int[1], 5.316247981451315826321548e-259, 1e-12, "upper bound");
+}
+
 int main(void)
 {
+    test_var_interval_extreme_alpha();
+    test_var_interval_quotient_overflow();
     test_f_df1_0001_answers();
     test_chisq_small_df_at_dbl_max();
     test_f_huge_df1_small_df2_monotone();
