@@ -258,6 +258,8 @@ static void test_interval_extreme_alpha(void)
         double s = pow(10.0, k), x[3] = {0.0, s, 0.25 * s}, y[2] = {s, 0.5 * s}, z[2] = {0.0, 1.0};
         for (int m = 1; m <= 320; m += 7) {
             double alpha = pow(10.0, -m);
+            if (alpha == 0.0) /* a caller running with flush-to-zero (portability-test) cannot form 1e-316 */
+                continue;
             for (int alt = 0; alt < 3; alt++) {
                 check_interval(mcstat_t_test_1(x, 2, 0.0, alt, alpha, &r), &r, "t_test_1", s, alpha, alt);
                 check_interval(mcstat_t_test_1(x, 3, 0.0, alt, alpha, &r), &r, "t_test_1 n 3", s, alpha, alt);
