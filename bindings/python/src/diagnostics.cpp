@@ -86,7 +86,7 @@ void register_diagnostics(py::module_ &mod)
             int st;
             {
                 py::gil_scoped_release nogil;
-                st = mcstat_diagnose(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()), &o, &d);
+                st = mcstat_diag_compute(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()), &o, &d);
             }
             if (st)
                 throw_status(st, "diagnose");
@@ -118,7 +118,7 @@ void register_diagnostics(py::module_ &mod)
         "_t_size_edgeworth",
         [](double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha) {
             double s[2];
-            int st = mcstat_t_size_edgeworth(skewness, kurtosis, k, m, alpha, s);
+            int st = mcstat_diag_t_size(skewness, kurtosis, k, m, alpha, s);
             if (st)
                 throw_status(st, "t_size_edgeworth");
             return py::make_tuple(s[0], s[1]);
@@ -129,7 +129,7 @@ void register_diagnostics(py::module_ &mod)
         "_batch_size_recommend",
         [](double skewness, double kurtosis, uint64_t m, double alpha, double tolerance) {
             uint64_t k;
-            int st = mcstat_batch_size_recommend(skewness, kurtosis, m, alpha, tolerance, &k);
+            int st = mcstat_diag_batch_size(skewness, kurtosis, m, alpha, tolerance, &k);
             if (st)
                 throw_status(st, "batch_size_recommend");
             return k;

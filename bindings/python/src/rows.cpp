@@ -150,18 +150,18 @@ void run_range(const TestArgs &a, const Layout &X, const Layout &Y, bool two, si
         const double *py_ = two ? rows_at(Y, r0, k, by, &sy) : nullptr;
         switch (a.kind) {
         case Kind::T1:
-            mcstat_t_test_1_rows(px, k, X.n, sx, a.null_value, a.alternative, a.alpha, flags, res.data(), st.data());
+            mcstat_t_test_1_matrix(px, X.n, sx, k, a.null_value, a.alternative, a.alpha, flags, res.data(), st.data());
             break;
         case Kind::T2:
-            mcstat_t_test_2_rows(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
+            mcstat_t_test_2_matrix(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
                                  res.data(), st.data());
             break;
         case Kind::V1:
-            mcstat_var_test_1_rows(px, k, X.n, sx, a.null_value, a.alternative, a.alpha, flags, res.data(),
+            mcstat_var_test_1_matrix(px, X.n, sx, k, a.null_value, a.alternative, a.alpha, flags, res.data(),
                                    st.data());
             break;
         case Kind::V2:
-            mcstat_var_test_2_rows(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
+            mcstat_var_test_2_matrix(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
                                    res.data(), st.data());
             break;
         }

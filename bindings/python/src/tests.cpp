@@ -165,13 +165,13 @@ int call_arrays(const TestArgs &a, const double *x, size_t nx, const double *y, 
 {
     unsigned flags = (a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (a.omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
     switch (a.kind) {
-    case Kind::T1: return mcstat_t_test_1_rows(x, 1, nx, 0, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+    case Kind::T1: return mcstat_t_test_1_matrix(x, nx, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
     case Kind::T2:
-        return mcstat_t_test_2_rows(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+        return mcstat_t_test_2_matrix(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
     case Kind::V1:
-        return mcstat_var_test_1_rows(x, 1, nx, 0, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+        return mcstat_var_test_1_matrix(x, nx, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
     default:
-        return mcstat_var_test_2_rows(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r,
+        return mcstat_var_test_2_matrix(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r,
                                       nullptr);
     }
 }
