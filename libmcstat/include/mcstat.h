@@ -244,10 +244,11 @@ MCSTAT_API int mcstat_moments_from_bytes(const unsigned char *buf, size_t size, 
  * invariant of an accumulator (it merges, serializes and tests like any
  * other), and the t and variance tests, which read only n, mean and M2,
  * give exactly the summary's results; its skewness, kurtosis, min and max
- * describe the stand-in, not the data.  Statuses: MCSTAT_EINVAL (out NULL,
- * m2 < 0, or m2 != 0 with n == 1), MCSTAT_ETOOFEW (n == 0: an empty summary
- * is mcstat_moments_init), MCSTAT_ENONFINITE (mean or m2 NaN or +-Inf),
- * MCSTAT_ETOOBIG (mean +- sqrt(M2/n) overflows). */
+ * describe the stand-in, not the data.  Statuses, in this order:
+ * MCSTAT_EINVAL (out NULL), MCSTAT_ENONFINITE (mean or m2 NaN or +-Inf),
+ * MCSTAT_EINVAL (m2 < 0), MCSTAT_ETOOFEW (n == 0: an empty summary is
+ * mcstat_moments_init; or n == 1 with m2 != 0), MCSTAT_ETOOBIG (mean +-
+ * sqrt(M2/n) overflows). */
 MCSTAT_API int mcstat_moments_from_summary(uint64_t n, double mean, double m2, mcstat_moments *out);
 
 /* ------------------------------------------------------------------------ */

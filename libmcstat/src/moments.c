@@ -344,12 +344,14 @@ int mcstat_moments_from_summary(uint64_t n, double mean, double m2, mcstat_momen
     MCSTAT_IEEE_SCOPE();
     if (!out)
         return MCSTAT_EINVAL;
-    if (n == 0)
-        return MCSTAT_ETOOFEW;
     if (!isfinite(mean) || !isfinite(m2))
         return MCSTAT_ENONFINITE;
-    if (m2 < 0.0 || (n == 1 && m2 != 0.0))
+    if (m2 < 0.0)
         return MCSTAT_EINVAL;
+    /* no values, or one value with a spread: too few for what the summary
+     * claims (the status a test on such a sample gives) */
+    if (n == 0 || (n == 1 && m2 != 0.0))
+        return MCSTAT_ETOOFEW;
     /* The summary says nothing of the third and fourth sums or the extremes;
      * the stand-in is the symmetric two-point sample mean +- h, h =
      * sqrt(M2/n), which has this n, mean and M2, M3 = 0 and M4 = M2^2/n, the

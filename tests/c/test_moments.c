@@ -431,7 +431,8 @@ static void test_from_summary(void)
     /* refused */
     CHECK_INT(mcstat_moments_from_summary(0, 1.0, 0.0, &s), MCSTAT_ETOOFEW);
     CHECK_INT(mcstat_moments_from_summary(5, 1.0, -1e-300, &s), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_moments_from_summary(1, 1.0, 2.0, &s), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_moments_from_summary(1, 1.0, 2.0, &s), MCSTAT_ETOOFEW);
+    CHECK_INT(mcstat_moments_from_summary(0, NAN, 1.0, &s), MCSTAT_ENONFINITE);
     CHECK_INT(mcstat_moments_from_summary(5, NAN, 1.0, &s), MCSTAT_ENONFINITE);
     CHECK_INT(mcstat_moments_from_summary(5, 1.0, INFINITY, &s), MCSTAT_ENONFINITE);
     CHECK_INT(mcstat_moments_from_summary(5, 1.0, 1.0, NULL), MCSTAT_EINVAL);
