@@ -11,9 +11,8 @@
  * renderers agree (Welch's t, F, Kolmogorov-Smirnov), per pixel over whole
  * images, and whether a battery of such tests rejects more often than its
  * level allows.  The tests are those of Subr & Arvo, "Statistical
- * Hypothesis Testing for Assessing Monte Carlo Estimators", with the paper's
- * errata (ERRATA n in the comments refers to them); the text blocks they
- * print are R's.
+ * Hypothesis Testing for Assessing Monte Carlo Estimators"; the text blocks
+ * they print are R's.
  *
  * The header reads in the order a user meets things:
  *   1. Conventions: statuses, alternatives, options that grow.
@@ -27,10 +26,10 @@
  *   5. Multiple testing: adjusted p-values (R's p.adjust) for the millions
  *      of per-pixel tests.
  *   6. Equivalence: TOST, "the bias is below eps".
- *   7. Power and sample size.                       (experimental)
- *   8. Estimator diagnostics: shape, tails, batch size. (experimental)
+ *   7. Power and sample size (experimental).
+ *   8. Estimator diagnostics: shape, tails, batch size (experimental).
  *   9. Goodness of fit: chi-squared GOF of cell counts, the exact binomial
- *      test and the battery meta-test.             (experimental)
+ *      test and the battery meta-test (experimental).
  *  10. Distributions: t, chi-squared and F tails and quantiles.
  *  11. Sizes, versions and GSL's handler.
  *  12. Deprecated names, kept so that older code still builds and links.
@@ -756,6 +755,12 @@ MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcs
                                               double ratio, int alternative, double alpha, unsigned flags,
                                               mcstat_result *out, int32_t *status);
 
+/* ======================================================================== */
+/* 5. Multiple testing.                                                     */
+/* A per-pixel comparison makes millions of tests: adjust their p-values    */
+/* before reading the map.                                                  */
+/* ======================================================================== */
+
 /* ------------------------------------------------------------------------ */
 /* Multiple testing: adjusted p-values, as R's p.adjust.                     */
 /* A per-pixel comparison makes millions of tests; at level alpha each, a    */
@@ -797,6 +802,12 @@ MCSTAT_API int mcstat_p_adjust_work_size(size_t n, int method, size_t *bytes);
  * (work NULL and the allocation failed), MCSTAT_ETOOBIG. */
 MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work, size_t work_bytes,
                                double *adjusted);
+
+/* ======================================================================== */
+/* 6. Equivalence.                                                          */
+/* Not "is it different?" but "is the difference below eps?": the TOST      */
+/* fills an mcstat_result like the tests of section 3.                      */
+/* ======================================================================== */
 
 /* ------------------------------------------------------------------------ */
 /* Equivalence: two one-sided tests (TOST, Schuirmann 1987).                 */
@@ -1257,7 +1268,7 @@ MCSTAT_API size_t mcstat_sizeof_result(void);
 MCSTAT_API size_t mcstat_sizeof_moments_bytes(void);
 
 /* ------------------------------------------------------------------------ */
-/* Versions and compatibility.                                               */
+/* Versions.                                                                 */
 /* MCSTAT_VERSION_MAJOR/MINOR/PATCH is the release, written here only: the   */
 /* build (CMakeLists.txt), the Python package (pyproject.toml) read it from  */
 /* this header, and the Rust and Go bindings' tests check theirs against it. */
