@@ -26,6 +26,7 @@
 
 #include "mcest.h"
 #include "real_array.hpp"
+#include "kwargs.hpp"
 #include "threads.hpp"
 
 namespace py = pybind11;
@@ -67,19 +68,7 @@ std::string show(py::handle o)
 
 uint64_t to_u64(py::handle o, const char *name)
 {
-    if (PyBool_Check(o.ptr()) || !PyIndex_Check(o.ptr()))
-        throw py::type_error(std::string(name) + " must be an int, got " + show(o));
-    py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(o.ptr()));
-    if (!i)
-        throw py::error_already_set();
-    if (PyObject_RichCompareBool(i.ptr(), py::int_(0).ptr(), Py_LT) == 1)
-        throw_invalid(std::string(name) + " must be a non-negative int below 2**64, got " + show(o));
-    unsigned long long v = PyLong_AsUnsignedLongLong(i.ptr());
-    if (v == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
-        PyErr_Clear();
-        throw_invalid(std::string(name) + " must be a non-negative int below 2**64, got " + show(o));
-    }
-    return static_cast<uint64_t>(v);
+    return mcs_kwargs::to_u64(o.ptr(), name, [](const std::string &m) { throw_invalid(m); });
 }
 
 size_t to_count(py::handle o, const char *name)

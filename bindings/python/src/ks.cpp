@@ -34,19 +34,7 @@ uint64_t entropy_seed()
 // A Python int in [0, 2^64) (numpy integers too); TypeError / InvalidArgumentError.
 uint64_t get_u64(PyObject *o, const char *name)
 {
-    if (PyBool_Check(o) || !PyIndex_Check(o))
-        throw py::type_error(std::string(name) + " must be an int, got " + repr(o));
-    py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(o));
-    if (!i)
-        throw py::error_already_set();
-    if (PyObject_RichCompareBool(i.ptr(), py::int_(0).ptr(), Py_LT) == 1)
-        throw_invalid(std::string(name) + " must be a non-negative int below 2**64, got " + repr(o));
-    unsigned long long v = PyLong_AsUnsignedLongLong(i.ptr());
-    if (v == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
-        PyErr_Clear();
-        throw_invalid(std::string(name) + " must be a non-negative int below 2**64, got " + repr(o));
-    }
-    return static_cast<uint64_t>(v);
+    return mcs_kwargs::to_u64(o, name, [](const std::string &m) { throw_invalid(m); });
 }
 
 // A Python int as int64 (TypeError for other types).

@@ -7,13 +7,15 @@
 // order, then keyword-only ones (a null name is a parameter this function
 // does not have).  Each slot receives a borrowed reference to
 // the argument given, or stays nullptr.  Errors are TypeErrors worded as
-// Python's own.
+// Python's own.  Beside it, the integer argument both modules take (seeds,
+// counts): to_u64.
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #pragma once
 
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
 #include <initializer_list>
 #include <string>
 
@@ -70,6 +72,27 @@ inline void parse(const char *fname, PyObject *const *args, Py_ssize_t nargs, Py
                                        repr_of(name));
         *slot = args[nargs + k];
     }
+}
+
+// A Python int in [0, 2^64) (NumPy integers too; not bool): TypeError for
+// other types, invalid(message) (which throws the module's own
+// InvalidArgumentError) for negative or too large values.
+template <typename Invalid> uint64_t to_u64(PyObject *o, const char *name, Invalid invalid)
+{
+    if (PyBool_Check(o) || !PyIndex_Check(o))
+        throw pybind11::type_error(std::string(name) + " must be an int, got " + repr_of(o));
+    pybind11::object i = pybind11::reinterpret_steal<pybind11::object>(PyNumber_Index(o));
+    if (!i)
+        throw pybind11::error_already_set();
+    const std::string range = std::string(name) + " must be a non-negative int below 2**64, got ";
+    if (PyObject_RichCompareBool(i.ptr(), pybind11::int_(0).ptr(), Py_LT) == 1)
+        invalid(range + repr_of(o));
+    unsigned long long v = PyLong_AsUnsignedLongLong(i.ptr());
+    if (v == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
+        PyErr_Clear();
+        invalid(range + repr_of(o));
+    }
+    return static_cast<uint64_t>(v);
 }
 
 } // namespace mcs_kwargs
