@@ -171,7 +171,7 @@ typedef struct mcstat_result mcstat_result;
 /* added a value or an array at a time and merged exactly, so the data      */
 /* need never be stored.  Accumulators serialize to 96 bytes; arrays of     */
 /* them hold one per pixel; mcstat_stream buffers a renderer thread's       */
-/* values in front of one.  Every test of section 3 takes accumulators.     */
+/* values in front of one.  The t, chi-squared and F tests take them.       */
 /* ======================================================================== */
 
 /* ------------------------------------------------------------------------ */
