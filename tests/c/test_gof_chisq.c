@@ -1,5 +1,5 @@
 /*
- * test_chisq_gof.c - Pearson's chi-squared goodness of fit against R's
+ * test_gof_chisq.c - Pearson's chi-squared goodness of fit against R's
  * chisq.test (tests/c/ref_chisq.h, from tests/reference/make_chisq_ref.R),
  * the R-style block, bad input, and calibration and power on multinomial
  * samples.
@@ -186,5 +186,5 @@ int main(void)
     test_format();
     test_bad_input();
     test_calibration_and_power();
-    return h_report("test_chisq_gof");
+    return h_report("test_gof_chisq");
 }
