@@ -39,7 +39,8 @@
  *
  * Experimental sections (7-9) are as tested and as ABI-stable as the rest,
  * but their names and options may change before 1.0; a renamed function
- * stays as a deprecated alias for one release.
+ * stays as a deprecated alias for one release.  They are compiled in by
+ * default; define MCSTAT_NO_EXPERIMENTAL to leave them out.
  *
  * Conventions, for every function in this header:
  *   - Fallible calls return an int status: MCSTAT_OK (0) or one of the
@@ -860,6 +861,12 @@ MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const 
 /* their names and options may change before 1.0 (a renamed function        */
 /* stays one release as a deprecated alias, as in section 12).              */
 /* ======================================================================== */
+/* Compiled in by default.  A program that wants to be sure it uses no
+ * experimental name defines MCSTAT_NO_EXPERIMENTAL before including this
+ * header: sections 7-9 (and the deprecated names of their families) are
+ * then left out, and any use is a compile error.  The library exports them
+ * either way. */
+#ifndef MCSTAT_NO_EXPERIMENTAL
 
 /* ------------------------------------------------------------------------ */
 /* 7. Power and sample size.                          (experimental)      */
@@ -1210,6 +1217,8 @@ MCSTAT_API int mcstat_battery_test(uint64_t rejections, uint64_t k, double level
 MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative,
                                            double alpha, mcstat_result *out);
 
+#endif /* MCSTAT_NO_EXPERIMENTAL */
+
 /* ======================================================================== */
 /* 10. Distributions.                                                       */
 /* The t, chi-squared and F distributions the tests use, as functions.      */
@@ -1317,6 +1326,7 @@ MCSTAT_API int mcstat_gsl_handler_off_if_default(void);
 MCSTAT_DEPRECATED("mcstat_sizeof_moments_bytes") MCSTAT_API size_t mcstat_moments_bytes(void);
 MCSTAT_DEPRECATED("mcstat_sizeof_gof_options") MCSTAT_API size_t mcstat_sizeof_chisq_options(void);
 
+#ifndef MCSTAT_NO_EXPERIMENTAL
 /* diagnostics: the mcstat_diag_ stem */
 MCSTAT_DEPRECATED("mcstat_diag_compute")
 MCSTAT_API int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt, mcstat_diagnostics *out);
@@ -1349,6 +1359,7 @@ MCSTAT_DEPRECATED("mcstat_gof_default_min_expected") MCSTAT_API double mcstat_ch
 MCSTAT_DEPRECATED("mcstat_gof_chisq_test")
 MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
                                 const mcstat_chisq_options *opt, double alpha, mcstat_result *out);
+#endif /* MCSTAT_NO_EXPERIMENTAL */
 
 /* row-wise tests: mcstat_<test>_test_<k>_matrix, each matrix (x, n, stride)
  * then rows.  The one-sample _rows calls put rows before n: swapping the
