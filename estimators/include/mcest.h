@@ -433,8 +433,8 @@ MCEST_API int mcest_brdf_sample_bug(const mcest_brdf_plan *plan, int bug, uint64
 /* equal probability and follow the lobe however narrow (a cubature of the   */
 /* whole sphere could miss a lobe 0.05 rad wide).  Below-horizon directions  */
 /* are cells like any other.  Cells are numbered left to right along the     */
-/* leaves, so consecutive cells are neighbours (mcstat_chisq_gof pools in    */
-/* that order).  split holds the 2^depth - 1 split values in heap order      */
+/* leaves, so consecutive cells are neighbours (mcstat_gof_chisq_test pools  */
+/* in that order).  split holds the 2^depth - 1 split values in heap order   */
 /* (node i's children 2i+1, 2i+2).  Each cell's probability prob[c] under    */
 /* the plan's density (mcest_brdf_pdf, on the whole sphere) is then computed */
 /* by adaptive cubature (7x7 against 4x4 Gauss-Legendre, splitting the worst */

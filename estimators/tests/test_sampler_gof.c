@@ -135,7 +135,7 @@ static int rejections(const mcest_brdf_plan *p, const double *split, const doubl
         CHECK_INT(mcest_brdf_sample_bug(p, bug, 1000 + (uint64_t)r, 0, n, w), MCEST_OK);
         CHECK_INT(mcest_cells_count(split, DEPTH, w, n, counts), MCEST_OK);
         mcstat_result res;
-        CHECK_INT(mcstat_chisq_gof(counts, prob, CELLS, NULL, alpha, &res), MCSTAT_OK);
+        CHECK_INT(mcstat_gof_chisq_test(counts, prob, CELLS, NULL, alpha, &res), MCSTAT_OK);
         rej += res.reject;
     }
     free(w);

@@ -121,7 +121,7 @@ def load(path=None):
         "mcstat_version": (ctypes.c_char_p, []),
         "mcstat_strerror": (ctypes.c_char_p, [I]),
         "mcstat_sizeof_moments": (S, []), "mcstat_sizeof_result": (S, []),
-        "mcstat_sizeof_ks_options": (S, []), "mcstat_moments_bytes": (S, []),
+        "mcstat_sizeof_ks_options": (S, []), "mcstat_sizeof_moments_bytes": (S, []),
         "mcstat_moments_init": (I, [M]), "mcstat_moments_add": (I, [M, D]),
         "mcstat_moments_add_array": (I, [M, P, S]), "mcstat_moments_merge": (I, [M, M]),
         "mcstat_moments_mean": (D, [M]), "mcstat_moments_var": (D, [M]),

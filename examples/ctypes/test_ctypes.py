@@ -124,7 +124,7 @@ def main():
         mc.check(lib, lib.mcstat_moments_add(ctypes.byref(m), v))
     expect(m.n == 100, "moments n")
     expect(rel_err(lib.mcstat_moments_mean(ctypes.byref(m)), sum(data["michelso"]) / 100) < 1e-15, "mean")
-    buf = ctypes.create_string_buffer(lib.mcstat_moments_bytes())
+    buf = ctypes.create_string_buffer(lib.mcstat_sizeof_moments_bytes())
     mc.check(lib, lib.mcstat_moments_to_bytes(ctypes.byref(m), buf, len(buf)))
     m2 = mc.Moments()
     mc.check(lib, lib.mcstat_moments_from_bytes(buf, len(buf), ctypes.byref(m2)))

@@ -1,10 +1,46 @@
 /*
  * mcstat.h - statistical hypothesis tests for Monte Carlo estimators.
  *
- * The tests of Subr & Arvo, "Statistical Hypothesis Testing for Assessing
- * Monte Carlo Estimators": one-sample t (mean vs mu0), one-sample chi-squared
- * (variance vs sigma0^2), Welch's two-sample t, and the two-sample F test,
- * on arrays or on streaming, mergeable accumulators.
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ *
+ * Introduction
+ *
+ * mcstat decides, with a stated error rate, whether a Monte Carlo estimator
+ * is right: whether its mean is a reference value (t tests), whether its
+ * variance is within a bound (chi-squared and F tests), whether two
+ * renderers agree (Welch's t, F, Kolmogorov-Smirnov), per pixel over whole
+ * images, and whether a battery of such tests rejects more often than its
+ * level allows.  The tests are those of Subr & Arvo, "Statistical
+ * Hypothesis Testing for Assessing Monte Carlo Estimators"; the text blocks
+ * they print are R's.
+ *
+ * The header reads in the order a user meets things:
+ *   1. Conventions: statuses, alternatives, options that grow.
+ *   2. Accumulators: mcstat_moments (one sample, streaming and mergeable),
+ *      its serialized bytes, arrays of accumulators (one per pixel), and
+ *      mcstat_stream (a per-thread buffer for checks inside a renderer).
+ *   3. The tests and their result: mcstat_result, then t, chi-squared, F
+ *      (each on arrays and on accumulators) and Kolmogorov-Smirnov.
+ *   4. Per-pixel rows: the same tests once per row of a matrix or of an
+ *      array of accumulators.
+ *   5. Multiple testing: adjusted p-values (R's p.adjust) for the millions
+ *      of per-pixel tests.
+ *   6. Equivalence: TOST, "the bias is below eps".
+ *   7. Power and sample size (experimental).
+ *   8. Estimator diagnostics: shape, tails, batch size (experimental).
+ *   9. Goodness of fit: chi-squared GOF of cell counts, the exact binomial
+ *      test and the battery meta-test (experimental).
+ *  10. Distributions: t, chi-squared and F tails and quantiles.
+ *  11. Sizes, versions and GSL's handler.
+ *  12. Deprecated names, kept so that older code still builds and links.
+ * Where a new function goes: in the section of its concept, named
+ * mcstat_<family>_<verb> (mcstat_moments_add, mcstat_diag_compute) or
+ * mcstat_<test>_test_<k>[_moments|_matrix|_moments_rows] for the tests.
+ *
+ * Experimental sections (7-9) are as tested and as ABI-stable as the rest,
+ * but their names and options may change before 1.0; a renamed function
+ * stays as a deprecated alias for one release.  They are compiled in by
+ * default; define MCSTAT_NO_EXPERIMENTAL to leave them out.
  *
  * Conventions, for every function in this header:
  *   - Fallible calls return an int status: MCSTAT_OK (0) or one of the
@@ -19,9 +55,8 @@
  *     kept, even under flush-to-zero) and restores the caller's mode.  The
  *     library itself must be built without -ffast-math (its sources refuse
  *     it); code including this header may use any flags.
- *
- * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
+
 #ifndef MCSTAT_H
 #define MCSTAT_H
 
@@ -48,20 +83,28 @@ extern "C" {
 #else
 #  define MCSTAT_API
 #endif
+/* MCSTAT_DEPRECATED marks a name this release replaced (section 12): it
+ * still links and gives the same results, and the compiler names the
+ * replacement.  Define MCSTAT_DISABLE_DEPRECATE_WARNINGS before including
+ * this header to silence the warnings. */
+#if defined(MCSTAT_DISABLE_DEPRECATE_WARNINGS)
+#  define MCSTAT_DEPRECATED(replacement)
+#elif defined(__GNUC__) || defined(__clang__)
+#  define MCSTAT_DEPRECATED(replacement) __attribute__((deprecated("use " replacement)))
+#elif defined(_MSC_VER)
+#  define MCSTAT_DEPRECATED(replacement) __declspec(deprecated("use " replacement))
+#else
+#  define MCSTAT_DEPRECATED(replacement)
+#endif
+
+/* ======================================================================== */
+/* 1. Conventions.                                                          */
+/* Statuses (every fallible call returns one), alternatives (every test     */
+/* takes one), and how the options structs grow and the results do not.     */
+/* ======================================================================== */
 
 /* ------------------------------------------------------------------------ */
-/* Versions and compatibility.                                               */
-/* MCSTAT_VERSION_MAJOR/MINOR/PATCH is the release, written here only: the   */
-/* build (CMakeLists.txt), the Python package (pyproject.toml) read it from  */
-/* this header, and the Rust and Go bindings' tests check theirs against it. */
-/* MCSTAT_SOVERSION is the ABI: the shared library is libmcstat.so.N.  It    */
-/* changes only with an incompatible change, one that breaks a binary built  */
-/* against an earlier release with this SOVERSION (a function removed or its */
-/* signature changed, a public struct's size or layout changed, an enum     */
-/* value renumbered), never with the release number alone; additions keep   */
-/* it.  libmcstat/abi/ holds the ABI (abidw) of the first release of this   */
-/* SOVERSION and `make abi-check` compares every build against it.          */
-/*                                                                           */
+/* Compatibility of options and results.                                    */
 /* Options structs grow.  Each starts with `uint32_t size`, which its        */
 /* initialiser sets to the struct's sizeof as the caller compiled it; new    */
 /* fields are only appended.  The library accepts the size of every release */
@@ -80,18 +123,6 @@ extern "C" {
 /* use the per-test storage (the named unions in mcstat_result), or a new   */
 /* function with its own struct.                                             */
 /* ------------------------------------------------------------------------ */
-#define MCSTAT_VERSION_MAJOR 0
-#define MCSTAT_VERSION_MINOR 1
-#define MCSTAT_VERSION_PATCH 0
-/* The shared library's ABI version (its SOVERSION; see above). */
-#define MCSTAT_SOVERSION 0
-#define MCSTAT_VERSION_NUMBER \
-    (MCSTAT_VERSION_MAJOR * 10000 + MCSTAT_VERSION_MINOR * 100 + MCSTAT_VERSION_PATCH)
-
-/* MCSTAT_VERSION_NUMBER of the library actually linked. */
-MCSTAT_API unsigned mcstat_version_number(void);
-/* "MAJOR.MINOR.PATCH" of the library actually linked (static storage). */
-MCSTAT_API const char *mcstat_version(void);
 
 /* ------------------------------------------------------------------------ */
 /* Status codes.                                                             */
@@ -130,6 +161,19 @@ enum mcstat_alternative {
 MCSTAT_API int mcstat_alternative_parse(const char *name, int *alternative);
 /* "two-sided", "less", "greater", or NULL for an invalid value. */
 MCSTAT_API const char *mcstat_alternative_name(int alternative);
+
+/* Every test writes an mcstat_result (section 3); the stream checks of
+ * section 2 do too. */
+typedef struct mcstat_result mcstat_result;
+
+/* ======================================================================== */
+/* 2. Accumulators.                                                         */
+/* A sample is kept as an mcstat_moments: count, mean and central sums,     */
+/* added a value or an array at a time and merged exactly, so the data      */
+/* need never be stored.  Accumulators serialize to 96 bytes; arrays of     */
+/* them hold one per pixel; mcstat_stream buffers a renderer thread's       */
+/* values in front of one.  The t, chi-squared and F tests take them.       */
+/* ======================================================================== */
 
 /* ------------------------------------------------------------------------ */
 /* Streaming moments.                                                        */
@@ -192,6 +236,170 @@ MCSTAT_API double mcstat_moments_kurtosis(const mcstat_moments *m); /* excess g2
 MCSTAT_API int mcstat_moments_to_bytes(const mcstat_moments *m, unsigned char *buf, size_t size);
 MCSTAT_API int mcstat_moments_from_bytes(const unsigned char *buf, size_t size, mcstat_moments *m);
 
+/* *out <- an accumulator holding a summary: n values whose mean is `mean`
+ * and whose sum of squared deviations is m2 (M2 = (n-1) var), as read from
+ * a file of per-pixel summaries.  Only n, the mean and M2 are known: the
+ * accumulator is that of the symmetric two-point sample mean +- sqrt(M2/n)
+ * (M3 = 0, M4 = M2^2/n, min and max those two points), so it keeps every
+ * invariant of an accumulator (it merges, serializes and tests like any
+ * other), and the t and variance tests, which read only n, mean and M2,
+ * give exactly the summary's results; its skewness, kurtosis, min and max
+ * describe the stand-in, not the data.  Statuses, in this order:
+ * MCSTAT_EINVAL (out NULL), MCSTAT_ENONFINITE (mean or m2 NaN or +-Inf),
+ * MCSTAT_EINVAL (m2 < 0), MCSTAT_ETOOFEW (n == 0: an empty summary is
+ * mcstat_moments_init; or n == 1 with m2 != 0), MCSTAT_ETOOBIG (mean +-
+ * sqrt(M2/n) overflows). */
+MCSTAT_API int mcstat_moments_from_summary(uint64_t n, double mean, double m2, mcstat_moments *out);
+
+/* ------------------------------------------------------------------------ */
+/* Arrays of accumulators: one mcstat_moments per pixel.                     */
+/* A render farm keeps one accumulator per pixel (an array of `rows` structs */
+/* the caller owns, row i = pixel i), adds every rendered image or batch of  */
+/* images into it, ships it as bytes, merges arrays element-wise, and tests  */
+/* every pixel.  Adding a batch is "add_array on a fresh accumulator, then   */
+/* merge", so pushing batches A then B on one machine gives bit for bit what */
+/* pushing A and B on two machines and merging the second into the first    */
+/* gives: a fixed merge order reproduces a single-machine run exactly.      */
+/* No allocation; disjoint row ranges may run on different threads.          */
+/* ------------------------------------------------------------------------ */
+
+/* Empties m[0..rows).  MCSTAT_EINVAL for m NULL with rows > 0. */
+MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
+
+/* Adds n values to each of rows accumulators: row i's values are the n
+ * contiguous doubles at x + i * x_stride (strides in elements), and m[i]
+ * becomes exactly mcstat_moments_merge(m[i], A) where A is
+ * mcstat_moments_add_array on a fresh accumulator of those values.  One
+ * image with one value per pixel is n = 1, x_stride = 1; a stack of k
+ * images stored pixel-major (k values per pixel) is n = k, x_stride = k.
+ * flags: MCSTAT_ROWS_OMIT_NAN skips NaN values (+-Inf remains an error).
+ * status[i] (may be NULL) receives row i's status; a row that fails
+ * (MCSTAT_ENONFINITE, or MCSTAT_ETOOBIG when its count would pass 2^64 - 1)
+ * is left unchanged and the other rows are still added.
+ * Returns MCSTAT_OK, the status of the first row that failed, or
+ * MCSTAT_EINVAL (nothing changed) for NULL pointers, unknown flags or an
+ * uninitialised accumulator. */
+MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, size_t n,
+                                       size_t x_stride, unsigned flags, int32_t *status);
+
+/* dst[i] <- dst[i] merged with src[i], for i < rows (mcstat_moments_merge
+ * element-wise).  src may equal dst; the arrays must not otherwise overlap.
+ * MCSTAT_EINVAL (nothing changed) for NULL pointers or an uninitialised
+ * accumulator in either array, MCSTAT_ETOOBIG (nothing changed) when a
+ * row's count would pass 2^64 - 1. */
+MCSTAT_API int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows);
+
+/* The array as rows * MCSTAT_MOMENTS_BYTES bytes: the records of
+ * mcstat_moments_to_bytes concatenated in row order, no header (each record
+ * carries its own magic, version and checksum; the count is size / 96; the
+ * image's shape is the caller's).  MCSTAT_EBUFSIZE when size is smaller,
+ * MCSTAT_EINVAL for NULL pointers or an uninitialised accumulator. */
+MCSTAT_API int mcstat_moments_to_bytes_rows(const mcstat_moments *m, size_t rows, unsigned char *buf,
+                                            size_t size);
+/* Reads rows accumulators from exactly rows * MCSTAT_MOMENTS_BYTES bytes.
+ * MCSTAT_ECORRUPT (m unchanged) when size differs or any record is corrupt
+ * (see mcstat_moments_from_bytes); MCSTAT_EINVAL for NULL pointers. */
+MCSTAT_API int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t size, size_t rows,
+                                              mcstat_moments *m);
+
+/* ------------------------------------------------------------------------ */
+/* Buffered per-thread accumulator: checks inside a renderer.                */
+/* mcstat_moments_add merges one value exactly (double-double mean), which   */
+/* costs tens of ns.  A renderer that checks its estimates in production    */
+/* keeps one mcstat_stream per thread instead: a fixed-size plain struct of  */
+/* MCSTAT_STREAM_BYTES (4096) bytes the caller owns, holding an             */
+/* mcstat_moments and an inline buffer of MCSTAT_STREAM_CAPACITY doubles.   */
+/* mcstat_stream_add (inline, below) stores the value and bumps a counter;   */
+/* when the buffer is full it is flushed into the moments with               */
+/* mcstat_moments_add_array, so the moments are exactly what add_array      */
+/* gives on the same values (about 0.5 ns per value; bench/RESULTS_check.md)*/
+/* No allocation, no lock, no global state: one stream per thread, merged   */
+/* (mcstat_stream_merge) by one thread at the end of a frame, then checked. */
+/* NaN and +-Inf values are not added: they are counted in n_nonfinite, and */
+/* a check on a stream that has seen one returns MCSTAT_ENONFINITE.          */
+/* mcstat_check.h wraps all this in macros that compile to nothing when     */
+/* checks are off.                                                           */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_STREAM_VERSION 1u
+#define MCSTAT_STREAM_BYTES 4096u
+#define MCSTAT_STREAM_CAPACITY 492u /* (4096 - 128 - 32) / 8 */
+
+typedef struct mcstat_stream {
+    mcstat_moments moments;  /* every value flushed so far */
+    uint32_t count;          /* values waiting in buf (< MCSTAT_STREAM_CAPACITY) */
+    uint32_t version;        /* MCSTAT_STREAM_VERSION once initialised */
+    uint64_t n_nonfinite;    /* NaN and +-Inf values seen (and left out) */
+    /* reserved is 0.1.0's name of this storage */
+    MCSTAT_ANONYMOUS union {
+        uint64_t reserved[2];
+        struct {
+            uint64_t n_overflow; /* values left out because the count would pass 2^64 - 1 */
+            uint64_t reserved_1; /* zero */
+        };
+    };
+    double buf[MCSTAT_STREAM_CAPACITY];
+} mcstat_stream;
+
+/* Empties s.  MCSTAT_EINVAL for NULL. */
+MCSTAT_API int mcstat_stream_init(mcstat_stream *s);
+/* Adds the buffered values to s->moments and empties the buffer (non-finite
+ * values are counted in n_nonfinite instead).  MCSTAT_EINVAL for NULL or an
+ * uninitialised stream.  MCSTAT_ETOOBIG when the count would pass 2^64 - 1:
+ * the buffered values are then left out and counted in n_overflow, and every
+ * check on the stream returns MCSTAT_ETOOBIG. */
+MCSTAT_API int mcstat_stream_flush(mcstat_stream *s);
+/* dst <- dst merged with src: its moments, its buffered values and its
+ * non-finite count; src is not modified (it may equal dst).  Merging a
+ * thread's stream into a frame total and re-initialising the thread's
+ * stream is the end-of-frame step.  MCSTAT_EINVAL; MCSTAT_ETOOBIG (dst
+ * unchanged) when a count would pass 2^64 - 1. */
+MCSTAT_API int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src);
+/* *out <- the moments of every value s has seen (flushed or buffered),
+ * without modifying s.  MCSTAT_EINVAL. */
+MCSTAT_API int mcstat_stream_moments(const mcstat_stream *s, mcstat_moments *out);
+
+/* Adds one value: a store and a counter in the common case, a flush once
+ * every MCSTAT_STREAM_CAPACITY values.  s must have been initialised.  FFI
+ * callers that cannot inline this may do the same through the struct. */
+static inline void mcstat_stream_add(mcstat_stream *s, double x)
+{
+    s->buf[s->count] = x;
+    if (++s->count == MCSTAT_STREAM_CAPACITY)
+        (void)mcstat_stream_flush(s);
+}
+
+/* Check that the mean of the values is `reference` to within `tolerance`
+ * (>= 0, finite), at level alpha, without storing the values.
+ *   tolerance == 0: the two-sided one-sample t test of mean == reference.
+ *   tolerance > 0: H0 |mean - reference| <= tolerance against H1 |mean -
+ *   reference| > tolerance, as two one-sided t tests at alpha/2 each (mean >
+ *   reference + tolerance, mean < reference - tolerance); *out is the one
+ *   with the smaller p-value (its alpha field is alpha/2), so its R-style
+ *   block names the bound that was crossed.  A tolerance covers a reference
+ *   that is itself approximate, which enough samples would otherwise detect.
+ * out->reject == 1 means the check failed.  Statuses as mcstat_t_test_1,
+ * plus MCSTAT_ENONFINITE when the stream has seen a NaN or an infinity. */
+MCSTAT_API int mcstat_stream_check_mean(const mcstat_stream *s, double reference, double tolerance,
+                                        double alpha, mcstat_result *out);
+/* Check that the variance of the values is below `bound` (> 0): the
+ * one-sample chi-squared test of var == bound against var > bound at level
+ * alpha; out->reject == 1 (the variance is significantly above the bound)
+ * means the check failed.  Statuses as mcstat_var_test_1, plus
+ * MCSTAT_ENONFINITE as above. */
+MCSTAT_API int mcstat_stream_check_var(const mcstat_stream *s, double bound, double alpha,
+                                       mcstat_result *out);
+MCSTAT_API size_t mcstat_sizeof_stream(void);
+
+/* ======================================================================== */
+/* 3. The tests and their result.                                           */
+/* Every test writes an mcstat_result: statistic, p-value, confidence       */
+/* interval, critical values, the reject flag and the paper's three-way     */
+/* decision; mcstat_result_format prints R's block.  The t, chi-squared and */
+/* F tests come on arrays and on accumulators (_moments); the               */
+/* Kolmogorov-Smirnov test needs the values themselves.  Equivalence (6)    */
+/* and goodness of fit (9) fill the same struct.                            */
+/* ======================================================================== */
+
 /* ------------------------------------------------------------------------ */
 /* Test results.                                                             */
 /* A plain struct filled by every test.  Fields that do not apply are NaN    */
@@ -218,7 +426,7 @@ enum mcstat_method {
     MCSTAT_METHOD_ASYMPTOTIC = 4 /* a large-sample approximation */
 };
 
-typedef struct mcstat_result {
+struct mcstat_result {
     int32_t test;          /* enum mcstat_test */
     int32_t method;        /* enum mcstat_method: how the p-value was obtained */
     int32_t alternative;   /* enum mcstat_alternative */
@@ -274,7 +482,7 @@ typedef struct mcstat_result {
             double chisq_pool_below;   /* min_expected, 0 when pooling was off */
         };
     };
-} mcstat_result;
+};
 
 /* Values of mcstat_result.decision. */
 #define MCSTAT_DECISION_LESS (-1)
@@ -364,154 +572,6 @@ MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_m
                                          mcstat_result *out);
 
 /* ------------------------------------------------------------------------ */
-/* Equivalence: two one-sided tests (TOST, Schuirmann 1987).                 */
-/* H0: the mean lies outside the bounds, mean <= mu0 + lower or mean >=      */
-/* mu0 + upper (two-sample: the difference of means outside [lower, upper]); */
-/* H1: it lies strictly inside.  Each bound is tested by a one-sided t test */
-/* at level alpha (the one-sample t, or Welch's t with Welch-Satterthwaite  */
-/* df); equivalence is shown when both reject, i.e. when the 1 - 2 alpha    */
-/* confidence interval lies inside the bounds.  With lower = -eps, upper =  */
-/* eps and mu0 the exact value, "equivalent" is the evidence that the       */
-/* estimator's bias is smaller than eps in magnitude.                        */
-/* Result fields: statistic and p_value are those of the one-sided test     */
-/* with the larger p-value (the TOST p-value is max(p_lower, p_upper));      */
-/* df[0] the t's degrees of freedom; conf_int the 1 - 2 alpha interval;      */
-/* estimate, std_error, n as the t tests; null_value mu0 (0 for two         */
-/* samples); alternative MCSTAT_TWO_SIDED (unused); critical[1] = t(1-alpha, */
-/* df), critical[0] = -critical[1]: equivalent when t_lower > critical[1]   */
-/* and t_upper < critical[0].  reject == 1 means EQUIVALENT (H0 of a        */
-/* difference at least as large as the bounds is rejected); decision is 0   */
-/* then, else -1 when the lower bound's test is the one that failed (the   */
-/* mean may lie at or below the lower bound), +1 when the upper bound's did. */
-/* Per-test fields:                                                          */
-/*   tost_t_lower, tost_t_upper  t for H1: mean > lower bound, mean < upper  */
-/*   tost_p_lower, tost_p_upper  their one-sided p-values                    */
-/*   tost_lower, tost_upper      the bounds: mu0 + lower and mu0 + upper (or */
-/*                               lower, upper)                               */
-/* mcstat_result_format prints both one-sided tests and "equivalent" or     */
-/* "not equivalent" as the decision.                                         */
-/* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0, 0.5), bounds not finite */
-/* or lower >= upper, mu0 not finite), then those of mcstat_t_test_1 / _2.  */
-/* ------------------------------------------------------------------------ */
-/* Is mean(x) within [mu0 + lower, mu0 + upper]?  (lower < upper; typically
- * lower = -margin < 0 < upper = margin.) */
-MCSTAT_API int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lower,
-                                         double upper, double alpha, mcstat_result *out);
-MCSTAT_API int mcstat_equivalence_test_1_moments(const mcstat_moments *x, double mu0,
-                                                 double lower, double upper, double alpha,
-                                                 mcstat_result *out);
-/* Is mean(x) - mean(y) within [lower, upper]?  (Welch: unequal variances.) */
-MCSTAT_API int mcstat_equivalence_test_2(const double *x, size_t nx, const double *y, size_t ny,
-                                         double lower, double upper, double alpha,
-                                         mcstat_result *out);
-MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
-                                                 double lower, double upper, double alpha,
-                                                 mcstat_result *out);
-
-/* ------------------------------------------------------------------------ */
-/* Power and sample size.                                                    */
-/* Given all but one of n, effect, alpha and power, mcstat_power_solve finds */
-/* the missing one (as R's power.t.test and statsmodels' solve_power); n is */
-/* the smallest integer whose power reaches the target.  The tests and what */
-/* `effect` means (the statistic's distribution under the alternative):     */
-/*   T_1    one-sample t: d = (mean - mu0)/sd; noncentral t, df n-1,         */
-/*          ncp sqrt(n) d                                                    */
-/*   T_2    two-sample t with n per group and a common sd (R's               */
-/*          power.t.test type = "two.sample"): d = (mean_x - mean_y)/sd;     */
-/*          noncentral t, df 2(n-1), ncp sqrt(n/2) d                          */
-/*   WELCH  Welch's t with nx = n, ny = n_ratio n, sd_y = sd_ratio sd_x:     */
-/*          d = (mean_x - mean_y)/sd_x; noncentral t with the Welch-         */
-/*          Satterthwaite df of the true variances, ncp d/sqrt(1/nx +        */
-/*          sd_ratio^2/ny) (an approximation, checked by simulation in the  */
-/*          tests; ny may be fractional: round it up)                        */
-/*   VAR_1  chi-squared test: rho = sigma^2/sigma0^2 > 0; exact, the         */
-/*          statistic is rho chi^2(n-1)                                      */
-/*   VAR_2  F test with nx = n, ny = n_ratio n: rho = (var_x/var_y)/ratio0;  */
-/*          exact, the statistic is rho F(nx-1, ny-1)                        */
-/* alternative as in the tests (LESS: the effect is negative, rho < 1).     */
-/* Two-sided: strict = 1 (default) counts rejections in both tails, the     */
-/* true rejection probability (R's strict = TRUE); strict = 0 only the tail */
-/* the effect points to (R's default).  Solving for the effect gives the    */
-/* solution on the side the alternative names (d > 0, rho > 1 when two-    */
-/* sided).  Accuracy: chi-squared and F power to ~1e-13 relative; the      */
-/* noncentral t is R's pnt (libRmath), about 1e-12 absolute (not relative:  */
-/* a power below 1e-12 is noise), and for |ncp| > 37.62 or df > 4e5 it is  */
-/* Abramowitz & Stegun 26.7.10's normal approximation, whose error is      */
-/* O(1/df): negligible at df > 4e5; at |ncp| > 37.62 the power is 1 to     */
-/* double precision from df = 2 on (SciPy's nct: 1 - 2.5e-31 at df 2, ncp */
-/* 38), but at df = 1 (n = 2) it is off by 2e-3 (0.99918 for 0.99713).    */
-/* pnt is called so that it never prints (see                               */
-/* src/noncentral.c).                                                        */
-/* ------------------------------------------------------------------------ */
-enum mcstat_power_test {
-    MCSTAT_POWER_T_1 = 1,
-    MCSTAT_POWER_T_2 = 2,
-    MCSTAT_POWER_WELCH = 3,
-    MCSTAT_POWER_VAR_1 = 4,
-    MCSTAT_POWER_VAR_2 = 5
-};
-enum mcstat_power_unknown {
-    MCSTAT_POWER_SOLVE_POWER = 0,
-    MCSTAT_POWER_SOLVE_N = 1,
-    MCSTAT_POWER_SOLVE_EFFECT = 2,
-    MCSTAT_POWER_SOLVE_ALPHA = 3
-};
-
-/* Grows by appending fields (see Versions and compatibility): always start
- * from the initialiser (n, effect and power start at 0: unset, invalid
- * until given). */
-typedef struct mcstat_power_options {
-    uint32_t size;       /* sizeof(mcstat_power_options): set by the initialiser */
-    int32_t test;        /* enum mcstat_power_test; default T_1 */
-    int32_t alternative; /* enum mcstat_alternative; default TWO_SIDED */
-    int32_t strict;      /* two-sided: 1 both tails (default), 0 the effect's tail */
-    double n;            /* observations (per group for T_2, of x for WELCH and VAR_2), >= 2 */
-    double n_ratio;      /* WELCH, VAR_2: ny = n_ratio n (ny >= 2); default 1 */
-    double sd_ratio;     /* WELCH: sd_y / sd_x > 0; default 1 */
-    double effect;       /* d (t tests, finite) or rho (variance tests, > 0) */
-    double alpha;        /* significance level in (0, 1); default 0.05 */
-    double power;        /* in (0, 1) */
-    double reserved[4];  /* zero */
-} mcstat_power_options;
-
-#define MCSTAT_POWER_OPTIONS_INIT \
-    {sizeof(mcstat_power_options), MCSTAT_POWER_T_1, MCSTAT_TWO_SIDED, 1, 0.0, 1.0, 1.0, 0.0, \
-     0.05, 0.0, {0.0, 0.0, 0.0, 0.0}}
-
-/* sizeof(mcstat_power_options) in each release that changed it. */
-#define MCSTAT_POWER_OPTIONS_SIZE_0_1 96u
-/* Sets the first `size` bytes of *o to MCSTAT_POWER_OPTIONS_INIT, with
- * o->size = size: `size` is sizeof(mcstat_power_options) as the caller
- * compiled it (FFI callers: their struct's size), so nothing beyond the
- * caller's struct is written.  MCSTAT_EINVAL (nothing written) for NULL or
- * a size no release had. */
-MCSTAT_API int mcstat_power_options_init_size(mcstat_power_options *o, size_t size);
-/* 0.1.0's initialiser, still exported for binaries built against it:
- * writes MCSTAT_POWER_OPTIONS_SIZE_0_1 bytes.  Source code calling
- * mcstat_power_options_init(&o) gets the macro, which passes sizeof o. */
-MCSTAT_API int(mcstat_power_options_init)(mcstat_power_options *o);
-#define mcstat_power_options_init(o) mcstat_power_options_init_size((o), sizeof *(o))
-MCSTAT_API size_t mcstat_sizeof_power_options(void);
-/* *power <- the power at o->n, o->effect, o->alpha (o->power is ignored).
- * MCSTAT_EINVAL (NULL, bad enum or size, n < 2, ny < 2, an effect out of
- * its domain, alpha outside (0, 1)), MCSTAT_ENUMERIC. */
-MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power);
-/* *out <- *o with the field named by `unknown` (enum mcstat_power_unknown)
- * solved for; the other three must be valid (the unknown's field is
- * ignored); out receives o->size bytes, the caller's version of the
- * struct (out may equal o).  Solving for n also sets out->power to the
- * power at that n (>= the target).  MCSTAT_EINVAL as above, and when no
- * value reaches the power (an effect of 0; a power at or below what alpha
- * alone gives; n beyond 1e15); MCSTAT_ENUMERIC. */
-MCSTAT_API int mcstat_power_solve(const mcstat_power_options *o, int unknown,
-                                  mcstat_power_options *out);
-/* R's print.power.htest block ("Two-sample t test power calculation", the
- * named values aligned, NOTE lines) for a solved *o, into buf as
- * mcstat_result_format does.  MCSTAT_EINVAL, MCSTAT_EBUFSIZE. */
-MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, size_t size,
-                                   size_t *length);
-
-/* ------------------------------------------------------------------------ */
 /* Two-sample Kolmogorov-Smirnov test (section 2.5, ERRATA 1-3, 7).          */
 /* F and G are the empirical CDFs #{x_i <= t}/nx and #{y_j <= t}/ny, z =     */
 /* (nx F + ny G)/(nx + ny) the pooled one.  They are compared at the pooled  */
@@ -589,7 +649,7 @@ MCSTAT_API void mcstat_ks_cache_free(mcstat_ks_cache *cache);
 MCSTAT_API int mcstat_ks_cache_stats(const mcstat_ks_cache *cache, uint64_t *hits,
                                      uint64_t *misses, uint64_t *entries);
 
-/* Options; grows by appending fields (see Versions and compatibility), so
+/* Options; grows by appending fields (section 1, compatibility), so
  * always start from the initialiser. */
 typedef struct mcstat_ks_options {
     uint32_t size;          /* sizeof(mcstat_ks_options): set by the initialiser */
@@ -635,49 +695,295 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
                                 int alternative, double alpha, const mcstat_ks_options *opt,
                                 mcstat_result *out);
 
-/* ------------------------------------------------------------------------ */
-/* Exact binomial test and the battery meta-test.                            */
-/* A battery of k tests at level `level` rejects about level * k times when  */
-/* every null hypothesis holds; whether an observed count is consistent with */
-/* that is R's binom.test of the count against level.  x successes in n     */
-/* trials against P(success) = p, p in [0, 1]:                               */
-/*   LESS       p-value P[X <= x];  GREATER  P[X >= x];                       */
-/*   TWO_SIDED  R's rule: the sum of P[X = i] over every i with P[X = i] <=   */
-/*              P[X = x] (1 + 1e-7); 1 when x == n p.                        */
-/* Tails come from the library's incomplete beta (p-values to 3e-14        */
-/* relative for n <= 2000 and p >= 1e-30, libmcstat/ACCURACY.md) down to   */
-/* the smallest normal double and, in log scale, far below it; the          */
-/* densities are compared in log scale (R's dbinom underflows).             */
-/* Result fields: statistic = x, estimate[0] = x/n, null_value = p, n[0] =   */
-/* n, method EXACT, conf_int the Clopper-Pearson interval at level 1-alpha  */
-/* (one-sided for one-sided alternatives, as R), critical = the acceptance  */
-/* region of counts [critical[0], critical[1]] (reject iff x < critical[0]  */
-/* or x > critical[1]; -Inf / +Inf for the open side), decision the sign of */
-/* x - n p when rejected; df and std_error NaN.  Per-test field:           */
-/*   binom_log_p_value  log(p_value), finite where p_value underflows to 0   */
-/* Statuses: MCSTAT_EINVAL (out NULL, bad enum, alpha outside (0,1), p      */
-/* outside [0,1] or NaN, x > n), MCSTAT_ETOOFEW (n == 0), MCSTAT_ETOOBIG     */
-/* (n > 2^53), MCSTAT_ENUMERIC.  Cost: O(log^2 n) incomplete-beta and       */
-/* density evaluations (the critical counts are bisections): measured       */
-/* 0.02 ms at n = 1e3, 0.1-0.8 ms at n = 1e9 (through Python).              */
-/* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha,
-                                 mcstat_result *out);
-/* The battery meta-test: `rejections` among k tests each at level `level`
- * in (0, 1), tested against the rate `level` (mcstat_binom_test(rejections,
- * k, level, ...)); reject == 1 means the count is not consistent with the
- * level (GREATER: too many rejections, the usual question).  Statuses as
- * mcstat_binom_test, plus MCSTAT_EINVAL for level outside (0, 1). */
-MCSTAT_API int mcstat_battery_test(uint64_t rejections, uint64_t k, double level, int alternative,
-                                   double alpha, mcstat_result *out);
-/* The same from the battery's k p-values: a test rejects when its p-value
- * is <= level.  MCSTAT_ENONFINITE for a NaN p-value, MCSTAT_EINVAL for one
- * outside [0, 1] (or p_values NULL with k > 0), MCSTAT_ETOOFEW for k == 0. */
-MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative,
-                                           double alpha, mcstat_result *out);
+/* ======================================================================== */
+/* 4. Per-pixel rows.                                                       */
+/* The tests of section 3 once per row: _matrix calls take rows of raw      */
+/* values (each matrix as data, values per row, stride; then rows);         */
+/* _moments_rows calls take arrays of accumulators (the arrays, then rows). */
+/* Row i's result is bit for bit the single call on row i.                  */
+/* ======================================================================== */
 
 /* ------------------------------------------------------------------------ */
-/* Estimator diagnostics.                                                    */
+/* Row-wise tests: the per-pixel case.                                       */
+/* One test per row of a matrix (an image whose every pixel holds k          */
+/* secondary estimates): row i of x starts at x + i * x_stride (strides in   */
+/* elements) and holds n contiguous values; row i of y pairs with row i of   */
+/* x.  Arguments in one order: each matrix as (data, n, stride), then the   */
+/* number of rows (0.1.0's *_rows names put rows second in the one-sample  */
+/* calls, seventh in the two-sample ones: section 12).  out[i] receives    */
+/* row i's result, bit for bit what the single-sample                       */
+/* call on that row returns, and status[i] (may be NULL) its status; a row   */
+/* that fails gets NaN fields and the other rows are still computed.         */
+/* Critical values are solved once for rows of equal degrees of freedom.     */
+/* flags: MCSTAT_ROWS_NO_INTERVALS skips critical values and confidence      */
+/* intervals (left NaN; p-value, reject and decision remain): the cheap path */
+/* when only the decision map is wanted.  MCSTAT_ROWS_OMIT_NAN skips NaN     */
+/* values in each row (+-Inf remains an error).                              */
+/* Returns MCSTAT_OK when every row succeeded, else the status of the first  */
+/* row that failed; MCSTAT_EINVAL (nothing written) for NULL pointers or     */
+/* unknown flags.  No allocation; disjoint row ranges may run on different   */
+/* threads (out + start, status + start).                                    */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_ROWS_NO_INTERVALS 1u
+#define MCSTAT_ROWS_OMIT_NAN 2u
+
+MCSTAT_API int mcstat_t_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows, double mu0,
+                                      int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                      int32_t *status);
+MCSTAT_API int mcstat_t_test_2_matrix(const double *x, size_t nx, size_t x_stride, const double *y,
+                                      size_t ny, size_t y_stride, size_t rows, double mu0, int alternative,
+                                      double alpha, unsigned flags, mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_var_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows,
+                                        double sigma2, int alternative, double alpha, unsigned flags,
+                                        mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_var_test_2_matrix(const double *x, size_t nx, size_t x_stride, const double *y,
+                                        size_t ny, size_t y_stride, size_t rows, double ratio,
+                                        int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                        int32_t *status);
+
+/* The tests on arrays of accumulators: out[i] is bit for bit the
+ * mcstat_*_moments call on x[i] (and y[i]), status[i] (may be NULL) its
+ * status, with the conventions of the row-wise tests above: a failed row
+ * gets NaN fields and the others are still computed, critical values are
+ * solved once for rows of equal degrees of freedom, MCSTAT_ROWS_NO_INTERVALS
+ * skips critical values and confidence intervals.  MCSTAT_ROWS_OMIT_NAN has
+ * no meaning here and is MCSTAT_EINVAL.  Returns MCSTAT_OK when every row
+ * succeeded, else the first failing row's status; MCSTAT_EINVAL (nothing
+ * written) for NULL pointers or unknown flags. */
+MCSTAT_API int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative,
+                                            double alpha, unsigned flags, mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                                            double mu0, int alternative, double alpha, unsigned flags,
+                                            mcstat_result *out, int32_t *status);
+MCSTAT_API int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2,
+                                              int alternative, double alpha, unsigned flags, mcstat_result *out,
+                                              int32_t *status);
+MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+                                              double ratio, int alternative, double alpha, unsigned flags,
+                                              mcstat_result *out, int32_t *status);
+
+/* ======================================================================== */
+/* 5. Multiple testing.                                                     */
+/* A per-pixel comparison makes millions of tests: adjust their p-values    */
+/* before reading the map.                                                  */
+/* ======================================================================== */
+
+/* ------------------------------------------------------------------------ */
+/* Multiple testing: adjusted p-values, as R's p.adjust.                     */
+/* A per-pixel comparison makes millions of tests; at level alpha each, a    */
+/* fraction alpha of the unchanged pixels is rejected by chance.  Adjusted   */
+/* p-values compared with alpha control the family-wise error rate          */
+/* (Bonferroni, Holm, Hochberg, Hommel) or the false discovery rate (BH:     */
+/* Benjamini & Hochberg; BY: Benjamini & Yekutieli, valid under any          */
+/* dependence).  The values are R's p.adjust's, to rounding: NaN entries are */
+/* R's NA (they stay NaN, and n, the number of tests, counts the others);    */
+/* with n <= 1 the p-values come back unchanged.  O(n log n) (Hommel too).   */
+/* Values match across versions; FFI callers may use the integers.          */
+/* ------------------------------------------------------------------------ */
+enum mcstat_p_adjust_method {
+    MCSTAT_P_ADJUST_NONE = 0,       /* unchanged */
+    MCSTAT_P_ADJUST_BONFERRONI = 1, /* min(1, n p) */
+    MCSTAT_P_ADJUST_HOLM = 2,       /* step-down Bonferroni (FWER, any dependence) */
+    MCSTAT_P_ADJUST_HOCHBERG = 3,   /* step-up (FWER, independent or positively dependent tests) */
+    MCSTAT_P_ADJUST_HOMMEL = 4,     /* Simes closed testing (FWER, as Hochberg; more powerful) */
+    MCSTAT_P_ADJUST_BH = 5,         /* Benjamini-Hochberg (FDR, independent or positively dependent) */
+    MCSTAT_P_ADJUST_BY = 6          /* Benjamini-Yekutieli (FDR, any dependence) */
+};
+
+/* Parses R's names: "none", "bonferroni", "holm", "hochberg", "hommel", "BH"
+ * (also "bh", "fdr"), "BY" (also "by").  MCSTAT_EINVAL for anything else. */
+MCSTAT_API int mcstat_p_adjust_method_parse(const char *name, int *method);
+/* R's name of a method ("BH", "holm", ...), or NULL for an invalid value. */
+MCSTAT_API const char *mcstat_p_adjust_method_name(int method);
+/* *bytes <- the workspace mcstat_p_adjust needs for n p-values: 0 for none
+ * and bonferroni, 32 n for holm, hochberg, BH and BY, 40 n for hommel (on
+ * 64-bit machines).  MCSTAT_EINVAL (bad method, bytes NULL), MCSTAT_ETOOBIG
+ * (the size does not fit in a size_t). */
+MCSTAT_API int mcstat_p_adjust_work_size(size_t n, int method, size_t *bytes);
+/* adjusted[0..n) <- the adjusted p[0..n) (adjusted may equal p: in place).
+ * work: work_bytes of scratch aligned for double (mcstat_p_adjust_work_size),
+ * or NULL, in which case the call allocates it with malloc and frees it
+ * before returning.  Statuses: MCSTAT_EINVAL (p or adjusted NULL with n > 0,
+ * a bad method, a p-value outside [0, 1] other than NaN, misaligned work;
+ * nothing written), MCSTAT_EBUFSIZE (work_bytes too small), MCSTAT_ENOMEM
+ * (work NULL and the allocation failed), MCSTAT_ETOOBIG. */
+MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work, size_t work_bytes,
+                               double *adjusted);
+
+/* ======================================================================== */
+/* 6. Equivalence.                                                          */
+/* Not "is it different?" but "is the difference below eps?": the TOST      */
+/* fills an mcstat_result like the tests of section 3.                      */
+/* ======================================================================== */
+
+/* ------------------------------------------------------------------------ */
+/* Equivalence: two one-sided tests (TOST, Schuirmann 1987).                 */
+/* H0: the mean lies outside the bounds, mean <= mu0 + lower or mean >=      */
+/* mu0 + upper (two-sample: the difference of means outside [lower, upper]); */
+/* H1: it lies strictly inside.  Each bound is tested by a one-sided t test */
+/* at level alpha (the one-sample t, or Welch's t with Welch-Satterthwaite  */
+/* df); equivalence is shown when both reject, i.e. when the 1 - 2 alpha    */
+/* confidence interval lies inside the bounds.  With lower = -eps, upper =  */
+/* eps and mu0 the exact value, "equivalent" is the evidence that the       */
+/* estimator's bias is smaller than eps in magnitude.                        */
+/* Result fields: statistic and p_value are those of the one-sided test     */
+/* with the larger p-value (the TOST p-value is max(p_lower, p_upper));      */
+/* df[0] the t's degrees of freedom; conf_int the 1 - 2 alpha interval;      */
+/* estimate, std_error, n as the t tests; null_value mu0 (0 for two         */
+/* samples); alternative MCSTAT_TWO_SIDED (unused); critical[1] = t(1-alpha, */
+/* df), critical[0] = -critical[1]: equivalent when t_lower > critical[1]   */
+/* and t_upper < critical[0].  reject == 1 means EQUIVALENT (H0 of a        */
+/* difference at least as large as the bounds is rejected); decision is 0   */
+/* then, else -1 when the lower bound's test is the one that failed (the   */
+/* mean may lie at or below the lower bound), +1 when the upper bound's did. */
+/* Per-test fields:                                                          */
+/*   tost_t_lower, tost_t_upper  t for H1: mean > lower bound, mean < upper  */
+/*   tost_p_lower, tost_p_upper  their one-sided p-values                    */
+/*   tost_lower, tost_upper      the bounds: mu0 + lower and mu0 + upper (or */
+/*                               lower, upper)                               */
+/* mcstat_result_format prints both one-sided tests and "equivalent" or     */
+/* "not equivalent" as the decision.                                         */
+/* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0, 0.5), bounds not finite */
+/* or lower >= upper, mu0 not finite), then those of mcstat_t_test_1 / _2.  */
+/* ------------------------------------------------------------------------ */
+/* Is mean(x) within [mu0 + lower, mu0 + upper]?  (lower < upper; typically
+ * lower = -margin < 0 < upper = margin.) */
+MCSTAT_API int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lower,
+                                         double upper, double alpha, mcstat_result *out);
+MCSTAT_API int mcstat_equivalence_test_1_moments(const mcstat_moments *x, double mu0,
+                                                 double lower, double upper, double alpha,
+                                                 mcstat_result *out);
+/* Is mean(x) - mean(y) within [lower, upper]?  (Welch: unequal variances.) */
+MCSTAT_API int mcstat_equivalence_test_2(const double *x, size_t nx, const double *y, size_t ny,
+                                         double lower, double upper, double alpha,
+                                         mcstat_result *out);
+MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
+                                                 double lower, double upper, double alpha,
+                                                 mcstat_result *out);
+
+/* ======================================================================== */
+/* EXPERIMENTAL: sections 7-9 (power, diagnostics, goodness of fit).        */
+/* The newest families: tested and held to the ABI like the rest, but       */
+/* their names and options may change before 1.0 (a renamed function        */
+/* stays one release as a deprecated alias, as in section 12).              */
+/* ======================================================================== */
+/* Compiled in by default.  A program that wants to be sure it uses no
+ * experimental name defines MCSTAT_NO_EXPERIMENTAL before including this
+ * header: sections 7-9 (and the deprecated names of their families) are
+ * then left out, and any use is a compile error.  The library exports them
+ * either way. */
+#ifndef MCSTAT_NO_EXPERIMENTAL
+
+/* ------------------------------------------------------------------------ */
+/* 7. Power and sample size.                          (experimental)      */
+/* Given all but one of n, effect, alpha and power, mcstat_power_solve finds */
+/* the missing one (as R's power.t.test and statsmodels' solve_power); n is */
+/* the smallest integer whose power reaches the target.  The tests and what */
+/* `effect` means (the statistic's distribution under the alternative):     */
+/*   T_1    one-sample t: d = (mean - mu0)/sd; noncentral t, df n-1,         */
+/*          ncp sqrt(n) d                                                    */
+/*   T_2    two-sample t with n per group and a common sd (R's               */
+/*          power.t.test type = "two.sample"): d = (mean_x - mean_y)/sd;     */
+/*          noncentral t, df 2(n-1), ncp sqrt(n/2) d                          */
+/*   WELCH  Welch's t with nx = n, ny = n_ratio n, sd_y = sd_ratio sd_x:     */
+/*          d = (mean_x - mean_y)/sd_x; noncentral t with the Welch-         */
+/*          Satterthwaite df of the true variances, ncp d/sqrt(1/nx +        */
+/*          sd_ratio^2/ny) (an approximation, checked by simulation in the  */
+/*          tests; ny may be fractional: round it up)                        */
+/*   VAR_1  chi-squared test: rho = sigma^2/sigma0^2 > 0; exact, the         */
+/*          statistic is rho chi^2(n-1)                                      */
+/*   VAR_2  F test with nx = n, ny = n_ratio n: rho = (var_x/var_y)/ratio0;  */
+/*          exact, the statistic is rho F(nx-1, ny-1)                        */
+/* alternative as in the tests (LESS: the effect is negative, rho < 1).     */
+/* Two-sided: strict = 1 (default) counts rejections in both tails, the     */
+/* true rejection probability (R's strict = TRUE); strict = 0 only the tail */
+/* the effect points to (R's default).  Solving for the effect gives the    */
+/* solution on the side the alternative names (d > 0, rho > 1 when two-    */
+/* sided).  Accuracy: chi-squared and F power to ~1e-13 relative; the      */
+/* noncentral t is R's pnt (libRmath), about 1e-12 absolute (not relative:  */
+/* a power below 1e-12 is noise), and for |ncp| > 37.62 or df > 4e5 it is  */
+/* Abramowitz & Stegun 26.7.10's normal approximation, whose error is      */
+/* O(1/df): negligible at df > 4e5; at |ncp| > 37.62 the power is 1 to     */
+/* double precision from df = 2 on (SciPy's nct: 1 - 2.5e-31 at df 2, ncp */
+/* 38), but at df = 1 (n = 2) it is off by 2e-3 (0.99918 for 0.99713).    */
+/* pnt is called so that it never prints (see                               */
+/* src/noncentral.c).                                                        */
+/* ------------------------------------------------------------------------ */
+/* The power enum names the designs, not the tests: it has the pooled
+ * two-sample t (T_2) that mcstat_test lacks, so its values differ from
+ * enum mcstat_test's (MCSTAT_POWER_VAR_1 is 4, MCSTAT_TEST_VAR_1 is 3).
+ * Both numberings are ABI and stay; never pass one enum's value as the
+ * other's. */
+enum mcstat_power_test {
+    MCSTAT_POWER_T_1 = 1,
+    MCSTAT_POWER_T_2 = 2,
+    MCSTAT_POWER_WELCH = 3,
+    MCSTAT_POWER_VAR_1 = 4,
+    MCSTAT_POWER_VAR_2 = 5
+};
+enum mcstat_power_unknown {
+    MCSTAT_POWER_SOLVE_POWER = 0,
+    MCSTAT_POWER_SOLVE_N = 1,
+    MCSTAT_POWER_SOLVE_EFFECT = 2,
+    MCSTAT_POWER_SOLVE_ALPHA = 3
+};
+
+/* Grows by appending fields (section 1, compatibility): always start
+ * from the initialiser (n, effect and power start at 0: unset, invalid
+ * until given). */
+typedef struct mcstat_power_options {
+    uint32_t size;       /* sizeof(mcstat_power_options): set by the initialiser */
+    int32_t test;        /* enum mcstat_power_test; default T_1 */
+    int32_t alternative; /* enum mcstat_alternative; default TWO_SIDED */
+    int32_t strict;      /* two-sided: 1 both tails (default), 0 the effect's tail */
+    double n;            /* observations (per group for T_2, of x for WELCH and VAR_2), >= 2 */
+    double n_ratio;      /* WELCH, VAR_2: ny = n_ratio n (ny >= 2); default 1 */
+    double sd_ratio;     /* WELCH: sd_y / sd_x > 0; default 1 */
+    double effect;       /* d (t tests, finite) or rho (variance tests, > 0) */
+    double alpha;        /* significance level in (0, 1); default 0.05 */
+    double power;        /* in (0, 1) */
+    double reserved[4];  /* zero */
+} mcstat_power_options;
+
+#define MCSTAT_POWER_OPTIONS_INIT \
+    {sizeof(mcstat_power_options), MCSTAT_POWER_T_1, MCSTAT_TWO_SIDED, 1, 0.0, 1.0, 1.0, 0.0, \
+     0.05, 0.0, {0.0, 0.0, 0.0, 0.0}}
+
+/* sizeof(mcstat_power_options) in each release that changed it. */
+#define MCSTAT_POWER_OPTIONS_SIZE_0_1 96u
+/* Sets the first `size` bytes of *o to MCSTAT_POWER_OPTIONS_INIT, with
+ * o->size = size: `size` is sizeof(mcstat_power_options) as the caller
+ * compiled it (FFI callers: their struct's size), so nothing beyond the
+ * caller's struct is written.  MCSTAT_EINVAL (nothing written) for NULL or
+ * a size no release had. */
+MCSTAT_API int mcstat_power_options_init_size(mcstat_power_options *o, size_t size);
+/* 0.1.0's initialiser, still exported for binaries built against it:
+ * writes MCSTAT_POWER_OPTIONS_SIZE_0_1 bytes.  Source code calling
+ * mcstat_power_options_init(&o) gets the macro, which passes sizeof o. */
+MCSTAT_API int(mcstat_power_options_init)(mcstat_power_options *o);
+#define mcstat_power_options_init(o) mcstat_power_options_init_size((o), sizeof *(o))
+MCSTAT_API size_t mcstat_sizeof_power_options(void);
+/* *power <- the power at o->n, o->effect, o->alpha (o->power is ignored).
+ * MCSTAT_EINVAL (NULL, bad enum or size, n < 2, ny < 2, an effect out of
+ * its domain, alpha outside (0, 1)), MCSTAT_ENUMERIC. */
+MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power);
+/* *out <- *o with the field named by `unknown` (enum mcstat_power_unknown)
+ * solved for; the other three must be valid (the unknown's field is
+ * ignored); out receives o->size bytes, the caller's version of the
+ * struct (out may equal o).  Solving for n also sets out->power to the
+ * power at that n (>= the target).  MCSTAT_EINVAL as above, and when no
+ * value reaches the power (an effect of 0; a power at or below what alpha
+ * alone gives; n beyond 1e15); MCSTAT_ENUMERIC. */
+MCSTAT_API int mcstat_power_solve(const mcstat_power_options *o, int unknown,
+                                  mcstat_power_options *out);
+/* R's print.power.htest block ("Two-sample t test power calculation", the
+ * named values aligned, NOTE lines) for a solved *o, into buf as
+ * mcstat_result_format does.  MCSTAT_EINVAL, MCSTAT_EBUFSIZE. */
+MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, size_t size,
+                                   size_t *length);
+
+/* ------------------------------------------------------------------------ */
+/* 8. Estimator diagnostics, mcstat_diag_*.           (experimental)      */
 /* Before testing, look at the primary estimates themselves:                 */
 /*   shape   skewness g1 and excess kurtosis g2 (mcstat_moments) with their  */
 /*           standard errors under normality;                               */
@@ -711,7 +1017,7 @@ MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, dou
 /* ------------------------------------------------------------------------ */
 #define MCSTAT_DIAG_DEFAULT_M 30u /* batch means when neither k nor m is given */
 
-/* Options; grows by appending fields (see Versions and compatibility), so
+/* Options; grows by appending fields (section 1, compatibility), so
  * always start from the initialiser. */
 typedef struct mcstat_diag_options {
     uint32_t size;         /* sizeof(mcstat_diag_options): set by the initialiser */
@@ -771,26 +1077,36 @@ MCSTAT_API size_t mcstat_sizeof_diagnostics(void);
  * tolerance outside (0,1), tail_threshold <= 0, k > n), MCSTAT_ETOOFEW
  * (n < 8, n < 2 tail_k + 2, or fewer than 2 batch means), MCSTAT_ENONFINITE,
  * MCSTAT_EDEGENERATE (constant data), MCSTAT_ENOMEM. */
-MCSTAT_API int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt,
-                               mcstat_diagnostics *out);
+MCSTAT_API int mcstat_diag_compute(const double *x, size_t n, const mcstat_diag_options *opt,
+                                   mcstat_diagnostics *out);
 /* Hill's tail index of each tail (index[0] lower, index[1] upper) from
  * tail_k order statistics (0: the default), as above.  Statuses:
  * MCSTAT_EINVAL, MCSTAT_ETOOFEW (n < 2 tail_k + 2), MCSTAT_ENONFINITE,
  * MCSTAT_ENOMEM. */
-MCSTAT_API int mcstat_tail_index(const double *x, size_t n, size_t tail_k, double index[2]);
+MCSTAT_API int mcstat_diag_tail_index(const double *x, size_t n, size_t tail_k, double index[2]);
 /* The Edgeworth-predicted rejection rates size[0] (lower tail: "less") and
  * size[1] (upper: "greater") of the two-sided t test at alpha on m batch
  * means of k values whose skewness and excess kurtosis are given.
  * MCSTAT_EINVAL (non-finite shape, kurtosis < -2, alpha, k == 0),
  * MCSTAT_ETOOFEW (m < 2). */
-MCSTAT_API int mcstat_t_size_edgeworth(double skewness, double kurtosis, uint64_t k, uint64_t m,
-                                       double alpha, double size[2]);
+MCSTAT_API int mcstat_diag_t_size(double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha,
+                                  double size[2]);
 /* The batch size rule: the smallest k whose predicted tail rates are within
  * tolerance * alpha/2 of alpha/2 for m batch means.  MCSTAT_EINVAL,
  * MCSTAT_ETOOFEW (m < 2), MCSTAT_ETOOBIG (k beyond 2^53). */
-MCSTAT_API int mcstat_batch_size_recommend(double skewness, double kurtosis, uint64_t m, double alpha,
-                                           double tolerance, uint64_t *k);
-/* Chi-squared goodness of fit (Pearson).                                    */
+MCSTAT_API int mcstat_diag_batch_size(double skewness, double kurtosis, uint64_t m, double alpha,
+                                      double tolerance, uint64_t *k);
+
+/* ======================================================================== */
+/* 9. Goodness of fit.                                  (experimental)      */
+/* Are counts consistent with expected probabilities?  Pearson's            */
+/* chi-squared test of cell counts (mcstat_gof_*), and the exact binomial   */
+/* test of a count, with the battery meta-test built on it: does a battery  */
+/* of k tests reject more often than its level allows?                      */
+/* ======================================================================== */
+
+/* ------------------------------------------------------------------------ */
+/* Chi-squared goodness of fit (Pearson), mcstat_gof_*.                     */
 /* Counts observed[i] of k cells against expected[i], given as probabilities */
 /* (summing to 1) or as counts (summing to the total N = sum observed), both */
 /* to within sqrt(DBL_EPSILON) relative as R's chisq.test requires, unless   */
@@ -825,50 +1141,94 @@ MCSTAT_API int mcstat_batch_size_recommend(double skewness, double kurtosis, uin
 /* in either array),                                                         */
 /* MCSTAT_ETOOFEW (k < 2, N = 0, or df < 1 after pooling).                   */
 /* ------------------------------------------------------------------------ */
-enum mcstat_chisq_expected {
-    MCSTAT_CHISQ_PROBABILITIES = 0, /* expected[i] are cell probabilities */
-    MCSTAT_CHISQ_COUNTS = 1         /* expected[i] are expected counts */
+enum mcstat_gof_expected {
+    MCSTAT_GOF_PROBABILITIES = 0, /* expected[i] are cell probabilities */
+    MCSTAT_GOF_COUNTS = 1         /* expected[i] are expected counts */
 };
 
-#define MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED 5.0
+#define MCSTAT_GOF_DEFAULT_MIN_EXPECTED 5.0
 
-/* Options; grows by appending fields (see Versions and compatibility), so
+/* Options; grows by appending fields (section 1, compatibility), so
  * always start from the initialiser. */
+/* (The struct keeps 0.1.0's tag, mcstat_chisq_options, for the ABI.) */
 typedef struct mcstat_chisq_options {
-    uint32_t size;        /* sizeof(mcstat_chisq_options): set by the initialiser */
-    int32_t expected;     /* enum mcstat_chisq_expected; default PROBABILITIES */
+    uint32_t size;        /* sizeof(mcstat_gof_options): set by the initialiser */
+    int32_t expected;     /* enum mcstat_gof_expected; default PROBABILITIES */
     int32_t pool;         /* 1 (default): pool cells of low expectation (above); 0: never */
     int32_t rescale;      /* 1: scale expected to the right total; 0 (default): it must sum to it */
     double min_expected;  /* pooling threshold on expected counts, >= 0; default 5 */
     int32_t n_estimated;  /* parameters estimated from the counts, >= 0; default 0 */
     int32_t reserved;     /* zero */
-} mcstat_chisq_options;
+} mcstat_gof_options;
 
-#define MCSTAT_CHISQ_OPTIONS_INIT \
-    {sizeof(mcstat_chisq_options), MCSTAT_CHISQ_PROBABILITIES, 1, 0, \
-     MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED, 0, 0}
+#define MCSTAT_GOF_OPTIONS_INIT \
+    {sizeof(mcstat_gof_options), MCSTAT_GOF_PROBABILITIES, 1, 0, \
+     MCSTAT_GOF_DEFAULT_MIN_EXPECTED, 0, 0}
 
-/* sizeof(mcstat_chisq_options) in each release that changed it. */
-#define MCSTAT_CHISQ_OPTIONS_SIZE_0_1 32u
-/* Sets the first `size` bytes of *opt to MCSTAT_CHISQ_OPTIONS_INIT, with
- * opt->size = size: `size` is sizeof(mcstat_chisq_options) as the caller
+/* sizeof(mcstat_gof_options) in each release that changed it. */
+#define MCSTAT_GOF_OPTIONS_SIZE_0_1 32u
+/* Sets the first `size` bytes of *opt to MCSTAT_GOF_OPTIONS_INIT, with
+ * opt->size = size: `size` is sizeof(mcstat_gof_options) as the caller
  * compiled it (FFI callers: their struct's size), so nothing beyond the
  * caller's struct is written.  MCSTAT_EINVAL (nothing written) for NULL or
  * a size no release had. */
-MCSTAT_API int mcstat_chisq_options_init_size(mcstat_chisq_options *opt, size_t size);
-/* 0.1.0's initialiser, still exported for binaries built against it:
- * writes MCSTAT_CHISQ_OPTIONS_SIZE_0_1 bytes.  Source code calling
- * mcstat_chisq_options_init(&o) gets the macro, which passes sizeof o. */
-MCSTAT_API int(mcstat_chisq_options_init)(mcstat_chisq_options *opt);
-#define mcstat_chisq_options_init(opt) mcstat_chisq_options_init_size((opt), sizeof *(opt))
-MCSTAT_API size_t mcstat_sizeof_chisq_options(void);
-MCSTAT_API double mcstat_chisq_default_min_expected(void);
+MCSTAT_API int mcstat_gof_options_init_size(mcstat_gof_options *opt, size_t size);
+#define mcstat_gof_options_init(opt) mcstat_gof_options_init_size((opt), sizeof *(opt))
+MCSTAT_API size_t mcstat_sizeof_gof_options(void);
+MCSTAT_API double mcstat_gof_default_min_expected(void);
 
 /* Pearson's test of observed[0..k) against expected[0..k) as above.  opt may
  * be NULL (the defaults). */
-MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
-                                const mcstat_chisq_options *opt, double alpha,
-                                mcstat_result *out);
+MCSTAT_API int mcstat_gof_chisq_test(const double *observed, const double *expected, size_t k,
+                                     const mcstat_gof_options *opt, double alpha, mcstat_result *out);
+
+/* ------------------------------------------------------------------------ */
+/* Exact binomial test and the battery meta-test.                            */
+/* A battery of k tests at level `level` rejects about level * k times when  */
+/* every null hypothesis holds; whether an observed count is consistent with */
+/* that is R's binom.test of the count against level.  x successes in n     */
+/* trials against P(success) = p, p in [0, 1]:                               */
+/*   LESS       p-value P[X <= x];  GREATER  P[X >= x];                       */
+/*   TWO_SIDED  R's rule: the sum of P[X = i] over every i with P[X = i] <=   */
+/*              P[X = x] (1 + 1e-7); 1 when x == n p.                        */
+/* Tails come from the library's incomplete beta (p-values to 3e-14        */
+/* relative for n <= 2000 and p >= 1e-30, libmcstat/ACCURACY.md) down to   */
+/* the smallest normal double and, in log scale, far below it; the          */
+/* densities are compared in log scale (R's dbinom underflows).             */
+/* Result fields: statistic = x, estimate[0] = x/n, null_value = p, n[0] =   */
+/* n, method EXACT, conf_int the Clopper-Pearson interval at level 1-alpha  */
+/* (one-sided for one-sided alternatives, as R), critical = the acceptance  */
+/* region of counts [critical[0], critical[1]] (reject iff x < critical[0]  */
+/* or x > critical[1]; -Inf / +Inf for the open side), decision the sign of */
+/* x - n p when rejected; df and std_error NaN.  Per-test field:           */
+/*   binom_log_p_value  log(p_value), finite where p_value underflows to 0   */
+/* Statuses: MCSTAT_EINVAL (out NULL, bad enum, alpha outside (0,1), p      */
+/* outside [0,1] or NaN, x > n), MCSTAT_ETOOFEW (n == 0), MCSTAT_ETOOBIG     */
+/* (n > 2^53), MCSTAT_ENUMERIC.  Cost: O(log^2 n) incomplete-beta and       */
+/* density evaluations (the critical counts are bisections): measured       */
+/* 0.02 ms at n = 1e3, 0.1-0.8 ms at n = 1e9 (through Python).              */
+/* ------------------------------------------------------------------------ */
+MCSTAT_API int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha,
+                                 mcstat_result *out);
+/* The battery meta-test: `rejections` among k tests each at level `level`
+ * in (0, 1), tested against the rate `level` (mcstat_binom_test(rejections,
+ * k, level, ...)); reject == 1 means the count is not consistent with the
+ * level (GREATER: too many rejections, the usual question).  Statuses as
+ * mcstat_binom_test, plus MCSTAT_EINVAL for level outside (0, 1). */
+MCSTAT_API int mcstat_battery_test(uint64_t rejections, uint64_t k, double level, int alternative,
+                                   double alpha, mcstat_result *out);
+/* The same from the battery's k p-values: a test rejects when its p-value
+ * is <= level.  MCSTAT_ENONFINITE for a NaN p-value, MCSTAT_EINVAL for one
+ * outside [0, 1] (or p_values NULL with k > 0), MCSTAT_ETOOFEW for k == 0. */
+MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative,
+                                           double alpha, mcstat_result *out);
+
+#endif /* MCSTAT_NO_EXPERIMENTAL */
+
+/* ======================================================================== */
+/* 10. Distributions.                                                       */
+/* The t, chi-squared and F distributions the tests use, as functions.      */
+/* ======================================================================== */
 
 /* ------------------------------------------------------------------------ */
 /* Distributions.                                                           */
@@ -906,13 +1266,47 @@ MCSTAT_API int mcstat_f_cdf(double x, double df1, double df2, int upper, double 
 MCSTAT_API int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *logp);
 MCSTAT_API int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x);
 
+/* ======================================================================== */
+/* 11. Sizes, versions and GSL's handler.                                   */
+/* Constants as functions for FFI callers (every size is                    */
+/* mcstat_sizeof_<thing>), the release and ABI numbers, and the opt-in to   */
+/* GSL's error handler off.                                                 */
+/* ======================================================================== */
+
 /* ------------------------------------------------------------------------ */
 /* Sizes and constants as functions, for FFI callers that cannot read       */
-/* macros or sizeof.                                                         */
+/* macros or sizeof.  (Each options struct's size sits beside it.)          */
 /* ------------------------------------------------------------------------ */
 MCSTAT_API size_t mcstat_sizeof_moments(void);
 MCSTAT_API size_t mcstat_sizeof_result(void);
-MCSTAT_API size_t mcstat_moments_bytes(void);
+/* MCSTAT_MOMENTS_BYTES: the size of the serialized form of one accumulator. */
+MCSTAT_API size_t mcstat_sizeof_moments_bytes(void);
+
+/* ------------------------------------------------------------------------ */
+/* Versions.                                                                 */
+/* MCSTAT_VERSION_MAJOR/MINOR/PATCH is the release, written here only: the   */
+/* build (CMakeLists.txt), the Python package (pyproject.toml) read it from  */
+/* this header, and the Rust and Go bindings' tests check theirs against it. */
+/* MCSTAT_SOVERSION is the ABI: the shared library is libmcstat.so.N.  It    */
+/* changes only with an incompatible change, one that breaks a binary built  */
+/* against an earlier release with this SOVERSION (a function removed or its */
+/* signature changed, a public struct's size or layout changed, an enum     */
+/* value renumbered), never with the release number alone; additions keep   */
+/* it.  libmcstat/abi/ holds the ABI (abidw) of the first release of this   */
+/* SOVERSION and `make abi-check` compares every build against it.          */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_VERSION_MAJOR 0
+#define MCSTAT_VERSION_MINOR 1
+#define MCSTAT_VERSION_PATCH 0
+/* The shared library's ABI version (its SOVERSION; see above). */
+#define MCSTAT_SOVERSION 0
+#define MCSTAT_VERSION_NUMBER \
+    (MCSTAT_VERSION_MAJOR * 10000 + MCSTAT_VERSION_MINOR * 100 + MCSTAT_VERSION_PATCH)
+
+/* MCSTAT_VERSION_NUMBER of the library actually linked. */
+MCSTAT_API unsigned mcstat_version_number(void);
+/* "MAJOR.MINOR.PATCH" of the library actually linked (static storage). */
+MCSTAT_API const char *mcstat_version(void);
 
 /* ------------------------------------------------------------------------ */
 /* GSL's error handler.                                                      */
@@ -928,241 +1322,71 @@ MCSTAT_API void mcstat_gsl_handler_off(void);
  * force); returns 1 if it did so, 0 if a caller's handler was left alone. */
 MCSTAT_API int mcstat_gsl_handler_off_if_default(void);
 
-/* ------------------------------------------------------------------------ */
-/* Row-wise tests: the per-pixel case.                                       */
-/* One test per row of a matrix (an image whose every pixel holds k          */
-/* secondary estimates): row i of x starts at x + i * x_stride (strides in   */
-/* elements) and holds n contiguous values; row i of y pairs with row i of   */
-/* x.  out[i] receives row i's result, bit for bit what the single-sample    */
-/* call on that row returns, and status[i] (may be NULL) its status; a row   */
-/* that fails gets NaN fields and the other rows are still computed.         */
-/* Critical values are solved once for rows of equal degrees of freedom.     */
-/* flags: MCSTAT_ROWS_NO_INTERVALS skips critical values and confidence      */
-/* intervals (left NaN; p-value, reject and decision remain): the cheap path */
-/* when only the decision map is wanted.  MCSTAT_ROWS_OMIT_NAN skips NaN     */
-/* values in each row (+-Inf remains an error).                              */
-/* Returns MCSTAT_OK when every row succeeded, else the status of the first  */
-/* row that failed; MCSTAT_EINVAL (nothing written) for NULL pointers or     */
-/* unknown flags.  No allocation; disjoint row ranges may run on different   */
-/* threads (out + start, status + start).                                    */
-/* ------------------------------------------------------------------------ */
-#define MCSTAT_ROWS_NO_INTERVALS 1u
-#define MCSTAT_ROWS_OMIT_NAN 2u
+/* ======================================================================== */
+/* 12. Deprecated names.                                                    */
+/* The names this release replaced, one form per family: old -> new.        */
+/* They still link (the ABI keeps every exported symbol of its SOVERSION)   */
+/* and give bit-identical results; MCSTAT_DEPRECATED names the replacement. */
+/* ======================================================================== */
+/* sizes: mcstat_sizeof_<thing> */
+MCSTAT_DEPRECATED("mcstat_sizeof_moments_bytes") MCSTAT_API size_t mcstat_moments_bytes(void);
+MCSTAT_DEPRECATED("mcstat_sizeof_gof_options") MCSTAT_API size_t mcstat_sizeof_chisq_options(void);
 
+#ifndef MCSTAT_NO_EXPERIMENTAL
+/* diagnostics: the mcstat_diag_ stem */
+MCSTAT_DEPRECATED("mcstat_diag_compute")
+MCSTAT_API int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt, mcstat_diagnostics *out);
+MCSTAT_DEPRECATED("mcstat_diag_tail_index")
+MCSTAT_API int mcstat_tail_index(const double *x, size_t n, size_t tail_k, double index[2]);
+MCSTAT_DEPRECATED("mcstat_diag_t_size")
+MCSTAT_API int mcstat_t_size_edgeworth(double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha,
+                                       double size[2]);
+MCSTAT_DEPRECATED("mcstat_diag_batch_size")
+MCSTAT_API int mcstat_batch_size_recommend(double skewness, double kurtosis, uint64_t m, double alpha,
+                                           double tolerance, uint64_t *k);
+
+/* goodness of fit: the mcstat_gof_ stem (mcstat_chisq_ is the distribution) */
+typedef struct mcstat_chisq_options mcstat_chisq_options;
+#define mcstat_chisq_expected mcstat_gof_expected
+#define MCSTAT_CHISQ_PROBABILITIES MCSTAT_GOF_PROBABILITIES
+#define MCSTAT_CHISQ_COUNTS MCSTAT_GOF_COUNTS
+#define MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED MCSTAT_GOF_DEFAULT_MIN_EXPECTED
+#define MCSTAT_CHISQ_OPTIONS_INIT MCSTAT_GOF_OPTIONS_INIT
+#define MCSTAT_CHISQ_OPTIONS_SIZE_0_1 MCSTAT_GOF_OPTIONS_SIZE_0_1
+MCSTAT_DEPRECATED("mcstat_gof_options_init_size")
+MCSTAT_API int mcstat_chisq_options_init_size(mcstat_chisq_options *opt, size_t size);
+/* 0.1.0's initialiser, still exported for binaries built against it:
+ * writes MCSTAT_GOF_OPTIONS_SIZE_0_1 bytes.  Source code calling
+ * mcstat_chisq_options_init(&o) gets the macro, which passes sizeof o. */
+MCSTAT_DEPRECATED("mcstat_gof_options_init")
+MCSTAT_API int(mcstat_chisq_options_init)(mcstat_chisq_options *opt);
+#define mcstat_chisq_options_init(opt) mcstat_chisq_options_init_size((opt), sizeof *(opt))
+MCSTAT_DEPRECATED("mcstat_gof_default_min_expected") MCSTAT_API double mcstat_chisq_default_min_expected(void);
+MCSTAT_DEPRECATED("mcstat_gof_chisq_test")
+MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
+                                const mcstat_chisq_options *opt, double alpha, mcstat_result *out);
+#endif /* MCSTAT_NO_EXPERIMENTAL */
+
+/* row-wise tests: mcstat_<test>_test_<k>_matrix, each matrix (x, n, stride)
+ * then rows.  The one-sample _rows calls put rows before n: swapping the
+ * two compiles and answers for another matrix. */
+MCSTAT_DEPRECATED("mcstat_t_test_1_matrix (rows moves after x_stride)")
 MCSTAT_API int mcstat_t_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double mu0,
                                     int alternative, double alpha, unsigned flags, mcstat_result *out,
                                     int32_t *status);
+MCSTAT_DEPRECATED("mcstat_t_test_2_matrix (same arguments)")
 MCSTAT_API int mcstat_t_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y,
                                     size_t ny, size_t y_stride, size_t rows, double mu0, int alternative,
                                     double alpha, unsigned flags, mcstat_result *out, int32_t *status);
+MCSTAT_DEPRECATED("mcstat_var_test_1_matrix (rows moves after x_stride)")
 MCSTAT_API int mcstat_var_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride,
                                       double sigma2, int alternative, double alpha, unsigned flags,
                                       mcstat_result *out, int32_t *status);
+MCSTAT_DEPRECATED("mcstat_var_test_2_matrix (same arguments)")
 MCSTAT_API int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y,
                                       size_t ny, size_t y_stride, size_t rows, double ratio,
                                       int alternative, double alpha, unsigned flags, mcstat_result *out,
                                       int32_t *status);
-
-
-/* ------------------------------------------------------------------------ */
-/* Arrays of accumulators: one mcstat_moments per pixel.                     */
-/* A render farm keeps one accumulator per pixel (an array of `rows` structs */
-/* the caller owns, row i = pixel i), adds every rendered image or batch of  */
-/* images into it, ships it as bytes, merges arrays element-wise, and tests  */
-/* every pixel.  Adding a batch is "add_array on a fresh accumulator, then   */
-/* merge", so pushing batches A then B on one machine gives bit for bit what */
-/* pushing A and B on two machines and merging the second into the first    */
-/* gives: a fixed merge order reproduces a single-machine run exactly.      */
-/* No allocation; disjoint row ranges may run on different threads.          */
-/* ------------------------------------------------------------------------ */
-
-/* Empties m[0..rows).  MCSTAT_EINVAL for m NULL with rows > 0. */
-MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
-
-/* Adds n values to each of rows accumulators: row i's values are the n
- * contiguous doubles at x + i * x_stride (strides in elements), and m[i]
- * becomes exactly mcstat_moments_merge(m[i], A) where A is
- * mcstat_moments_add_array on a fresh accumulator of those values.  One
- * image with one value per pixel is n = 1, x_stride = 1; a stack of k
- * images stored pixel-major (k values per pixel) is n = k, x_stride = k.
- * flags: MCSTAT_ROWS_OMIT_NAN skips NaN values (+-Inf remains an error).
- * status[i] (may be NULL) receives row i's status; a row that fails
- * (MCSTAT_ENONFINITE, or MCSTAT_ETOOBIG when its count would pass 2^64 - 1)
- * is left unchanged and the other rows are still added.
- * Returns MCSTAT_OK, the status of the first row that failed, or
- * MCSTAT_EINVAL (nothing changed) for NULL pointers, unknown flags or an
- * uninitialised accumulator. */
-MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, size_t n,
-                                       size_t x_stride, unsigned flags, int32_t *status);
-
-/* dst[i] <- dst[i] merged with src[i], for i < rows (mcstat_moments_merge
- * element-wise).  src may equal dst; the arrays must not otherwise overlap.
- * MCSTAT_EINVAL (nothing changed) for NULL pointers or an uninitialised
- * accumulator in either array, MCSTAT_ETOOBIG (nothing changed) when a
- * row's count would pass 2^64 - 1. */
-MCSTAT_API int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows);
-
-/* The array as rows * MCSTAT_MOMENTS_BYTES bytes: the records of
- * mcstat_moments_to_bytes concatenated in row order, no header (each record
- * carries its own magic, version and checksum; the count is size / 96; the
- * image's shape is the caller's).  MCSTAT_EBUFSIZE when size is smaller,
- * MCSTAT_EINVAL for NULL pointers or an uninitialised accumulator. */
-MCSTAT_API int mcstat_moments_to_bytes_rows(const mcstat_moments *m, size_t rows, unsigned char *buf,
-                                            size_t size);
-/* Reads rows accumulators from exactly rows * MCSTAT_MOMENTS_BYTES bytes.
- * MCSTAT_ECORRUPT (m unchanged) when size differs or any record is corrupt
- * (see mcstat_moments_from_bytes); MCSTAT_EINVAL for NULL pointers. */
-MCSTAT_API int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t size, size_t rows,
-                                              mcstat_moments *m);
-
-/* The tests on arrays of accumulators: out[i] is bit for bit the
- * mcstat_*_moments call on x[i] (and y[i]), status[i] (may be NULL) its
- * status, with the conventions of the row-wise tests above: a failed row
- * gets NaN fields and the others are still computed, critical values are
- * solved once for rows of equal degrees of freedom, MCSTAT_ROWS_NO_INTERVALS
- * skips critical values and confidence intervals.  MCSTAT_ROWS_OMIT_NAN has
- * no meaning here and is MCSTAT_EINVAL.  Returns MCSTAT_OK when every row
- * succeeded, else the first failing row's status; MCSTAT_EINVAL (nothing
- * written) for NULL pointers or unknown flags. */
-MCSTAT_API int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative,
-                                            double alpha, unsigned flags, mcstat_result *out, int32_t *status);
-MCSTAT_API int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
-                                            double mu0, int alternative, double alpha, unsigned flags,
-                                            mcstat_result *out, int32_t *status);
-MCSTAT_API int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2,
-                                              int alternative, double alpha, unsigned flags, mcstat_result *out,
-                                              int32_t *status);
-MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
-                                              double ratio, int alternative, double alpha, unsigned flags,
-                                              mcstat_result *out, int32_t *status);
-/* Multiple testing: adjusted p-values, as R's p.adjust.                     */
-/* A per-pixel comparison makes millions of tests; at level alpha each, a    */
-/* fraction alpha of the unchanged pixels is rejected by chance.  Adjusted   */
-/* p-values compared with alpha control the family-wise error rate          */
-/* (Bonferroni, Holm, Hochberg, Hommel) or the false discovery rate (BH:     */
-/* Benjamini & Hochberg; BY: Benjamini & Yekutieli, valid under any          */
-/* dependence).  The values are R's p.adjust's, to rounding: NaN entries are */
-/* R's NA (they stay NaN, and n, the number of tests, counts the others);    */
-/* with n <= 1 the p-values come back unchanged.  O(n log n) (Hommel too).   */
-/* Values match across versions; FFI callers may use the integers.          */
-/* ------------------------------------------------------------------------ */
-enum mcstat_p_adjust_method {
-    MCSTAT_P_ADJUST_NONE = 0,       /* unchanged */
-    MCSTAT_P_ADJUST_BONFERRONI = 1, /* min(1, n p) */
-    MCSTAT_P_ADJUST_HOLM = 2,       /* step-down Bonferroni (FWER, any dependence) */
-    MCSTAT_P_ADJUST_HOCHBERG = 3,   /* step-up (FWER, independent or positively dependent tests) */
-    MCSTAT_P_ADJUST_HOMMEL = 4,     /* Simes closed testing (FWER, as Hochberg; more powerful) */
-    MCSTAT_P_ADJUST_BH = 5,         /* Benjamini-Hochberg (FDR, independent or positively dependent) */
-    MCSTAT_P_ADJUST_BY = 6          /* Benjamini-Yekutieli (FDR, any dependence) */
-};
-
-/* Parses R's names: "none", "bonferroni", "holm", "hochberg", "hommel", "BH"
- * (also "bh", "fdr"), "BY" (also "by").  MCSTAT_EINVAL for anything else. */
-MCSTAT_API int mcstat_p_adjust_method_parse(const char *name, int *method);
-/* R's name of a method ("BH", "holm", ...), or NULL for an invalid value. */
-MCSTAT_API const char *mcstat_p_adjust_method_name(int method);
-/* *bytes <- the workspace mcstat_p_adjust needs for n p-values: 0 for none
- * and bonferroni, 32 n for holm, hochberg, BH and BY, 40 n for hommel (on
- * 64-bit machines).  MCSTAT_EINVAL (bad method, bytes NULL), MCSTAT_ETOOBIG
- * (the size does not fit in a size_t). */
-MCSTAT_API int mcstat_p_adjust_work_size(size_t n, int method, size_t *bytes);
-/* adjusted[0..n) <- the adjusted p[0..n) (adjusted may equal p: in place).
- * work: work_bytes of scratch aligned for double (mcstat_p_adjust_work_size),
- * or NULL, in which case the call allocates it with malloc and frees it
- * before returning.  Statuses: MCSTAT_EINVAL (p or adjusted NULL with n > 0,
- * a bad method, a p-value outside [0, 1] other than NaN, misaligned work;
- * nothing written), MCSTAT_EBUFSIZE (work_bytes too small), MCSTAT_ENOMEM
- * (work NULL and the allocation failed), MCSTAT_ETOOBIG. */
-MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work, size_t work_bytes,
-                               double *adjusted);
-
-/* ------------------------------------------------------------------------ */
-/* Buffered per-thread accumulator: checks inside a renderer.                */
-/* mcstat_moments_add merges one value exactly (double-double mean), which   */
-/* costs tens of ns.  A renderer that checks its estimates in production    */
-/* keeps one mcstat_stream per thread instead: a fixed-size plain struct of  */
-/* MCSTAT_STREAM_BYTES (4096) bytes the caller owns, holding an             */
-/* mcstat_moments and an inline buffer of MCSTAT_STREAM_CAPACITY doubles.   */
-/* mcstat_stream_add (inline, below) stores the value and bumps a counter;   */
-/* when the buffer is full it is flushed into the moments with               */
-/* mcstat_moments_add_array, so the moments are exactly what add_array      */
-/* gives on the same values (about 0.5 ns per value; bench/RESULTS_check.md)*/
-/* No allocation, no lock, no global state: one stream per thread, merged   */
-/* (mcstat_stream_merge) by one thread at the end of a frame, then checked. */
-/* NaN and +-Inf values are not added: they are counted in n_nonfinite, and */
-/* a check on a stream that has seen one returns MCSTAT_ENONFINITE.          */
-/* mcstat_check.h wraps all this in macros that compile to nothing when     */
-/* checks are off.                                                           */
-/* ------------------------------------------------------------------------ */
-#define MCSTAT_STREAM_VERSION 1u
-#define MCSTAT_STREAM_BYTES 4096u
-#define MCSTAT_STREAM_CAPACITY 492u /* (4096 - 128 - 32) / 8 */
-
-typedef struct mcstat_stream {
-    mcstat_moments moments;  /* every value flushed so far */
-    uint32_t count;          /* values waiting in buf (< MCSTAT_STREAM_CAPACITY) */
-    uint32_t version;        /* MCSTAT_STREAM_VERSION once initialised */
-    uint64_t n_nonfinite;    /* NaN and +-Inf values seen (and left out) */
-    /* reserved is 0.1.0's name of this storage */
-    MCSTAT_ANONYMOUS union {
-        uint64_t reserved[2];
-        struct {
-            uint64_t n_overflow; /* values left out because the count would pass 2^64 - 1 */
-            uint64_t reserved_1; /* zero */
-        };
-    };
-    double buf[MCSTAT_STREAM_CAPACITY];
-} mcstat_stream;
-
-/* Empties s.  MCSTAT_EINVAL for NULL. */
-MCSTAT_API int mcstat_stream_init(mcstat_stream *s);
-/* Adds the buffered values to s->moments and empties the buffer (non-finite
- * values are counted in n_nonfinite instead).  MCSTAT_EINVAL for NULL or an
- * uninitialised stream.  MCSTAT_ETOOBIG when the count would pass 2^64 - 1:
- * the buffered values are then left out and counted in n_overflow, and every
- * check on the stream returns MCSTAT_ETOOBIG. */
-MCSTAT_API int mcstat_stream_flush(mcstat_stream *s);
-/* dst <- dst merged with src: its moments, its buffered values and its
- * non-finite count; src is not modified (it may equal dst).  Merging a
- * thread's stream into a frame total and re-initialising the thread's
- * stream is the end-of-frame step.  MCSTAT_EINVAL; MCSTAT_ETOOBIG (dst
- * unchanged) when a count would pass 2^64 - 1. */
-MCSTAT_API int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src);
-/* *out <- the moments of every value s has seen (flushed or buffered),
- * without modifying s.  MCSTAT_EINVAL. */
-MCSTAT_API int mcstat_stream_moments(const mcstat_stream *s, mcstat_moments *out);
-
-/* Adds one value: a store and a counter in the common case, a flush once
- * every MCSTAT_STREAM_CAPACITY values.  s must have been initialised.  FFI
- * callers that cannot inline this may do the same through the struct. */
-static inline void mcstat_stream_add(mcstat_stream *s, double x)
-{
-    s->buf[s->count] = x;
-    if (++s->count == MCSTAT_STREAM_CAPACITY)
-        (void)mcstat_stream_flush(s);
-}
-
-/* Check that the mean of the values is `reference` to within `tolerance`
- * (>= 0, finite), at level alpha, without storing the values.
- *   tolerance == 0: the two-sided one-sample t test of mean == reference.
- *   tolerance > 0: H0 |mean - reference| <= tolerance against H1 |mean -
- *   reference| > tolerance, as two one-sided t tests at alpha/2 each (mean >
- *   reference + tolerance, mean < reference - tolerance); *out is the one
- *   with the smaller p-value (its alpha field is alpha/2), so its R-style
- *   block names the bound that was crossed.  A tolerance covers a reference
- *   that is itself approximate, which enough samples would otherwise detect.
- * out->reject == 1 means the check failed.  Statuses as mcstat_t_test_1,
- * plus MCSTAT_ENONFINITE when the stream has seen a NaN or an infinity. */
-MCSTAT_API int mcstat_stream_check_mean(const mcstat_stream *s, double reference, double tolerance,
-                                        double alpha, mcstat_result *out);
-/* Check that the variance of the values is below `bound` (> 0): the
- * one-sample chi-squared test of var == bound against var > bound at level
- * alpha; out->reject == 1 (the variance is significantly above the bound)
- * means the check failed.  Statuses as mcstat_var_test_1, plus
- * MCSTAT_ENONFINITE as above. */
-MCSTAT_API int mcstat_stream_check_var(const mcstat_stream *s, double bound, double alpha,
-                                       mcstat_result *out);
-MCSTAT_API size_t mcstat_sizeof_stream(void);
 
 #ifdef __cplusplus
 }

@@ -85,7 +85,7 @@ static int tail_index(const double *x, size_t n, size_t k, double index[2], size
     return st;
 }
 
-int mcstat_tail_index(const double *x, size_t n, size_t tail_k, double index[2])
+int mcstat_diag_tail_index(const double *x, size_t n, size_t tail_k, double index[2])
 {
     MCSTAT_IEEE_SCOPE();
     return tail_index(x, n, tail_k, index, NULL);
@@ -119,7 +119,7 @@ static int valid_shape(double g, double c)
     return isfinite(g) && isfinite(c) && c >= -2.0; /* excess kurtosis >= g^2 - 2 >= -2 */
 }
 
-int mcstat_t_size_edgeworth(double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha,
+int mcstat_diag_t_size(double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha,
                             double size[2])
 {
     MCSTAT_IEEE_SCOPE();
@@ -138,7 +138,7 @@ int mcstat_t_size_edgeworth(double skewness, double kurtosis, uint64_t k, uint64
  * alpha/2 of alpha/2, i.e. |a| + |b| <= tolerance alpha / 2.  With s =
  * 1/sqrt(k), |a| = A s and |b| = B s^2 (A, B those of k = 1), so s is the
  * positive root of B s^2 + A s = e. */
-int mcstat_batch_size_recommend(double skewness, double kurtosis, uint64_t m, double alpha, double tolerance,
+int mcstat_diag_batch_size(double skewness, double kurtosis, uint64_t m, double alpha, double tolerance,
                                 uint64_t *k)
 {
     MCSTAT_IEEE_SCOPE();
@@ -176,17 +176,7 @@ int mcstat_diag_options_init_size(mcstat_diag_options *opt, size_t size)
     return mcstat__options_init(opt, size, &d, sizeof d, DIAG_SIZES, sizeof DIAG_SIZES / sizeof *DIAG_SIZES);
 }
 
-/* 0.1.0's entry point: its callers' structs are 0.1.0's size (the name is
- * parenthesised against the header's macro). */
-int(mcstat_diag_options_init)(mcstat_diag_options *opt)
-{
-    return mcstat_diag_options_init_size(opt, MCSTAT_DIAG_OPTIONS_SIZE_0_1);
-}
-
-size_t mcstat_sizeof_diag_options(void) { return sizeof(mcstat_diag_options); }
-size_t mcstat_sizeof_diagnostics(void) { return sizeof(mcstat_diagnostics); }
-
-int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt, mcstat_diagnostics *out)
+int mcstat_diag_compute(const double *x, size_t n, const mcstat_diag_options *opt, mcstat_diagnostics *out)
 {
     MCSTAT_IEEE_SCOPE();
     mcstat_diag_options o = MCSTAT_DIAG_OPTIONS_INIT;
@@ -236,8 +226,8 @@ int mcstat_diagnose(const double *x, size_t n, const mcstat_diag_options *opt, m
     d.m = o.m ? o.m : (o.k ? n / o.k : MCSTAT_DIAG_DEFAULT_M);
     if (d.m < 2)
         return MCSTAT_ETOOFEW;
-    if ((st = mcstat_t_size_edgeworth(d.skewness, d.kurtosis, d.k, d.m, o.alpha, d.t_size)) ||
-        (st = mcstat_batch_size_recommend(d.skewness, d.kurtosis, d.m, o.alpha, o.tolerance, &d.recommended_k)))
+    if ((st = mcstat_diag_t_size(d.skewness, d.kurtosis, d.k, d.m, o.alpha, d.t_size)) ||
+        (st = mcstat_diag_batch_size(d.skewness, d.kurtosis, d.m, o.alpha, o.tolerance, &d.recommended_k)))
         return st;
     d.alpha = o.alpha;
     d.tolerance = o.tolerance;

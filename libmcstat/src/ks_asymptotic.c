@@ -81,11 +81,3 @@ double mcstat__ks_asymp_critical(uint64_t n1, uint64_t n2, int two_sided, double
     }
     return t / root_ne(n1, n2);
 }
-
-double mcstat__ks_jaeschke_sf(double n, int two_sided, double d2)
-{
-    double ll = log(log(n));
-    double a = sqrt(2.0 * ll), b = 2.0 * ll + 0.5 * log(ll) - 0.5 * log(M_PI);
-    double x = a * d2 - b;
-    return -expm1(-(two_sided ? 2.0 : 1.0) * exp(-x));
-}

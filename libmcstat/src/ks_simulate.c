@@ -26,14 +26,18 @@
  * order, so their keys are bit-identical (tests/c/test_ks.c checks it).
  * Generator: xoshiro256++ (Blackman & Vigna 2019), state seeded by
  * splitmix64; its 64-bit outputs serve two labels each, low half first.
- * GSL's taus2 stays selectable (scalar) for the benchmark's comparison.
+ * GSL's taus2 (scalar) is compiled only into the benchmark's own copy of
+ * this file (bench/CMakeLists.txt defines MCSTAT_KS_BENCH_TAUS2), for its
+ * comparison of generators; the library has no use for it.
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
 #include "internal.h"
 
-#include <gsl/gsl_rng.h>
 #include <pthread.h>
+#ifdef MCSTAT_KS_BENCH_TAUS2
+#include <gsl/gsl_rng.h>
+#endif
 #include <stdlib.h>
 
 #if (defined(__x86_64__) || defined(__i386__)) && (defined(__GNUC__) || defined(__clang__))
@@ -120,19 +124,24 @@ static double finish_canner(const mcstat__ks_data *d, double best, int64_t best_
 
 /* ---- the scalar kernel --------------------------------------------------------- */
 
-/* 64 random bits: xoshiro256++, or two outputs of GSL's taus2. */
+/* 64 random bits: xoshiro256++, or (benchmark build) two outputs of GSL's
+ * taus2. */
 typedef struct {
+#ifdef MCSTAT_KS_BENCH_TAUS2
     int taus2;
     gsl_rng *gsl;
+#endif
     xoshiro xo;
 } source;
 
 static inline uint64_t source_next(source *src)
 {
+#ifdef MCSTAT_KS_BENCH_TAUS2
     if (src->taus2) {
         uint64_t a = (uint64_t)gsl_rng_get(src->gsl);
         return a | (uint64_t)gsl_rng_get(src->gsl) << 32;
     }
+#endif
     return xoshiro_next(&src->xo);
 }
 
@@ -324,6 +333,7 @@ static int have_avx2(void)
 static void *worker(void *arg)
 {
     sim_job *job = arg;
+#ifdef MCSTAT_KS_BENCH_TAUS2
     source src = {job->rng == MCSTAT__KS_RNG_TAUS2, NULL, {{0, 0, 0, 0}}};
     if (src.taus2 && !(src.gsl = gsl_rng_alloc(gsl_rng_taus2))) {
         pthread_mutex_lock(&job->lock);
@@ -331,6 +341,9 @@ static void *worker(void *arg)
         pthread_mutex_unlock(&job->lock);
         return NULL;
     }
+#else
+    source src = {{{0, 0, 0, 0}}};
+#endif
     for (;;) {
         pthread_mutex_lock(&job->lock);
         int64_t b = job->status ? job->n_blocks : job->next_block++;
@@ -344,17 +357,22 @@ static void *worker(void *arg)
                 group_avx2(job, k, job->keys + k);
 #endif
         for (; k < last; k++) {
+#ifdef MCSTAT_KS_BENCH_TAUS2
             if (src.taus2) {
                 uint64_t z = splitmix64(job->seed ^ splitmix64((uint64_t)k));
                 gsl_rng_set(src.gsl, (unsigned long)(z & 0xffffffffu));
-            } else {
-                seed_replicate(&src.xo, job->seed, k);
+                job->keys[k] = replicate_scalar(job, &src);
+                continue;
             }
+#endif
+            seed_replicate(&src.xo, job->seed, k);
             job->keys[k] = replicate_scalar(job, &src);
         }
     }
+#ifdef MCSTAT_KS_BENCH_TAUS2
     if (src.gsl)
         gsl_rng_free(src.gsl);
+#endif
     return NULL;
 }
 
@@ -362,6 +380,10 @@ int mcstat__ks_simulate_rng(const mcstat__ks_data *d, int64_t n_sim, uint64_t se
                              double *keys)
 {
     const uint64_t N = d->N;
+#ifndef MCSTAT_KS_BENCH_TAUS2
+    if (rng == MCSTAT__KS_RNG_TAUS2) /* the benchmark's build only */
+        return MCSTAT_EINVAL;
+#endif
     if (N > UINT32_MAX) /* the 32-bit label draw needs N - s < 2^32 */
         return MCSTAT_ETOOBIG;
     if ((uint64_t)n_sim > SIZE_MAX / (2 * sizeof(uint64_t)))

@@ -36,7 +36,6 @@ int(mcstat_ks_options_init)(mcstat_ks_options *opt)
     return mcstat_ks_options_init_size(opt, MCSTAT_KS_OPTIONS_SIZE_0_1);
 }
 
-size_t mcstat_sizeof_ks_options(void) { return sizeof(mcstat_ks_options); }
 
 double mcstat__ks_key_statistic(const mcstat__ks_data *d, double key)
 {

@@ -339,6 +339,40 @@ int mcstat_moments_init(mcstat_moments *m)
     return MCSTAT_OK;
 }
 
+int mcstat_moments_from_summary(uint64_t n, double mean, double m2, mcstat_moments *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    if (!out)
+        return MCSTAT_EINVAL;
+    if (!isfinite(mean) || !isfinite(m2))
+        return MCSTAT_ENONFINITE;
+    if (m2 < 0.0)
+        return MCSTAT_EINVAL;
+    /* no values, or one value with a spread: too few for what the summary
+     * claims (the status a test on such a sample gives) */
+    if (n == 0 || (n == 1 && m2 != 0.0))
+        return MCSTAT_ETOOFEW;
+    /* The summary says nothing of the third and fourth sums or the extremes;
+     * the stand-in is the symmetric two-point sample mean +- h, h =
+     * sqrt(M2/n), which has this n, mean and M2, M3 = 0 and M4 = M2^2/n, the
+     * least M4 can be, so the accumulator keeps every invariant that
+     * mcstat_moments_from_bytes checks and merges like any other. */
+    double h = sqrt(m2 / (double)n);
+    mcstat_moments m;
+    mcstat_moments_init(&m);
+    m.n = n;
+    m.mean = mean;
+    m.min = mean - h;
+    m.max = mean + h;
+    if (!isfinite(m.min) || !isfinite(m.max))
+        return MCSTAT_ETOOBIG;
+    m.scale = scale_for(fmax(fabs(m.min), fabs(m.max)));
+    m.m2 = ldexp(m2, -2 * m.scale);
+    m.m4 = (m.m2 / (double)n) * m.m2;
+    *out = m;
+    return MCSTAT_OK;
+}
+
 int mcstat_moments_merge(mcstat_moments *dst, const mcstat_moments *src)
 {
     MCSTAT_IEEE_SCOPE();

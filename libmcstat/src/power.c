@@ -49,7 +49,6 @@ int mcstat__power_options_read(const mcstat_power_options *o, mcstat_power_optio
     return mcstat__options_read(r, sizeof *r, o, POWER_SIZES, sizeof POWER_SIZES / sizeof *POWER_SIZES);
 }
 
-size_t mcstat_sizeof_power_options(void) { return sizeof(mcstat_power_options); }
 
 static int valid_test(int t) { return t >= MCSTAT_POWER_T_1 && t <= MCSTAT_POWER_VAR_2; }
 static int is_t(int t) { return t <= MCSTAT_POWER_WELCH; }

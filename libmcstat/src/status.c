@@ -1,25 +1,12 @@
 /*
- * status.c - versions, status texts, enum names, sizes, GSL's handler.
+ * status.c - status texts and the names of the enums (alternatives,
+ * decisions).
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
 #include "internal.h"
 
-#include <gsl/gsl_errno.h>
 #include <string.h>
-
-#define STR2(x) #x
-#define STR(x) STR2(x)
-
-unsigned mcstat_version_number(void)
-{
-    return MCSTAT_VERSION_NUMBER;
-}
-
-const char *mcstat_version(void)
-{
-    return STR(MCSTAT_VERSION_MAJOR) "." STR(MCSTAT_VERSION_MINOR) "." STR(MCSTAT_VERSION_PATCH);
-}
 
 const char *mcstat_strerror(int status)
 {
@@ -71,25 +58,4 @@ const char *mcstat_decision_name(int decision)
     case MCSTAT_DECISION_GREATER: return "greater";
     default: return NULL;
     }
-}
-
-size_t mcstat_sizeof_moments(void) { return sizeof(mcstat_moments); }
-size_t mcstat_sizeof_result(void) { return sizeof(mcstat_result); }
-size_t mcstat_moments_bytes(void) { return MCSTAT_MOMENTS_BYTES; }
-
-void mcstat_gsl_handler_off(void)
-{
-    gsl_set_error_handler_off();
-}
-
-int mcstat_gsl_handler_off_if_default(void)
-{
-    /* gsl_set_error_handler returns the previous handler: NULL means GSL's
-     * default (abort) was in force.  Put back anything else. */
-    gsl_error_handler_t *prev = gsl_set_error_handler_off();
-    if (prev != NULL) {
-        gsl_set_error_handler(prev);
-        return 0;
-    }
-    return 1;
 }

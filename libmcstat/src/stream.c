@@ -166,8 +166,3 @@ int mcstat_stream_check_var(const mcstat_stream *s, double bound, double alpha, 
         return st;
     return mcstat_var_test_1_moments(&m, bound, MCSTAT_GREATER, alpha, out);
 }
-
-size_t mcstat_sizeof_stream(void)
-{
-    return sizeof(mcstat_stream);
-}

@@ -1,5 +1,5 @@
 #!/bin/sh
-# libmcstat refuses to compile with -ffast-math and its parts (src/internal.h
+# libmcstat refuses to compile with -ffast-math and its parts (src/fpenv.h
 # says why), while code that only includes the public headers still compiles
 # with them.  Usage: check_fast_math.sh CC SOURCE_DIR
 cc=$1

@@ -22,6 +22,15 @@ for std in c11 c99; do
     "$cc" -std=$std -Wall -Wextra -Wpedantic -Werror -I "$inc" -c "$tmp/use.c" -o "$tmp/use.o" \
         || { echo "mcstat.h: warnings as $std"; exit 1; }
 done
+# without the experimental sections (MCSTAT_NO_EXPERIMENTAL) the rest still
+# compiles, and the experimental names are gone
+"$cc" -std=c11 -Wall -Wextra -Wpedantic -Werror -DMCSTAT_NO_EXPERIMENTAL -I "$inc" -c "$tmp/use.c" -o "$tmp/use.o" \
+    || { echo "mcstat.h: does not compile with MCSTAT_NO_EXPERIMENTAL"; exit 1; }
+printf '#include <mcstat.h>\nint exp_use(mcstat_gof_options *o);\n' > "$tmp/exp.c"
+"$cc" -std=c11 -I "$inc" -c "$tmp/exp.c" -o "$tmp/exp.o" || { echo "mcstat.h: experimental names missing"; exit 1; }
+if "$cc" -std=c11 -DMCSTAT_NO_EXPERIMENTAL -I "$inc" -c "$tmp/exp.c" -o "$tmp/exp.o" 2> /dev/null; then
+    echo "mcstat.h: MCSTAT_NO_EXPERIMENTAL leaves the experimental names in"; exit 1
+fi
 for cxx in c++ g++ clang++; do
     if command -v "$cxx" > /dev/null 2>&1; then
         cp "$tmp/use.c" "$tmp/use.cpp"

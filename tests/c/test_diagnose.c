@@ -37,7 +37,7 @@ static void test_hill_closed_form(void)
                 x[j++] = -v;
             }
             double want = as[ia] * k / (k * log(k + 1.0) - lgamma(k + 1.0)), idx[2];
-            CHECK(mcstat_tail_index(x, n, k, idx) == MCSTAT_OK);
+            CHECK(mcstat_diag_tail_index(x, n, k, idx) == MCSTAT_OK);
             CHECK_REL(idx[0], want, 1e-13, "lower a=%g k=%zu", as[ia], k);
             CHECK_REL(idx[1], want, 1e-13, "upper a=%g k=%zu", as[ia], k);
             free(x);
@@ -51,7 +51,7 @@ static void test_diagnose_fields(void)
     for (int i = 0; i < N; i++)
         x[i] = -log(unif()); /* exponential: skewness 2, kurtosis 6 */
     mcstat_diagnostics d;
-    CHECK(mcstat_diagnose(x, N, NULL, &d) == MCSTAT_OK);
+    CHECK(mcstat_diag_compute(x, N, NULL, &d) == MCSTAT_OK);
     mcstat_moments m;
     mcstat_moments_init(&m);
     mcstat_moments_add_array(&m, x, N);
@@ -64,17 +64,17 @@ static void test_diagnose_fields(void)
     /* with a batch size: m = n / k */
     mcstat_diag_options o = MCSTAT_DIAG_OPTIONS_INIT;
     o.k = 100;
-    CHECK(mcstat_diagnose(x, N, &o, &d) == MCSTAT_OK);
+    CHECK(mcstat_diag_compute(x, N, &o, &d) == MCSTAT_OK);
     CHECK(d.k == 100 && d.m == 200);
     /* normal data: no heavy tail, k = 1 suffices */
     for (int i = 0; i < N; i++)
         x[i] = 5.0 + normal();
-    CHECK(mcstat_diagnose(x, N, NULL, &d) == MCSTAT_OK);
+    CHECK(mcstat_diag_compute(x, N, NULL, &d) == MCSTAT_OK);
     CHECK(d.heavy_tail == 0 && d.recommended_k == 1 && fabs(d.skewness) < 0.1);
     /* heavy tails: U^(-1/2) */
     for (int i = 0; i < N; i++)
         x[i] = 1.0 / sqrt(unif());
-    CHECK(mcstat_diagnose(x, N, NULL, &d) == MCSTAT_OK);
+    CHECK(mcstat_diag_compute(x, N, NULL, &d) == MCSTAT_OK);
     CHECK(d.heavy_tail == 1 && d.tail_index[1] < 2.2 && isinf(d.tail_index[0]) == 0);
 }
 
@@ -90,13 +90,13 @@ static void test_rule(void)
             for (int a = 0; a < 2; a++) {
                 uint64_t k;
                 double tol = 0.2, s[2], e = tol * 0.5 * alphas[a];
-                CHECK(mcstat_batch_size_recommend(g[i], c[i], ms[j], alphas[a], tol, &k) == MCSTAT_OK);
-                CHECK(mcstat_t_size_edgeworth(g[i], c[i], k, ms[j], alphas[a], s) == MCSTAT_OK);
+                CHECK(mcstat_diag_batch_size(g[i], c[i], ms[j], alphas[a], tol, &k) == MCSTAT_OK);
+                CHECK(mcstat_diag_t_size(g[i], c[i], k, ms[j], alphas[a], s) == MCSTAT_OK);
                 double dev = fmax(fabs(s[0] - 0.5 * alphas[a]), fabs(s[1] - 0.5 * alphas[a]));
                 CHECK_MSG(dev <= e * (1 + 1e-12), "g=%g c=%g m=%llu: k=%llu dev %g", g[i], c[i],
                           (unsigned long long)ms[j], (unsigned long long)k, dev);
                 if (k > 1) {
-                    CHECK(mcstat_t_size_edgeworth(g[i], c[i], k - 1, ms[j], alphas[a], s) == MCSTAT_OK);
+                    CHECK(mcstat_diag_t_size(g[i], c[i], k - 1, ms[j], alphas[a], s) == MCSTAT_OK);
                     dev = fmax(fabs(s[0] - 0.5 * alphas[a]), fabs(s[1] - 0.5 * alphas[a]));
                     CHECK_MSG(dev > e * (1 - 1e-12), "k-1 passes too");
                 }
@@ -104,19 +104,19 @@ static void test_rule(void)
     /* normal data need no batching; symmetric data predict alpha/2 per tail */
     uint64_t k;
     double s[2];
-    CHECK(mcstat_batch_size_recommend(0.0, 0.0, 10, 0.05, 0.2, &k) == MCSTAT_OK && k == 1);
-    CHECK(mcstat_t_size_edgeworth(0.0, 0.0, 1, 10, 0.05, s) == MCSTAT_OK && s[0] == 0.025 && s[1] == 0.025);
+    CHECK(mcstat_diag_batch_size(0.0, 0.0, 10, 0.05, 0.2, &k) == MCSTAT_OK && k == 1);
+    CHECK(mcstat_diag_t_size(0.0, 0.0, 1, 10, 0.05, s) == MCSTAT_OK && s[0] == 0.025 && s[1] == 0.025);
     /* a closed-form value: exponential (g = 2, c = 6), k = 1, m = 10 */
     double z = 1.959963984540054, phi = exp(-0.5 * z * z) / sqrt(2 * M_PI);
     double A = 2.0 * (2 * z * z + 1) / 6 * phi / sqrt(10.0);
     double B = z * (6.0 * (z * z - 3) / 12 - 4.0 * (z * z * z * z + 2 * z * z - 3) / 18) * phi / 10.0;
-    CHECK(mcstat_t_size_edgeworth(2.0, 6.0, 1, 10, 0.05, s) == MCSTAT_OK);
+    CHECK(mcstat_diag_t_size(2.0, 6.0, 1, 10, 0.05, s) == MCSTAT_OK);
     CHECK_REL(s[0], 0.025 + A - B, 1e-12, "lower");
     CHECK_REL(s[1], fmax(0.0, 0.025 - A - B), 1e-12, "upper");
     /* more skewness needs bigger batches */
     uint64_t k1, k2;
-    mcstat_batch_size_recommend(1.0, 1.0, 20, 0.05, 0.2, &k1);
-    mcstat_batch_size_recommend(4.0, 1.0, 20, 0.05, 0.2, &k2);
+    mcstat_diag_batch_size(1.0, 1.0, 20, 0.05, 0.2, &k1);
+    mcstat_diag_batch_size(4.0, 1.0, 20, 0.05, 0.2, &k2);
     CHECK(k2 > 10 * k1);
 }
 
@@ -128,38 +128,38 @@ static void test_bad_input(void)
         x[i] = i * 0.37 - (i % 7);
     mcstat_diagnostics d;
     mcstat_diag_options o = MCSTAT_DIAG_OPTIONS_INIT;
-    CHECK(mcstat_diagnose(NULL, 64, NULL, &d) == MCSTAT_EINVAL);
-    CHECK(mcstat_diagnose(x, 64, NULL, NULL) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_compute(NULL, 64, NULL, &d) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_compute(x, 64, NULL, NULL) == MCSTAT_EINVAL);
     o.alpha = 1.0;
-    CHECK(mcstat_diagnose(x, 64, &o, &d) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_compute(x, 64, &o, &d) == MCSTAT_EINVAL);
     o = (mcstat_diag_options)MCSTAT_DIAG_OPTIONS_INIT;
     o.size = 8;
-    CHECK(mcstat_diagnose(x, 64, &o, &d) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_compute(x, 64, &o, &d) == MCSTAT_EINVAL);
     o = (mcstat_diag_options)MCSTAT_DIAG_OPTIONS_INIT;
     o.k = 65;
-    CHECK(mcstat_diagnose(x, 64, &o, &d) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_compute(x, 64, &o, &d) == MCSTAT_EINVAL);
     o.k = 40; /* one batch mean */
-    CHECK(mcstat_diagnose(x, 64, &o, &d) == MCSTAT_ETOOFEW);
-    CHECK(mcstat_diagnose(x, 7, NULL, &d) == MCSTAT_ETOOFEW);
-    CHECK(mcstat_diagnose(x, 21, NULL, &d) == MCSTAT_ETOOFEW); /* tail_k 10 needs 22 */
+    CHECK(mcstat_diag_compute(x, 64, &o, &d) == MCSTAT_ETOOFEW);
+    CHECK(mcstat_diag_compute(x, 7, NULL, &d) == MCSTAT_ETOOFEW);
+    CHECK(mcstat_diag_compute(x, 21, NULL, &d) == MCSTAT_ETOOFEW); /* tail_k 10 needs 22 */
     x[5] = NAN;
-    CHECK(mcstat_diagnose(x, 64, NULL, &d) == MCSTAT_ENONFINITE);
-    CHECK(mcstat_tail_index(x, 64, 0, idx) == MCSTAT_ENONFINITE);
+    CHECK(mcstat_diag_compute(x, 64, NULL, &d) == MCSTAT_ENONFINITE);
+    CHECK(mcstat_diag_tail_index(x, 64, 0, idx) == MCSTAT_ENONFINITE);
     x[5] = INFINITY;
-    CHECK(mcstat_diagnose(x, 64, NULL, &d) == MCSTAT_ENONFINITE);
-    CHECK(mcstat_tail_index(x, 64, 0, idx) == MCSTAT_ENONFINITE);
+    CHECK(mcstat_diag_compute(x, 64, NULL, &d) == MCSTAT_ENONFINITE);
+    CHECK(mcstat_diag_tail_index(x, 64, 0, idx) == MCSTAT_ENONFINITE);
     for (int i = 0; i < 64; i++)
         x[i] = 3.0;
-    CHECK(mcstat_diagnose(x, 64, NULL, &d) == MCSTAT_EDEGENERATE);
-    CHECK(mcstat_tail_index(x, 64, 0, idx) == MCSTAT_OK && isinf(idx[0]) && isinf(idx[1]));
-    CHECK(mcstat_t_size_edgeworth(NAN, 0, 1, 10, 0.05, s) == MCSTAT_EINVAL);
-    CHECK(mcstat_t_size_edgeworth(0, -3, 1, 10, 0.05, s) == MCSTAT_EINVAL);
-    CHECK(mcstat_t_size_edgeworth(0, 0, 0, 10, 0.05, s) == MCSTAT_EINVAL);
-    CHECK(mcstat_t_size_edgeworth(0, 0, 1, 1, 0.05, s) == MCSTAT_ETOOFEW);
-    CHECK(mcstat_batch_size_recommend(1, 1, 10, 0.05, 0.0, &k) == MCSTAT_EINVAL);
-    CHECK(mcstat_batch_size_recommend(1, 1, 10, 0.05, 0.2, NULL) == MCSTAT_EINVAL);
-    CHECK(mcstat_batch_size_recommend(1, 1, 1, 0.05, 0.2, &k) == MCSTAT_ETOOFEW);
-    CHECK(mcstat_batch_size_recommend(1e12, 1, 2, 0.05, 0.2, &k) == MCSTAT_ETOOBIG);
+    CHECK(mcstat_diag_compute(x, 64, NULL, &d) == MCSTAT_EDEGENERATE);
+    CHECK(mcstat_diag_tail_index(x, 64, 0, idx) == MCSTAT_OK && isinf(idx[0]) && isinf(idx[1]));
+    CHECK(mcstat_diag_t_size(NAN, 0, 1, 10, 0.05, s) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_t_size(0, -3, 1, 10, 0.05, s) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_t_size(0, 0, 0, 10, 0.05, s) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_t_size(0, 0, 1, 1, 0.05, s) == MCSTAT_ETOOFEW);
+    CHECK(mcstat_diag_batch_size(1, 1, 10, 0.05, 0.0, &k) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_batch_size(1, 1, 10, 0.05, 0.2, NULL) == MCSTAT_EINVAL);
+    CHECK(mcstat_diag_batch_size(1, 1, 1, 0.05, 0.2, &k) == MCSTAT_ETOOFEW);
+    CHECK(mcstat_diag_batch_size(1e12, 1, 2, 0.05, 0.2, &k) == MCSTAT_ETOOBIG);
     CHECK(mcstat_diag_options_init(&o) == MCSTAT_OK && o.size == mcstat_sizeof_diag_options() && o.alpha == 0.05);
     CHECK(mcstat_sizeof_diagnostics() == sizeof(mcstat_diagnostics));
 }

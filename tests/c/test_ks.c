@@ -377,6 +377,8 @@ static void test_simulation_kernels(void)
                     CHECK_INT(mcstat__ks_simulate_rng(&d, B, 99 + k, 1, MCSTAT__KS_RNG_XOSHIRO_SCALAR, b), MCSTAT_OK);
                     CHECK_MSG(!memcmp(a, b, B * sizeof *a), "%d+%d ties %d alt %d weight %d: kernels differ", nx, ny,
                               ties, alt, w);
+                    /* GSL's taus2 lives in the benchmark's build only */
+                    CHECK_INT(mcstat__ks_simulate_rng(&d, B, 99 + k, 1, MCSTAT__KS_RNG_TAUS2, b), MCSTAT_EINVAL);
                     int distinct = 0;
                     for (int64_t i = 1; i < B; i++)
                         distinct += a[i] != a[i - 1];

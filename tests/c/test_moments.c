@@ -318,7 +318,7 @@ static void test_bytes(void)
     mcstat_moments_init(&m);
     mcstat_moments_add_array(&m, x, 777);
     unsigned char buf[MCSTAT_MOMENTS_BYTES];
-    CHECK_INT(mcstat_moments_bytes(), 96);
+    CHECK_INT(mcstat_sizeof_moments_bytes(), 96);
     CHECK_INT(mcstat_moments_to_bytes(&m, buf, sizeof buf), MCSTAT_OK);
     CHECK_INT(mcstat_moments_from_bytes(buf, sizeof buf, &back), MCSTAT_OK);
     CHECK(!memcmp(&m, &back, sizeof m));
@@ -400,6 +400,44 @@ static void test_count_overflow(void)
     CHECK(edge.n == UINT64_MAX);
 }
 
+/* An accumulator from a summary (n, mean, M2) is a valid accumulator: the
+ * t and variance tests give what they give on data with that summary, it
+ * survives serialization, and bad summaries are refused. */
+static void test_from_summary(void)
+{
+    const double x[6] = {1.5, 2.25, -0.75, 3.0, 0.5, 1.0};
+    mcstat_moments d, s, back;
+    mcstat_moments_init(&d);
+    mcstat_moments_add_array(&d, x, 6);
+    double m2 = mcstat_moments_var(&d) * 5.0;
+    CHECK_INT(mcstat_moments_from_summary(6, mcstat_moments_mean(&d), m2, &s), MCSTAT_OK);
+    CHECK(s.n == 6 && mcstat_moments_mean(&s) == mcstat_moments_mean(&d));
+    CHECK(mcstat_moments_var(&s) == mcstat_moments_var(&d));
+    mcstat_result a, b;
+    CHECK_INT(mcstat_t_test_1_moments(&d, 0.5, MCSTAT_TWO_SIDED, 0.05, &a), MCSTAT_OK);
+    CHECK_INT(mcstat_t_test_1_moments(&s, 0.5, MCSTAT_TWO_SIDED, 0.05, &b), MCSTAT_OK);
+    CHECK_REL(b.p_value, a.p_value, 1e-15, "t p-value from a summary");
+    CHECK_INT(mcstat_var_test_1_moments(&s, 0.5, MCSTAT_GREATER, 0.05, &b), MCSTAT_OK);
+    CHECK_INT(mcstat_var_test_1_moments(&d, 0.5, MCSTAT_GREATER, 0.05, &a), MCSTAT_OK);
+    CHECK_REL(b.p_value, a.p_value, 1e-15, "var p-value from a summary");
+    /* the stand-in keeps the invariants from_bytes checks */
+    unsigned char buf[MCSTAT_MOMENTS_BYTES];
+    CHECK_INT(mcstat_moments_to_bytes(&s, buf, sizeof buf), MCSTAT_OK);
+    CHECK_INT(mcstat_moments_from_bytes(buf, sizeof buf, &back), MCSTAT_OK);
+    CHECK(mcstat_moments_merge(&back, &d) == MCSTAT_OK && back.n == 12);
+    /* a constant sample */
+    CHECK_INT(mcstat_moments_from_summary(4, 2.0, 0.0, &s), MCSTAT_OK);
+    CHECK(s.min == 2.0 && s.max == 2.0 && s.m4 == 0.0);
+    /* refused */
+    CHECK_INT(mcstat_moments_from_summary(0, 1.0, 0.0, &s), MCSTAT_ETOOFEW);
+    CHECK_INT(mcstat_moments_from_summary(5, 1.0, -1e-300, &s), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_moments_from_summary(1, 1.0, 2.0, &s), MCSTAT_ETOOFEW);
+    CHECK_INT(mcstat_moments_from_summary(0, NAN, 1.0, &s), MCSTAT_ENONFINITE);
+    CHECK_INT(mcstat_moments_from_summary(5, NAN, 1.0, &s), MCSTAT_ENONFINITE);
+    CHECK_INT(mcstat_moments_from_summary(5, 1.0, INFINITY, &s), MCSTAT_ENONFINITE);
+    CHECK_INT(mcstat_moments_from_summary(5, 1.0, 1.0, NULL), MCSTAT_EINVAL);
+}
+
 int main(void)
 {
     test_against_long_double();
@@ -410,5 +448,6 @@ int main(void)
     test_empty_and_zeroed();
     test_bytes();
     test_count_overflow();
+    test_from_summary();
     return h_report("test_moments");
 }

@@ -272,9 +272,9 @@ static void test_interval_extreme_alpha(void)
                                alpha, alt);
                 mcstat_result rows[1];
                 int32_t rst[1];
-                CHECK_INT(mcstat_t_test_1_rows(x, 1, 2, 2, 0.0, alt, alpha, 0, rows, rst), MCSTAT_OK);
+                CHECK_INT(mcstat_t_test_1_matrix(x, 2, 2, 1, 0.0, alt, alpha, 0, rows, rst), MCSTAT_OK);
                 check_interval(rst[0], rows, "t_test_1_rows", s, alpha, alt);
-                CHECK_INT(mcstat_t_test_2_rows(x, 2, 2, z, 2, 2, 1, 0.0, alt, alpha, 0, rows, rst), MCSTAT_OK);
+                CHECK_INT(mcstat_t_test_2_matrix(x, 2, 2, z, 2, 2, 1, 0.0, alt, alpha, 0, rows, rst), MCSTAT_OK);
                 check_interval(rst[0], rows, "t_test_2_rows", s, alpha, alt);
             }
             if (alpha < 0.5) {

@@ -255,20 +255,20 @@ static void battery_rows(log_t *L)
             int st;
             memset(status, 0x5a, sizeof status);
             blank(out, ROWS);
-            st = mcstat_t_test_1_rows(XROW, ROWS, RNX, RSX, 0.2, alt, 0.05, flags[f], out, status);
+            st = mcstat_t_test_1_matrix(XROW, RNX, RSX, ROWS, 0.2, alt, 0.05, flags[f], out, status);
             log_put(L, "t_test_1_rows", st, out, sizeof out);
             log_put(L, "t_test_1_rows status", st, status, sizeof status);
             blank(out, ROWS);
-            st = mcstat_t_test_2_rows(XROW, RNX, RSX, YROW, RNY, RSY, ROWS, 0.0, alt, 0.05, flags[f], out,
+            st = mcstat_t_test_2_matrix(XROW, RNX, RSX, YROW, RNY, RSY, ROWS, 0.0, alt, 0.05, flags[f], out,
                                       status);
             log_put(L, "t_test_2_rows", st, out, sizeof out);
             log_put(L, "t_test_2_rows status", st, status, sizeof status);
             blank(out, ROWS);
-            st = mcstat_var_test_1_rows(XROW, ROWS, RNX, RSX, 2.0, alt, 0.05, flags[f], out, status);
+            st = mcstat_var_test_1_matrix(XROW, RNX, RSX, ROWS, 2.0, alt, 0.05, flags[f], out, status);
             log_put(L, "var_test_1_rows", st, out, sizeof out);
             log_put(L, "var_test_1_rows status", st, status, sizeof status);
             blank(out, ROWS);
-            st = mcstat_var_test_2_rows(XROW, RNX, RSX, YROW, RNY, RSY, ROWS, 1.0, alt, 0.05, flags[f], out,
+            st = mcstat_var_test_2_matrix(XROW, RNX, RSX, YROW, RNY, RSY, ROWS, 1.0, alt, 0.05, flags[f], out,
                                         NULL);
             log_put(L, "var_test_2_rows", st, out, sizeof out);
         }
@@ -380,7 +380,7 @@ static void battery_misc(log_t *L)
         log_str(L, "decision_name", mcstat_decision_name(d));
     log_str(L, "version", mcstat_version());
     size_t sz[6] = {mcstat_version_number(), mcstat_sizeof_moments(), mcstat_sizeof_result(),
-                    mcstat_moments_bytes(),  mcstat_sizeof_ks_options(),  mcstat_sizeof_stream()};
+                    mcstat_sizeof_moments_bytes(),  mcstat_sizeof_ks_options(),  mcstat_sizeof_stream()};
     log_put(L, "sizes", 0, sz, sizeof sz);
 }
 
@@ -495,29 +495,29 @@ static void battery_more(log_t *L)
     log_put(L, "diag_options_init", mcstat_diag_options_init(&dopt), &dopt, sizeof dopt);
     mcstat_diagnostics dg;
     memset(&dg, 0x5a, sizeof dg);
-    log_put(L, "diagnose", mcstat_diagnose(BIG, 5000, &dopt, &dg), &dg, sizeof dg);
+    log_put(L, "diagnose", mcstat_diag_compute(BIG, 5000, &dopt, &dg), &dg, sizeof dg);
     dopt.k = 10;
     memset(&dg, 0x5a, sizeof dg);
-    log_put(L, "diagnose k", mcstat_diagnose(Y, NY, &dopt, &dg), &dg, sizeof dg);
+    log_put(L, "diagnose k", mcstat_diag_compute(Y, NY, &dopt, &dg), &dg, sizeof dg);
     double idx[2] = {-1, -1}, size2[2] = {-1, -1};
-    log_put(L, "tail_index", mcstat_tail_index(BIG, 5000, 0, idx), idx, sizeof idx);
-    log_put(L, "t_size_edgeworth", mcstat_t_size_edgeworth(2.0, 9.0, 4, 30, 0.05, size2), size2, sizeof size2);
+    log_put(L, "tail_index", mcstat_diag_tail_index(BIG, 5000, 0, idx), idx, sizeof idx);
+    log_put(L, "t_size_edgeworth", mcstat_diag_t_size(2.0, 9.0, 4, 30, 0.05, size2), size2, sizeof size2);
     uint64_t k = 0;
-    log_put(L, "batch_size_recommend", mcstat_batch_size_recommend(2.0, 9.0, 30, 0.05, 0.2, &k), &k, sizeof k);
+    log_put(L, "batch_size_recommend", mcstat_diag_batch_size(2.0, 9.0, 30, 0.05, 0.2, &k), &k, sizeof k);
 
     double obs[12], expct[12];
     for (int i = 0; i < 12; i++) {
         obs[i] = 40 + (i * 7) % 13 + (i == 11 ? -35 : 0);
         expct[i] = 1.0 / 12;
     }
-    mcstat_chisq_options copt;
-    log_put(L, "chisq_options_init", mcstat_chisq_options_init(&copt), &copt, sizeof copt);
-    double dme = mcstat_chisq_default_min_expected();
+    mcstat_gof_options copt;
+    log_put(L, "chisq_options_init", mcstat_gof_options_init(&copt), &copt, sizeof copt);
+    double dme = mcstat_gof_default_min_expected();
     log_put(L, "chisq_default_min_expected", 0, &dme, sizeof dme);
     blank(&r, 1);
-    log_result(L, "chisq_gof", mcstat_chisq_gof(obs, expct, 12, &copt, 0.05, &r), &r);
+    log_result(L, "chisq_gof", mcstat_gof_chisq_test(obs, expct, 12, &copt, 0.05, &r), &r);
     blank(&r, 1);
-    log_result(L, "chisq_gof defaults", mcstat_chisq_gof(obs, expct, 12, NULL, 0.01, &r), &r);
+    log_result(L, "chisq_gof defaults", mcstat_gof_chisq_test(obs, expct, 12, NULL, 0.01, &r), &r);
 
     /* accumulator rows: add, merge, serialize, test */
     mcstat_moments rx[ROWS], ry[ROWS], rb[ROWS];

@@ -90,10 +90,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int32_t *sp = with_status ? status : NULL;
     int st;
     switch (which) {
-    case 0: st = mcstat_t_test_1_rows(x, rows, nx, sx, v, alt, alpha, flags, out, sp); break;
-    case 1: st = mcstat_t_test_2_rows(x, nx, sx, y, ny, sy, rows, v, alt, alpha, flags, out, sp); break;
-    case 2: st = mcstat_var_test_1_rows(x, rows, nx, sx, v, alt, alpha, flags, out, sp); break;
-    default: st = mcstat_var_test_2_rows(x, nx, sx, y, ny, sy, rows, v, alt, alpha, flags, out, sp); break;
+    case 0: st = mcstat_t_test_1_matrix(x, nx, sx, rows, v, alt, alpha, flags, out, sp); break;
+    case 1: st = mcstat_t_test_2_matrix(x, nx, sx, y, ny, sy, rows, v, alt, alpha, flags, out, sp); break;
+    case 2: st = mcstat_var_test_1_matrix(x, nx, sx, rows, v, alt, alpha, flags, out, sp); break;
+    default: st = mcstat_var_test_2_matrix(x, nx, sx, y, ny, sy, rows, v, alt, alpha, flags, out, sp); break;
     }
     fz_check_status(st);
     if (flags & ~(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN)) {

@@ -29,17 +29,12 @@ __all__ = [
     "KSPowerResult",
 ]
 
-_ALTS = {"two-sided": 0, "two.sided": 0, "two_sided": 0, "less": 1, "greater": 2}
 _ALT_NAMES = ("two-sided", "less", "greater")
 
 
 def _alternative(alternative: str) -> int:
-    if not isinstance(alternative, str):
-        raise TypeError(f"alternative must be a str, got {alternative!r}")
-    if alternative not in _ALTS:
-        raise InvalidArgumentError(
-            f"alternative must be 'two-sided', 'less' or 'greater', got {alternative!r}")
-    return _ALTS[alternative]
+    # libmcstat's parser (mcstat_alternative_parse), as every test's
+    return _core._alternative_code(alternative)
 
 
 def _real(v: Any, name: str) -> float:

@@ -3,7 +3,7 @@
 meta-test, and diagnostics of an estimator's primary estimates.
 
 The numbers are libmcstat's (``mcstat_binom_test``, ``mcstat_battery_test``,
-``mcstat_diagnose``, documented in mcstat.h); this module converts
+``mcstat_diag_compute``, documented in mcstat.h); this module converts
 arguments and adds the normality tests of the batch means, which come from
 SciPy (D'Agostino-Pearson ``normaltest`` and Shapiro-Wilk ``shapiro``).
 """

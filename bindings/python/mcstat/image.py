@@ -363,7 +363,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     else:
         shp = ref.shape
         f = _core._t_test_2_summary_rows(cand.n, cand.mean, cand.m2, ref.n, ref.mean, ref.m2,
-                                         {"two-sided": 0, "less": 1, "greater": 2}[_check_alt(alternative)], alpha)
+                                         _core._alternative_code(alternative), alpha)
         pvalue, stat, status = (f[k].reshape(shp) for k in ("pvalue", "statistic", "status"))
         est = f["estimate"].reshape(shp + (2,))
         if np.any((ref.n < 2) | (cand.n < 2)):
@@ -393,12 +393,6 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     res.timings = {"load_and_channels": t1 - t0, "tests": t2 - t1, "adjust": t3 - t2,
                    "decisions": time.perf_counter() - t3}
     return res
-
-
-def _check_alt(a: str) -> str:
-    if a not in ("two-sided", "less", "greater"):
-        raise InvalidArgumentError(f"alternative must be 'two-sided', 'less' or 'greater', got {a!r}")
-    return a
 
 
 def _canonical_method(m: str) -> str:

@@ -67,12 +67,12 @@ py::object chisq_gof(py::object observed, py::object expected, const std::string
     if (o.size() != e.size())
         throw_invalid("observed and expected must have the same length, got " + std::to_string(o.size()) +
                       " and " + std::to_string(e.size()));
-    mcstat_chisq_options opt;
-    mcstat_chisq_options_init(&opt);
+    mcstat_gof_options opt;
+    mcstat_gof_options_init(&opt);
     if (kind == "probabilities")
-        opt.expected = MCSTAT_CHISQ_PROBABILITIES;
+        opt.expected = MCSTAT_GOF_PROBABILITIES;
     else if (kind == "counts")
-        opt.expected = MCSTAT_CHISQ_COUNTS;
+        opt.expected = MCSTAT_GOF_COUNTS;
     else
         throw_invalid("expected_kind must be 'probabilities' or 'counts', got '" + kind + "'");
     if (!(min_expected >= 0.0) || !std::isfinite(min_expected))
@@ -91,7 +91,7 @@ py::object chisq_gof(py::object observed, py::object expected, const std::string
     int st;
     {
         py::gil_scoped_release nogil;
-        st = mcstat_chisq_gof(od, ed, k, &opt, alpha, &r);
+        st = mcstat_gof_chisq_test(od, ed, k, &opt, alpha, &r);
     }
     if (st)
         throw_status(st, "chisq_gof");
@@ -104,7 +104,7 @@ void register_chisq(py::module_ &mod)
 {
     mod.def("chisq_gof", &chisq_gof, py::arg("observed"), py::arg("expected"), py::kw_only(),
             py::arg("expected_kind") = "probabilities", py::arg("pool") = true,
-            py::arg("min_expected") = MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED, py::arg("n_estimated") = 0,
+            py::arg("min_expected") = MCSTAT_GOF_DEFAULT_MIN_EXPECTED, py::arg("n_estimated") = 0,
             py::arg("rescale") = false, py::arg("alpha") = 0.05, CHISQ_DOC);
 }
 

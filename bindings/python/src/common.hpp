@@ -38,8 +38,12 @@ std::string repr(PyObject *o);
 double get_double(PyObject *o, const char *name);
 // A str's UTF-8 text (TypeError naming `name` otherwise).
 const char *get_str(PyObject *o, const char *name);
-// Whether the keyword `name` (a str) equals s.
-bool match(PyObject *name, const char *s);
+// The enum mcstat_alternative named by a str (libmcstat's parser: "two-sided"
+// and R's spellings, "less", "greater"): TypeError when not a str,
+// InvalidArgumentError naming the value otherwise.  Every alternative the
+// extension receives goes through it, and Python code calls it as
+// _core._alternative_code.
+int parse_alternative(PyObject *o);
 
 // The body of a METH_FASTCALL function: runs f, turning C++ exceptions
 // into the Python error they stand for.

@@ -12,14 +12,6 @@ namespace mcs {
 
 namespace {
 
-int parse_alternative(const std::string &name)
-{
-    int alt;
-    if (mcstat_alternative_parse(name.c_str(), &alt))
-        throw_invalid("alternative must be 'two-sided', 'less' or 'greater', not '" + name + "'");
-    return alt;
-}
-
 uint64_t count(py::handle o, const char *name)
 {
     if (PyBool_Check(o.ptr()) || !PyIndex_Check(o.ptr()))
@@ -45,10 +37,10 @@ void register_diagnostics(py::module_ &mod)
 {
     mod.def(
         "_binom_test",
-        [](py::object x, py::object n, double p, const std::string &alternative, double alpha) {
+        [](py::object x, py::object n, double p, py::handle alternative, double alpha) {
             uint64_t xx = count(x, "x"), nn = count(n, "n");
             mcstat_result r;
-            int st = mcstat_binom_test(xx, nn, p, parse_alternative(alternative), alpha, &r);
+            int st = mcstat_binom_test(xx, nn, p, parse_alternative(alternative.ptr()), alpha, &r);
             if (st)
                 throw_status(st, "binom_test(x=" + std::to_string(xx) + ", n=" + std::to_string(nn) + ")");
             return make_result(r);
@@ -57,11 +49,11 @@ void register_diagnostics(py::module_ &mod)
 
     mod.def(
         "_battery_test_pvalues",
-        [](py::object pv, double level, const std::string &alternative, double alpha) {
+        [](py::object pv, double level, py::handle alternative, double alpha) {
             py::array a = as_contiguous_array(pv, "tests");
             mcstat_result r;
             int st = mcstat_battery_test_pvalues(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()),
-                                                 level, parse_alternative(alternative), alpha, &r);
+                                                 level, parse_alternative(alternative.ptr()), alpha, &r);
             if (st)
                 throw_status(st, "battery_test of p-values");
             return make_result(r);
@@ -86,7 +78,7 @@ void register_diagnostics(py::module_ &mod)
             int st;
             {
                 py::gil_scoped_release nogil;
-                st = mcstat_diagnose(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()), &o, &d);
+                st = mcstat_diag_compute(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()), &o, &d);
             }
             if (st)
                 throw_status(st, "diagnose");
@@ -118,7 +110,7 @@ void register_diagnostics(py::module_ &mod)
         "_t_size_edgeworth",
         [](double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha) {
             double s[2];
-            int st = mcstat_t_size_edgeworth(skewness, kurtosis, k, m, alpha, s);
+            int st = mcstat_diag_t_size(skewness, kurtosis, k, m, alpha, s);
             if (st)
                 throw_status(st, "t_size_edgeworth");
             return py::make_tuple(s[0], s[1]);
@@ -129,7 +121,7 @@ void register_diagnostics(py::module_ &mod)
         "_batch_size_recommend",
         [](double skewness, double kurtosis, uint64_t m, double alpha, double tolerance) {
             uint64_t k;
-            int st = mcstat_batch_size_recommend(skewness, kurtosis, m, alpha, tolerance, &k);
+            int st = mcstat_diag_batch_size(skewness, kurtosis, m, alpha, tolerance, &k);
             if (st)
                 throw_status(st, "batch_size_recommend");
             return k;

@@ -26,6 +26,8 @@
 
 #include "mcest.h"
 #include "real_array.hpp"
+#include "kwargs.hpp"
+#include "threads.hpp"
 
 namespace py = pybind11;
 
@@ -66,19 +68,7 @@ std::string show(py::handle o)
 
 uint64_t to_u64(py::handle o, const char *name)
 {
-    if (PyBool_Check(o.ptr()) || !PyIndex_Check(o.ptr()))
-        throw py::type_error(std::string(name) + " must be an int, got " + show(o));
-    py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(o.ptr()));
-    if (!i)
-        throw py::error_already_set();
-    if (PyObject_RichCompareBool(i.ptr(), py::int_(0).ptr(), Py_LT) == 1)
-        throw_invalid(std::string(name) + " must be a non-negative int below 2**64, got " + show(o));
-    unsigned long long v = PyLong_AsUnsignedLongLong(i.ptr());
-    if (v == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
-        PyErr_Clear();
-        throw_invalid(std::string(name) + " must be a non-negative int below 2**64, got " + show(o));
-    }
-    return static_cast<uint64_t>(v);
+    return mcs_kwargs::to_u64(o.ptr(), name, [](const std::string &m) { throw_invalid(m); });
 }
 
 size_t to_count(py::handle o, const char *name)
@@ -192,33 +182,13 @@ int parse_rr_method(py::handle o)
 // ---- threads -------------------------------------------------------------------
 
 // Runs f(start, count) -> status over [0, n) in `threads` contiguous
-// chunks (fewer when n is small); the status of the first failing chunk,
-// in index order.  Call without the GIL; f must not touch Python.
+// chunks of at least MIN_PER_THREAD (threads.hpp); the status of the first
+// failing chunk, in index order.  Call without the GIL; f must not touch
+// Python.
 template <typename F> int run_chunks(size_t n, int threads, F f)
 {
-    size_t most = n / MIN_PER_THREAD;
-    size_t T = static_cast<size_t>(threads);
-    if (T > most)
-        T = most;
-    if (T <= 1)
-        return f(size_t{0}, n);
-    std::vector<int> status(T, MCEST_OK);
-    std::vector<std::thread> pool;
-    for (size_t t = 1; t < T; t++) {
-        size_t a = n * t / T, b = n * (t + 1) / T;
-        try {
-            pool.emplace_back([&f, &status, t, a, b] { status[t] = f(a, b - a); });
-        } catch (const std::system_error &) {
-            status[t] = f(a, b - a); // no thread: the same numbers, later
-        }
-    }
-    status[0] = f(size_t{0}, n / T);
-    for (auto &th : pool)
-        th.join();
-    for (int s : status)
-        if (s)
-            return s;
-    return MCEST_OK;
+    return mcs_threads::split_ranges(n, static_cast<size_t>(threads), MIN_PER_THREAD,
+                                     [&f](size_t b, size_t e) { return f(b, e - b); });
 }
 
 // ---- irradiance ----------------------------------------------------------------------

@@ -8,6 +8,7 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+#include "kwargs.hpp"
 #include "docs.hpp"
 
 #include <cstring>
@@ -33,19 +34,7 @@ uint64_t entropy_seed()
 // A Python int in [0, 2^64) (numpy integers too); TypeError / InvalidArgumentError.
 uint64_t get_u64(PyObject *o, const char *name)
 {
-    if (PyBool_Check(o) || !PyIndex_Check(o))
-        throw py::type_error(std::string(name) + " must be an int, got " + repr(o));
-    py::object i = py::reinterpret_steal<py::object>(PyNumber_Index(o));
-    if (!i)
-        throw py::error_already_set();
-    if (PyObject_RichCompareBool(i.ptr(), py::int_(0).ptr(), Py_LT) == 1)
-        throw_invalid(std::string(name) + " must be a non-negative int below 2**64, got " + repr(o));
-    unsigned long long v = PyLong_AsUnsignedLongLong(i.ptr());
-    if (v == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
-        PyErr_Clear();
-        throw_invalid(std::string(name) + " must be a non-negative int below 2**64, got " + repr(o));
-    }
-    return static_cast<uint64_t>(v);
+    return mcs_kwargs::to_u64(o, name, [](const std::string &m) { throw_invalid(m); });
 }
 
 // A Python int as int64 (TypeError for other types).
@@ -99,45 +88,10 @@ struct KSParsed {
 
 void ks_parse(PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames, KSParsed &p)
 {
-    if (nargs > 2)
-        throw py::type_error("ks_test() takes at most 2 positional arguments (x, y), " + std::to_string(nargs) +
-                             " given");
-    if (nargs > 0)
-        p.x = args[0];
-    if (nargs > 1)
-        p.y = args[1];
-    Py_ssize_t nk = kwnames ? PyTuple_GET_SIZE(kwnames) : 0;
-    for (Py_ssize_t i = 0; i < nk; i++) {
-        PyObject *k = PyTuple_GET_ITEM(kwnames, i), *v = args[nargs + i];
-        PyObject **slot = nullptr;
-        if (match(k, "weight"))
-            slot = &p.weight;
-        else if (match(k, "alternative"))
-            slot = &p.alternative;
-        else if (match(k, "alpha"))
-            slot = &p.alpha;
-        else if (match(k, "method"))
-            slot = &p.method;
-        else if (match(k, "n_sim"))
-            slot = &p.n_sim;
-        else if (match(k, "seed"))
-            slot = &p.seed;
-        else if (match(k, "threads"))
-            slot = &p.threads;
-        else if (match(k, "cache"))
-            slot = &p.cache;
-        else if (match(k, "critical"))
-            slot = &p.critical;
-        else if (match(k, "x"))
-            slot = &p.x;
-        else if (match(k, "y"))
-            slot = &p.y;
-        else
-            throw py::type_error("ks_test() got an unexpected keyword argument " + repr(k));
-        if (*slot)
-            throw py::type_error("ks_test() got multiple values for argument " + repr(k));
-        *slot = v;
-    }
+    mcs_kwargs::parse("ks_test", args, nargs, kwnames, {{"x", &p.x}, {"y", &p.y}},
+                      {{"weight", &p.weight}, {"alternative", &p.alternative}, {"alpha", &p.alpha},
+                       {"method", &p.method}, {"n_sim", &p.n_sim}, {"seed", &p.seed}, {"threads", &p.threads},
+                       {"cache", &p.cache}, {"critical", &p.critical}});
     if (!p.x || !p.y)
         throw py::type_error(std::string("ks_test() missing required argument '") + (p.x ? "y" : "x") + "'");
     if (p.x == Py_None || p.y == Py_None)
@@ -170,12 +124,7 @@ PyObject *ks_test(PyObject *, PyObject *const *args, Py_ssize_t nargs, PyObject 
             else
                 throw_invalid(std::string("weight must be 'none' or 'canner', got '") + s + "'");
         }
-        int alternative = MCSTAT_TWO_SIDED;
-        if (p.alternative) {
-            const char *s = get_str(p.alternative, "alternative");
-            if (mcstat_alternative_parse(s, &alternative) != MCSTAT_OK)
-                throw_invalid(std::string("alternative must be 'two-sided', 'less' or 'greater', got '") + s + "'");
-        }
+        int alternative = p.alternative ? parse_alternative(p.alternative) : MCSTAT_TWO_SIDED;
         double alpha = p.alpha ? get_double(p.alpha, "alpha") : 0.05;
         if (!(alpha > 0.0 && alpha < 1.0))
             throw_invalid("alpha must be in (0, 1), got " + repr(p.alpha));

@@ -7,6 +7,7 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+#include "threads.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -92,24 +93,14 @@ bool parse_omit(const std::string &nan_policy)
     throw_invalid("nan_policy must be 'raise' or 'omit', got '" + nan_policy + "'");
 }
 
-// Rows [begin, end) on worker threads (disjoint ranges, as libmcstat allows).
+// Rows [begin, end) on worker threads (disjoint ranges, as libmcstat
+// allows), at least 4096 rows per thread.
 template <typename F> void parallel_rows(size_t rows, F f)
 {
-    size_t nt = std::min<size_t>(static_cast<size_t>(num_threads()), std::max<size_t>(1, rows / 4096));
-    if (nt <= 1) {
-        f(size_t(0), rows);
-        return;
-    }
-    std::vector<std::thread> pool;
-    size_t per = (rows + nt - 1) / nt;
-    for (size_t t = 1; t < nt; t++) {
-        size_t b = t * per, e = std::min(rows, b + per);
-        if (b < e)
-            pool.emplace_back([&f, b, e] { f(b, e); });
-    }
-    f(size_t(0), std::min(rows, per));
-    for (auto &th : pool)
-        th.join();
+    mcs_threads::split_ranges(rows, static_cast<size_t>(num_threads()), 4096, [&f](size_t b, size_t e) {
+        f(b, e);
+        return 0;
+    });
 }
 
 // The pixels' values as (pixels, k) C-contiguous rows: one image (shape ==

@@ -10,6 +10,7 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+#include "threads.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -150,18 +151,18 @@ void run_range(const TestArgs &a, const Layout &X, const Layout &Y, bool two, si
         const double *py_ = two ? rows_at(Y, r0, k, by, &sy) : nullptr;
         switch (a.kind) {
         case Kind::T1:
-            mcstat_t_test_1_rows(px, k, X.n, sx, a.null_value, a.alternative, a.alpha, flags, res.data(), st.data());
+            mcstat_t_test_1_matrix(px, X.n, sx, k, a.null_value, a.alternative, a.alpha, flags, res.data(), st.data());
             break;
         case Kind::T2:
-            mcstat_t_test_2_rows(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
+            mcstat_t_test_2_matrix(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
                                  res.data(), st.data());
             break;
         case Kind::V1:
-            mcstat_var_test_1_rows(px, k, X.n, sx, a.null_value, a.alternative, a.alpha, flags, res.data(),
+            mcstat_var_test_1_matrix(px, X.n, sx, k, a.null_value, a.alternative, a.alpha, flags, res.data(),
                                    st.data());
             break;
         case Kind::V2:
-            mcstat_var_test_2_rows(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
+            mcstat_var_test_2_matrix(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
                                    res.data(), st.data());
             break;
         }
@@ -247,26 +248,15 @@ struct BatchOutputs {
 };
 
 // Runs range(begin, end) over [0, rows) split into one range per thread, the
-// GIL released.  At least ~1000 rows per thread: below that a thread costs
+// GIL released.  At least 1024 rows per thread: below that a thread costs
 // more than it saves.
 template <class F> void for_row_ranges(size_t rows, F range)
 {
     py::gil_scoped_release nogil;
-    size_t nt = std::min<size_t>(static_cast<size_t>(num_threads()), std::max<size_t>(1, rows / 1024));
-    if (nt <= 1) {
-        range(size_t(0), rows);
-        return;
-    }
-    std::vector<std::thread> pool;
-    size_t per = (rows + nt - 1) / nt;
-    for (size_t t = 1; t < nt; t++) {
-        size_t b = t * per, e = std::min(rows, b + per);
-        if (b < e)
-            pool.emplace_back([&range, b, e] { range(b, e); });
-    }
-    range(size_t(0), std::min(rows, per));
-    for (auto &th : pool)
-        th.join();
+    mcs_threads::split_ranges(rows, static_cast<size_t>(num_threads()), 1024, [&range](size_t b, size_t e) {
+        range(b, e);
+        return 0;
+    });
 }
 
 } // namespace

@@ -1,7 +1,7 @@
 // summary_rows.cpp - Welch's test per pixel from per-pixel summaries (count,
 // mean, sum of squared deviations M2), for mcstat.image's .npz input: each
-// row's mcstat_moments is filled from the summary and tested by libmcstat's
-// mcstat_t_test_2_moments.  (Arrays of serialized accumulators will reach
+// row's mcstat_moments comes from mcstat_moments_from_summary and is tested
+// by libmcstat's mcstat_t_test_2_moments.  (Arrays of serialized accumulators will reach
 // the same test through libmcstat's row-wise accumulator API.)
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
@@ -17,22 +17,14 @@ namespace {
 
 using carray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// An accumulator holding exactly (n, mean, M2); m3, m4 are unknown (zero:
-// the t test does not read them).
+// An accumulator holding (n, mean, M2): libmcstat builds it (a valid
+// accumulator; the t test reads only n, the mean and M2).  The count comes
+// as a double from NumPy: it must be a non-negative integer.
 int from_summary(double n, double mean, double m2, mcstat_moments *m)
 {
-    mcstat_moments_init(m);
     if (!(n >= 0) || n != std::floor(n) || n > 9.0e15)
         return MCSTAT_EINVAL;
-    if (!std::isfinite(mean) || !std::isfinite(m2))
-        return MCSTAT_ENONFINITE;
-    if (m2 < 0)
-        return MCSTAT_EINVAL;
-    m->n = static_cast<uint64_t>(n);
-    m->mean = mean;
-    m->m2 = m2;
-    m->min = m->max = mean;
-    return MCSTAT_OK;
+    return mcstat_moments_from_summary(static_cast<uint64_t>(n), mean, m2, m);
 }
 
 } // namespace

@@ -7,6 +7,7 @@
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
 #include "docs.hpp"
+#include "kwargs.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -30,45 +31,12 @@ struct Parsed {
 void parse(const char *fname, bool is_var, PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames,
            Parsed &p)
 {
-    if (nargs > 2)
-        throw py::type_error(std::string(fname) + "() takes at most 2 positional arguments (x, y), " +
-                             std::to_string(nargs) + " given");
-    if (nargs > 0)
-        p.x = args[0];
-    if (nargs > 1)
-        p.y = args[1];
-    Py_ssize_t nk = kwnames ? PyTuple_GET_SIZE(kwnames) : 0;
-    for (Py_ssize_t i = 0; i < nk; i++) {
-        PyObject *k = PyTuple_GET_ITEM(kwnames, i), *v = args[nargs + i];
-        PyObject **slot = nullptr;
-        if (match(k, "alternative"))
-            slot = &p.alternative;
-        else if (match(k, "alpha"))
-            slot = &p.alpha;
-        else if (!is_var && match(k, "mu"))
-            slot = &p.null_value;
-        else if (is_var && match(k, "sigma2"))
-            slot = &p.null_value;
-        else if (is_var && match(k, "ratio"))
-            slot = &p.ratio;
-        else if (match(k, "axis"))
-            slot = &p.axis;
-        else if (match(k, "nan_policy"))
-            slot = &p.nan_policy;
-        else if (match(k, "intervals"))
-            slot = &p.intervals;
-        else if (match(k, "on_error"))
-            slot = &p.on_error;
-        else if (match(k, "x"))
-            slot = &p.x;
-        else if (match(k, "y"))
-            slot = &p.y;
-        else
-            throw py::type_error(std::string(fname) + "() got an unexpected keyword argument " + repr(k));
-        if (*slot)
-            throw py::type_error(std::string(fname) + "() got multiple values for argument " + repr(k));
-        *slot = v;
-    }
+    // t_test's null value is mu; var_test's sigma2, and it has ratio too
+    mcs_kwargs::parse(fname, args, nargs, kwnames, {{"x", &p.x}, {"y", &p.y}},
+                      {{"alternative", &p.alternative}, {"alpha", &p.alpha},
+                       {is_var ? "sigma2" : "mu", &p.null_value}, {is_var ? "ratio" : nullptr, &p.ratio},
+                       {"axis", &p.axis}, {"nan_policy", &p.nan_policy}, {"intervals", &p.intervals},
+                       {"on_error", &p.on_error}});
     if (!p.x)
         throw py::type_error(std::string(fname) + "() missing required argument 'x'");
     if (p.x == Py_None)
@@ -79,12 +47,7 @@ void parse(const char *fname, bool is_var, PyObject *const *args, Py_ssize_t nar
 
 void common_args(const Parsed &p, TestArgs &a)
 {
-    a.alternative = MCSTAT_TWO_SIDED;
-    if (p.alternative) {
-        const char *s = get_str(p.alternative, "alternative");
-        if (mcstat_alternative_parse(s, &a.alternative) != MCSTAT_OK)
-            throw_invalid(std::string("alternative must be 'two-sided', 'less' or 'greater', got '") + s + "'");
-    }
+    a.alternative = p.alternative ? parse_alternative(p.alternative) : MCSTAT_TWO_SIDED;
     a.alpha = p.alpha ? get_double(p.alpha, "alpha") : 0.05;
     if (!(a.alpha > 0.0 && a.alpha < 1.0))
         throw_invalid("alpha must be in (0, 1), got " + repr(p.alpha));
@@ -165,13 +128,13 @@ int call_arrays(const TestArgs &a, const double *x, size_t nx, const double *y, 
 {
     unsigned flags = (a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (a.omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
     switch (a.kind) {
-    case Kind::T1: return mcstat_t_test_1_rows(x, 1, nx, 0, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+    case Kind::T1: return mcstat_t_test_1_matrix(x, nx, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
     case Kind::T2:
-        return mcstat_t_test_2_rows(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+        return mcstat_t_test_2_matrix(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
     case Kind::V1:
-        return mcstat_var_test_1_rows(x, 1, nx, 0, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
+        return mcstat_var_test_1_matrix(x, nx, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
     default:
-        return mcstat_var_test_2_rows(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r,
+        return mcstat_var_test_2_matrix(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r,
                                       nullptr);
     }
 }
@@ -306,9 +269,13 @@ const char *get_str(PyObject *o, const char *name)
     return s;
 }
 
-bool match(PyObject *name, const char *s)
+int parse_alternative(PyObject *o)
 {
-    return PyUnicode_CompareWithASCIIString(name, s) == 0;
+    const char *s = get_str(o, "alternative");
+    int alternative;
+    if (mcstat_alternative_parse(s, &alternative) != MCSTAT_OK)
+        throw_invalid(std::string("alternative must be 'two-sided', 'less' or 'greater', got '") + s + "'");
+    return alternative;
 }
 
 py::array as_float_array(py::handle obj, const char *name)
@@ -329,6 +296,9 @@ py::array as_contiguous_array(py::handle obj, const char *name)
 
 void register_tests(py::module_ &mod)
 {
+    mod.def(
+        "_alternative_code", [](py::handle name) { return parse_alternative(name.ptr()); }, py::arg("alternative"),
+        "The integer of an alternative's name (mcstat_alternative_parse), for the Python modules.");
     for (PyMethodDef *d = methods; d->ml_name; d++) {
         // self = the module, as for any module function (inspect then drops $module)
         PyObject *f = PyCFunction_NewEx(d, mod.ptr(), mod.attr("__name__").ptr());

@@ -227,6 +227,10 @@ extern "C" {
 
     pub fn mcstat_sizeof_moments() -> usize;
     pub fn mcstat_sizeof_result() -> usize;
+    pub fn mcstat_sizeof_moments_bytes() -> usize;
+    /// The 0.1 name of `mcstat_sizeof_moments_bytes`, kept so that code
+    /// using it still builds.
+    #[deprecated(note = "use mcstat_sizeof_moments_bytes")]
     pub fn mcstat_moments_bytes() -> usize;
 
     pub fn mcstat_gsl_handler_off();
@@ -244,7 +248,7 @@ mod tests {
             assert_eq!(std::mem::size_of::<mcstat_moments>(), 128);
             assert_eq!(std::mem::size_of::<mcstat_result>(), mcstat_sizeof_result());
             assert_eq!(std::mem::size_of::<mcstat_ks_options>(), mcstat_sizeof_ks_options());
-            assert_eq!(mcstat_moments_bytes(), MCSTAT_MOMENTS_BYTES);
+            assert_eq!(mcstat_sizeof_moments_bytes(), MCSTAT_MOMENTS_BYTES);
         }
     }
 

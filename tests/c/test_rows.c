@@ -1,5 +1,5 @@
 /*
- * test_batch.c - the row-wise tests: every row bit for bit the single-sample
+ * test_rows.c - the row-wise tests: every row bit for bit the single-sample
  * call (with quantiles reused across rows of equal df), failed rows reported
  * and cleared without stopping the others, the flags.
  */
@@ -48,7 +48,7 @@ static void test_rows_match_single_calls(void)
     int32_t status[ROWS];
     for (int alt = 0; alt < 3; alt++) {
         /* one-sample t: equal df, so the quantiles are solved once and reused */
-        int st = mcstat_t_test_1_rows(x, ROWS, NX, SX, 0.1, alt, 0.05, 0, out, status);
+        int st = mcstat_t_test_1_matrix(x, NX, SX, ROWS, 0.1, alt, 0.05, 0, out, status);
         CHECK_INT(st, MCSTAT_ENONFINITE); /* the first failing row is row 3 */
         for (int i = 0; i < ROWS; i++) {
             mcstat_result r;
@@ -61,7 +61,7 @@ static void test_rows_match_single_calls(void)
         }
         CHECK_INT(status[5], MCSTAT_EDEGENERATE);
 
-        st = mcstat_t_test_2_rows(x, NX, SX, y, NY, SY, ROWS, -0.2, alt, 0.1, 0, out, status);
+        st = mcstat_t_test_2_matrix(x, NX, SX, y, NY, SY, ROWS, -0.2, alt, 0.1, 0, out, status);
         CHECK_INT(st, MCSTAT_ENONFINITE);
         for (int i = 0; i < ROWS; i++) {
             mcstat_result r;
@@ -73,7 +73,7 @@ static void test_rows_match_single_calls(void)
         CHECK_INT(status[5], MCSTAT_OK); /* Welch needs spread in one sample only */
         CHECK_INT(status[7], MCSTAT_ENONFINITE);
 
-        st = mcstat_var_test_1_rows(x, ROWS, NX, SX, 0.3, alt, 0.05, 0, out, status);
+        st = mcstat_var_test_1_matrix(x, NX, SX, ROWS, 0.3, alt, 0.05, 0, out, status);
         for (int i = 0; i < ROWS; i++) {
             mcstat_result r;
             int s1 = mcstat_var_test_1(x + i * SX, NX, 0.3, alt, 0.05, &r);
@@ -81,7 +81,7 @@ static void test_rows_match_single_calls(void)
             if (s1 == MCSTAT_OK)
                 CHECK_MSG(same(&out[i], &r), "var_1 row %d alt %d", i, alt);
         }
-        st = mcstat_var_test_2_rows(x, NX, SX, y, NY, SY, ROWS, 1.5, alt, 0.01, 0, out, status);
+        st = mcstat_var_test_2_matrix(x, NX, SX, y, NY, SY, ROWS, 1.5, alt, 0.01, 0, out, status);
         for (int i = 0; i < ROWS; i++) {
             mcstat_result r;
             int s1 = mcstat_var_test_2(x + i * SX, NX, y + i * SY, NY, 1.5, alt, 0.01, &r);
@@ -96,8 +96,8 @@ static void test_flags(void)
 {
     static mcstat_result a[ROWS], b[ROWS];
     int32_t status[ROWS];
-    mcstat_t_test_2_rows(x, NX, SX, y, NY, SY, ROWS, 0.0, MCSTAT_TWO_SIDED, 0.05, 0, a, NULL);
-    mcstat_t_test_2_rows(x, NX, SX, y, NY, SY, ROWS, 0.0, MCSTAT_TWO_SIDED, 0.05, MCSTAT_ROWS_NO_INTERVALS, b,
+    mcstat_t_test_2_matrix(x, NX, SX, y, NY, SY, ROWS, 0.0, MCSTAT_TWO_SIDED, 0.05, 0, a, NULL);
+    mcstat_t_test_2_matrix(x, NX, SX, y, NY, SY, ROWS, 0.0, MCSTAT_TWO_SIDED, 0.05, MCSTAT_ROWS_NO_INTERVALS, b,
                          status);
     for (int i = 0; i < ROWS; i++) {
         if (status[i])
@@ -109,7 +109,7 @@ static void test_flags(void)
         CHECK(isfinite(a[i].conf_int[0]));
     }
     /* NaN omitted: row 3 becomes a test on its other NX - 1 values */
-    mcstat_t_test_1_rows(x, ROWS, NX, SX, 0.0, MCSTAT_TWO_SIDED, 0.05, MCSTAT_ROWS_OMIT_NAN, a, status);
+    mcstat_t_test_1_matrix(x, NX, SX, ROWS, 0.0, MCSTAT_TWO_SIDED, 0.05, MCSTAT_ROWS_OMIT_NAN, a, status);
     CHECK_INT(status[3], MCSTAT_OK);
     CHECK_INT(a[3].n[0], NX - 1);
     double clean[NX];
@@ -121,13 +121,13 @@ static void test_flags(void)
     mcstat_t_test_1(clean, (size_t)k, 0.0, MCSTAT_TWO_SIDED, 0.05, &r);
     CHECK(same(&a[3], &r));
     /* bad arguments touch nothing */
-    CHECK_INT(mcstat_t_test_1_rows(NULL, 3, NX, SX, 0.0, 0, 0.05, 0, a, status), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_t_test_1_rows(x, 3, NX, SX, 0.0, 0, 0.05, 64u, a, status), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_t_test_1_rows(x, 0, NX, SX, 0.0, 0, 0.05, 0, NULL, NULL), MCSTAT_OK);
+    CHECK_INT(mcstat_t_test_1_matrix(NULL, NX, SX, 3, 0.0, 0, 0.05, 0, a, status), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_t_test_1_matrix(x, NX, SX, 3, 0.0, 0, 0.05, 64u, a, status), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_t_test_1_matrix(x, NX, SX, 0, 0.0, 0, 0.05, 0, NULL, NULL), MCSTAT_OK);
     /* per-row argument errors are row statuses */
-    CHECK_INT(mcstat_t_test_1_rows(x, 2, NX, SX, 0.0, 0, 1.5, 0, a, status), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_t_test_1_matrix(x, NX, SX, 2, 0.0, 0, 1.5, 0, a, status), MCSTAT_EINVAL);
     CHECK_INT(status[1], MCSTAT_EINVAL);
-    CHECK_INT(mcstat_t_test_1_rows(x, 2, 1, SX, 0.0, 0, 0.05, 0, a, status), MCSTAT_ETOOFEW);
+    CHECK_INT(mcstat_t_test_1_matrix(x, 1, SX, 2, 0.0, 0, 0.05, 0, a, status), MCSTAT_ETOOFEW);
 }
 
 int main(void)
@@ -135,5 +135,5 @@ int main(void)
     fill();
     test_rows_match_single_calls();
     test_flags();
-    return h_report("test_batch");
+    return h_report("test_rows");
 }

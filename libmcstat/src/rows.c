@@ -1,5 +1,5 @@
 /*
- * batch.c - one test per row of a matrix: the per-pixel case (an image whose
+ * rows.c - one test per row of a matrix: the per-pixel case (an image whose
  * every pixel holds k secondary estimates).
  *
  * Each row goes through exactly the code of the single-sample call, so row i
@@ -45,7 +45,7 @@ static void finish_row(int st, size_t i, mcstat_result *out, int32_t *status, in
         status[i] = st;
 }
 
-/* The tests on accumulators, as batch.c drives them (internal.h). */
+/* The tests on accumulators, as the row loops drive them (internal.h). */
 typedef int (*test_1_fn)(const mcstat_moments *x, double null_value, int alternative, double alpha,
                          mcstat_qcache *qc, mcstat_result *out);
 typedef int (*test_2_fn)(const mcstat_moments *x, const mcstat_moments *y, double null_value, int alternative,
@@ -94,22 +94,22 @@ static int rows_2(test_2_fn test, const double *x, size_t nx, size_t x_stride, c
     return first;
 }
 
-int mcstat_t_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double mu0, int alternative,
-                         double alpha, unsigned flags, mcstat_result *out, int32_t *status)
+int mcstat_t_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows, double mu0, int alternative,
+                           double alpha, unsigned flags, mcstat_result *out, int32_t *status)
 {
     MCSTAT_IEEE_SCOPE();
     return rows_1(mcstat__t_test_1, x, rows, n, x_stride, mu0, alternative, alpha, flags, out, status);
 }
 
-int mcstat_var_test_1_rows(const double *x, size_t rows, size_t n, size_t x_stride, double sigma2,
-                           int alternative, double alpha, unsigned flags, mcstat_result *out, int32_t *status)
+int mcstat_var_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows, double sigma2,
+                             int alternative, double alpha, unsigned flags, mcstat_result *out, int32_t *status)
 {
     MCSTAT_IEEE_SCOPE();
     return rows_1(mcstat__var_test_1, x, rows, n, x_stride, sigma2, alternative, alpha, flags, out, status);
 }
 
-int mcstat_t_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
-                         size_t y_stride, size_t rows, double mu0, int alternative, double alpha, unsigned flags,
+int mcstat_t_test_2_matrix(const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
+                           size_t y_stride, size_t rows, double mu0, int alternative, double alpha, unsigned flags,
                          mcstat_result *out, int32_t *status)
 {
     MCSTAT_IEEE_SCOPE();
@@ -117,8 +117,8 @@ int mcstat_t_test_2_rows(const double *x, size_t nx, size_t x_stride, const doub
                   status);
 }
 
-int mcstat_var_test_2_rows(const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
-                           size_t y_stride, size_t rows, double ratio, int alternative, double alpha,
+int mcstat_var_test_2_matrix(const double *x, size_t nx, size_t x_stride, const double *y, size_t ny,
+                             size_t y_stride, size_t rows, double ratio, int alternative, double alpha,
                            unsigned flags, mcstat_result *out, int32_t *status)
 {
     MCSTAT_IEEE_SCOPE();

@@ -1,5 +1,5 @@
 /*
- * test_chisq_gof.c - Pearson's chi-squared goodness of fit against R's
+ * test_gof_chisq.c - Pearson's chi-squared goodness of fit against R's
  * chisq.test (tests/data/ref_chisq.h, from tools/refgen/make_chisq_ref.R),
  * the R-style block, bad input, and calibration and power on multinomial
  * samples.
@@ -19,13 +19,13 @@ static void test_reference(void)
 {
     for (size_t i = 0; i < REF_NCHISQ; i++) {
         const ref_chisq *c = &REF_CHISQ[i];
-        mcstat_chisq_options o = MCSTAT_CHISQ_OPTIONS_INIT;
+        mcstat_gof_options o = MCSTAT_GOF_OPTIONS_INIT;
         o.pool = c->pool;
         o.min_expected = c->min_expected;
         o.n_estimated = c->n_estimated;
-        o.expected = c->counts ? MCSTAT_CHISQ_COUNTS : MCSTAT_CHISQ_PROBABILITIES;
+        o.expected = c->counts ? MCSTAT_GOF_COUNTS : MCSTAT_GOF_PROBABILITIES;
         mcstat_result r;
-        int st = mcstat_chisq_gof(c->x, c->p, c->k, &o, 0.05, &r);
+        int st = mcstat_gof_chisq_test(c->x, c->p, c->k, &o, 0.05, &r);
         CHECK_MSG(st == MCSTAT_OK, "%s: status %d", c->name, st);
         if (st)
             continue;
@@ -49,7 +49,7 @@ static void test_format(void)
     const double x[] = {22, 21, 22, 27, 22, 36}, p[] = {1 / 6., 1 / 6., 1 / 6., 1 / 6., 1 / 6., 1 / 6.};
     mcstat_result r;
     char buf[512];
-    CHECK_INT(mcstat_chisq_gof(x, p, 6, NULL, 0.05, &r), MCSTAT_OK);
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 6, NULL, 0.05, &r), MCSTAT_OK);
     CHECK_INT(mcstat_result_format(&r, "c(22, 21, 22, 27, 22, 36)", NULL, buf, sizeof buf, NULL), MCSTAT_OK);
     /* R 4.2.2, print(chisq.test(c(22, 21, 22, 27, 22, 36), p = rep(1/6, 6))) */
     const char *want = "\n\tChi-squared test for given probabilities\n\n"
@@ -59,7 +59,7 @@ static void test_format(void)
     CHECK_MSG(strcmp(buf, want) == 0, "got <%s>", buf);
     /* pooled: the extra line */
     const double y[] = {0, 1, 0, 30, 40, 29}, q[] = {0.001, 0.01, 0.009, 0.3, 0.4, 0.28};
-    CHECK_INT(mcstat_chisq_gof(y, q, 6, NULL, 0.05, &r), MCSTAT_OK);
+    CHECK_INT(mcstat_gof_chisq_test(y, q, 6, NULL, 0.05, &r), MCSTAT_OK);
     CHECK_INT(MCSTAT_RESULT_CHISQ_CELLS(&r), 3);
     CHECK_INT(mcstat_result_format(&r, NULL, NULL, buf, sizeof buf, NULL), MCSTAT_OK);
     CHECK_MSG(strstr(buf, "cells: 6 given, 3 after pooling expected counts below 5") != NULL, "got <%s>", buf);
@@ -72,60 +72,59 @@ static void test_bad_input(void)
 {
     const double x[] = {3, 4, 5}, p[] = {0.2, 0.3, 0.5};
     mcstat_result r;
-    mcstat_chisq_options o = MCSTAT_CHISQ_OPTIONS_INIT;
-    CHECK_INT(mcstat_chisq_gof(NULL, p, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_chisq_gof(x, NULL, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, NULL, 0.05, NULL), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, NULL, 0.0, &r), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, NULL, 1.0, &r), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, NULL, NAN, &r), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_chisq_gof(x, p, 1, NULL, 0.05, &r), MCSTAT_ETOOFEW);
-    CHECK_INT(mcstat_chisq_gof(x, p, 0, NULL, 0.05, &r), MCSTAT_ETOOFEW);
+    mcstat_gof_options o = MCSTAT_GOF_OPTIONS_INIT;
+    CHECK_INT(mcstat_gof_chisq_test(NULL, p, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, NULL, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, NULL, 0.05, NULL), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, NULL, 0.0, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, NULL, 1.0, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, NULL, NAN, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 1, NULL, 0.05, &r), MCSTAT_ETOOFEW);
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 0, NULL, 0.05, &r), MCSTAT_ETOOFEW);
     const double xn[] = {3, NAN, 5}, pi[] = {0.2, INFINITY, 0.5};
-    CHECK_INT(mcstat_chisq_gof(xn, p, 3, NULL, 0.05, &r), MCSTAT_ENONFINITE);
-    CHECK_INT(mcstat_chisq_gof(x, pi, 3, NULL, 0.05, &r), MCSTAT_ENONFINITE);
+    CHECK_INT(mcstat_gof_chisq_test(xn, p, 3, NULL, 0.05, &r), MCSTAT_ENONFINITE);
+    CHECK_INT(mcstat_gof_chisq_test(x, pi, 3, NULL, 0.05, &r), MCSTAT_ENONFINITE);
     const double xneg[] = {3, -1, 5}, pneg[] = {0.7, -0.2, 0.5};
-    CHECK_INT(mcstat_chisq_gof(xneg, p, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_chisq_gof(x, pneg, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(xneg, p, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, pneg, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
     const double psum[] = {0.2, 0.3, 0.6}; /* sums to 1.1 */
-    CHECK_INT(mcstat_chisq_gof(x, psum, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, psum, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
     o.rescale = 1;
-    CHECK_INT(mcstat_chisq_gof(x, psum, 3, &o, 0.05, &r), MCSTAT_OK);
+    CHECK_INT(mcstat_gof_chisq_test(x, psum, 3, &o, 0.05, &r), MCSTAT_OK);
     /* huge counts: finite statistic; totals that overflow: EINVAL */
     const double big[] = {1e300, 1e300, 1e300}, huge[] = {1e308, 1e308, 1e308};
-    CHECK_INT(mcstat_chisq_gof(big, p, 3, NULL, 0.05, &r), MCSTAT_OK);
+    CHECK_INT(mcstat_gof_chisq_test(big, p, 3, NULL, 0.05, &r), MCSTAT_OK);
     CHECK(isfinite(r.statistic) && r.p_value == 0.0 && r.reject);
-    CHECK_INT(mcstat_chisq_gof(huge, p, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(huge, p, 3, NULL, 0.05, &r), MCSTAT_EINVAL);
     const double zeros[] = {0, 0, 0};
-    CHECK_INT(mcstat_chisq_gof(zeros, p, 3, NULL, 0.05, &r), MCSTAT_ETOOFEW);
+    CHECK_INT(mcstat_gof_chisq_test(zeros, p, 3, NULL, 0.05, &r), MCSTAT_ETOOFEW);
     /* with the default pooling, 12 observations in 3 cells pool to 2: df 1; one
      * estimated parameter leaves df 0 */
-    o = (mcstat_chisq_options)MCSTAT_CHISQ_OPTIONS_INIT;
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, &o, 0.05, &r), MCSTAT_OK);
+    o = (mcstat_gof_options)MCSTAT_GOF_OPTIONS_INIT;
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, &o, 0.05, &r), MCSTAT_OK);
     CHECK_INT(MCSTAT_RESULT_CHISQ_CELLS(&r), 2);
     o.n_estimated = 1;
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, &o, 0.05, &r), MCSTAT_ETOOFEW);
-    o = (mcstat_chisq_options)MCSTAT_CHISQ_OPTIONS_INIT;
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, &o, 0.05, &r), MCSTAT_ETOOFEW);
+    o = (mcstat_gof_options)MCSTAT_GOF_OPTIONS_INIT;
     o.pool = 0;
     const double p0[] = {0.5, 0.0, 0.5};
-    CHECK_INT(mcstat_chisq_gof(x, p0, 3, &o, 0.05, &r), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_gof_chisq_test(x, p0, 3, &o, 0.05, &r), MCSTAT_EINVAL);
     o.pool = 1;
-    CHECK_INT(mcstat_chisq_gof(x, p0, 3, &o, 0.05, &r), MCSTAT_OK);
+    CHECK_INT(mcstat_gof_chisq_test(x, p0, 3, &o, 0.05, &r), MCSTAT_OK);
     o.size = 4;
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, &o, 0.05, &r), MCSTAT_EINVAL);
-    o = (mcstat_chisq_options)MCSTAT_CHISQ_OPTIONS_INIT;
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, &o, 0.05, &r), MCSTAT_EINVAL);
+    o = (mcstat_gof_options)MCSTAT_GOF_OPTIONS_INIT;
     o.min_expected = -1;
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, &o, 0.05, &r), MCSTAT_EINVAL);
-    o = (mcstat_chisq_options)MCSTAT_CHISQ_OPTIONS_INIT;
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, &o, 0.05, &r), MCSTAT_EINVAL);
+    o = (mcstat_gof_options)MCSTAT_GOF_OPTIONS_INIT;
     o.expected = 7;
-    CHECK_INT(mcstat_chisq_gof(x, p, 3, &o, 0.05, &r), MCSTAT_EINVAL);
-    mcstat_chisq_options o2;
-    CHECK_INT(mcstat_chisq_options_init(&o2), MCSTAT_OK);
-    CHECK(memcmp(&o2, &(mcstat_chisq_options)MCSTAT_CHISQ_OPTIONS_INIT, sizeof o2) == 0);
-    CHECK_INT(mcstat_chisq_options_init_size(NULL, sizeof o2), MCSTAT_EINVAL);
-    CHECK_INT((mcstat_chisq_options_init)(NULL), MCSTAT_EINVAL);
-    CHECK(mcstat_sizeof_chisq_options() == sizeof(mcstat_chisq_options));
-    CHECK(mcstat_chisq_default_min_expected() == 5.0);
+    CHECK_INT(mcstat_gof_chisq_test(x, p, 3, &o, 0.05, &r), MCSTAT_EINVAL);
+    mcstat_gof_options o2;
+    CHECK_INT(mcstat_gof_options_init(&o2), MCSTAT_OK);
+    CHECK(memcmp(&o2, &(mcstat_gof_options)MCSTAT_GOF_OPTIONS_INIT, sizeof o2) == 0);
+    CHECK_INT(mcstat_gof_options_init_size(NULL, sizeof o2), MCSTAT_EINVAL);
+    CHECK(mcstat_sizeof_gof_options() == sizeof(mcstat_gof_options));
+    CHECK(mcstat_gof_default_min_expected() == 5.0);
 }
 
 /* One multinomial sample of n over k cells with probabilities q (inversion). */
@@ -160,7 +159,7 @@ static void test_calibration_and_power(void)
     for (int r = 0; r < RUNS; r++) {
         mcstat_result res;
         multinomial(p, K, 300, x);
-        CHECK_INT(mcstat_chisq_gof(x, p, K, NULL, 0.05, &res), MCSTAT_OK);
+        CHECK_INT(mcstat_gof_chisq_test(x, p, K, NULL, 0.05, &res), MCSTAT_OK);
         rej += res.reject;
         /* the alternative: 25% of the mass moved from cells 20-29 to 30-39 */
         for (int i = 0; i < K; i++)
@@ -171,7 +170,7 @@ static void test_calibration_and_power(void)
         for (int i = 0; i < K; i++)
             q[i] /= t;
         multinomial(q, K, 300, x);
-        CHECK_INT(mcstat_chisq_gof(x, p, K, NULL, 0.05, &res), MCSTAT_OK);
+        CHECK_INT(mcstat_gof_chisq_test(x, p, K, NULL, 0.05, &res), MCSTAT_OK);
         rej_alt += res.reject;
     }
     double rate = (double)rej / RUNS, rate_alt = (double)rej_alt / RUNS;
@@ -187,5 +186,5 @@ int main(void)
     test_format();
     test_bad_input();
     test_calibration_and_power();
-    return h_report("test_chisq_gof");
+    return h_report("test_gof_chisq");
 }

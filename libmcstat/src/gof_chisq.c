@@ -1,5 +1,5 @@
 /*
- * chisq_gof.c - Pearson's chi-squared goodness-of-fit test on the counts of
+ * gof_chisq.c - Pearson's chi-squared goodness-of-fit test on the counts of
  * k cells against their expected probabilities or counts, with the pooling
  * of cells of low expectation (documented in mcstat.h).
  *
@@ -25,27 +25,18 @@
 /* R's chisq.test: |sum(p) - 1| > sqrt(.Machine$double.eps) is an error. */
 #define SUM_TOL 1.4901161193847656e-08
 
-/* Every size mcstat_chisq_options has had, oldest first (options.c). */
-static const uint32_t CHISQ_SIZES[] = {MCSTAT_CHISQ_OPTIONS_SIZE_0_1};
-_Static_assert(sizeof(mcstat_chisq_options) == MCSTAT_CHISQ_OPTIONS_SIZE_0_1,
-               "a grown mcstat_chisq_options needs its size appended to CHISQ_SIZES");
+/* Every size mcstat_gof_options has had, oldest first (options.c). */
+static const uint32_t GOF_SIZES[] = {MCSTAT_GOF_OPTIONS_SIZE_0_1};
+_Static_assert(sizeof(mcstat_gof_options) == MCSTAT_GOF_OPTIONS_SIZE_0_1,
+               "a grown mcstat_gof_options needs its size appended to GOF_SIZES");
 
-int mcstat_chisq_options_init_size(mcstat_chisq_options *opt, size_t size)
+int mcstat_gof_options_init_size(mcstat_gof_options *opt, size_t size)
 {
-    const mcstat_chisq_options d = MCSTAT_CHISQ_OPTIONS_INIT;
-    return mcstat__options_init(opt, size, &d, sizeof d, CHISQ_SIZES, sizeof CHISQ_SIZES / sizeof *CHISQ_SIZES);
+    const mcstat_gof_options d = MCSTAT_GOF_OPTIONS_INIT;
+    return mcstat__options_init(opt, size, &d, sizeof d, GOF_SIZES, sizeof GOF_SIZES / sizeof *GOF_SIZES);
 }
 
-/* 0.1.0's entry point: its callers' structs are 0.1.0's size (the name is
- * parenthesised against the header's macro). */
-int(mcstat_chisq_options_init)(mcstat_chisq_options *opt)
-{
-    return mcstat_chisq_options_init_size(opt, MCSTAT_CHISQ_OPTIONS_SIZE_0_1);
-}
-
-size_t mcstat_sizeof_chisq_options(void) { return sizeof(mcstat_chisq_options); }
-
-double mcstat_chisq_default_min_expected(void) { return MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED; }
+double mcstat_gof_default_min_expected(void) { return MCSTAT_GOF_DEFAULT_MIN_EXPECTED; }
 
 /* Neumaier's compensated sum: k may be 1e6 cells of very unequal terms. */
 typedef struct {
@@ -71,16 +62,16 @@ static inline double pearson_term(double o, double e)
     return (d / e) * d; /* not d * d / e: counts near 1e300 would overflow */
 }
 
-int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
-                     const mcstat_chisq_options *opt, double alpha, mcstat_result *out)
+int mcstat_gof_chisq_test(const double *observed, const double *expected, size_t k,
+                     const mcstat_gof_options *opt, double alpha, mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
-    mcstat_chisq_options o = MCSTAT_CHISQ_OPTIONS_INIT;
-    if (opt && mcstat__options_read(&o, sizeof o, opt, CHISQ_SIZES, sizeof CHISQ_SIZES / sizeof *CHISQ_SIZES))
+    mcstat_gof_options o = MCSTAT_GOF_OPTIONS_INIT;
+    if (opt && mcstat__options_read(&o, sizeof o, opt, GOF_SIZES, sizeof GOF_SIZES / sizeof *GOF_SIZES))
         return MCSTAT_EINVAL;
     if (!out || (k > 0 && (!observed || !expected)) || !valid_alpha(alpha))
         return MCSTAT_EINVAL;
-    if ((o.expected != MCSTAT_CHISQ_PROBABILITIES && o.expected != MCSTAT_CHISQ_COUNTS) ||
+    if ((o.expected != MCSTAT_GOF_PROBABILITIES && o.expected != MCSTAT_GOF_COUNTS) ||
         (o.pool != 0 && o.pool != 1) || (o.rescale != 0 && o.rescale != 1) || o.n_estimated < 0 ||
         !(o.min_expected >= 0.0) || !isfinite(o.min_expected) || o.reserved != 0)
         return MCSTAT_EINVAL;
@@ -105,7 +96,7 @@ int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
         return MCSTAT_ETOOFEW;
     if (!(esum > 0.0))
         return MCSTAT_EINVAL;
-    const double target = o.expected == MCSTAT_CHISQ_PROBABILITIES ? 1.0 : n;
+    const double target = o.expected == MCSTAT_GOF_PROBABILITIES ? 1.0 : n;
     if (!o.rescale && fabs(esum - target) > SUM_TOL * target)
         return MCSTAT_EINVAL;
     /* expected count of cell i: expected[i] * scale */

@@ -1,0 +1,63 @@
+/*
+ * special.h - the tails of a distribution (mcstat_tails), the special functions
+ * (special.c), the t, chi-squared and F tails (dist.c) and the noncentral t
+ * (noncentral.c).
+ * Included through internal.h; nothing here is exported.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#ifndef MCSTAT_SPECIAL_H
+#define MCSTAT_SPECIAL_H
+
+/* ---- special functions (special.c) --------------------------------------
+ * Both tails of a distribution function and their logarithms, each computed
+ * from the side where it is small, so neither loses relative accuracy. */
+typedef struct {
+    double p, q;       /* lower and upper tail, p + q = 1 */
+    double logp, logq; /* their logarithms, finite where p or q underflow */
+    double logk;       /* special.c: log of the prefactor x^a y^b / B(a,b) or
+                        * x^a e^-x / Gamma(a+1); dist.c: log(x f(x)), the density
+                        * at x times x, which is that prefactor (times a for chi2) */
+} mcstat_tails;
+
+/* Regularized incomplete beta I_x(a, b) for a, b > 0, with x + y = 1 both
+ * given so that neither needs to be formed as 1 - the other. */
+MCSTAT_HIDDEN int mcstat__beta_inc(double a, double b, double x, double y, mcstat_tails *t);
+/* The same with the deviations from the centre given by the caller:
+ * ux = x (a+b)/a - 1, uy = y (a+b)/b - 1 (see special.c). */
+MCSTAT_HIDDEN int mcstat__beta_inc_u(double a, double b, double x, double y, double ux, double uy,
+                                     mcstat_tails *t);
+/* Regularized incomplete gamma P(a, x), Q(a, x) for a > 0, x >= 0. */
+MCSTAT_HIDDEN int mcstat__gamma_inc(double a, double x, mcstat_tails *t);
+/* log of x^a y^b / B(a, b) (x + y = 1) and of x^a e^-x / Gamma(a+1): the
+ * densities below are these over x (see dist.c). */
+MCSTAT_HIDDEN double mcstat__log_beta_prefactor(double a, double b, double x, double y);
+MCSTAT_HIDDEN double mcstat__log_beta_prefactor_u(double a, double b, double x, double y, double ux, double uy);
+MCSTAT_HIDDEN double mcstat__log_gamma_prefactor(double a, double x);
+/* log of the Stirling remainder Gamma*(a) = Gamma(a) / (sqrt(2 pi) a^(a-1/2) e^-a). */
+MCSTAT_HIDDEN double mcstat__log_gammastar(double a);
+/* a * (u - log1p(u)) >= 0 without cancellation near u = 0; the caller gives
+ * log1pu = log(1 + u), computed from its inputs where 1 + u would lose digits. */
+MCSTAT_HIDDEN double mcstat__dev(double a, double u, double log1pu);
+
+/* Standard normal quantile (a starting value for the iterations). */
+MCSTAT_HIDDEN double mcstat__norm_quantile(double p, int upper);
+
+/* ---- distributions (dist.c), with validated arguments ------------------- */
+MCSTAT_HIDDEN int mcstat__t_tails(double x, double df, mcstat_tails *t);
+MCSTAT_HIDDEN int mcstat__chisq_tails(double x, double df, mcstat_tails *t);
+MCSTAT_HIDDEN int mcstat__f_tails(double x, double df1, double df2, mcstat_tails *t);
+/* log of mcstat_chisq_quantile / mcstat_f_quantile (p in [0, 1], arguments
+ * valid), not clamped to the normal doubles: where the quantile itself is 0
+ * or Inf in double its logarithm is still finite (-Inf, +Inf only for p at
+ * 0 or 1).  Same solver and starting points, so within the normal range
+ * exp(*z) is the public function's result. */
+MCSTAT_HIDDEN int mcstat__chisq_log_quantile(double p, double df, int upper, double *z);
+MCSTAT_HIDDEN int mcstat__f_log_quantile(double p, double df1, double df2, int upper, double *z);
+
+/* ---- noncentral t (noncentral.c, R's pnt from libRmath) ------------------
+ * Both tails of the noncentral t at t (df > 0, finite ncp; t may be +-Inf);
+ * never prints (see noncentral.c).  MCSTAT_EINVAL, MCSTAT_ENUMERIC. */
+MCSTAT_HIDDEN int mcstat__nct_tails(double t, double df, double ncp, double *lower, double *upper);
+
+#endif /* MCSTAT_SPECIAL_H */
