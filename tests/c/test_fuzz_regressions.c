@@ -408,13 +408,13 @@ static void test_var_interval_extreme_alpha(void)
     CHECK_REL(r.conf_int[1], 1.595052083333333414731908e+299, 1e-12, "F(1, 8) upper bound at alpha 1e-200");
     CHECK(r.conf_int[0] > 0.0 && r.conf_int[0] < r.conf_int[1]);
     CHECK(!r.reject); /* ratio 1 lies inside */
-    CHECK_INT(mcstat_var_test_2_rows(x, 2, 2, y, 9, 9, 1, 1.0, MCSTAT_TWO_SIDED, alpha, 0, rows, NULL), MCSTAT_OK);
+    CHECK_INT(mcstat_var_test_2_matrix(x, 2, 2, y, 9, 9, 1, 1.0, MCSTAT_TWO_SIDED, alpha, 0, rows, NULL), MCSTAT_OK);
     CHECK(memcmp(&rows[0], &r, sizeof r) == 0);
 
     CHECK_INT(mcstat_var_test_1(x, 2, 1.0, MCSTAT_TWO_SIDED, alpha, &r), MCSTAT_OK);
     CHECK(r.critical[0] == 0.0);
     CHECK_REL(r.conf_int[1], 1.273239544735162751126932e+300, 1e-12, "chi2(1) upper bound at alpha 1e-200");
-    CHECK_INT(mcstat_var_test_1_rows(x, 1, 2, 2, 1.0, MCSTAT_TWO_SIDED, alpha, 0, rows, NULL), MCSTAT_OK);
+    CHECK_INT(mcstat_var_test_1_matrix(x, 2, 2, 1, 1.0, MCSTAT_TWO_SIDED, alpha, 0, rows, NULL), MCSTAT_OK);
     CHECK(memcmp(&rows[0], &r, sizeof r) == 0);
 
     /* the other side: the upper critical value overflows, the lower bound does not */
