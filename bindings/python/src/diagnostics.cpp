@@ -1,5 +1,5 @@
 // diagnostics.cpp - the exact binomial test, the battery meta-test and the
-// estimator diagnostics (issue 9): argument conversion only; the numbers
+// estimator diagnostics: argument conversion only; the numbers
 // are libmcstat's (binom_test.c, diagnose.c).
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.

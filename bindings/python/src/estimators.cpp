@@ -435,7 +435,7 @@ Returns
 ndarray of uint64, shape (...)
 )doc";
 
-// ---- chi-squared route for direction samplers (issue 9) ---------------------------
+// ---- chi-squared route for direction samplers --------------------------------------
 // Planted sampler bugs (BRDFPlan.sample_bug) and equal-probability direction
 // cells (_brdf_cells, cells_count, cells_locate, cells_bounds); the Python
 // face is mcstat.estimators.direction_cells / direction_gof.
@@ -503,7 +503,7 @@ void register_sampler_gof(py::module_ &m)
         py::arg("n"), py::arg("bug"), py::kw_only(), py::arg("seed") = 0, py::arg("first_index") = 0,
         py::arg("threads") = py::none(), R"doc(sample_bug(n, bug, *, seed=0, first_index=0, threads=None)
 
-n directions from the BRDF's sampler with a planted bug (issue 9): bug in
+n directions from the BRDF's sampler with a planted bug: bug in
 None (exactly `sample`), "roughness" (lobe 10% too wide), "axes_swapped"
 (anisotropy axes swapped), "phi_half" (azimuth over half its range),
 "jacobian" (the sin(theta) of d(omega) forgotten in the polar warp: a
@@ -1060,5 +1060,5 @@ normalised first), in the shading frame:
 Lenv(w) = 1 + 0.5 (x^3 - 3 x y^2) + 0.3 cos(12 y) + 4 exp(20 (w.d - 1)),
 d = (0.3, -0.4, sqrt(0.75)).  Returns shape (...).)doc");
 
-    register_sampler_gof(m); // issue 9: chi-squared route, planted sampler bugs
+    register_sampler_gof(m); // chi-squared route, planted sampler bugs
 }

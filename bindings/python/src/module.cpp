@@ -14,8 +14,8 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_ks(mod);
     mcs::register_moments_array(mod); // per-pixel accumulators
     mcs::register_power(mod); // equivalence (TOST), power and sample size
-    mcs::register_diagnostics(mod); // issue 9
-    mcs::register_chisq(mod); // chi-squared goodness of fit (issue 9)
+    mcs::register_diagnostics(mod);
+    mcs::register_chisq(mod); // chi-squared goodness of fit
     mcs::register_p_adjust(mod);
     mcs::register_summary_rows(mod);
 

@@ -206,7 +206,7 @@ y_name)`` names them.
                 return py::none();
             return py::str(s.r.ks_weight == MCSTAT_KS_WEIGHT_CANNER ? "canner" : "none");
         })
-        // chi-squared goodness of fit (issue 9): cells after pooling, None for other tests
+        // chi-squared goodness of fit: cells after pooling, None for other tests
         .def_property_readonly("cells", [](const Result &s) -> py::object {
             if (s.r.test != MCSTAT_TEST_CHISQ_GOF)
                 return py::none();
