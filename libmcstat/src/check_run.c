@@ -58,6 +58,8 @@ typedef struct plan {
 
 typedef struct scratch {
     double *u, *x, *w, *p, *xs, *ws, *ps, *f, *p2; /* one batch each */
+    double *sb;                                    /* (s, t) of a batch's points: 2 per point */
+    int32_t *cellb;                                /* the cell of each compacted point */
     double *st;                                    /* pilot (s, t): 2 n_pilot */
     double *wsave, *vsave;                         /* weights and eval-only values: n, n_eval */
     double *recip;                                 /* reciprocity points: 4 each */
@@ -94,6 +96,8 @@ static int carve(const plan *pl, char *base, scratch *s, size_t *bytes)
     TAKE(s->ps, B, double);
     TAKE(s->f, B, double);
     TAKE(s->p2, B, double);
+    TAKE(s->sb, 2 * B, double);
+    TAKE(s->cellb, B, int32_t);
     TAKE(s->st, 2 * pl->n_pilot, double);
     TAKE(s->wsave, pl->n, double);
     TAKE(s->vsave, pl->n_eval, double);
@@ -264,6 +268,12 @@ static int call_sample(run *r, uint64_t key, uint64_t first, size_t k)
                     (unsigned long long)first);
     for (size_t i = 0; i < k; i++) {
         double w = r->s.w[i], p = r->s.p[i];
+        if (isfinite(p) && p >= 0.0 && isfinite(w) && w >= 0.0 && p == 0.0)
+            continue; /* a failed sample: its point is not looked at */
+        if (isfinite(p) && p >= 0.0 && isfinite(w) && w >= 0.0 &&
+            !mcstat__domain_coords(&pl->d, r->s.x + i * pl->d.dims, &r->s.sb[2 * i], &r->s.sb[2 * i + 1]))
+            continue;
+        /* something is wrong with this sample: say what */
         char pt[128];
         format_point(r, r->s.x + i * pl->d.dims, pt, sizeof pt);
         if (!isfinite(p) || p < 0.0)
@@ -272,13 +282,9 @@ static int call_sample(run *r, uint64_t key, uint64_t first, size_t k)
         if (!isfinite(w) || w < 0.0)
             return fail(r, "sample() returned weight %.17g at sample %llu (point %s, pdf %.17g): a weight must be "
                         "finite and >= 0", w, (unsigned long long)(first + i), pt, p);
-        if (p > 0.0) {
-            double s, t;
-            if (mcstat__domain_coords(&pl->d, r->s.x + i * pl->d.dims, &s, &t))
-                return fail(r, "sample() returned the point %s at sample %llu: not in the %s domain%s", pt,
-                            (unsigned long long)(first + i), mcstat_check_domain_name(pl->d.kind),
-                            pl->d.dims == 3 ? " (a direction must have unit length within 1e-4)" : "");
-        }
+        return fail(r, "sample() returned the point %s at sample %llu: not in the %s domain%s", pt,
+                    (unsigned long long)(first + i), mcstat_check_domain_name(pl->d.kind),
+                    pl->d.dims == 3 ? " (a direction must have unit length within 1e-4)" : "");
     }
     return MCSTAT_OK;
 }
@@ -354,10 +360,8 @@ static int pilot_and_cells(run *r)
             return st;
         for (size_t i = 0; i < k; i++)
             if (r->s.p[i] > 0.0) {
-                double s, t;
-                mcstat__domain_coords(&pl->d, r->s.x + i * pl->d.dims, &s, &t);
-                r->s.st[2 * got] = s;
-                r->s.st[2 * got + 1] = t;
+                r->s.st[2 * got] = r->s.sb[2 * i];
+                r->s.st[2 * got + 1] = r->s.sb[2 * i + 1];
                 got++;
             }
     }
@@ -419,9 +423,9 @@ static int tested_sample(run *r, sums *sm)
                     compare(r, MCSTAT_CHECK_WEIGHT, x, w, 0.0);
                 continue;
             }
-            double s, t;
-            mcstat__domain_coords(&pl->d, x, &s, &t);
-            r->s.counts[mcstat__tree_locate(&r->tr, s, t)] += 1.0;
+            int32_t c = mcstat__tree_locate(&r->tr, r->s.sb[2 * i], r->s.sb[2 * i + 1]);
+            r->s.counts[c] += 1.0;
+            r->s.cellb[ns] = c;
             memcpy(r->s.xs + ns * dims, x, (size_t)dims * sizeof(double));
             r->s.ws[ns] = (pl->reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? w / p : w;
             r->s.ps[ns] = p;
@@ -429,12 +433,13 @@ static int tested_sample(run *r, sums *sm)
         }
         sm->n_succ += ns;
         /* zeros of the failed samples enter the mean weight */
-        if (pl->has_eval) {
-            for (size_t i = 0; i < k - ns; i++) {
-                int s2 = mcstat_moments_add(&sm->all, 0.0);
-                if (s2)
-                    return s2;
-            }
+        if (pl->has_eval && k > ns) {
+            mcstat_moments zeros;
+            int s2 = mcstat_moments_from_summary(k - ns, 0.0, 0.0, &zeros);
+            if (s2 == MCSTAT_OK)
+                s2 = mcstat_moments_merge(&sm->all, &zeros);
+            if (s2)
+                return s2;
         }
         if (ns == 0)
             continue;
@@ -459,9 +464,7 @@ static int tested_sample(run *r, sums *sm)
             compare(r, MCSTAT_CHECK_SUPPORT, x, f > 0.0 && p == 0.0 ? f : 0.0, 0.0);
             if (p > 0.0 && f == 0.0)
                 r->pdf_without_eval++;
-            double s, t;
-            mcstat__domain_coords(&pl->d, x, &s, &t);
-            int g = r->tr.cells[mcstat__tree_locate(&r->tr, s, t)].group;
+            int g = r->tr.cells[r->s.cellb[i]].group;
             sm->a[g] += w;
             sm->a2[g] += w * w;
             r->s.wsave[sm->n_w++] = w;
