@@ -34,6 +34,10 @@ MCSTAT_HIDDEN void mcstat__domain_point(const mcstat__domain *d, double s, doubl
  * -1e-4, the square and interval within 1e-6 of [0, 1], the disk's radius
  * within 1 + 1e-6), or not finite. */
 MCSTAT_HIDDEN int mcstat__domain_coords(const mcstat__domain *d, const double *x, double *s, double *t);
+/* The Morton key of (s, t): each quantised to 32 bits, s's bit b at key bit
+ * 2b + 1 and t's at 2b (libmcest's mcest_direction_key on directions);
+ * 1-D domains: s quantised to 64 bits. */
+MCSTAT_HIDDEN uint64_t mcstat__domain_key(const mcstat__domain *d, double s, double t);
 
 /* ---- uniforms ---------------------------------------------------------------
  * Counter-based: number `index` of stream `stream` under `seed` is a pure
@@ -86,7 +90,7 @@ typedef struct mcstat__tree {
 MCSTAT_HIDDEN size_t mcstat__tree_max_cells(uint64_t m, int leaf);
 /* Builds the tree from the pilot's (s, t) pairs st[0..2m) (reordered):
  * nodes split at the median of their points along s and t in turn while
- * they hold at least 2 leaf points; `horizon` cuts the root at s = 1/2
+ * they hold at least 1.4 leaf points; `horizon` cuts the root at s = 1/2
  * first (the sphere: upper and lower hemispheres apart). */
 MCSTAT_HIDDEN void mcstat__tree_build(mcstat__tree *tr, const mcstat__domain *d, double *st, uint64_t m, int leaf,
                                       int horizon);

@@ -24,7 +24,7 @@
 
 size_t mcstat__tree_max_cells(uint64_t m, int leaf)
 {
-    return (size_t)(2 * (m / (uint64_t)leaf) + 4);
+    return (size_t)(3 * (m / (uint64_t)leaf) + 4);
 }
 
 static void swap_pair(double *st, uint64_t i, uint64_t j)
@@ -97,7 +97,9 @@ static void build_node(mcstat__tree *tr, const mcstat__domain *d, int32_t node, 
         for (uint64_t i = 0; i < m; i++)
             if (st[2 * i] < split)
                 swap_pair(st, i, k++);
-    } else if (m >= 2 * (uint64_t)leaf && depth < 48 && have_room) {
+    } else if (10 * m >= 14 * (uint64_t)leaf && depth < 48 && have_room) {
+        /* split from 1.4 leaf points: leaves of 0.7..1.4 leaf points, so
+         * that their number is within a factor 1.4 of pilot/leaf */
         int first = d->two_d ? (depth & 1) : 0;
         for (int attempt = 0; attempt < (d->two_d ? 2 : 1) && axis < 0; attempt++) {
             int a = first ^ attempt;

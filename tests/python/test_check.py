@@ -64,7 +64,7 @@ def test_correct_lobe_passes_and_reports():
     assert not r.reject
     assert r.kind == "bsdf" and r.domain == "sphere" and r.n == 100_000
     assert [x.name for x in r.routes] == ["cells", "mass", "pdf_value", "weight", "support", "integrals",
-                                          "energy", "reciprocity"]
+                                          "energy", "reciprocity", "ks"]
     cells = r.route("cells")
     assert cells.state == "ran" and cells.df > 8 and 0 < cells.pvalue <= 1
     assert cells.p_adjusted >= cells.pvalue
@@ -135,6 +135,8 @@ def test_stochastic_weights_use_the_integrals_route():
 def test_routes_and_energy_selection():
     r = check(Lobe(20, WI), n=5000, routes=["cells", "mass"])
     assert [x.name for x in r.routes if x.state == "ran"] == ["cells", "mass"]
+    with pytest.raises(mcstat.InvalidArgumentError):
+        check(Lobe(20, WI), n=5000, routes=[])
     r = check(Lobe(20, WI), n=5000, energy=False)
     assert r.route("energy").state == "skipped"
 
