@@ -22,7 +22,9 @@
 //            right pdf);
 //   Eval     eval() uses F0 * 0.9 (a parameter read twice, differently),
 //            while sample()'s weight uses F0;
-//   Weight   sample()'s weight is 10% high.
+//   Weight   sample()'s weight is 10% high;
+// and Throws: eval() throws, to show that the exception stops the check
+// (MCSTAT_ECALLBACK) without crossing the C boundary.
 #ifndef MCSTAT_EXAMPLE_GGX_HPP
 #define MCSTAT_EXAMPLE_GGX_HPP
 
@@ -52,7 +54,7 @@ template <class Real> inline Vec3<Real> normalize(const Vec3<Real> &v)
     return {v.x * inv, v.y * inv, v.z * inv};
 }
 
-enum class Bug { None, Sampler, Pdf, Eval, Weight };
+enum class Bug { None, Sampler, Pdf, Eval, Weight, Throws };
 
 inline const char *bug_name(Bug b)
 {
@@ -62,6 +64,7 @@ inline const char *bug_name(Bug b)
     case Bug::Pdf: return "pdf (D of alpha*1.1 in pdf())";
     case Bug::Eval: return "eval (F0*0.9 in eval())";
     case Bug::Weight: return "weight (10% high)";
+    case Bug::Throws: return "throws (eval() runs out of memory)";
     }
     return "?";
 }
@@ -176,6 +179,8 @@ public:
         if (wi.z <= Real(0) || wo.z <= Real(0))
             return Real(0);
         Vec3<Real> m = normalize(Vec3<Real>{wi.x + wo.x, wi.y + wo.y, wi.z + wo.z});
+        if (bug_ == Bug::Throws)
+            throw std::bad_alloc(); // e.g. a texture lookup that allocates
         Real f0 = bug_ == Bug::Eval ? f0_ * Real(0.9) : f0_;
         Real g2 = Real(1) / (Real(1) + lambda(wi) + lambda(wo));
         return schlick(f0, dot(wi, m)) * D(m, ax_, ay_) * g2 / (Real(4) * wi.z);
@@ -190,21 +195,25 @@ private:
 // mcstat calls these with `user` = the BSDF, n points at a time.  Good
 // practice at a C boundary: no exception may cross it (catch everything and
 // return non-zero: mcstat then stops with MCSTAT_ECALLBACK naming the
-// callback), convert the batch once, and keep the per-point loop free of
+// callback; the exception is kept, for the caller to rethrow after mcstat
+// has returned), convert the batch once, and keep the per-point loop free of
 // allocation and virtual calls.  The counters let a benchmark see how many
 // points each callback was asked for.
 template <class Bsdf> struct Callbacks {
     const Bsdf *bsdf;
     unsigned long long sample_points = 0, pdf_points = 0, eval_points = 0;
     unsigned long long sample_calls = 0, pdf_calls = 0, eval_calls = 0;
+    std::exception_ptr error; // what a callback caught: rethrow it once mcstat has returned
+
+    Callbacks(const Bsdf *b) : bsdf(b) {}
 
     template <class R> static Vec3<R> vec(const double *p) { return {R(p[0]), R(p[1]), R(p[2])}; }
 
     static int sample(void *user, const double *wi, const double *u, size_t n, double *x, double *weight,
                       double *pdf) noexcept
     {
+        auto *self = static_cast<Callbacks *>(user);
         try {
-            auto *self = static_cast<Callbacks *>(user);
             self->sample_calls++;
             self->sample_points += n;
             auto w = vec<typename Bsdf::real_type>(wi);
@@ -217,14 +226,15 @@ template <class Bsdf> struct Callbacks {
             }
             return 0;
         } catch (...) {
+            self->error = std::current_exception();
             return 1;
         }
     }
 
     static int pdf(void *user, const double *wi, const double *x, size_t n, double *out) noexcept
     {
+        auto *self = static_cast<Callbacks *>(user);
         try {
-            auto *self = static_cast<Callbacks *>(user);
             self->pdf_calls++;
             self->pdf_points += n;
             auto w = vec<typename Bsdf::real_type>(wi);
@@ -232,14 +242,15 @@ template <class Bsdf> struct Callbacks {
                 out[k] = double(self->bsdf->pdf(w, vec<typename Bsdf::real_type>(x + 3 * k)));
             return 0;
         } catch (...) {
+            self->error = std::current_exception();
             return 1;
         }
     }
 
     static int eval(void *user, const double *wi, const double *x, size_t n, double *out) noexcept
     {
+        auto *self = static_cast<Callbacks *>(user);
         try {
-            auto *self = static_cast<Callbacks *>(user);
             self->eval_calls++;
             self->eval_points += n;
             auto w = vec<typename Bsdf::real_type>(wi);
@@ -247,6 +258,7 @@ template <class Bsdf> struct Callbacks {
                 out[k] = double(self->bsdf->eval(w, vec<typename Bsdf::real_type>(x + 3 * k)));
             return 0;
         } catch (...) {
+            self->error = std::current_exception();
             return 1;
         }
     }

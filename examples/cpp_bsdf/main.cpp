@@ -8,7 +8,9 @@
 //   sampler  CELLS (the directions drawn do not follow pdf());
 //   pdf      PDF_VALUE (pdf() disagrees with the pdf sample() reports);
 //   eval     WEIGHT (the weight is not eval / pdf);
-//   weight   WEIGHT.
+//   weight   WEIGHT;
+// and an eval() that throws stops the check with MCSTAT_ECALLBACK naming
+// eval, the exception rethrown by the caller after mcstat has returned.
 // A regression demo with a fixed seed, not a calibration claim: the false
 // rejection rate of the check is measured in tests/python and bench/.
 //
@@ -23,20 +25,24 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <string>
 #include <vector>
 
 namespace {
 
+constexpr int EXPECT_PASS = -1, EXPECT_ECALLBACK = -2;
+
 struct Case {
     const char *real;
     ggx::Bug bug;
-    int route; // the route that must reject (-1: none may)
+    int route; // the route that must reject, or EXPECT_PASS, EXPECT_ECALLBACK
 };
 
 struct Outcome {
     int status;
     mcstat_check_report report;
+    std::string error; // the exception a callback caught, rethrown here
 };
 
 template <class Real> Outcome run_case(ggx::Bug bug, const double wi[3], size_t n, uint64_t seed, double alpha)
@@ -49,6 +55,16 @@ template <class Real> Outcome run_case(ggx::Bug bug, const double wi[3], size_t 
     mcstat_check_options_init(&opt);
     Outcome o{};
     o.status = mcstat_check_bsdf(&model, wi, n, seed, alpha, &opt, nullptr, 0, &o.report);
+    // the exception a callback kept crosses no C frame: rethrow it here
+    if (cb.error) {
+        try {
+            std::rethrow_exception(cb.error);
+        } catch (const std::exception &e) {
+            o.error = e.what();
+        } catch (...) {
+            o.error = "an unknown exception";
+        }
+    }
     return o;
 }
 
@@ -112,12 +128,13 @@ int main(int argc, char **argv)
     const double wi[3] = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 
     const Case cases[] = {
-        {"float", ggx::Bug::None, -1},
-        {"double", ggx::Bug::None, -1},
+        {"float", ggx::Bug::None, EXPECT_PASS},
+        {"double", ggx::Bug::None, EXPECT_PASS},
         {"float", ggx::Bug::Sampler, MCSTAT_CHECK_CELLS},
         {"float", ggx::Bug::Pdf, MCSTAT_CHECK_PDF_VALUE},
         {"float", ggx::Bug::Eval, MCSTAT_CHECK_WEIGHT},
         {"float", ggx::Bug::Weight, MCSTAT_CHECK_WEIGHT},
+        {"float", ggx::Bug::Throws, EXPECT_ECALLBACK},
     };
     int failures = 0;
     std::vector<std::string> summary;
@@ -126,18 +143,22 @@ int main(int argc, char **argv)
         Outcome o = dbl ? run_case<double>(c.bug, wi, n, seed, alpha) : run_case<float>(c.bug, wi, n, seed, alpha);
         char line[512];
         bool ok;
-        if (o.status != MCSTAT_OK) {
-            ok = false;
-            std::snprintf(line, sizeof line, "%-6s %-40s status %s: %s", c.real, ggx::bug_name(c.bug),
-                          mcstat_strerror(o.status), o.report.message);
+        if (c.route == EXPECT_ECALLBACK || o.status != MCSTAT_OK) {
+            // the check stops at the callback's failure and names it
+            ok = c.route == EXPECT_ECALLBACK && o.status == MCSTAT_ECALLBACK && !o.error.empty() &&
+                 std::strstr(o.report.message, "eval") != nullptr;
+            std::snprintf(line, sizeof line, "%-6s %-40s status %d, %s (caught: %s)  %s", c.real,
+                          ggx::bug_name(c.bug), o.status,
+                          o.status == MCSTAT_ECALLBACK ? o.report.message : mcstat_strerror(o.status),
+                          o.error.empty() ? "nothing" : o.error.c_str(), ok ? "ok" : "WRONG");
         } else {
             const mcstat_check_report &r = o.report;
             bool route_rejects = c.route >= 0 && r.route[c.route].state == MCSTAT_ROUTE_RAN && r.route[c.route].reject;
-            ok = c.route < 0 ? !r.reject : (r.reject && route_rejects);
+            ok = c.route == EXPECT_PASS ? !r.reject : (r.reject && route_rejects);
             std::snprintf(line, sizeof line, "%-6s %-40s %s (p = %.3g; rejecting: %s; %s)  %s", c.real,
                           ggx::bug_name(c.bug), r.reject ? "REJECTED" : "passed", r.p_value,
                           rejecting_routes(r).c_str(),
-                          c.route < 0 ? "expected to pass"
+                          c.route == EXPECT_PASS ? "expected to pass"
                                       : (std::string("expected: ") + mcstat_check_route_name(c.route)).c_str(),
                           ok ? "ok" : "WRONG");
             if (!quiet)
