@@ -411,7 +411,8 @@ static void expect_fault(int kind, int domain, int fault, const mcstat_check_opt
     CHECK_MSG(st == want, "%s: status %d (%s), want %d (%s); message \"%.200s\"", what, st, mcstat_strerror(st),
               want, mcstat_strerror(want), st == MCSTAT_ECALLBACK || st == MCSTAT_OK ? rep.message : "");
     if (want == MCSTAT_ECALLBACK && st == MCSTAT_ECALLBACK) {
-        size_t len = strnlen(rep.message, sizeof rep.message);
+        const char *nul = memchr(rep.message, '\0', sizeof rep.message);
+        size_t len = nul ? (size_t)(nul - rep.message) : sizeof rep.message;
         CHECK_MSG(len > 0 && len < sizeof rep.message, "%s: message empty or not terminated", what);
         CHECK_MSG(len < sizeof rep.message && strstr(rep.message, callback) != NULL,
                   "%s: message \"%.200s\" does not name %s", what, rep.message, callback);
