@@ -368,6 +368,20 @@ static void test_einval_options_and_work(void)
     o.routes = 1u << MCSTAT_CHECK_ROUTES;
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "an unknown route bit");
     o = opt;
+    o.routes = 0;
+    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "no route at all");
+    o = opt;
+    o.reserved[2] = 1.0;
+    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "options reserved not zero");
+    o = opt;
+    o.reserved_i = 1;
+    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "options reserved_i not zero");
+    {
+        mcstat_check_model bad = model;
+        bad.reserved[0] = 1.0;
+        CHECK_EINVAL(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, &opt, NULL, 0, &rep), "model reserved not zero");
+    }
+    o = opt;
     o.stochastic = 2;
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "stochastic 2");
     o = opt;
