@@ -1324,9 +1324,13 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                df = pooled cells - 1.  Blind to: pdf() scaled by a        */
 /*                constant, everything about weights and eval.              */
 /*   MASS         the fraction of samples that succeed equals the integral   */
-/*                of pdf() over the domain (the sum of the cells): exact     */
-/*                binomial test, two-sided, conservative over the cubature   */
-/*                error.  Catches pdf() scaled by a constant, samples lost.  */
+/*                of pdf() over the domain, estimated by Monte Carlo at     */
+/*                n_eval points drawn from a table of the cubature (the mean */
+/*                of pdf/table, unbiased): two-sided z test.  Where pdf/    */
+/*                table is heavy-tailed (a singular density), the exact     */
+/*                binomial test against the cubature's integral instead,    */
+/*                conservative over 4 times its error estimate.  Catches    */
+/*                pdf() scaled by a constant, samples lost.                  */
 /*   PDF_VALUE    the pdf sample() reports equals pdf() at the sampled point */
 /*                (deterministic: relative tolerance rtol at every sample). */
 /*   WEIGHT       the weight equals eval/pdf (deterministic, as PDF_VALUE);  */
@@ -1349,13 +1353,13 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                with refraction are not reciprocal in radiance).           */
 /*   KS           the sampler's weighted distribution against eval's, point  */
 /*                by point rather than by region: the sampled points kept    */
-/*                with probability weight/W (W 1.25 times the pilot's       */
-/*                largest weight: importance resampling, so the kept points  */
+/*                with probability weight/W (W twice the pilot's largest    */
+/*                weight: importance resampling, so that the kept points     */
 /*                follow eval if the weights are right) against points drawn */
 /*                from eval by rejection from the eval-only estimator's      */
-/*                table (the envelope 1.25 times the largest eval/table of   */
-/*                its first half; its second half are the proposals), by     */
-/*                the two-sample K-S test with Canner's weight on Morton     */
+/*                table (the envelope twice the largest eval/table of the   */
+/*                first half of its points; the second half are proposals), */
+/*                by the two-sample K-S test with Canner's weight on Morton     */
 /*                keys of the equal-area square.  An envelope exceeded makes */
 /*                the route INVALID (the report says which).                 */
 /* Heavy tails: INTEGRALS and ENERGY need finite variance.  When the Hill   */
@@ -1485,6 +1489,7 @@ typedef struct mcstat_check_report {
     uint64_t calls;        /* callback calls */
     double mass;           /* integral of pdf() over the domain (cubature) */
     double mass_error;     /* its estimated absolute error: sum over the cells */
+    double mass_sampled, mass_sampled_se; /* the same by Monte Carlo at the table points */
     double albedo, albedo_se;        /* mean weight and its standard error */
     double albedo_eval, albedo_eval_se; /* the eval-only estimate of the same integral */
     double tail_index[2];  /* Hill's upper tail index of the weights, of the eval-only estimates */

@@ -170,6 +170,25 @@ def test_paper_sampler_bugs(paper):
     assert "Chi-squared test for given probabilities" in paper["out"]
 
 
+def test_paper_renderer_check(paper):
+    # the kit on the paper's BRDFs: every planted bug caught in every quick run (fixed seeds), the correct
+    # BRDFs not rejected more often than alpha allows
+    r = paper["res"]["studies"]["renderer_check"]
+    assert r["n"] == 20000 and r["runs"] == 5 and r["alpha"] == 0.01
+    assert [b["name"] for b in r["brdfs"]] == ["ward", "ashikhmin_shirley"]
+    for b in r["brdfs"]:
+        rows = {row["variant"]: row for row in b["variants"]}
+        assert list(rows) == ["none", "roughness", "jacobian", "pdf", "eval", "weight"]
+        for bug in ("roughness", "jacobian", "pdf", "eval", "weight"):
+            assert rows[bug]["rejections"] == 5, (b["name"], bug)
+        assert rows["eval"]["by_route"].get("weight") == 5 and rows["pdf"]["by_route"].get("pdf_value") == 5
+        assert rows["none"]["binom_pvalue"] >= 0.001
+    assert any(f.startswith("kit ward: check_bsdf") for f in paper["res"]["findings"])
+    report = open(os.path.join(paper["dir"], "report.md"), encoding="utf-8").read()
+    assert "## The renderer's test kit on planted bugs" in report
+    assert "BSDF check: do sample(), pdf(), eval() and the weights agree?" in paper["out"]
+
+
 def test_paper_radiance_counts(paper):
     r = paper["res"]["studies"]["radiance"]
     b = r["brdfs"][0]
@@ -261,7 +280,7 @@ def test_no_brdf_scene(no_brdf):
     assert ("diagnostics", "the scene has no BRDFs") in left and res["studies"]["diagnostics"]["brdfs"] == []
     assert ("sampler_bugs", "the scene has no BRDFs") in left
     report = open(os.path.join(no_brdf["dir"], "report.md"), encoding="utf-8").read()
-    assert report.count("the scene has no BRDFs") == 4 and "BRDF sampling (3.2)" in report
+    assert report.count("the scene has no BRDFs") == 5 and "BRDF sampling (3.2)" in report
     assert "the scene has no BRDFs" in out
     assert [r["name"] for r in res["studies"]["irradiance"]["receivers"]] == ["floor", "wall"]
     for r in res["studies"]["irradiance"]["receivers"]:

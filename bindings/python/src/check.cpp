@@ -11,6 +11,7 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+#include "kwargs.hpp"
 
 #include <cmath>
 #include <string>
@@ -310,7 +311,8 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     uint64_t n = get_count(get("n", py::int_(100000)), "n");
     if (n < 1000)
         throw_invalid("n must be at least 1000, got " + std::to_string(n));
-    uint64_t seed = get_count(get("seed", py::int_(0)), "seed");
+    uint64_t seed = mcs_kwargs::to_u64(get("seed", py::int_(0)).ptr(), "seed",
+                                       [](const std::string &m) { throw_invalid(m); });
     double alpha = get_double(get("alpha", py::float_(0.01)).ptr(), "alpha");
     if (!(alpha > 0.0 && alpha < 1.0))
         throw_invalid("alpha must be in (0, 1), got " + repr(get("alpha", py::none()).ptr()));

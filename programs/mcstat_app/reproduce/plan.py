@@ -51,6 +51,8 @@ QUICK = [
     ("diagnostics", "n", 20000),
     ("sampler_bugs", "sizes", 3000),
     ("sampler_bugs", "runs", 20),
+    ("renderer_check", "n", 20000),
+    ("renderer_check", "runs", 5),
 ]
 
 
@@ -85,6 +87,8 @@ class Plan:
         self._brdf_study("sampler_bugs", "each BRDF's sampler with each planted bug (and without: the size check), "
                                          "chi-squared on equal-probability cells of the claimed density against K-S "
                                          "(Canner) of Morton keys against the correct sampler: power curves")
+        self._brdf_study("renderer_check", "mcstat.check_bsdf on each BRDF with one planted bug of each class "
+                                           "(sampler, pdf, eval, weight) and without: rejection rates and routes")
         self._timing()
         self._diagnostics()
 

@@ -366,3 +366,30 @@ def timing(res: Dict[str, Any], fig, transcript: str) -> List[str]:
         L += [""]
     L += _details("Text output of the timing study", transcript)
     return L
+
+
+def renderer_check(res: Dict[str, Any], fig, transcript: str) -> List[str]:
+    L = ["## The renderer's test kit on planted bugs (beyond the paper)", "",
+         "Each BRDF is handed to `mcstat.check_bsdf` as a renderer hands over its own: `sample(wi, u)` returning "
+         "directions, weights f cos / pdf and the pdf it claims, `eval` (f cos) and `pdf`. One bug per class is "
+         "planted: libmcest's sampler bugs (the directions' distribution wrong, pdf and weight those of the correct "
+         "BRDF), `pdf()` 10% high on the half of the sphere on one side of the plane through the normal and the "
+         "mirror direction (half the specular lobe), `eval()` 10% high there (the weight still right), the weight "
+         "10% high there. "
+         f"n = {res['n']} samples per check, alpha = {res['alpha']:g} for the whole battery, {res['runs']} checks "
+         "per variant. With no bug the rate is the battery's false-rejection rate, which must not exceed alpha "
+         "(binomial p of the count against alpha).", ""]
+    for b in res["brdfs"]:
+        L += [f"### {b['name']}", "", "| variant | rejected | rate [95% CI] | routes that rejected |",
+              "|---|---|---|---|"]
+        for row in b["variants"]:
+            routes = ", ".join(f"{k} {c}" for k, c in sorted(row["by_route"].items())) or "-"
+            ci = row["ci95"]
+            L += [f"| {'no bug' if row['variant'] == 'none' else row['variant']} | {row['rejections']}/{row['tests']} "
+                  f"| {row['rate']:.2f} [{ci[0]:.2f}, {ci[1]:.2f}] | {routes} |"]
+        none = next(r for r in b["variants"] if r["variant"] == "none")
+        L += ["", f"Correct BRDF: {none['rejections']}/{none['tests']} rejected, binomial test of rate = alpha: "
+                  f"{_p(none['binom_pvalue'])}.", ""]
+    L += ["Mitsuba 3's BSDFs against Mitsuba's own `ChiSquareTest`: `examples/mitsuba/RESULTS.md`.", ""]
+    L += _details("check reports (run 0 of each planted bug)", transcript)
+    return L

@@ -251,7 +251,7 @@ def _semantic(raw: Dict[str, Any], d: Dict[str, Any]) -> List[str]:
             errors.append(f"scene.brdfs[{i}].name: {n!r} is also the name of brdfs[{bnames.index(n)}]; "
                           "expected distinct names (give each BRDF a name)")
     st = d["studies"]
-    for study in ("sampling", "radiance", "sampler_bugs"):
+    for study in ("sampling", "radiance", "sampler_bugs", "renderer_check"):
         listed = st[study].get("brdfs")
         if listed is None:
             st[study]["brdfs"] = list(bnames)

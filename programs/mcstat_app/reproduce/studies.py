@@ -48,6 +48,9 @@ STUDIES: List[Study] = [
     # beyond the paper: chi-squared against Morton-key K-S on planted sampler bugs
     Study("sampler_bugs", 7, "3.2+", "Planted sampler bugs: chi-squared against K-S (3.2+)", "sampler_bugs",
           "report:sampler_bugs", "sampler_bugs_study"),
+    # beyond the paper: the renderer's test kit (mcstat.check_bsdf) on the scene's BRDFs with planted bugs
+    Study("renderer_check", 8, "kit", "The renderer's test kit on planted bugs", "renderer_check",
+          "report:renderer_check", "renderer_check_study"),
     Study("timing", 5, "time", "Error against run time", "timing", "report:timing", "timing_study",
           wall_clock=True),
 ]
