@@ -1360,8 +1360,9 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                table (the envelope twice the largest eval/table of the   */
 /*                first half of its points; the second half are proposals), */
 /*                by the two-sample K-S test with Canner's weight on Morton     */
-/*                keys of the equal-area square.  An envelope exceeded makes */
-/*                the route INVALID (the report says which).                 */
+/*                keys of the equal-area square, at most 20000 points a     */
+/*                side (the exact p-value's cost).  An envelope exceeded    */
+/*                makes the route INVALID (the report says which).          */
 /* Heavy tails: INTEGRALS and ENERGY need finite variance.  When the Hill   */
 /* tail index of the weights (or of the eval-only estimates) is below 2,    */
 /* those routes are INVALID (not run) and the report says why.              */
