@@ -57,6 +57,89 @@ static void test_domains(void)
     CHECK(mcstat_check_domain_parse("cube", &k) == MCSTAT_EINVAL);
 }
 
+/* ---- Morton keys and the cubature against closed forms ----------------------- */
+
+static void test_keys(void)
+{
+    mcstat__domain d;
+    mcstat__domain_get(MCSTAT_DOMAIN_SPHERE, &d);
+    CHECK(mcstat__domain_key(&d, 0.0, 0.0) == 0);
+    CHECK(mcstat__domain_key(&d, 1.0, 1.0) == UINT64_MAX);
+    CHECK(mcstat__domain_key(&d, 0.5, 0.0) == (1ull << 63)); /* s is the more significant */
+    CHECK(mcstat__domain_key(&d, 0.0, 0.5) == (1ull << 62));
+    CHECK(mcstat__domain_key(&d, 0.75, 0.25) == ((1ull << 63) | (1ull << 61) | (1ull << 60)));
+    mcstat__domain_get(MCSTAT_DOMAIN_INTERVAL, &d);
+    CHECK(mcstat__domain_key(&d, 0.5, 0.9) == (1ull << 63));
+    CHECK(mcstat__domain_key(&d, 1.0, 0.0) == UINT64_MAX - 2047);
+}
+
+static int uniform_sphere(void *ctx, const double *x, size_t n, double *out)
+{
+    (void)ctx, (void)x;
+    for (size_t k = 0; k < n; k++)
+        out[k] = 1.0 / (4 * PI);
+    return 0;
+}
+
+/* 3 z^2 / (2 pi) on the hemisphere: 3 (1 - s)^2 per unit of the square, a
+ * polynomial the degree-7 rule integrates exactly */
+static int z_squared(void *ctx, const double *x, size_t n, double *out)
+{
+    (void)ctx;
+    for (size_t k = 0; k < n; k++)
+        out[k] = 3 * x[3 * k + 2] * x[3 * k + 2] / (2 * PI);
+    return 0;
+}
+
+static void test_cubature(void)
+{
+    enum { M = 4096, LEAF = 32 };
+    static double st[2 * M], xbuf[3 * 4096], fbuf[4096];
+    static mcstat__node nodes[2 * 400];
+    static mcstat__cell cells[400];
+    static mcstat__rect rects[20000];
+    for (int dom = MCSTAT_DOMAIN_SPHERE; dom <= MCSTAT_DOMAIN_HEMISPHERE; dom++) {
+        mcstat__domain d;
+        mcstat__domain_get(dom, &d);
+        uint64_t key = mcstat__stream_key(7, 1);
+        for (int i = 0; i < 2 * M; i++) /* a pilot crowded towards s = 0, like a lobe */
+            st[i] = (i & 1) ? mcstat__uniform(key, (uint64_t)i) : pow(mcstat__uniform(key, (uint64_t)i), 3.0);
+        mcstat__tree tr = {nodes, cells, 0, 0, 800, 400, NULL, 0};
+        CHECK(mcstat__tree_max_cells(M, LEAF) <= 400);
+        mcstat__tree_build(&tr, &d, st, M, LEAF, dom == MCSTAT_DOMAIN_SPHERE);
+        CHECK_MSG(tr.n_cells >= M / LEAF / 2 && tr.n_cells <= 2 * M / LEAF, "%d cells", tr.n_cells);
+        size_t used = 0;
+        int st_ = mcstat__cells_integrate(&tr, &d, dom == MCSTAT_DOMAIN_SPHERE ? uniform_sphere : z_squared, NULL,
+                                          1e-6, rects, 20000, xbuf, fbuf, 4096, &used);
+        CHECK(st_ == 0);
+        double sum = 0, worst = 0;
+        for (int c = 0; c < tr.n_cells; c++) {
+            const mcstat__cell *cl = &tr.cells[c];
+            double exact = dom == MCSTAT_DOMAIN_SPHERE
+                               ? (cl->s1 - cl->s0) * (cl->t1 - cl->t0)
+                               /* a^3 - b^3 = (a - b)(a^2 + ab + b^2), a - b = s1 - s0 exactly */
+                               : (cl->s1 - cl->s0) *
+                                     ((1 - cl->s0) * (1 - cl->s0) + (1 - cl->s0) * (1 - cl->s1) +
+                                      (1 - cl->s1) * (1 - cl->s1)) *
+                                     (cl->t1 - cl->t0);
+            worst = fmax(worst, rel_err(cl->prob, exact));
+            sum += cl->prob;
+        }
+        CHECK_MSG(worst < 1e-13, "domain %d: worst relative error of a cell %.3g", dom, worst);
+        CHECK_MSG(fabs(sum - 1) < 1e-13, "domain %d: sum %.17g", dom, sum);
+        /* cells are numbered along the leaves and tile the square */
+        double area = 0;
+        for (int c = 0; c < tr.n_cells; c++)
+            area += (tr.cells[c].s1 - tr.cells[c].s0) * (tr.cells[c].t1 - tr.cells[c].t0);
+        CHECK(fabs(area - 1) < 1e-14);
+        for (int i = 0; i < 1000; i++) {
+            double s = mcstat__uniform(key, 100000 + (uint64_t)i), t = mcstat__uniform(key, 200000 + (uint64_t)i);
+            const mcstat__cell *cl = &tr.cells[mcstat__tree_locate(&tr, s, t)];
+            CHECK(s >= cl->s0 && s <= cl->s1 && t >= cl->t0 && t <= cl->t1);
+        }
+    }
+}
+
 /* ---- a lobe model: cos^e around the mirror direction of wi ------------------
  * eval = rho (e+1)/(2 pi) max(0, r.x)^e on the upper hemisphere, r the
  * mirror direction; the sampler draws the whole lobe and fails (pdf 0)
@@ -349,6 +432,8 @@ static void test_calibration(void)
 int main(void)
 {
     test_domains();
+    test_keys();
+    test_cubature();
     test_lobe_bugs();
     test_lobe_mass();
     test_warps();
