@@ -379,8 +379,9 @@ pdf() ("cells"), the mass of pdf() against the share of samples that
 succeed ("mass"), the pdf sample() reports against pdf() ("pdf_value"),
 the weight against eval/pdf ("weight"), eval() > 0 only where pdf() > 0
 ("support"), integrals of eval() over regions from the weights against an
-eval-only estimator ("integrals"), albedo <= 1 ("energy") and, when asked,
-reciprocity.  Deterministic routes reject on any point beyond rtol; the
+eval-only estimator ("integrals"), albedo <= 1 ("energy"), the resampled
+samples against rejection sampling from eval() by Canner's K-S ("ks") and,
+when asked, reciprocity.  Deterministic routes reject on any point beyond rtol; the
 statistical ones are Holm-adjusted across routes.  mcstat.h, section 10,
 says what each route checks and cannot see.
 
