@@ -97,7 +97,7 @@ def unregistered(known_py, known_c):
 
 C_BENCHES = ("bench_moments", "bench_check", "check_cost", "ks_bench", "bench_estimators")
 PY_BENCHES = ("bench_python.py", "bench_ks_python.py", "bench_estimators_numpy.py", "ks_numpy.py",
-              "bench_image.py")
+              "bench_image.py", "bench_check_calibration.py")
 
 
 def main():
@@ -146,6 +146,10 @@ def main():
                  "in the same process; the check's own cost is the difference per tested sample, set against the "
                  "BSDF's own sample() cost per sample. NumPy has no counterpart.\n\n"
                  "```\n" + out.strip() + "\n```")
+
+    # ---- renderer checks: false rejections of correct BSDFs at full size ----------
+    run([py, "bench/bench_check_calibration.py", "--write"] + (["--runs", "50", "--n", "20000"] if args.quick else []))
+    parts.append(section(os.path.join(HERE, "RESULTS_check_calibration.md")))
 
     # ---- Python against SciPy / NumPy ---------------------------------------------
     run([py, "bench/bench_python.py", *quick] + (["--no-image"] if args.quick else []))

@@ -1488,6 +1488,7 @@ typedef struct mcstat_check_report {
     uint64_t n_pilot, n_eval;
     uint64_t cells;        /* cells of the tree (before pooling) */
     uint64_t calls;        /* callback calls */
+    uint64_t pdf_without_eval; /* points where pdf() > 0 but eval() = 0: samples wasted, not an error */
     double mass;           /* integral of pdf() over the domain (cubature) */
     double mass_error;     /* its estimated absolute error: sum over the cells */
     double mass_sampled, mass_sampled_se; /* the same by Monte Carlo at the table points */

@@ -240,6 +240,9 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
         put_g(&t, "%.3g", r->tail_index[1]);
         put(&t, "%s\n", r->heavy_tailed ? " (below 2: infinite variance)" : "");
     }
+    if (r->pdf_without_eval > 0)
+        put(&t, "pdf() > 0 where eval() = 0 at %llu points (samples wasted there; not an error)\n",
+            (unsigned long long)r->pdf_without_eval);
     put(&t, "routes:\n");
     for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
         put_route(&t, r, i);

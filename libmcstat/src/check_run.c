@@ -1226,7 +1226,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
             if (out->route[i].deterministic)
                 out->p_value = 0.0;
         }
-    (void)r.pdf_without_eval;
+    out->pdf_without_eval = r.pdf_without_eval;
     free(owned);
     return MCSTAT_OK;
 }

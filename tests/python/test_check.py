@@ -326,3 +326,24 @@ def test_battery_rejects_correct_models_at_rate_alpha():
     meta = mcstat.battery_test(rejected, 0.05, n=runs, alternative="greater", meta_alpha=0.001)
     assert not meta.reject, (rejected, runs)
     assert caught >= 45, caught
+
+
+def test_pdf_where_eval_is_zero_is_counted_not_rejected():
+    # a cosine sampler for a BSDF that reflects only towards y > 0: samples elsewhere carry weight 0
+    def sample(wi, u):
+        r = np.sqrt(u[:, 0])
+        phi = 2 * np.pi * u[:, 1]
+        x = np.stack([r * np.cos(phi), r * np.sin(phi), np.sqrt(1 - u[:, 0])], axis=1)
+        return x, np.where(x[:, 1] > 0, 0.5, 0.0), x[:, 2] / np.pi
+
+    def pdf(wi, x):
+        return np.maximum(x[:, 2], 0) / np.pi
+
+    def eval_(wi, x):
+        return np.where(x[:, 1] > 0, 0.5 * np.maximum(x[:, 2], 0) / np.pi, 0.0)
+
+    r = mcstat.check_bsdf(sample, eval_, pdf, [0, 0, 1], domain="hemisphere", n=5000)
+    assert not r.reject, str(r)
+    assert r.pdf_without_eval > 2000
+    assert "pdf() > 0 where eval() = 0 at" in str(r)
+    assert abs(r.mass_sampled - 1) < 5 * r.mass_sampled_se + 1e-12
