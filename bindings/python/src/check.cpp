@@ -454,7 +454,7 @@ pdf)`` with weight = radiance/pdf, ``eval(d)`` the radiance arriving along
 d, ``pdf(d)`` the solid-angle density.  No energy or reciprocity routes.
 )doc";
 
-const char *WARP_DOC = R"doc(check_warp(sample, pdf, *, n=100_000, alpha=0.01, seed=0, domain="square", n_uniforms=2 (1 on "interval"), routes=None, cells=0, n_pilot=0, batch=65536)
+const char *WARP_DOC = R"doc(check_warp(sample, pdf, *, n=100_000, alpha=0.01, seed=0, domain="square", n_uniforms=2 (1 on "interval"), routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536)
 
 Does a warp draw what its density claims?  ``sample(u) -> points``, shape
 (k, dims) (dims 3 on "sphere"/"hemisphere", 2 on "square"/"disk", 1 on
@@ -574,7 +574,7 @@ void register_check(py::module_ &mod)
     mod.def(
         "check_warp",
         [](py::object sample, py::object pdf, py::kwargs kw) {
-            for (const char *k : {"stochastic", "reciprocal", "energy", "weight", "n_eval"})
+            for (const char *k : {"stochastic", "reciprocal", "energy", "weight"})
                 if (kw.contains(k))
                     throw py::type_error(std::string("check_warp() got an unexpected keyword argument '") + k + "'");
             return run(MCSTAT_CHECK_KIND_WARP, sample, py::none(), pdf, py::none(), kw);
