@@ -30,14 +30,16 @@
  *   8. Estimator diagnostics: shape, tails, batch size (experimental).
  *   9. Goodness of fit: chi-squared GOF of cell counts, the exact binomial
  *      test and the battery meta-test (experimental).
- *  10. Distributions: t, chi-squared and F tails and quantiles.
- *  11. Sizes, versions and GSL's handler.
- *  12. Deprecated names, kept so that older code still builds and links.
+ *  10. Renderer checks: do a BSDF's, an emitter's or a warp's sample(),
+ *      pdf(), eval() and sample weight agree? (experimental)
+ *  11. Distributions: t, chi-squared and F tails and quantiles.
+ *  12. Sizes, versions and GSL's handler.
+ *  13. Deprecated names, kept so that older code still builds and links.
  * Where a new function goes: in the section of its concept, named
  * mcstat_<family>_<verb> (mcstat_moments_add, mcstat_diag_compute) or
  * mcstat_<test>_test_<k>[_moments|_matrix|_moments_rows] for the tests.
  *
- * Experimental sections (7-9) are as tested and as ABI-stable as the rest,
+ * Experimental sections (7-10) are as tested and as ABI-stable as the rest,
  * but their names and options may change before 1.0; a renamed function
  * stays as a deprecated alias for one release.  They are compiled in by
  * default; define MCSTAT_NO_EXPERIMENTAL to leave them out.
@@ -83,7 +85,7 @@ extern "C" {
 #else
 #  define MCSTAT_API
 #endif
-/* MCSTAT_DEPRECATED marks a name this release replaced (section 12): it
+/* MCSTAT_DEPRECATED marks a name this release replaced (section 13): it
  * still links and gives the same results, and the compiler names the
  * replacement.  Define MCSTAT_DISABLE_DEPRECATE_WARNINGS before including
  * this header to silence the warnings. */
@@ -137,9 +139,10 @@ enum mcstat_status {
     MCSTAT_ENUMERIC = 6,    /* a numerical method failed to converge */
     MCSTAT_EBUFSIZE = 7,    /* the caller's buffer is too small */
     MCSTAT_ECORRUPT = 8,    /* serialized bytes are corrupt, truncated or of an unknown version */
-    MCSTAT_ETOOBIG = 9      /* the sizes are too large for the requested method (e.g. an exact
+    MCSTAT_ETOOBIG = 9,     /* the sizes are too large for the requested method (e.g. an exact
                                K-S p-value whose lattice would not fit): choose another method;
                                also an observation count that would pass 2^64 - 1 */
+    MCSTAT_ECALLBACK = 10   /* a caller's callback failed or returned invalid values (section 10) */
 };
 
 /* A sentence describing status (static storage; never NULL). */
@@ -710,7 +713,7 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
 /* elements) and holds n contiguous values; row i of y pairs with row i of   */
 /* x.  Arguments in one order: each matrix as (data, n, stride), then the   */
 /* number of rows (0.1.0's *_rows names put rows second in the one-sample  */
-/* calls, seventh in the two-sample ones: section 12).  out[i] receives    */
+/* calls, seventh in the two-sample ones: section 13).  out[i] receives    */
 /* row i's result, bit for bit what the single-sample                       */
 /* call on that row returns, and status[i] (may be NULL) its status; a row   */
 /* that fails gets NaN fields and the other rows are still computed.         */
@@ -862,14 +865,14 @@ MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const 
                                                  mcstat_result *out);
 
 /* ======================================================================== */
-/* EXPERIMENTAL: sections 7-9 (power, diagnostics, goodness of fit).        */
+/* EXPERIMENTAL: sections 7-10 (power, diagnostics, fit, renderer checks). */
 /* The newest families: tested and held to the ABI like the rest, but       */
 /* their names and options may change before 1.0 (a renamed function        */
-/* stays one release as a deprecated alias, as in section 12).              */
+/* stays one release as a deprecated alias, as in section 13).              */
 /* ======================================================================== */
 /* Compiled in by default.  A program that wants to be sure it uses no
  * experimental name defines MCSTAT_NO_EXPERIMENTAL before including this
- * header: sections 7-9 (and the deprecated names of their families) are
+ * header: sections 7-10 (and the deprecated names of their families) are
  * then left out, and any use is a compile error.  The library exports them
  * either way. */
 #ifndef MCSTAT_NO_EXPERIMENTAL
@@ -1223,10 +1226,315 @@ MCSTAT_API int mcstat_battery_test(uint64_t rejections, uint64_t k, double level
 MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative,
                                            double alpha, mcstat_result *out);
 
+
+/* ======================================================================== */
+/* 10. Renderer checks.                                  (experimental)      */
+/* Do a BSDF's sample(), pdf(), eval() and sample weight agree?  The        */
+/* renderer hands over its routines as callbacks; mcstat feeds them its own  */
+/* uniform numbers, runs a battery of checks ("routes") and controls the     */
+/* battery's error rate.  Emitters (sampling directions from a reference    */
+/* point) and warps (square, disk, interval) are checked the same way.      */
+/* ======================================================================== */
+
+/* ------------------------------------------------------------------------ */
+/* The model a renderer hands over.                                          */
+/* Points live in a domain:                                                  */
+/*   SPHERE       unit directions (x, y, z): BSDFs with transmission,        */
+/*                emitters;                                                  */
+/*   HEMISPHERE   unit directions with z >= 0 (the shading normal is +z):    */
+/*                reflection-only BSDFs;                                     */
+/*   SQUARE       (x, y) in [0, 1]^2;  DISK  (x, y), x^2 + y^2 <= 1;         */
+/*   INTERVAL     x in [0, 1].                                               */
+/* Densities are with respect to solid angle (directions) or area/length.   */
+/* Callbacks (each returns 0 on success, anything else to stop the check:   */
+/* MCSTAT_ECALLBACK then names it), called only from the calling thread,    */
+/* n points at a time (n <= the options' batch):                             */
+/*   sample(user, wi, u, n, x, weight, pdf): for k < n, from the uniforms   */
+/*     u[k*n_uniforms ..] in [0, 1), point x[k*dims ..], the sample weight   */
+/*     weight[k] and the density pdf[k] the renderer's sampler reports.  A   */
+/*     sample that failed (the renderer's "invalid sample") has pdf 0 and    */
+/*     weight 0; x is then ignored.  With MCSTAT_WEIGHT_OVER_PDF (Mitsuba's  */
+/*     BSDFSample weight) weight = eval/pdf; with MCSTAT_WEIGHT_VALUE (pbrt's */
+/*     Sample_f times |cos|) weight = eval.                                  */
+/*   pdf(user, wi, x, n, out): out[k] the density at x[k*dims ..].           */
+/*   eval(user, wi, x, n, out): out[k] the integrand the sampler is built    */
+/*     for: f(wi, x) |cos(x)| for a BSDF (Mitsuba's eval includes the        */
+/*     cosine), the radiance arriving along x for an emitter.  NULL for a   */
+/*     warp (no integrand: only the sampler and its density are checked).   */
+/* wi is the fixed direction given to mcstat_check_bsdf (NULL for emitters   */
+/* and warps; an emitter's reference point lives in `user`).  Callbacks run */
+/* under IEEE defaults (see the conventions above): a renderer built to     */
+/* flush subnormals sees them kept inside the check.                         */
+/* ------------------------------------------------------------------------ */
+enum mcstat_check_domain {
+    MCSTAT_DOMAIN_SPHERE = 0,
+    MCSTAT_DOMAIN_HEMISPHERE = 1,
+    MCSTAT_DOMAIN_SQUARE = 2,
+    MCSTAT_DOMAIN_DISK = 3,
+    MCSTAT_DOMAIN_INTERVAL = 4
+};
+
+enum mcstat_check_weight {
+    MCSTAT_WEIGHT_OVER_PDF = 0, /* weight = eval / pdf (Mitsuba, most path tracers) */
+    MCSTAT_WEIGHT_VALUE = 1     /* weight = eval (the sampled value, not divided) */
+};
+
+#define MCSTAT_CHECK_MAX_UNIFORMS 8
+
+typedef int (*mcstat_check_sample_fn)(void *user, const double *wi, const double *u, size_t n, double *x,
+                                      double *weight, double *pdf);
+typedef int (*mcstat_check_density_fn)(void *user, const double *wi, const double *x, size_t n,
+                                       double *out);
+
+typedef struct mcstat_check_model {
+    int32_t domain;            /* enum mcstat_check_domain */
+    int32_t n_uniforms;        /* uniforms per sample, 1..MCSTAT_CHECK_MAX_UNIFORMS (Mitsuba's BSDFs: 3) */
+    int32_t weight;            /* enum mcstat_check_weight */
+    int32_t sample_reports;    /* 1: sample() writes weight and pdf (BSDFs, emitters); 0: only x
+                                  (warps: every sample succeeds, pdf() gives its density) */
+    void *user;                /* passed to every callback */
+    mcstat_check_sample_fn sample;
+    mcstat_check_density_fn pdf;
+    mcstat_check_density_fn eval; /* NULL: no integrand (warps) */
+    double reserved[4];        /* zero */
+} mcstat_check_model;
+
+/* Coordinates per point of a domain (3, 3, 2, 2, 1); 0 for a bad domain. */
+MCSTAT_API int mcstat_check_domain_dims(int domain);
+/* "sphere", "hemisphere", "square", "disk", "interval" and back. */
+MCSTAT_API int mcstat_check_domain_parse(const char *name, int *domain);
+MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid */
+
+/* ------------------------------------------------------------------------ */
+/* The routes.                                                               */
+/* Each route checks one claim, and names what it cannot see:              */
+/*   CELLS        sample() draws from the density pdf() claims: Pearson's    */
+/*                chi-squared of the successful samples' counts in cells of  */
+/*                (nearly) equal probability.  Cells: a k-d tree over the    */
+/*                domain's equal-area square (directions: s = (1 - z)/2,     */
+/*                t = phi/(2 pi)), split at medians of an independent pilot  */
+/*                sample until each leaf holds 32 pilot points (the sphere   */
+/*                is cut at the horizon first); each cell's probability is   */
+/*                the integral of pdf() over it by adaptive cubature (Genz-  */
+/*                Malik 7/5, splitting where the rules disagree) to 5% of    */
+/*                the cell count's sampling sd.  Consecutive cells are       */
+/*                pooled until the expected count is 5, and the remaining    */
+/*                cubature error enters each cell's variance, so an          */
+/*                integration that falls short costs power, never the level. */
+/*                df = pooled cells - 1.  Blind to: pdf() scaled by a        */
+/*                constant, everything about weights and eval.              */
+/*   MASS         the fraction of samples that succeed equals the integral   */
+/*                of pdf() over the domain (the sum of the cells): exact     */
+/*                binomial test, two-sided, conservative over the cubature   */
+/*                error.  Catches pdf() scaled by a constant, samples lost.  */
+/*   PDF_VALUE    the pdf sample() reports equals pdf() at the sampled point */
+/*                (deterministic: relative tolerance rtol at every sample). */
+/*   WEIGHT       the weight equals eval/pdf (deterministic, as PDF_VALUE);  */
+/*                a failed sample has weight 0.                              */
+/*   SUPPORT      eval > 0 only where pdf > 0, at the sampled points and at  */
+/*                the eval-only estimator's points (a region the sampler     */
+/*                never reaches biases every estimate using it).  pdf > 0    */
+/*                where eval = 0 is counted (wasted samples), not a failure. */
+/*   INTEGRALS    eval against the sampler, end to end: the integrals of     */
+/*                eval over up to 16 regions (consecutive runs of cells),    */
+/*                estimated from the sample weights and from an estimator    */
+/*                that uses only eval (points from a table of the cells'     */
+/*                probabilities, mixed 9:1 with uniform points so that every */
+/*                region is reached), compared by a Wald test (chi-squared   */
+/*                on the regions, covariances estimated).  The statistical   */
+/*                form of WEIGHT: it is what checks a stochastic BSDF.       */
+/*   ENERGY       albedo <= 1: one-sided t test of the mean weight (BSDFs).  */
+/*   RECIPROCITY  eval(wi, x)/|x.z| == eval(x, wi)/|wi.z| at up to 1000     */
+/*                sampled points (deterministic; only when asked: BSDFs      */
+/*                with refraction are not reciprocal in radiance).           */
+/* Heavy tails: INTEGRALS and ENERGY need finite variance.  When the Hill   */
+/* tail index of the weights (or of the eval-only estimates) is below 2,    */
+/* those routes are INVALID (not run) and the report says why.              */
+/* The verdict: deterministic routes reject on any point beyond tolerance;  */
+/* the statistical routes' p-values are adjusted across routes (Holm), and  */
+/* the check rejects when any adjusted p-value is <= alpha: a correct model */
+/* is rejected with probability at most alpha (the cubature and the         */
+/* asymptotic tests being approximations; measured: tests/python/           */
+/* test_check_calibration.py and bench/).                                   */
+/* ------------------------------------------------------------------------ */
+enum mcstat_check_route {
+    MCSTAT_CHECK_CELLS = 0,
+    MCSTAT_CHECK_MASS = 1,
+    MCSTAT_CHECK_PDF_VALUE = 2,
+    MCSTAT_CHECK_WEIGHT = 3,
+    MCSTAT_CHECK_SUPPORT = 4,
+    MCSTAT_CHECK_INTEGRALS = 5,
+    MCSTAT_CHECK_ENERGY = 6,
+    MCSTAT_CHECK_RECIPROCITY = 7,
+    MCSTAT_CHECK_ROUTES = 8 /* number of routes */
+};
+
+/* "cells", "mass", "pdf_value", "weight", "support", "integrals", "energy",
+ * "reciprocity" and back. */
+MCSTAT_API const char *mcstat_check_route_name(int route); /* NULL if invalid */
+MCSTAT_API int mcstat_check_route_parse(const char *name, int *route);
+
+enum mcstat_check_state {
+    MCSTAT_ROUTE_RAN = 0,
+    MCSTAT_ROUTE_SKIPPED = 1, /* not asked for, or not applicable to this model */
+    MCSTAT_ROUTE_INVALID = 2  /* an assumption failed (heavy tails, too few samples): no answer */
+};
+
+/* ------------------------------------------------------------------------ */
+/* Options; grows by appending fields (section 1), so always start from the  */
+/* initialiser.                                                              */
+/* ------------------------------------------------------------------------ */
+typedef struct mcstat_check_options {
+    uint32_t size;         /* sizeof(mcstat_check_options): set by the initialiser */
+    uint32_t routes;       /* bit (1u << route) for each route to run; default all
+                              (routes that do not apply to the model are skipped) */
+    int32_t stochastic;    /* 1: weight and pdf are estimates (layered BSDFs): PDF_VALUE and
+                              WEIGHT are skipped, INTEGRALS checks them; default 0 */
+    int32_t reciprocal;    /* 1: run RECIPROCITY; default 0 */
+    int32_t cells;         /* cells for CELLS; 0 (default): 2 n^0.4, within [8, 8192] */
+    int32_t reserved_i;
+    uint64_t n_pilot;      /* pilot samples for the cells; 0 (default): 32 per cell */
+    uint64_t n_eval;       /* points of the eval-only estimator; 0 (default): n */
+    uint64_t batch;        /* points per callback call; default 65536 */
+    double rtol;           /* relative tolerance of the deterministic routes; default 1e-3
+                              (renderers computing in float32 differ at ~1e-6) */
+    double reserved[4];    /* zero */
+} mcstat_check_options;
+
+#define MCSTAT_CHECK_ALL_ROUTES ((1u << MCSTAT_CHECK_ROUTES) - 1u)
+#define MCSTAT_CHECK_OPTIONS_INIT \
+    {sizeof(mcstat_check_options), MCSTAT_CHECK_ALL_ROUTES, 0, 0, 0, 0, 0, 0, 65536, 1e-3, {0, 0, 0, 0}}
+
+/* sizeof(mcstat_check_options) in each release that changed it. */
+#define MCSTAT_CHECK_OPTIONS_SIZE_0_2 88u
+/* Sets the first `size` bytes of *opt to MCSTAT_CHECK_OPTIONS_INIT, with
+ * opt->size = size (as mcstat_gof_options_init_size). */
+MCSTAT_API int mcstat_check_options_init_size(mcstat_check_options *opt, size_t size);
+#define mcstat_check_options_init(opt) mcstat_check_options_init_size((opt), sizeof *(opt))
+MCSTAT_API size_t mcstat_sizeof_check_options(void);
+MCSTAT_API size_t mcstat_sizeof_check_model(void);
+MCSTAT_API size_t mcstat_sizeof_check_report(void);
+
+/* ------------------------------------------------------------------------ */
+/* The report.                                                               */
+/* Per route: its state, whether it is deterministic, its verdict, and      */
+/*   statistic, df, p_value, p_adjusted   (statistical routes; NaN otherwise) */
+/*   effect       the departure measured: CELLS Cohen's w = sqrt(X^2/N);     */
+/*                MASS and INTEGRALS and ENERGY the relative difference of   */
+/*                the two sides; deterministic routes the largest relative   */
+/*                difference seen                                            */
+/*   detectable   the smallest departure of the same kind this run detects  */
+/*                with probability 0.8 at alpha (normal approximations);    */
+/*                deterministic routes: the smallest probability of a       */
+/*                region where any error above rtol is caught with          */
+/*                probability 0.8, -ln(0.2)/checked                         */
+/*   n_for_1pct   samples the route needs to detect a 1% departure with     */
+/*                probability 0.8 (CELLS: w = 0.01; MASS, INTEGRALS, ENERGY: */
+/*                1% relative; deterministic: a region of probability 1%)   */
+/*   checked, count  points checked and points beyond tolerance (CELLS:      */
+/*                samples and pooled cells)                                  */
+/*   where, value[2]  deterministic routes: the point of the largest         */
+/*                difference and the two values that differ there           */
+/* ------------------------------------------------------------------------ */
+typedef struct mcstat_check_route_result {
+    int32_t state;         /* enum mcstat_check_state */
+    int32_t deterministic; /* 1: a tolerance check, not a test */
+    int32_t reject;
+    int32_t reserved_i;
+    double statistic, df, p_value, p_adjusted;
+    double effect, detectable, n_for_1pct;
+    uint64_t checked, count;
+    double where[3];
+    double value[2];
+    double reserved[3];
+} mcstat_check_route_result;
+
+enum mcstat_check_kind {
+    MCSTAT_CHECK_KIND_BSDF = 0,
+    MCSTAT_CHECK_KIND_EMITTER = 1,
+    MCSTAT_CHECK_KIND_WARP = 2
+};
+
+typedef struct mcstat_check_report {
+    int32_t kind;          /* enum mcstat_check_kind */
+    int32_t domain;
+    int32_t reject;        /* 1: some route rejected */
+    int32_t heavy_tailed;  /* 1: a tail index below 2 made routes INVALID */
+    double alpha;
+    double p_value;        /* smallest adjusted p-value (0 when a deterministic route failed) */
+    double wi[3];          /* BSDFs: the direction checked (NaN otherwise) */
+    uint64_t n, n_failed;  /* samples drawn for the test, and how many failed */
+    uint64_t n_pilot, n_eval;
+    uint64_t cells;        /* cells of the tree (before pooling) */
+    uint64_t calls;        /* callback calls */
+    double mass;           /* integral of pdf() over the domain (cubature) */
+    double mass_error;     /* its estimated absolute error: sum over the cells */
+    double albedo, albedo_se;        /* mean weight and its standard error */
+    double albedo_eval, albedo_eval_se; /* the eval-only estimate of the same integral */
+    double tail_index[2];  /* Hill's upper tail index of the weights, of the eval-only estimates */
+    double reserved[8];
+    mcstat_check_route_result route[MCSTAT_CHECK_ROUTES];
+    char message[256];     /* MCSTAT_ECALLBACK: what went wrong, naming the callback, the point
+                              and the value; otherwise empty */
+} mcstat_check_report;
+
+/* ------------------------------------------------------------------------ */
+/* The checks.                                                               */
+/* n samples from model->sample (n >= 1000), the uniforms a pure function of */
+/* (seed, stream, index), so a check is reproducible and its stream of       */
+/* uniforms does not depend on batch; alpha in (0, 1) is the level of the   */
+/* whole battery; opt may be NULL (the defaults).                            */
+/* Scratch: work of work_bytes >= mcstat_check_work_size(...) bytes, aligned */
+/* to 16, or work NULL (allocated and freed inside the call).  About 56 n + */
+/* 40 n_eval + 2200 cells + batch (8 dims + 64) bytes.                      */
+/*   mcstat_check_bsdf     wi a direction (normalised inside; wi.z may be   */
+/*                         negative: light arriving from below); ENERGY,     */
+/*                         RECIPROCITY apply;                                */
+/*   mcstat_check_emitter  directions from a reference point: domain SPHERE */
+/*                         or HEMISPHERE, no ENERGY, no RECIPROCITY;         */
+/*   mcstat_check_warp     eval ignored (CELLS, MASS, and PDF_VALUE when     */
+/*                         sample_reports).                                  */
+/* Cost: the callbacks are called about n + n_pilot times for samples,      */
+/* 2 n + 2 n_eval times for eval and pdf, and 17 times per cubature        */
+/* rectangle (about 12 per cell); its own work is a few hundred ns per      */
+/* sample (bench/RESULTS.md).                                                */
+/* Statuses: MCSTAT_EINVAL (NULL model, callbacks or out, a bad domain,      */
+/* n_uniforms or weight, n < 1000, alpha outside (0, 1), an options size    */
+/* this library does not know, a bad option, work too small or misaligned,  */
+/* wi zero or not finite), MCSTAT_ETOOBIG (n beyond 2^48 or sizes whose     */
+/* scratch overflows), MCSTAT_ENOMEM, MCSTAT_ECALLBACK (a callback returned */
+/* non-zero, or NaN, Inf, a negative density or weight, a point outside the */
+/* domain or a direction not of unit length within 1e-4: out->message says  */
+/* which callback, the index, point and value; nothing else in *out is      */
+/* meaningful), MCSTAT_ETOOFEW (fewer than 100 samples succeeded).          */
+/* ------------------------------------------------------------------------ */
+MCSTAT_API int mcstat_check_work_size(const mcstat_check_model *model, size_t n, const mcstat_check_options *opt,
+                                      size_t *bytes);
+MCSTAT_API int mcstat_check_bsdf(const mcstat_check_model *model, const double wi[3], size_t n, uint64_t seed,
+                                 double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
+                                 mcstat_check_report *out);
+MCSTAT_API int mcstat_check_emitter(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
+                                    const mcstat_check_options *opt, void *work, size_t work_bytes,
+                                    mcstat_check_report *out);
+MCSTAT_API int mcstat_check_warp(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
+                                 const mcstat_check_options *opt, void *work, size_t work_bytes,
+                                 mcstat_check_report *out);
+
+/* Writes the report as a text block (R's layout: one line per route with
+ * its statistic, df and p-values, then what a pass means and the budget a
+ * 1% error needs) into buf; *length (may be NULL) receives the full
+ * length.  MCSTAT_EINVAL, MCSTAT_EBUFSIZE (buf holds a NUL-terminated
+ * prefix). */
+MCSTAT_API int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, size_t *length);
+/* One sentence saying what route `route` checks (static storage; NULL if
+ * invalid), and one saying what it cannot see. */
+MCSTAT_API const char *mcstat_check_route_meaning(int route);
+MCSTAT_API const char *mcstat_check_route_blind_spot(int route);
+
 #endif /* MCSTAT_NO_EXPERIMENTAL */
 
 /* ======================================================================== */
-/* 10. Distributions.                                                       */
+/* 11. Distributions.                                                       */
 /* The t, chi-squared and F distributions the tests use, as functions.      */
 /* ======================================================================== */
 
@@ -1267,7 +1575,7 @@ MCSTAT_API int mcstat_f_logcdf(double x, double df1, double df2, int upper, doub
 MCSTAT_API int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x);
 
 /* ======================================================================== */
-/* 11. Sizes, versions and GSL's handler.                                   */
+/* 12. Sizes, versions and GSL's handler.                                   */
 /* Constants as functions for FFI callers (every size is                    */
 /* mcstat_sizeof_<thing>), the release and ABI numbers, and the opt-in to   */
 /* GSL's error handler off.                                                 */
@@ -1323,7 +1631,7 @@ MCSTAT_API void mcstat_gsl_handler_off(void);
 MCSTAT_API int mcstat_gsl_handler_off_if_default(void);
 
 /* ======================================================================== */
-/* 12. Deprecated names.                                                    */
+/* 13. Deprecated names.                                                    */
 /* The names this release replaced, one form per family: old -> new.        */
 /* They still link (the ABI keeps every exported symbol of its SOVERSION)   */
 /* and give bit-identical results; MCSTAT_DEPRECATED names the replacement. */

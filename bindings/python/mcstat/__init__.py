@@ -44,6 +44,7 @@ says whether it did); libmcstat itself never reaches GSL's handler.
 from . import _errors
 from ._errors import (
     BufferSizeError,
+    CallbackError,
     CorruptDataError,
     DegenerateDataError,
     InvalidArgumentError,
@@ -83,6 +84,8 @@ from ._power import (  # noqa: E402
     ks_sample_size,
     power,
 )
+# Renderer checks: do a BSDF's, an emitter's or a warp's sample, pdf and eval agree?
+from ._core import CheckReport, CheckRoute, check_bsdf, check_emitter, check_warp  # noqa: E402
 # the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 
@@ -113,6 +116,11 @@ __all__ = [
     "battery_test",
     "diagnose",
     "Diagnostics",
+    "check_bsdf",
+    "check_emitter",
+    "check_warp",
+    "CheckReport",
+    "CheckRoute",
     *_errors.__all__,
     # equivalence, power and sample size
     "equivalence_test",

@@ -25,6 +25,7 @@ __all__ = [
     "BufferSizeError",
     "CorruptDataError",
     "TooBigError",
+    "CallbackError",
 ]
 
 
@@ -114,6 +115,18 @@ class TooBigError(McstatError):
     status = 9
 
 
+class CallbackError(McstatError):
+    """A callable handed to a renderer check (:func:`check_bsdf`,
+    :func:`check_emitter`, :func:`check_warp`) returned something the check
+    cannot use (MCSTAT_ECALLBACK): the wrong shape or type, NaN, an
+    infinity, a negative density or weight, or a point off the domain (a
+    direction not of unit length within 1e-4).  The message names the
+    callable, the point and the value.  An exception the callable raises
+    itself propagates unchanged instead."""
+
+    status = 10
+
+
 _BY_STATUS = {
     cls.status: cls
     for cls in (
@@ -126,5 +139,6 @@ _BY_STATUS = {
         BufferSizeError,
         CorruptDataError,
         TooBigError,
+        CallbackError,
     )
 }

@@ -6,7 +6,7 @@
 namespace mcs {
 
 namespace {
-constexpr int N_STATUS = 10; // MCSTAT_OK .. MCSTAT_ETOOBIG
+constexpr int N_STATUS = 11; // MCSTAT_OK .. MCSTAT_ECALLBACK
 py::handle g_classes[N_STATUS];
 py::handle g_base;
 } // namespace

@@ -18,6 +18,7 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_chisq(mod); // chi-squared goodness of fit
     mcs::register_p_adjust(mod);
     mcs::register_summary_rows(mod);
+    mcs::register_check(mod); // renderer checks: BSDFs, emitters, warps
 
     mod.def(
         "set_num_threads",

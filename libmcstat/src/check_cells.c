@@ -1,0 +1,286 @@
+/*
+ * check_cells.c - cells of nearly equal probability for the renderer
+ * checks, and the probability of each under the renderer's pdf (check.h).
+ *
+ * The cells are the leaves of a k-d tree over the domain's equal-area
+ * square, split at medians of a pilot sample drawn by the sampler under
+ * test.  Cells drawn from the sampler are fine whatever the sampler does:
+ * the pilot is independent of the tested sample, and the expected counts
+ * come from pdf(), not from the pilot.  Following the pilot puts the cells
+ * where the lobe is, however narrow (a fixed grid would spend its cells
+ * where nothing is sampled, which is what makes a binned test of a sharp
+ * lobe need millions of samples).
+ *
+ * Each cell's probability is then integrated by adaptive cubature:
+ * Genz and Malik's degree-7 rule on a rectangle, 17 points, with its
+ * embedded degree-5 rule for the error (J. Comput. Appl. Math. 6, 1980;
+ * the weights below for dimension 2, normalised to sum to 1).
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "check.h"
+
+/* ---- the tree ------------------------------------------------------------ */
+
+size_t mcstat__tree_max_cells(uint64_t m, int leaf)
+{
+    return (size_t)(2 * (m / (uint64_t)leaf) + 4);
+}
+
+static void swap_pair(double *st, uint64_t i, uint64_t j)
+{
+    double a = st[2 * i], b = st[2 * i + 1];
+    st[2 * i] = st[2 * j];
+    st[2 * i + 1] = st[2 * j + 1];
+    st[2 * j] = a;
+    st[2 * j + 1] = b;
+}
+
+/* Quickselect with three-way partitions (ties at the pivot cost nothing:
+ * a pilot may hold many equal coordinates): afterwards st[2k + axis] is the
+ * k-th smallest coordinate, smaller or equal ones before it, larger or
+ * equal ones after. */
+static void select_pairs(double *st, uint64_t n, uint64_t k, int axis)
+{
+    uint64_t lo = 0, hi = n; /* [lo, hi) holds position k */
+    while (hi - lo > 1) {
+        uint64_t mid = lo + (hi - lo) / 2;
+        double a = st[2 * lo + axis], b = st[2 * mid + axis], c = st[2 * (hi - 1) + axis];
+        double pivot = (a < b) ? ((b < c) ? b : ((a < c) ? c : a)) : ((a < c) ? a : ((b < c) ? c : b));
+        /* [lo, lt) < pivot, [lt, i) == pivot, [gt, hi) > pivot */
+        uint64_t lt = lo, i = lo, gt = hi;
+        while (i < gt) {
+            double v = st[2 * i + axis];
+            if (v < pivot)
+                swap_pair(st, lt++, i++);
+            else if (v > pivot)
+                swap_pair(st, i, --gt);
+            else
+                i++;
+        }
+        if (k < lt)
+            hi = lt;
+        else if (k >= gt)
+            lo = gt;
+        else
+            return;
+    }
+}
+
+static int32_t add_leaf(mcstat__tree *tr, int32_t node, double s0, double s1, double t0, double t1)
+{
+    int32_t c = tr->n_cells++;
+    mcstat__cell *cell = &tr->cells[c];
+    memset(cell, 0, sizeof *cell);
+    cell->s0 = s0;
+    cell->s1 = s1;
+    cell->t0 = t0;
+    cell->t1 = t1;
+    tr->nodes[node].left = tr->nodes[node].right = -1;
+    tr->nodes[node].cell = c;
+    return c;
+}
+
+static void build_node(mcstat__tree *tr, const mcstat__domain *d, int32_t node, double *st, uint64_t m,
+                       double s0, double s1, double t0, double t1, int depth, int leaf, int horizon)
+{
+    int have_room = tr->n_nodes + 2 <= tr->max_nodes && tr->n_cells + 2 <= tr->max_cells;
+    int axis = -1;
+    double split = 0.0;
+    uint64_t k = 0;
+    if (horizon && have_room) {
+        axis = 0;
+        split = 0.5;
+        for (uint64_t i = 0; i < m; i++)
+            if (st[2 * i] < split)
+                swap_pair(st, i, k++);
+    } else if (m >= 2 * (uint64_t)leaf && depth < 48 && have_room) {
+        int first = d->two_d ? (depth & 1) : 0;
+        for (int attempt = 0; attempt < (d->two_d ? 2 : 1) && axis < 0; attempt++) {
+            int a = first ^ attempt;
+            double lo = a ? t0 : s0, hi = a ? t1 : s1;
+            k = m / 2;
+            select_pairs(st, m, k, a);
+            double v = st[2 * k + a];
+            /* a split must cut the node into two of positive area; ties at
+             * the median (a point mass) leave it a leaf */
+            if (v > lo && v < hi) {
+                axis = a;
+                split = v;
+            }
+        }
+    }
+    if (axis < 0) {
+        add_leaf(tr, node, s0, s1, t0, t1);
+        return;
+    }
+    int32_t left = tr->n_nodes++, right = tr->n_nodes++;
+    tr->nodes[node].split = split;
+    tr->nodes[node].axis = axis;
+    tr->nodes[node].left = left;
+    tr->nodes[node].right = right;
+    tr->nodes[node].cell = -1;
+    if (axis == 0) {
+        build_node(tr, d, left, st, k, s0, split, t0, t1, depth + 1, leaf, 0);
+        build_node(tr, d, right, st + 2 * k, m - k, split, s1, t0, t1, depth + 1, leaf, 0);
+    } else {
+        build_node(tr, d, left, st, k, s0, s1, t0, split, depth + 1, leaf, 0);
+        build_node(tr, d, right, st + 2 * k, m - k, s0, s1, split, t1, depth + 1, leaf, 0);
+    }
+}
+
+void mcstat__tree_build(mcstat__tree *tr, const mcstat__domain *d, double *st, uint64_t m, int leaf, int horizon)
+{
+    tr->n_nodes = 1;
+    tr->n_cells = 0;
+    build_node(tr, d, 0, st, m, 0.0, 1.0, 0.0, 1.0, 0, leaf, horizon);
+}
+
+int32_t mcstat__tree_locate(const mcstat__tree *tr, double s, double t)
+{
+    const mcstat__node *nd = tr->nodes;
+    int32_t i = 0;
+    while (nd[i].left >= 0)
+        i = ((nd[i].axis ? t : s) < nd[i].split) ? nd[i].left : nd[i].right;
+    return nd[i].cell;
+}
+
+/* ---- cubature ------------------------------------------------------------ */
+
+/* Genz-Malik, d = 2: abscissae (in half-widths) and weights summing to 1. */
+#define GM_L2 0.35856858280031809199064515390793749545406372969943 /* sqrt(9/70) */
+#define GM_L3 0.94868329805051379959966806332981556011586654179757 /* sqrt(9/10) */
+#define GM_L4 0.94868329805051379959966806332981556011586654179757 /* sqrt(9/10) */
+#define GM_L5 0.68824720161168529772162873429362352512689535661564 /* sqrt(9/19) */
+static const double gm_w[5] = {-3816.0 / 19683.0, 980.0 / 6561.0, 1020.0 / 19683.0, 200.0 / 19683.0,
+                               6859.0 / 19683.0 / 4.0};
+static const double gm_e[4] = {-971.0 / 729.0, 245.0 / 486.0, 65.0 / 1458.0, 25.0 / 729.0};
+#define GM_POINTS 17
+
+/* The 17 points of the rule on rect r, as offsets in half-widths. */
+static const double gm_off[GM_POINTS][2] = {
+    {0, 0},
+    {GM_L2, 0}, {-GM_L2, 0}, {0, GM_L2}, {0, -GM_L2},
+    {GM_L3, 0}, {-GM_L3, 0}, {0, GM_L3}, {0, -GM_L3},
+    {GM_L4, GM_L4}, {GM_L4, -GM_L4}, {-GM_L4, GM_L4}, {-GM_L4, -GM_L4},
+    {GM_L5, GM_L5}, {GM_L5, -GM_L5}, {-GM_L5, GM_L5}, {-GM_L5, -GM_L5},
+};
+
+static void rule(mcstat__rect *r, const double *f, double jacobian, int two_d)
+{
+    double s2 = f[1] + f[2] + f[3] + f[4], s3 = f[5] + f[6] + f[7] + f[8];
+    double s4 = f[9] + f[10] + f[11] + f[12], s5 = f[13] + f[14] + f[15] + f[16];
+    double area = (r->s1 - r->s0) * (r->t1 - r->t0) * jacobian;
+    double i7 = gm_w[0] * f[0] + gm_w[1] * s2 + gm_w[2] * s3 + gm_w[3] * s4 + gm_w[4] * s5;
+    double i5 = gm_e[0] * f[0] + gm_e[1] * s2 + gm_e[2] * s3 + gm_e[3] * s4;
+    r->est = area * i7;
+    r->err = area * fabs(i7 - i5);
+    /* split across the axis of the larger fourth difference */
+    double r23 = (GM_L2 * GM_L2) / (GM_L3 * GM_L3);
+    double ds = fabs(f[1] + f[2] - 2 * f[0] - r23 * (f[5] + f[6] - 2 * f[0]));
+    double dt = fabs(f[3] + f[4] - 2 * f[0] - r23 * (f[7] + f[8] - 2 * f[0]));
+    if (!two_d)
+        r->axis = 0;
+    else if (ds == dt) /* flat in both (or ties): the longer side */
+        r->axis = (r->t1 - r->t0) > (r->s1 - r->s0) ? 1 : 0;
+    else
+        r->axis = dt > ds ? 1 : 0;
+}
+
+/* Evaluates every rect whose axis is -1 (new or changed), in chunks of at
+ * most batch points. */
+static int evaluate_dirty(mcstat__rect *rects, size_t nr, const mcstat__domain *d, mcstat__density_cb density,
+                          void *ctx, double *xbuf, double *fbuf, size_t batch)
+{
+    size_t per_chunk = batch / GM_POINTS;
+    if (per_chunk == 0)
+        per_chunk = 1;
+    size_t i = 0;
+    while (i < nr) {
+        size_t start = i, got = 0, np = 0;
+        for (; i < nr && got < per_chunk; i++) {
+            mcstat__rect *r = &rects[i];
+            if (r->axis != -1)
+                continue;
+            double cs = 0.5 * (r->s0 + r->s1), ct = 0.5 * (r->t0 + r->t1);
+            double hs = 0.5 * (r->s1 - r->s0), ht = 0.5 * (r->t1 - r->t0);
+            for (int p = 0; p < GM_POINTS; p++, np++)
+                mcstat__domain_point(d, cs + gm_off[p][0] * hs, ct + gm_off[p][1] * ht, xbuf + np * d->dims);
+            got++;
+        }
+        if (got == 0)
+            break;
+        int st = density(ctx, xbuf, np, fbuf);
+        if (st)
+            return st;
+        size_t k = 0;
+        for (size_t j = start; j < i; j++)
+            if (rects[j].axis == -1) {
+                rule(&rects[j], fbuf + k * GM_POINTS, d->jacobian, d->two_d);
+                k++;
+            }
+    }
+    return 0;
+}
+
+static void sum_cells(mcstat__tree *tr, const mcstat__rect *rects, size_t nr)
+{
+    for (int32_t c = 0; c < tr->n_cells; c++) {
+        tr->cells[c].prob = tr->cells[c].err = 0.0;
+        tr->cells[c].n_rects = 0;
+    }
+    for (size_t i = 0; i < nr; i++) {
+        mcstat__cell *cell = &tr->cells[rects[i].cell];
+        cell->prob += rects[i].est;
+        cell->err += rects[i].err;
+        cell->n_rects++;
+    }
+}
+
+int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__density_cb density, void *ctx,
+                            double tol_scale, mcstat__rect *rects, size_t max_rects, double *xbuf, double *fbuf,
+                            size_t batch, size_t *rects_used)
+{
+    size_t nr = 0;
+    int32_t nc = tr->n_cells;
+    for (int32_t c = 0; c < nc && nr < max_rects; c++) {
+        const mcstat__cell *cell = &tr->cells[c];
+        mcstat__rect r = {cell->s0, cell->s1, cell->t0, cell->t1, 0.0, 0.0, c, -1};
+        rects[nr++] = r;
+    }
+    int st = evaluate_dirty(rects, nr, d, density, ctx, xbuf, fbuf, batch);
+    for (int round = 0; st == 0 && round < 64; round++) {
+        /* per cell: probability, error, the error of its worst rect */
+        sum_cells(tr, rects, nr);
+        /* halve the rects carrying at least their cell's average error, in
+         * cells above tolerance */
+        size_t n_split = 0, nr0 = nr;
+        for (size_t i = 0; i < nr0 && nr < max_rects; i++) {
+            mcstat__rect *r = &rects[i];
+            const mcstat__cell *cell = &tr->cells[r->cell];
+            double tol = tol_scale * sqrt(fmax(cell->prob, 0.0)) + 1e-15;
+            if (!(cell->err > tol) || !(r->err * cell->n_rects >= cell->err))
+                continue;
+            mcstat__rect b = *r;
+            if (r->axis == 0) {
+                double mid = 0.5 * (r->s0 + r->s1);
+                r->s1 = mid;
+                b.s0 = mid;
+            } else {
+                double mid = 0.5 * (r->t0 + r->t1);
+                r->t1 = mid;
+                b.t0 = mid;
+            }
+            r->axis = b.axis = -1;
+            rects[nr++] = b;
+            n_split++;
+        }
+        if (n_split == 0)
+            break;
+        st = evaluate_dirty(rects, nr, d, density, ctx, xbuf, fbuf, batch);
+    }
+    if (st == 0)
+        sum_cells(tr, rects, nr);
+    *rects_used = nr;
+    return st;
+}

@@ -1,0 +1,238 @@
+/*
+ * check_format.c - the renderer checks' words: route names, what each
+ * route checks and cannot see, and the text block of a report.  Every
+ * binding prints this text; none composes its own.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "check.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+
+static const char *const route_names[MCSTAT_CHECK_ROUTES] = {
+    "cells", "mass", "pdf_value", "weight", "support", "integrals", "energy", "reciprocity"};
+
+static const char *const route_meanings[MCSTAT_CHECK_ROUTES] = {
+    "sample() draws from the density pdf() claims (chi-squared on cells of equal probability)",
+    "the share of samples that succeed is the integral of pdf() (exact binomial test)",
+    "the pdf sample() reports equals pdf() at the sampled point",
+    "the sample weight equals eval/pdf at the sampled point",
+    "eval() is positive only where pdf() is (no part of the integrand is never sampled)",
+    "integrals of eval() over regions agree between the sample weights and an eval-only estimator (Wald test)",
+    "the albedo, the mean weight, is at most 1 (one-sided t test)",
+    "eval(wi, wo)/|cos wo| equals eval(wo, wi)/|cos wi|"};
+
+static const char *const route_blind_spots[MCSTAT_CHECK_ROUTES] = {
+    "a pdf() off by a constant factor; anything about eval() and the weights",
+    "errors that move probability within the domain without changing its total",
+    "a sampler and a pdf() that are wrong together",
+    "eval() and the weight wrong together (the integrals and energy routes see that only against each other)",
+    "regions neither the sample nor the eval-only points reach",
+    "errors that cancel within a region; needs finite variance",
+    "energy lost rather than gained; needs finite variance",
+    "BSDFs that are not reciprocal by design (refraction in radiance mode)"};
+
+const char *mcstat_check_route_name(int route)
+{
+    return route >= 0 && route < MCSTAT_CHECK_ROUTES ? route_names[route] : NULL;
+}
+
+const char *mcstat_check_route_meaning(int route)
+{
+    return route >= 0 && route < MCSTAT_CHECK_ROUTES ? route_meanings[route] : NULL;
+}
+
+const char *mcstat_check_route_blind_spot(int route)
+{
+    return route >= 0 && route < MCSTAT_CHECK_ROUTES ? route_blind_spots[route] : NULL;
+}
+
+int mcstat_check_route_parse(const char *name, int *route)
+{
+    if (!name || !route)
+        return MCSTAT_EINVAL;
+    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+        if (strcmp(name, route_names[i]) == 0) {
+            *route = i;
+            return MCSTAT_OK;
+        }
+    return MCSTAT_EINVAL;
+}
+
+/* ---- text ------------------------------------------------------------------- */
+
+typedef struct text {
+    char *buf;
+    size_t size, len;
+} text;
+
+static void put(text *t, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    char *dst = t->len < t->size ? t->buf + t->len : NULL;
+    size_t room = t->len < t->size ? t->size - t->len : 0;
+    int k = vsnprintf(dst, room, fmt, ap);
+    va_end(ap);
+    if (k > 0)
+        t->len += (size_t)k;
+}
+
+static void put_point(text *t, const double *x, int dims)
+{
+    put(t, "(");
+    for (int c = 0; c < dims; c++)
+        put(t, c ? ", %.6g" : "%.6g", x[c]);
+    put(t, ")");
+}
+
+static void put_g(text *t, const char *fmt, double v)
+{
+    if (isnan(v))
+        put(t, "%s", "NA");
+    else
+        put(t, fmt, v);
+}
+
+static const char *kind_title(int kind)
+{
+    switch (kind) {
+    case MCSTAT_CHECK_KIND_BSDF: return "BSDF check: do sample(), pdf(), eval() and the weights agree?";
+    case MCSTAT_CHECK_KIND_EMITTER: return "Emitter check: do sample(), pdf(), eval() and the weights agree?";
+    default: return "Warp check: does sample() draw what pdf() claims?";
+    }
+}
+
+static void put_route(text *t, const mcstat_check_report *r, int i)
+{
+    const mcstat_check_route_result *rr = &r->route[i];
+    int dims = mcstat_check_domain_dims(r->domain);
+    put(t, "  %-12s", route_names[i]);
+    if (rr->state == MCSTAT_ROUTE_SKIPPED) {
+        put(t, "skipped\n");
+        return;
+    }
+    if (rr->state == MCSTAT_ROUTE_INVALID) {
+        put(t, "no answer: %s\n",
+            r->heavy_tailed && (i == MCSTAT_CHECK_INTEGRALS || i == MCSTAT_CHECK_ENERGY)
+                ? "the weights are heavy-tailed (tail index below 2: infinite variance), a mean test would be "
+                  "invalid"
+                : "too little to test (too few samples, cells or regions with mass)");
+        return;
+    }
+    if (rr->deterministic && i != MCSTAT_CHECK_ENERGY) {
+        put(t, "%-6s %llu of %llu points beyond tolerance", rr->reject ? "FAIL" : "pass",
+            (unsigned long long)rr->count, (unsigned long long)rr->checked);
+        put(t, "; largest relative difference ");
+        put_g(t, "%.3g", rr->effect);
+        if (rr->reject) {
+            put(t, " at ");
+            put_point(t, rr->where, dims);
+            put(t, ": %.9g vs %.9g", rr->value[0], rr->value[1]);
+        }
+        put(t, "\n");
+        return;
+    }
+    if (rr->deterministic) { /* ENERGY with constant weights */
+        put(t, "%-6s constant weights: albedo %.9g\n", rr->reject ? "FAIL" : "pass", rr->value[0]);
+        return;
+    }
+    put(t, "%-6s ", rr->reject ? "FAIL" : "pass");
+    switch (i) {
+    case MCSTAT_CHECK_CELLS: put(t, "X-squared = %.4g, df = %.0f", rr->statistic, rr->df); break;
+    case MCSTAT_CHECK_MASS: put(t, "success share %.6g vs mass %.6g", rr->statistic, r->mass); break;
+    case MCSTAT_CHECK_INTEGRALS: put(t, "W = %.4g, df = %.0f", rr->statistic, rr->df); break;
+    default: put(t, "t = %.4g, df = %.0f", rr->statistic, rr->df); break;
+    }
+    put(t, ", p-value = ");
+    put_g(t, "%.4g", rr->p_value);
+    put(t, ", Holm-adjusted ");
+    put_g(t, "%.4g", rr->p_adjusted);
+    put(t, "\n");
+}
+
+static void put_budget(text *t, const mcstat_check_report *r, int i)
+{
+    const mcstat_check_route_result *rr = &r->route[i];
+    if (rr->state != MCSTAT_ROUTE_RAN || (rr->deterministic && i == MCSTAT_CHECK_ENERGY))
+        return;
+    put(t, "  %-12s", route_names[i]);
+    switch (i) {
+    case MCSTAT_CHECK_CELLS:
+        put(t, "Cohen's w ");
+        put_g(t, "%.3g", rr->detectable);
+        put(t, " (measured ");
+        put_g(t, "%.3g", rr->effect);
+        put(t, "); w = 0.01 needs ");
+        put_g(t, "%.3g", rr->n_for_1pct);
+        put(t, " samples\n");
+        break;
+    case MCSTAT_CHECK_MASS:
+    case MCSTAT_CHECK_INTEGRALS:
+        put(t, "relative ");
+        put_g(t, "%.3g", rr->detectable);
+        put(t, " (measured ");
+        put_g(t, "%.3g", rr->effect);
+        put(t, "); 1%% needs ");
+        put_g(t, "%.3g", rr->n_for_1pct);
+        put(t, " samples\n");
+        break;
+    case MCSTAT_CHECK_ENERGY:
+        put(t, "albedo above 1 by ");
+        put_g(t, "%.3g", rr->detectable);
+        put(t, "; 0.01 needs ");
+        put_g(t, "%.3g", rr->n_for_1pct);
+        put(t, " samples\n");
+        break;
+    default:
+        put(t, "any difference above rtol in a region of probability ");
+        put_g(t, "%.3g", rr->detectable);
+        put(t, "; a region of 1%% needs %.0f samples\n", rr->n_for_1pct);
+        break;
+    }
+}
+
+int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, size_t *length)
+{
+    MCSTAT_IEEE_SCOPE();
+    if (!r || (!buf && size > 0) || r->kind < 0 || r->kind > MCSTAT_CHECK_KIND_WARP ||
+        mcstat_check_domain_dims(r->domain) == 0)
+        return MCSTAT_EINVAL;
+    text t = {buf, size, 0};
+    put(&t, "\n\t%s\n\n", kind_title(r->kind));
+    if (r->kind == MCSTAT_CHECK_KIND_BSDF)
+        put(&t, "wi = (%.6g, %.6g, %.6g), ", r->wi[0], r->wi[1], r->wi[2]);
+    put(&t, "domain %s, n = %llu samples (%llu failed), alpha = %g\n", mcstat_check_domain_name(r->domain),
+        (unsigned long long)r->n, (unsigned long long)r->n_failed, r->alpha);
+    put(&t, "cells: %llu from %llu pilot samples; pdf() integrates to %.9g (cubature error %.2g)\n",
+        (unsigned long long)r->cells, (unsigned long long)r->n_pilot, r->mass, r->mass_error);
+    if (r->kind != MCSTAT_CHECK_KIND_WARP) {
+        put(&t, "integral of eval(): %.6g (se %.2g) from the weights, %.6g (se %.2g) from eval() alone\n",
+            r->albedo, r->albedo_se, r->albedo_eval, r->albedo_eval_se);
+        put(&t, "upper tail index: weights ");
+        put_g(&t, "%.3g", r->tail_index[0]);
+        put(&t, ", eval-only estimates ");
+        put_g(&t, "%.3g", r->tail_index[1]);
+        put(&t, "%s\n", r->heavy_tailed ? " (below 2: infinite variance)" : "");
+    }
+    put(&t, "routes:\n");
+    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+        put_route(&t, r, i);
+    put(&t, "smallest departure each route detects with probability 0.8 at this budget:\n");
+    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+        put_budget(&t, r, i);
+    put(&t, "decision at alpha = %g: ", r->alpha);
+    if (!r->reject) {
+        put(&t, "consistent (no route rejected; the battery's error rate is at most alpha)\n");
+    } else {
+        put(&t, "INCONSISTENT:");
+        for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+            if (r->route[i].state == MCSTAT_ROUTE_RAN && r->route[i].reject)
+                put(&t, " %s", route_names[i]);
+        put(&t, " rejected\n");
+    }
+    if (length)
+        *length = t.len;
+    return t.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+}

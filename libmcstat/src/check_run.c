@@ -1,0 +1,1071 @@
+/*
+ * check_run.c - the renderer checks: drive the caller's sample, pdf and eval
+ * callbacks, validate what they return, and run the routes of mcstat.h's
+ * section 10 on it.
+ *
+ * The order of a check:
+ *   1. pilot: n_pilot samples (stream 1) give the cells (check_cells.c);
+ *   2. cubature of pdf() over each cell: the cells' probabilities, and
+ *      their sum, the mass of pdf();
+ *   3. the tested sample: n samples (stream 2); at each successful one,
+ *      pdf() and eval(); cell counts, region sums of the weights, the
+ *      deterministic comparisons;
+ *   4. the eval-only estimator: n_eval points (stream 3) from the cells'
+ *      table, eval() and pdf() there;
+ *   5. reciprocity, then the routes' statistics, Holm across them.
+ * Every uniform is a pure function of (seed, stream, index): the results
+ * do not depend on the batch size.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "check.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#define LEAF_POINTS 32
+#define MAX_GROUPS 16
+#define RECIPROCITY_POINTS 1000
+#define DEFENSIVE 0.1   /* share of uniform points in the eval-only estimator's table */
+#define CUBATURE_SHARE 0.05 /* cubature error target, in sampling sd of a cell's count */
+#define POWER_Z 0.8416212335729143 /* z of power 0.8 */
+
+enum { STREAM_PILOT = 1, STREAM_TEST = 2, STREAM_EVAL = 3 };
+
+static const uint32_t known_sizes[] = {MCSTAT_CHECK_OPTIONS_SIZE_0_2};
+
+static const mcstat_check_options defaults = MCSTAT_CHECK_OPTIONS_INIT;
+
+int mcstat_check_options_init_size(mcstat_check_options *opt, size_t size)
+{
+    return mcstat__options_init(opt, size, &defaults, sizeof defaults, known_sizes,
+                                sizeof known_sizes / sizeof known_sizes[0]);
+}
+
+size_t mcstat_sizeof_check_options(void) { return sizeof(mcstat_check_options); }
+size_t mcstat_sizeof_check_model(void) { return sizeof(mcstat_check_model); }
+size_t mcstat_sizeof_check_report(void) { return sizeof(mcstat_check_report); }
+
+/* ---- the plan: sizes, and the scratch carved from one block --------------- */
+
+typedef struct plan {
+    mcstat__domain d;
+    int kind, nu, reports, has_eval;
+    uint64_t n, n_pilot, n_eval, cells_target;
+    size_t batch, max_cells, max_rects;
+} plan;
+
+typedef struct scratch {
+    double *u, *x, *w, *p, *xs, *ws, *ps, *f, *p2; /* one batch each */
+    double *st;                                    /* pilot (s, t): 2 n_pilot */
+    double *wsave, *vsave;                         /* weights and eval-only values: n, n_eval */
+    double *recip;                                 /* reciprocity points: 4 each */
+    double *counts, *cdf;                          /* per cell */
+    mcstat__node *nodes;
+    mcstat__cell *cells;
+    mcstat__rect *rects;
+} scratch;
+
+/* Carves the scratch from base (NULL: only sizes it); *bytes the total. */
+static int carve(const plan *pl, char *base, scratch *s, size_t *bytes)
+{
+    size_t off = 0;
+    int overflow = 0;
+#define TAKE(ptr, count, type)                                                        \
+    do {                                                                              \
+        size_t c_ = (size_t)(count);                                                  \
+        if (c_ > (SIZE_MAX - off - 16) / sizeof(type))                                \
+            overflow = 1;                                                             \
+        else {                                                                        \
+            if (base)                                                                 \
+                (ptr) = (type *)(void *)(base + off);                                 \
+            off += (c_ * sizeof(type) + 15) & ~(size_t)15;                             \
+        }                                                                             \
+    } while (0)
+    size_t B = pl->batch, dims = (size_t)pl->d.dims;
+    TAKE(s->u, B * (size_t)pl->nu, double);
+    TAKE(s->x, B * dims, double);
+    TAKE(s->w, B, double);
+    TAKE(s->p, B, double);
+    TAKE(s->xs, B * dims, double);
+    TAKE(s->ws, B, double);
+    TAKE(s->ps, B, double);
+    TAKE(s->f, B, double);
+    TAKE(s->p2, B, double);
+    TAKE(s->st, 2 * pl->n_pilot, double);
+    TAKE(s->wsave, pl->n, double);
+    TAKE(s->vsave, pl->n_eval, double);
+    TAKE(s->recip, 4 * RECIPROCITY_POINTS, double);
+    TAKE(s->counts, pl->max_cells, double);
+    TAKE(s->cdf, pl->max_cells, double);
+    TAKE(s->nodes, 2 * pl->max_cells, mcstat__node);
+    TAKE(s->cells, pl->max_cells, mcstat__cell);
+    TAKE(s->rects, pl->max_rects, mcstat__rect);
+#undef TAKE
+    if (overflow)
+        return MCSTAT_ETOOBIG;
+    *bytes = off;
+    return MCSTAT_OK;
+}
+
+static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcstat_check_options *o, plan *pl)
+{
+    if (!m || !m->sample || !m->pdf)
+        return MCSTAT_EINVAL;
+    if (mcstat__domain_get(m->domain, &pl->d) != MCSTAT_OK)
+        return MCSTAT_EINVAL;
+    if (m->n_uniforms < 1 || m->n_uniforms > MCSTAT_CHECK_MAX_UNIFORMS)
+        return MCSTAT_EINVAL;
+    if (m->weight != MCSTAT_WEIGHT_OVER_PDF && m->weight != MCSTAT_WEIGHT_VALUE)
+        return MCSTAT_EINVAL;
+    if (m->sample_reports != 0 && m->sample_reports != 1)
+        return MCSTAT_EINVAL;
+    if (kind != MCSTAT_CHECK_KIND_WARP && (!m->eval || !m->sample_reports))
+        return MCSTAT_EINVAL; /* BSDFs and emitters have an integrand and weights */
+    if ((kind == MCSTAT_CHECK_KIND_EMITTER) &&
+        m->domain != MCSTAT_DOMAIN_SPHERE && m->domain != MCSTAT_DOMAIN_HEMISPHERE)
+        return MCSTAT_EINVAL;
+    if (kind == MCSTAT_CHECK_KIND_BSDF && pl->d.dims != 3)
+        return MCSTAT_EINVAL;
+    if (n < 1000)
+        return MCSTAT_EINVAL;
+    if ((uint64_t)n > (1ull << 48))
+        return MCSTAT_ETOOBIG;
+    if (o->routes & ~MCSTAT_CHECK_ALL_ROUTES)
+        return MCSTAT_EINVAL;
+    if ((o->stochastic != 0 && o->stochastic != 1) || (o->reciprocal != 0 && o->reciprocal != 1))
+        return MCSTAT_EINVAL;
+    if (o->cells < 0 || o->cells == 1 || o->cells > (1 << 20))
+        return MCSTAT_EINVAL;
+    if (o->batch < 64 || o->batch > ((uint64_t)1 << 32))
+        return MCSTAT_EINVAL;
+    if (!(o->rtol > 0.0 && o->rtol < 1.0))
+        return MCSTAT_EINVAL;
+    if (o->n_pilot > (1ull << 40) || o->n_eval > (1ull << 48))
+        return MCSTAT_ETOOBIG;
+    pl->kind = kind;
+    pl->nu = m->n_uniforms;
+    pl->reports = m->sample_reports;
+    pl->has_eval = kind != MCSTAT_CHECK_KIND_WARP && m->eval != NULL;
+    pl->n = n;
+    uint64_t k = (uint64_t)o->cells;
+    if (k == 0) {
+        /* Mann and Wald's order, 2 n^(2/5) cells (256 at n = 1e5... 200) */
+        double kk = 2.0 * pow((double)n, 0.4);
+        k = kk < 8 ? 8 : (kk > 8192 ? 8192 : (uint64_t)kk);
+    }
+    pl->cells_target = k;
+    pl->n_pilot = o->n_pilot ? o->n_pilot : LEAF_POINTS * k;
+    if (pl->n_pilot < 2 * LEAF_POINTS)
+        return MCSTAT_EINVAL;
+    pl->n_eval = pl->has_eval ? (o->n_eval ? o->n_eval : n) : 0;
+    if (pl->has_eval && pl->n_eval < 1000)
+        return MCSTAT_EINVAL;
+    uint64_t most = n > pl->n_pilot ? n : pl->n_pilot;
+    if (pl->n_eval > most)
+        most = pl->n_eval;
+    pl->batch = (size_t)(o->batch < most ? o->batch : most);
+    if (pl->batch < 64)
+        pl->batch = 64;
+    pl->max_cells = mcstat__tree_max_cells(pl->n_pilot, LEAF_POINTS);
+    pl->max_rects = 48 * pl->max_cells + 1024;
+    return MCSTAT_OK;
+}
+
+static int read_options(const mcstat_check_options *opt, mcstat_check_options *o)
+{
+    *o = defaults;
+    if (!opt)
+        return MCSTAT_OK;
+    return mcstat__options_read(o, sizeof *o, opt, known_sizes, sizeof known_sizes / sizeof known_sizes[0]);
+}
+
+int mcstat_check_work_size(const mcstat_check_model *model, size_t n, const mcstat_check_options *opt,
+                           size_t *bytes)
+{
+    MCSTAT_IEEE_SCOPE();
+    mcstat_check_options o;
+    plan pl;
+    scratch s;
+    if (!bytes)
+        return MCSTAT_EINVAL;
+    int st = read_options(opt, &o);
+    if (st)
+        return st;
+    /* sizes depend on the kind only through eval: a model with an
+     * integrand and weights on directions needs the eval-only estimator */
+    int kind = model && model->eval && model->sample_reports && mcstat_check_domain_dims(model->domain) == 3
+                   ? MCSTAT_CHECK_KIND_BSDF
+                   : MCSTAT_CHECK_KIND_WARP;
+    st = make_plan(model, kind, n, &o, &pl);
+    if (st)
+        return st;
+    return carve(&pl, NULL, &s, bytes);
+}
+
+/* ---- the run --------------------------------------------------------------- */
+
+typedef struct run {
+    const mcstat_check_model *m;
+    const double *wi;
+    plan pl;
+    mcstat_check_options o;
+    scratch s;
+    mcstat__tree tr;
+    mcstat_check_report *out;
+    uint64_t key_pilot, key_test, key_eval;
+    double rtol;
+    /* deterministic comparisons: points beyond tolerance and the worst */
+    uint64_t bad[MCSTAT_CHECK_ROUTES], checked[MCSTAT_CHECK_ROUTES];
+    double worst[MCSTAT_CHECK_ROUTES], worst_x[MCSTAT_CHECK_ROUTES][3], worst_v[MCSTAT_CHECK_ROUTES][2];
+    uint64_t pdf_without_eval; /* pdf > 0 where eval = 0 (counted, not a failure) */
+} run;
+
+static void format_point(const run *r, const double *x, char *buf, size_t size)
+{
+    if (r->pl.d.dims == 3)
+        snprintf(buf, size, "(%.9g, %.9g, %.9g)", x[0], x[1], x[2]);
+    else if (r->pl.d.dims == 2)
+        snprintf(buf, size, "(%.9g, %.9g)", x[0], x[1]);
+    else
+        snprintf(buf, size, "(%.9g)", x[0]);
+}
+
+static int fail(run *r, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->out->message, sizeof r->out->message, fmt, ap);
+    va_end(ap);
+    return MCSTAT_ECALLBACK;
+}
+
+static int call_sample(run *r, uint64_t key, uint64_t first, size_t k)
+{
+    const plan *pl = &r->pl;
+    size_t nu = (size_t)pl->nu;
+    for (size_t i = 0; i < k; i++)
+        for (size_t j = 0; j < nu; j++)
+            r->s.u[i * nu + j] = mcstat__uniform(key, (first + i) * nu + j);
+    /* NaN sentinels: what the callback leaves unwritten shows as NaN */
+    for (size_t i = 0; i < k; i++) {
+        r->s.w[i] = pl->reports ? NAN : 0.0;
+        r->s.p[i] = pl->reports ? NAN : 1.0;
+        for (int c = 0; c < pl->d.dims; c++)
+            r->s.x[i * pl->d.dims + c] = NAN;
+    }
+    r->out->calls++;
+    int st = r->m->sample(r->m->user, r->wi, r->s.u, k, r->s.x, r->s.w, r->s.p);
+    if (st)
+        return fail(r, "sample() returned status %d (call with %zu points starting at sample %llu)", st, k,
+                    (unsigned long long)first);
+    for (size_t i = 0; i < k; i++) {
+        double w = r->s.w[i], p = r->s.p[i];
+        char pt[128];
+        format_point(r, r->s.x + i * pl->d.dims, pt, sizeof pt);
+        if (!isfinite(p) || p < 0.0)
+            return fail(r, "sample() returned pdf %.17g at sample %llu (point %s): a density must be finite and >= 0",
+                        p, (unsigned long long)(first + i), pt);
+        if (!isfinite(w) || w < 0.0)
+            return fail(r, "sample() returned weight %.17g at sample %llu (point %s, pdf %.17g): a weight must be "
+                        "finite and >= 0", w, (unsigned long long)(first + i), pt, p);
+        if (p > 0.0) {
+            double s, t;
+            if (mcstat__domain_coords(&pl->d, r->s.x + i * pl->d.dims, &s, &t))
+                return fail(r, "sample() returned the point %s at sample %llu: not in the %s domain%s", pt,
+                            (unsigned long long)(first + i), mcstat_check_domain_name(pl->d.kind),
+                            pl->d.dims == 3 ? " (a direction must have unit length within 1e-4)" : "");
+        }
+    }
+    return MCSTAT_OK;
+}
+
+/* pdf or eval at n points, validated. */
+static int call_density(run *r, mcstat_check_density_fn fn, const char *name, const double *x, size_t n,
+                        double *out)
+{
+    for (size_t i = 0; i < n; i++)
+        out[i] = NAN;
+    r->out->calls++;
+    int st = fn(r->m->user, r->wi, x, n, out);
+    if (st)
+        return fail(r, "%s() returned status %d (call with %zu points)", name, st, n);
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(out[i]) || out[i] < 0.0) {
+            char pt[128];
+            format_point(r, x + i * r->pl.d.dims, pt, sizeof pt);
+            return fail(r, "%s() returned %.17g at the point %s: %s must be finite and >= 0", name, out[i], pt,
+                        strcmp(name, "pdf") == 0 ? "a density" : "the integrand");
+        }
+    return MCSTAT_OK;
+}
+
+static int pdf_for_cubature(void *ctx, const double *x, size_t n, double *out)
+{
+    run *r = ctx;
+    return call_density(r, r->m->pdf, "pdf", x, n, out);
+}
+
+/* A deterministic comparison of a (the renderer's claim) with b (what it
+ * should equal) at x. */
+static void compare(run *r, int route, const double *x, double a, double b)
+{
+    double scale = fmax(fabs(a), fabs(b));
+    double diff = fabs(a - b);
+    r->checked[route]++;
+    double rel = scale > 0.0 ? diff / scale : 0.0;
+    if (rel > r->rtol)
+        r->bad[route]++;
+    if (rel > r->worst[route] || (r->checked[route] == 1 && r->worst[route] == 0.0 && rel == 0.0)) {
+        r->worst[route] = rel;
+        for (int c = 0; c < 3; c++)
+            r->worst_x[route][c] = c < r->pl.d.dims ? x[c] : NAN;
+        r->worst_v[route][0] = a;
+        r->worst_v[route][1] = b;
+    }
+}
+
+/* Regions of the integrals route: up to 16, with about 500 samples each at
+ * least (a Wald test with an estimated covariance is liberal when its
+ * regions hold few samples). */
+static int region_count(const run *r)
+{
+    uint64_t g = r->pl.n / 500;
+    if (g > MAX_GROUPS)
+        g = MAX_GROUPS;
+    if (g > (uint64_t)r->tr.n_cells)
+        g = (uint64_t)r->tr.n_cells;
+    return g < 2 ? (r->tr.n_cells < 2 ? 1 : 2) : (int)g;
+}
+
+/* ---- stage 1: pilot and cells -------------------------------------------- */
+
+static int pilot_and_cells(run *r)
+{
+    const plan *pl = &r->pl;
+    uint64_t got = 0;
+    for (uint64_t first = 0; first < pl->n_pilot; first += pl->batch) {
+        size_t k = (size_t)((pl->n_pilot - first) < pl->batch ? (pl->n_pilot - first) : pl->batch);
+        int st = call_sample(r, r->key_pilot, first, k);
+        if (st)
+            return st;
+        for (size_t i = 0; i < k; i++)
+            if (r->s.p[i] > 0.0) {
+                double s, t;
+                mcstat__domain_coords(&pl->d, r->s.x + i * pl->d.dims, &s, &t);
+                r->s.st[2 * got] = s;
+                r->s.st[2 * got + 1] = t;
+                got++;
+            }
+    }
+    r->out->n_pilot = pl->n_pilot;
+    r->tr.nodes = r->s.nodes;
+    r->tr.cells = r->s.cells;
+    r->tr.max_nodes = (int32_t)(2 * pl->max_cells);
+    r->tr.max_cells = (int32_t)pl->max_cells;
+    int leaf = (int)(pl->n_pilot / pl->cells_target);
+    if (leaf < 4)
+        leaf = 4;
+    mcstat__tree_build(&r->tr, &pl->d, r->s.st, got, leaf, pl->d.kind == MCSTAT_DOMAIN_SPHERE);
+    size_t used = 0;
+    int st = mcstat__cells_integrate(&r->tr, &pl->d, pdf_for_cubature, r, CUBATURE_SHARE / sqrt((double)pl->n),
+                                     r->s.rects, pl->max_rects, r->s.xs, r->s.f, pl->batch, &used);
+    if (st)
+        return st;
+    double mass = 0.0, err = 0.0;
+    for (int32_t c = 0; c < r->tr.n_cells; c++) {
+        mass += r->tr.cells[c].prob;
+        err += r->tr.cells[c].err;
+    }
+    r->out->cells = (uint64_t)r->tr.n_cells;
+    r->out->mass = mass;
+    r->out->mass_error = err;
+    int groups = region_count(r);
+    for (int32_t c = 0; c < r->tr.n_cells; c++)
+        r->tr.cells[c].group = (int32_t)(((int64_t)c * groups) / r->tr.n_cells);
+    return MCSTAT_OK;
+}
+
+/* ---- stage 2: the tested sample ------------------------------------------ */
+
+typedef struct sums {
+    double a[MAX_GROUPS], a2[MAX_GROUPS]; /* sampler: sums of weights and squares per region */
+    double b[MAX_GROUPS], b2[MAX_GROUPS]; /* eval-only */
+    mcstat_moments all;                  /* every weight (0 for failed samples) */
+    uint64_t n_succ, n_w, n_v, n_recip;
+} sums;
+
+static int tested_sample(run *r, sums *sm)
+{
+    const plan *pl = &r->pl;
+    int dims = pl->d.dims;
+    int deterministic = !r->o.stochastic;
+    for (uint64_t first = 0; first < pl->n; first += pl->batch) {
+        size_t k = (size_t)((pl->n - first) < pl->batch ? (pl->n - first) : pl->batch);
+        int st = call_sample(r, r->key_test, first, k);
+        if (st)
+            return st;
+        size_t ns = 0;
+        for (size_t i = 0; i < k; i++) {
+            const double *x = r->s.x + i * dims;
+            double p = r->s.p[i], w = r->s.w[i];
+            if (pl->reports && p == 0.0) {
+                /* a failed sample contributes a zero weight */
+                if (w != 0.0 && deterministic)
+                    compare(r, MCSTAT_CHECK_WEIGHT, x, w, 0.0);
+                continue;
+            }
+            double s, t;
+            mcstat__domain_coords(&pl->d, x, &s, &t);
+            r->s.counts[mcstat__tree_locate(&r->tr, s, t)] += 1.0;
+            memcpy(r->s.xs + ns * dims, x, (size_t)dims * sizeof(double));
+            r->s.ws[ns] = (pl->reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? w / p : w;
+            r->s.ps[ns] = p;
+            ns++;
+        }
+        sm->n_succ += ns;
+        /* zeros of the failed samples enter the mean weight */
+        if (pl->has_eval) {
+            for (size_t i = 0; i < k - ns; i++) {
+                int s2 = mcstat_moments_add(&sm->all, 0.0);
+                if (s2)
+                    return s2;
+            }
+        }
+        if (ns == 0)
+            continue;
+        int st2 = call_density(r, r->m->pdf, "pdf", r->s.xs, ns, r->s.p2);
+        if (st2)
+            return st2;
+        if (pl->has_eval) {
+            st2 = call_density(r, r->m->eval, "eval", r->s.xs, ns, r->s.f);
+            if (st2)
+                return st2;
+        }
+        for (size_t i = 0; i < ns; i++) {
+            const double *x = r->s.xs + i * dims;
+            double w = r->s.ws[i], ps = r->s.ps[i], p = r->s.p2[i];
+            if (pl->reports && deterministic)
+                compare(r, MCSTAT_CHECK_PDF_VALUE, x, ps, p);
+            if (!pl->has_eval)
+                continue;
+            double f = r->s.f[i];
+            if (deterministic)
+                compare(r, MCSTAT_CHECK_WEIGHT, x, w, f / ps);
+            compare(r, MCSTAT_CHECK_SUPPORT, x, f > 0.0 && p == 0.0 ? f : 0.0, 0.0);
+            if (p > 0.0 && f == 0.0)
+                r->pdf_without_eval++;
+            double s, t;
+            mcstat__domain_coords(&pl->d, x, &s, &t);
+            int g = r->tr.cells[mcstat__tree_locate(&r->tr, s, t)].group;
+            sm->a[g] += w;
+            sm->a2[g] += w * w;
+            r->s.wsave[sm->n_w++] = w;
+            if (sm->n_recip < RECIPROCITY_POINTS && f > 0.0 && dims == 3 && fabs(x[2]) > 1e-6) {
+                double *q = r->s.recip + 4 * sm->n_recip++;
+                q[0] = x[0];
+                q[1] = x[1];
+                q[2] = x[2];
+                q[3] = f;
+            }
+        }
+        if (pl->has_eval) {
+            int s3 = mcstat_moments_add_array(&sm->all, r->s.ws, ns);
+            if (s3)
+                return s3 == MCSTAT_ENONFINITE ? fail(r, "a weight overflowed (weight = value/pdf is infinite)") : s3;
+        }
+    }
+    return MCSTAT_OK;
+}
+
+/* ---- stage 3: the eval-only estimator ------------------------------------ */
+
+static int eval_only(run *r, sums *sm)
+{
+    const plan *pl = &r->pl;
+    int dims = pl->d.dims;
+    int32_t nc = r->tr.n_cells;
+    /* the table: cells by pdf's probabilities, mixed with their areas */
+    double mass = 0.0;
+    for (int32_t c = 0; c < nc; c++)
+        mass += fmax(r->tr.cells[c].prob, 0.0);
+    double acc = 0.0;
+    for (int32_t c = 0; c < nc; c++) {
+        const mcstat__cell *cell = &r->tr.cells[c];
+        double area = (cell->s1 - cell->s0) * (cell->t1 - cell->t0);
+        double pi = mass > 0.0 ? (1.0 - DEFENSIVE) * fmax(cell->prob, 0.0) / mass + DEFENSIVE * area : area;
+        acc += pi;
+        r->s.cdf[c] = acc;
+    }
+    double total = acc;
+    for (uint64_t first = 0; first < pl->n_eval; first += pl->batch) {
+        size_t k = (size_t)((pl->n_eval - first) < pl->batch ? (pl->n_eval - first) : pl->batch);
+        for (size_t i = 0; i < k; i++) {
+            uint64_t idx = (first + i) * 3;
+            double u = mcstat__uniform(r->key_eval, idx) * total;
+            int32_t lo = 0, hi = nc - 1;
+            while (lo < hi) {
+                int32_t mid = lo + (hi - lo) / 2;
+                if (r->s.cdf[mid] > u)
+                    hi = mid;
+                else
+                    lo = mid + 1;
+            }
+            const mcstat__cell *cell = &r->tr.cells[lo];
+            double s = cell->s0 + mcstat__uniform(r->key_eval, idx + 1) * (cell->s1 - cell->s0);
+            double t = cell->t0 + mcstat__uniform(r->key_eval, idx + 2) * (cell->t1 - cell->t0);
+            mcstat__domain_point(&pl->d, s, t, r->s.xs + i * dims);
+            double pi = (r->s.cdf[lo] - (lo ? r->s.cdf[lo - 1] : 0.0)) / total;
+            double area = (cell->s1 - cell->s0) * (cell->t1 - cell->t0);
+            r->s.ps[i] = pi / (area * pl->d.jacobian); /* the table's density */
+            r->s.ws[i] = (double)cell->group;
+        }
+        int st = call_density(r, r->m->eval, "eval", r->s.xs, k, r->s.f);
+        if (st)
+            return st;
+        st = call_density(r, r->m->pdf, "pdf", r->s.xs, k, r->s.p2);
+        if (st)
+            return st;
+        for (size_t i = 0; i < k; i++) {
+            double f = r->s.f[i], v = f / r->s.ps[i];
+            int g = (int)r->s.ws[i];
+            sm->b[g] += v;
+            sm->b2[g] += v * v;
+            r->s.vsave[sm->n_v++] = v;
+            compare(r, MCSTAT_CHECK_SUPPORT, r->s.xs + i * dims, f > 0.0 && r->s.p2[i] == 0.0 ? f : 0.0, 0.0);
+            if (r->s.p2[i] > 0.0 && f == 0.0)
+                r->pdf_without_eval++;
+        }
+    }
+    return MCSTAT_OK;
+}
+
+/* ---- stage 4: reciprocity --------------------------------------------------- */
+
+static int reciprocity(run *r, const sums *sm)
+{
+    double wi_z = fabs(r->wi[2]);
+    if (wi_z < 1e-6)
+        return MCSTAT_OK;
+    for (uint64_t i = 0; i < sm->n_recip; i++) {
+        const double *q = r->s.recip + 4 * i;
+        double back = NAN;
+        r->out->calls++;
+        int st = r->m->eval(r->m->user, q, r->wi, 1, &back);
+        if (st)
+            return fail(r, "eval() returned status %d (reciprocity: wi and the point swapped)", st);
+        if (!isfinite(back) || back < 0.0)
+            return fail(r, "eval() returned %.17g with wi = (%.9g, %.9g, %.9g) and the point wi of the check: "
+                        "the integrand must be finite and >= 0", back, q[0], q[1], q[2]);
+        compare(r, MCSTAT_CHECK_RECIPROCITY, q, q[3] / fabs(q[2]), back / wi_z);
+    }
+    return MCSTAT_OK;
+}
+
+/* ---- the routes' statistics ----------------------------------------------- */
+
+/* Moves the k + 1 largest of x[0..n) to the front (three-way quickselect:
+ * equal weights, common for good samplers, cost nothing). */
+static void select_largest(double *x, uint64_t n, uint64_t k)
+{
+    uint64_t lo = 0, hi = n;
+    while (hi - lo > 1) {
+        double pivot = x[lo + (hi - lo) / 2];
+        uint64_t gt = lo, i = lo, lt = hi; /* [lo, gt) > pivot, [gt, i) == pivot, [lt, hi) < pivot */
+        while (i < lt) {
+            double v = x[i];
+            if (v > pivot) {
+                x[i] = x[gt];
+                x[gt++] = v;
+                i++;
+            } else if (v < pivot) {
+                x[i] = x[--lt];
+                x[lt] = v;
+            } else {
+                i++;
+            }
+        }
+        if (k < gt)
+            hi = gt;
+        else if (k >= lt)
+            lo = lt;
+        else
+            return;
+    }
+}
+
+/* Hill's estimate of the upper tail index from the largest sqrt(n) values
+ * (clamped to [10, 1000]) of x[0..n) (reordered); +Inf when the tail is not
+ * Pareto-like (fewer positive values than the estimate needs, or ties). */
+static double hill_upper(double *x, uint64_t n)
+{
+    if (n < 100)
+        return NAN;
+    uint64_t k = (uint64_t)sqrt((double)n);
+    k = k < 10 ? 10 : (k > 1000 ? 1000 : k);
+    select_largest(x, n, k);
+    double threshold = x[k];
+    if (!(threshold > 0.0))
+        return INFINITY;
+    double sum = 0.0;
+    for (uint64_t i = 0; i < k; i++)
+        sum += log(x[i] / threshold);
+    return sum > 0.0 ? (double)k / sum : INFINITY;
+}
+
+static void route_init(mcstat_check_route_result *rr)
+{
+    memset(rr, 0, sizeof *rr);
+    rr->state = MCSTAT_ROUTE_SKIPPED;
+    rr->statistic = rr->df = rr->p_value = rr->p_adjusted = NAN;
+    rr->effect = rr->detectable = rr->n_for_1pct = NAN;
+    rr->where[0] = rr->where[1] = rr->where[2] = NAN;
+    rr->value[0] = rr->value[1] = NAN;
+}
+
+static void finish_deterministic(run *r, int route)
+{
+    mcstat_check_route_result *rr = &r->out->route[route];
+    rr->state = MCSTAT_ROUTE_RAN;
+    rr->deterministic = 1;
+    rr->checked = r->checked[route];
+    rr->count = r->bad[route];
+    rr->reject = r->bad[route] > 0;
+    rr->effect = r->worst[route];
+    rr->detectable = r->checked[route] ? -log(0.2) / (double)r->checked[route] : NAN;
+    rr->n_for_1pct = -log(0.2) / 0.01; /* a region of probability 1% is hit with probability 0.8 */
+    for (int c = 0; c < 3; c++)
+        rr->where[c] = r->worst_x[route][c];
+    rr->value[0] = r->worst_v[route][0];
+    rr->value[1] = r->worst_v[route][1];
+    if (r->checked[route] == 0)
+        rr->state = MCSTAT_ROUTE_INVALID;
+}
+
+/* Noncentrality at which chi^2(df) beyond its upper level-a quantile has
+ * probability 0.8 (normal approximation: mean df + l, variance 2(df + 2l)). */
+static double detectable_noncentrality(double df, double a)
+{
+    double crit;
+    if (mcstat_chisq_quantile(a, df, 1, &crit) != MCSTAT_OK)
+        return NAN;
+    double z2 = POWER_Z * POWER_Z, c0 = df - crit, b = c0 - 2 * z2;
+    double disc = b * b - c0 * c0 + 2 * z2 * df;
+    return disc > 0 ? -b + sqrt(disc) : NAN;
+}
+
+static void route_cells(run *r, const sums *sm, double level)
+{
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_CELLS];
+    double mass = 0.0;
+    for (int32_t c = 0; c < r->tr.n_cells; c++)
+        mass += fmax(r->tr.cells[c].prob, 0.0);
+    double N = (double)sm->n_succ;
+    if (!(mass > 0.0) || sm->n_succ < 2) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    /* pool consecutive cells to an expected count of 5; each pooled cell's
+     * variance grows by the square of its expectation's cubature error */
+    double x2 = 0.0, O = 0.0, E = 0.0, V = 0.0, lastO = 0, lastE = 0, lastV = 0;
+    int groups = 0, have_last = 0;
+    for (int32_t c = 0; c < r->tr.n_cells; c++) {
+        O += r->s.counts[c];
+        E += N * fmax(r->tr.cells[c].prob, 0.0) / mass;
+        V += N * r->tr.cells[c].err / mass;
+        if (E >= 5.0) {
+            if (have_last) {
+                x2 += (lastO - lastE) * (lastO - lastE) / (lastE + lastV * lastV);
+                groups++;
+            }
+            lastO = O, lastE = E, lastV = V, have_last = 1;
+            O = E = V = 0.0;
+        }
+    }
+    if (have_last) { /* a short tail joins the last group */
+        lastO += O, lastE += E, lastV += V;
+        x2 += (lastO - lastE) * (lastO - lastE) / (lastE + lastV * lastV);
+        groups++;
+    } else if (E > 0.0) {
+        x2 += (O - E) * (O - E) / (E + V * V);
+        groups++;
+    }
+    rr->checked = sm->n_succ;
+    rr->count = (uint64_t)groups;
+    if (groups < 2) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    double df = groups - 1, p;
+    if (mcstat_chisq_cdf(x2, df, 1, &p) != MCSTAT_OK) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    rr->state = MCSTAT_ROUTE_RAN;
+    rr->statistic = x2;
+    rr->df = df;
+    rr->p_value = p;
+    rr->effect = sqrt(x2 / N);
+    double lambda = detectable_noncentrality(df, level);
+    rr->detectable = sqrt(lambda / N);
+    rr->n_for_1pct = lambda / 1e-4;
+}
+
+static void route_mass(run *r, const sums *sm, double level)
+{
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_MASS];
+    double mass = r->out->mass, err = r->out->mass_error;
+    uint64_t n = r->pl.n, x = sm->n_succ;
+    rr->checked = n;
+    rr->count = x;
+    rr->effect = mass > 0.0 ? ((double)x / (double)n - mass) / mass : NAN;
+    double p_lo = fmin(fmax(mass - err, 0.0), 1.0), p_hi = fmin(fmax(mass + err, 0.0), 1.0);
+    double phat = (double)x / (double)n, p;
+    rr->state = MCSTAT_ROUTE_RAN;
+    rr->statistic = phat;
+    if (mass - err > 1.0) {
+        p = 0.0; /* pdf() integrates above 1: no sampler can match it */
+    } else if (phat >= p_lo && phat <= p_hi) {
+        p = 1.0;
+    } else {
+        mcstat_result res;
+        double pn = phat < p_lo ? p_lo : p_hi;
+        if (mcstat_binom_test(x, n, pn, MCSTAT_TWO_SIDED, 0.5, &res) != MCSTAT_OK) {
+            rr->state = MCSTAT_ROUTE_INVALID;
+            return;
+        }
+        p = res.p_value;
+    }
+    rr->p_value = p;
+    double z = mcstat__norm_quantile(level / 2, 1) + POWER_Z;
+    double m = fmin(fmax(mass, 1e-300), 1.0);
+    double sd = sqrt(m * (1.0 - m) / (double)n + err * err);
+    /* a pdf claiming mass 1 is caught by a single failure: -ln(0.2)/n */
+    rr->detectable = fmax(z * sd, -log(0.2) / (double)n) / m;
+    /* a 1% shortfall: seen by the binomial test (normal approximation) once
+     * the cubature error leaves room, and never before one sample in 100
+     * fails with probability 0.8 */
+    double room = 0.01 * m - z * err;
+    rr->n_for_1pct = room > 0.0 ? fmax(z * z * m * (1.0 - m) / (room * room), -log(0.2) / 0.01) : INFINITY;
+}
+
+/* Solves the Wald statistic d' S^-1 d by Cholesky, dropping regions whose
+ * pivot vanishes (no mass on either side); *df the regions kept. */
+static double wald(const double *d, double S[MAX_GROUPS][MAX_GROUPS], int g, int *df)
+{
+    int keep[MAX_GROUPS], nk = 0;
+    double L[MAX_GROUPS][MAX_GROUPS];
+    for (int i = 0; i < g; i++) {
+        keep[nk] = i;
+        /* try adding region i */
+        int k = nk;
+        int ok = 1;
+        for (int j = 0; j <= k; j++) {
+            double sum = S[keep[k]][keep[j]];
+            for (int q = 0; q < j; q++)
+                sum -= L[k][q] * L[j][q];
+            if (j == k) {
+                if (!(sum > 1e-12 * S[keep[k]][keep[k]]) || !(S[keep[k]][keep[k]] > 0.0)) {
+                    ok = 0;
+                    break;
+                }
+                L[k][k] = sqrt(sum);
+            } else {
+                L[k][j] = sum / L[j][j];
+            }
+        }
+        if (ok)
+            nk++;
+    }
+    double y[MAX_GROUPS], t = 0.0;
+    for (int i = 0; i < nk; i++) {
+        double sum = d[keep[i]];
+        for (int q = 0; q < i; q++)
+            sum -= L[i][q] * y[q];
+        y[i] = sum / L[i][i];
+        t += y[i] * y[i];
+    }
+    *df = nk;
+    return t;
+}
+
+static void route_integrals(run *r, const sums *sm, double level)
+{
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_INTEGRALS];
+    int g = region_count(r);
+    double n = (double)r->pl.n, m = (double)r->pl.n_eval;
+    double A[MAX_GROUPS], B[MAX_GROUPS], D[MAX_GROUPS], S[MAX_GROUPS][MAX_GROUPS];
+    double ta = 0.0, tb = 0.0;
+    for (int i = 0; i < g; i++) {
+        A[i] = sm->a[i] / n;
+        B[i] = sm->b[i] / m;
+        D[i] = A[i] - B[i];
+        ta += A[i];
+        tb += B[i];
+    }
+    /* region indicators are disjoint: Cov(w 1_i, w 1_j) = E[w^2 1_i] delta_ij - mu_i mu_j */
+    double va = 0.0, vb = 0.0;
+    for (int i = 0; i < g; i++)
+        for (int j = 0; j < g; j++) {
+            double ca = (i == j ? sm->a2[i] / n : 0.0) - A[i] * A[j];
+            double cb = (i == j ? sm->b2[i] / m : 0.0) - B[i] * B[j];
+            S[i][j] = ca / n + cb / m;
+            va += ca / n;
+            vb += cb / m;
+        }
+    r->out->albedo = ta;
+    r->out->albedo_se = sqrt(fmax(va, 0.0));
+    r->out->albedo_eval = tb;
+    r->out->albedo_eval_se = sqrt(fmax(vb, 0.0));
+    if (r->out->heavy_tailed) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    int df = 0;
+    double t = wald(D, S, g, &df);
+    rr->checked = (uint64_t)(n + m);
+    rr->count = (uint64_t)df;
+    if (df < 1) {
+        rr->state = MCSTAT_ROUTE_INVALID; /* eval is zero wherever either estimator looked */
+        return;
+    }
+    double p;
+    if (mcstat_chisq_cdf(t, df, 1, &p) != MCSTAT_OK) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    rr->state = MCSTAT_ROUTE_RAN;
+    rr->statistic = t;
+    rr->df = df;
+    rr->p_value = p;
+    rr->effect = tb != 0.0 ? (ta - tb) / tb : NAN;
+    double z = mcstat__norm_quantile(level / 2, 1) + POWER_Z;
+    double se = sqrt(fmax(va + vb, 0.0));
+    rr->detectable = tb > 0.0 ? z * se / tb : NAN;
+    rr->n_for_1pct = tb > 0.0 ? n * (z * se / tb / 0.01) * (z * se / tb / 0.01) : NAN;
+}
+
+static void route_energy(run *r, const sums *sm, double level)
+{
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ENERGY];
+    if (r->out->heavy_tailed) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    mcstat_result res;
+    double mean = mcstat_moments_mean(&sm->all), sd = mcstat_moments_sd(&sm->all);
+    rr->checked = sm->all.n;
+    rr->effect = mean - 1.0;
+    int st = mcstat_t_test_1_moments(&sm->all, 1.0, MCSTAT_GREATER, 0.5, &res);
+    rr->state = MCSTAT_ROUTE_RAN;
+    if (st == MCSTAT_EDEGENERATE) {
+        /* constant weights (a sampler proportional to eval): no spread to test */
+        rr->deterministic = 1;
+        rr->reject = mean > 1.0 + r->rtol;
+        rr->count = rr->reject;
+        rr->value[0] = mean;
+        rr->value[1] = 1.0;
+        return;
+    }
+    if (st != MCSTAT_OK) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    rr->statistic = res.statistic;
+    rr->df = res.df[0];
+    rr->p_value = res.p_value;
+    double z = mcstat__norm_quantile(level, 1) + POWER_Z;
+    double se = sd / sqrt((double)sm->all.n);
+    rr->detectable = z * se;
+    rr->n_for_1pct = (z * sd / 0.01) * (z * sd / 0.01);
+}
+
+/* ---- the check ---------------------------------------------------------------- */
+
+static int run_check(int kind, const mcstat_check_model *model, const double *wi_in, size_t n, uint64_t seed,
+                     double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
+                     mcstat_check_report *out)
+{
+    if (!out || !valid_alpha(alpha))
+        return MCSTAT_EINVAL;
+    run r;
+    memset(&r, 0, sizeof r);
+    int st = read_options(opt, &r.o);
+    if (st)
+        return st;
+    st = make_plan(model, kind, n, &r.o, &r.pl);
+    if (st)
+        return st;
+    double wi[3] = {NAN, NAN, NAN};
+    if (kind == MCSTAT_CHECK_KIND_BSDF) {
+        if (!wi_in || !isfinite(wi_in[0]) || !isfinite(wi_in[1]) || !isfinite(wi_in[2]))
+            return MCSTAT_EINVAL;
+        double len = sqrt(wi_in[0] * wi_in[0] + wi_in[1] * wi_in[1] + wi_in[2] * wi_in[2]);
+        if (!(len > 0.0) || !isfinite(len))
+            return MCSTAT_EINVAL;
+        for (int c = 0; c < 3; c++)
+            wi[c] = wi_in[c] / len;
+    }
+    size_t need;
+    st = carve(&r.pl, NULL, &r.s, &need);
+    if (st)
+        return st;
+    void *owned = NULL;
+    if (!work) {
+        owned = malloc(need ? need : 1);
+        if (!owned)
+            return MCSTAT_ENOMEM;
+        work = owned;
+    } else if (work_bytes < need || ((uintptr_t)work & 15u)) {
+        return MCSTAT_EINVAL;
+    }
+    carve(&r.pl, work, &r.s, &need);
+
+    memset(out, 0, sizeof *out);
+    r.m = model;
+    r.wi = kind == MCSTAT_CHECK_KIND_BSDF ? wi : NULL;
+    r.out = out;
+    r.rtol = r.o.rtol;
+    r.key_pilot = mcstat__stream_key(seed, STREAM_PILOT);
+    r.key_test = mcstat__stream_key(seed, STREAM_TEST);
+    r.key_eval = mcstat__stream_key(seed, STREAM_EVAL);
+    out->kind = kind;
+    out->domain = model->domain;
+    out->alpha = alpha;
+    for (int c = 0; c < 3; c++)
+        out->wi[c] = wi[c];
+    out->n = n;
+    out->n_eval = r.pl.n_eval;
+    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+        route_init(&out->route[i]);
+
+    sums sm;
+    memset(&sm, 0, sizeof sm);
+    mcstat_moments_init(&sm.all);
+    st = pilot_and_cells(&r);
+    if (st == MCSTAT_OK) {
+        memset(r.s.counts, 0, (size_t)r.tr.n_cells * sizeof(double));
+        st = tested_sample(&r, &sm);
+    }
+    if (st == MCSTAT_OK && sm.n_succ < 100)
+        st = MCSTAT_ETOOFEW;
+    if (st == MCSTAT_OK && r.pl.has_eval)
+        st = eval_only(&r, &sm);
+    uint32_t want = r.o.routes;
+    int bsdf = kind == MCSTAT_CHECK_KIND_BSDF;
+    if (st == MCSTAT_OK && bsdf && r.o.reciprocal && (want & (1u << MCSTAT_CHECK_RECIPROCITY)))
+        st = reciprocity(&r, &sm);
+    if (st != MCSTAT_OK) {
+        char keep[sizeof out->message];
+        memcpy(keep, out->message, sizeof keep);
+        memset(out, 0, sizeof *out);
+        if (st == MCSTAT_ECALLBACK)
+            memcpy(out->message, keep, sizeof keep);
+        free(owned);
+        return st;
+    }
+    out->n_failed = n - sm.n_succ;
+
+    /* heavy tails first: they decide which mean-based routes can answer */
+    out->tail_index[0] = out->tail_index[1] = NAN;
+    if (r.pl.has_eval) {
+        out->tail_index[0] = hill_upper(r.s.wsave, sm.n_w);
+        out->tail_index[1] = hill_upper(r.s.vsave, sm.n_v);
+        out->heavy_tailed = out->tail_index[0] < 2.0 || out->tail_index[1] < 2.0;
+    }
+
+    /* which routes apply */
+    int applies[MCSTAT_CHECK_ROUTES] = {0};
+    applies[MCSTAT_CHECK_CELLS] = 1;
+    applies[MCSTAT_CHECK_MASS] = 1;
+    applies[MCSTAT_CHECK_PDF_VALUE] = r.pl.reports && !r.o.stochastic;
+    applies[MCSTAT_CHECK_WEIGHT] = r.pl.has_eval && !r.o.stochastic;
+    applies[MCSTAT_CHECK_SUPPORT] = r.pl.has_eval;
+    applies[MCSTAT_CHECK_INTEGRALS] = r.pl.has_eval;
+    applies[MCSTAT_CHECK_ENERGY] = bsdf;
+    applies[MCSTAT_CHECK_RECIPROCITY] = bsdf && r.o.reciprocal;
+    int statistical[] = {MCSTAT_CHECK_CELLS, MCSTAT_CHECK_MASS, MCSTAT_CHECK_INTEGRALS, MCSTAT_CHECK_ENERGY};
+    int n_stat = 0;
+    for (int i = 0; i < 4; i++)
+        if (applies[statistical[i]] && (want & (1u << statistical[i])))
+            n_stat++;
+    /* the level each statistical route is held to in the worst case of
+     * Holm's procedure: what `detectable` is computed at */
+    double level = alpha / (n_stat > 0 ? n_stat : 1);
+    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++) {
+        if (!applies[i] || !(want & (1u << i)))
+            continue;
+        switch (i) {
+        case MCSTAT_CHECK_CELLS: route_cells(&r, &sm, level); break;
+        case MCSTAT_CHECK_MASS: route_mass(&r, &sm, level); break;
+        case MCSTAT_CHECK_INTEGRALS: route_integrals(&r, &sm, level); break;
+        case MCSTAT_CHECK_ENERGY: route_energy(&r, &sm, level); break;
+        default: finish_deterministic(&r, i); break;
+        }
+    }
+    if (r.pl.has_eval && !(want & (1u << MCSTAT_CHECK_INTEGRALS))) {
+        /* the albedos are reported whether or not the route runs */
+        sums copy = sm;
+        mcstat_check_route_result keep = out->route[MCSTAT_CHECK_INTEGRALS];
+        route_integrals(&r, &copy, level);
+        out->route[MCSTAT_CHECK_INTEGRALS] = keep;
+    }
+
+    /* Holm across the statistical routes that ran */
+    double p[4], adj[4];
+    int idx[4], k = 0;
+    for (int i = 0; i < 4; i++) {
+        mcstat_check_route_result *rr = &out->route[statistical[i]];
+        if (rr->state == MCSTAT_ROUTE_RAN && !rr->deterministic) {
+            p[k] = rr->p_value;
+            idx[k++] = statistical[i];
+        }
+    }
+    out->p_value = 1.0;
+    if (k > 0) {
+        double work_holm[4 * 8];
+        st = mcstat_p_adjust(p, (size_t)k, MCSTAT_P_ADJUST_HOLM, work_holm, sizeof work_holm, adj);
+        if (st) {
+            free(owned);
+            return st;
+        }
+        for (int i = 0; i < k; i++) {
+            mcstat_check_route_result *rr = &out->route[idx[i]];
+            rr->p_adjusted = adj[i];
+            rr->reject = adj[i] <= alpha;
+            if (adj[i] < out->p_value)
+                out->p_value = adj[i];
+        }
+    }
+    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+        if (out->route[i].state == MCSTAT_ROUTE_RAN && out->route[i].reject) {
+            out->reject = 1;
+            if (out->route[i].deterministic)
+                out->p_value = 0.0;
+        }
+    (void)r.pdf_without_eval;
+    free(owned);
+    return MCSTAT_OK;
+}
+
+int mcstat_check_bsdf(const mcstat_check_model *model, const double wi[3], size_t n, uint64_t seed, double alpha,
+                      const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    return run_check(MCSTAT_CHECK_KIND_BSDF, model, wi, n, seed, alpha, opt, work, work_bytes, out);
+}
+
+int mcstat_check_emitter(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
+                         const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    return run_check(MCSTAT_CHECK_KIND_EMITTER, model, NULL, n, seed, alpha, opt, work, work_bytes, out);
+}
+
+int mcstat_check_warp(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
+                      const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    return run_check(MCSTAT_CHECK_KIND_WARP, model, NULL, n, seed, alpha, opt, work, work_bytes, out);
+}
