@@ -84,6 +84,29 @@ def fmt_points(pts):
     return "%s / %s / %s" % tuple(f(x) for x in pts)
 
 
+def timing(bsdfs, variants=("scalar_rgb", "llvm_ad_rgb"), k_scalar=20_000, k_jit=1_000_000):
+    """Per-sample cost of Mitsuba's sample() through the adapters: a Python loop
+    in scalar_rgb, one vectorised call in llvm_ad_rgb (after a warm-up call that
+    compiles the kernel); and of the whole check_bsdf(n=100_000) run."""
+    rows = ["| BSDF | variant | sample() us/sample | check_bsdf(n=100k) s |", "|---|---|---|---|"]
+    rng = np.random.default_rng(0)
+    for v in variants:
+        ma.use_variant(v)
+        k = k_scalar if v.startswith("scalar") else k_jit
+        for name in bsdfs:
+            s, e, p, wi, domain = ma.config_callables(name)
+            s(wi, rng.random((1000, 3)))  # warm-up (JIT compile)
+            u = rng.random((k, 3))
+            t = time.perf_counter()
+            s(wi, u)
+            per = 1e6 * (time.perf_counter() - t) / k
+            t = time.perf_counter()
+            mcstat.check_bsdf(s, e, p, wi, domain=domain, seed=0)
+            rows.append("| %s | %s | %.3g | %.2f |" % (name, v, per, time.perf_counter() - t))
+            print("  timing %s %s" % (name, v), file=sys.stderr)
+    return rows
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--seeds", type=int, default=30, help="seeds 0..S-1 per BSDF and bug (default 30)")
@@ -97,18 +120,23 @@ def main(argv=None):
     ap.add_argument("--no-power", action="store_true", help="skip the smallest-n search")
     ap.add_argument("--quick", action="store_true", help="3 seeds, 3 power seeds, a short n grid")
     ap.add_argument("--variant", default=None, help="Mitsuba variant (default: llvm_ad_rgb if it works)")
+    ap.add_argument("--timing", action="store_true",
+                    help="only measure sample()'s cost per sample in scalar_rgb and llvm_ad_rgb")
     a = ap.parse_args(argv)
+    bsdfs = [b for b in a.bsdfs.split(",") if b]
+    for b in bsdfs:
+        if b not in ma.BSDF_CONFIGS:
+            sys.exit("unknown BSDF %r (known: %s)" % (b, ", ".join(ma.BSDF_CONFIGS)))
+    if a.timing:
+        print("\n".join(timing(bsdfs)))
+        return
     if a.quick:
         a.seeds, a.power_seeds = min(a.seeds, 3), min(a.power_seeds, 3)
     grid = (1000, 10_000, 100_000, 1_000_000) if a.quick else N_GRID
     variant = ma.use_variant(a.variant)
     if not ma.is_jit():
         sys.exit("Mitsuba's ChiSquareTest needs a JIT variant (llvm_ad_rgb); this one is %s" % variant)
-    bsdfs = [b for b in a.bsdfs.split(",") if b]
     bugs = [None if b == "none" else b for b in a.bugs.split(",") if b]
-    for b in bsdfs:
-        if b not in ma.BSDF_CONFIGS:
-            sys.exit("unknown BSDF %r (known: %s)" % (b, ", ".join(ma.BSDF_CONFIGS)))
     t0 = time.time()
     out = []
     p = out.append
