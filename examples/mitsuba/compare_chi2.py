@@ -173,7 +173,7 @@ def main(argv=None):
     if None in bugs:
         p("")
         p("False rejections on the correct BSDFs (dielectric_ggx_all left out: Mitsuba's own weight "
-          "bug, see above): ")
+          "bug, see above):")
         ok_names = [n for n in bsdfs if n != "dielectric_ggx_all"]
         for i, label in enumerate(("Mitsuba chi2", "mcstat", "mcstat stochastic")):
             rows = [r for n in ok_names for r in summary[(n, None)][i]]
