@@ -137,6 +137,9 @@ def main(argv=None):
     if not ma.is_jit():
         sys.exit("Mitsuba's ChiSquareTest needs a JIT variant (llvm_ad_rgb); this one is %s" % variant)
     bugs = [None if b == "none" else b for b in a.bugs.split(",") if b]
+    for b in bugs:
+        if b is not None and b not in ma.PLANTED_BUGS:
+            sys.exit("unknown bug %r (known: none, %s)" % (b, ", ".join(ma.PLANTED_BUGS)))
     t0 = time.time()
     out = []
     p = out.append
@@ -179,8 +182,8 @@ def main(argv=None):
             rows = [r for n in ok_names for r in summary[(n, None)][i]]
             if rows:
                 p("- %s: %s" % (label, rate(rows)))
-    if not a.no_power:
-        pbugs = [b for b in bugs if b in ("sampler", "pdf")]
+    pbugs = [b for b in bugs if b in ("sampler", "pdf")]
+    if pbugs and not a.no_power:
         p("")
         p("### Smallest n of %s detecting in >= 90%% of %d seeds (bugs' factor %g)" % (
             "/".join(format(x, ",") for x in grid), a.power_seeds, a.factor))
