@@ -88,14 +88,14 @@ def unregistered(known_py, known_c):
         name = os.path.basename(path)
         if name not in NOT_BENCHMARKS and name not in known_py:
             missing.append(name)
-    for path in sorted(glob.glob(os.path.join(HERE, "*.c"))):
-        name = os.path.basename(path)[:-2]
+    for path in sorted(glob.glob(os.path.join(HERE, "*.c")) + glob.glob(os.path.join(HERE, "*.cpp"))):
+        name = os.path.splitext(os.path.basename(path))[0]
         if name not in known_c:
             missing.append(os.path.basename(path))
     return missing
 
 
-C_BENCHES = ("bench_moments", "bench_check", "ks_bench", "bench_estimators")
+C_BENCHES = ("bench_moments", "bench_check", "check_cost", "ks_bench", "bench_estimators")
 PY_BENCHES = ("bench_python.py", "bench_ks_python.py", "bench_estimators_numpy.py", "ks_numpy.py",
               "bench_image.py")
 
@@ -134,6 +134,17 @@ def main():
                  f"`{args.build}/bench/bench_check 7` (one thread; target: < 2 ns per added sample; "
                  "bench/RESULTS_check.md explains the measurement). The baseline is the same Monte Carlo loop "
                  "without the check, in the same process; NumPy has no per-sample hook to compare with.\n\n"
+                 "```\n" + out.strip() + "\n```")
+
+    # ---- renderer checks: the check's own cost beyond the renderer's callbacks ----
+    n = "2e4" if args.quick else "1e5"
+    out = run([exe["check_cost"], n, "3" if args.quick else "5"])
+    parts.append("## Renderer checks: the check's own cost per sample\n\n"
+                 f"`{args.build}/bench/check_cost {n}` (one thread): `mcstat_check_bsdf` with default options on "
+                 "the GGX conductor of examples/cpp_bsdf, in float32 and in double. The baseline is the same "
+                 "callback calls (recorded from one check: same batches, same inputs) replayed without the check, "
+                 "in the same process; the check's own cost is the difference per tested sample, set against the "
+                 "BSDF's own sample() cost per sample. NumPy has no counterpart.\n\n"
                  "```\n" + out.strip() + "\n```")
 
     # ---- Python against SciPy / NumPy ---------------------------------------------

@@ -1347,6 +1347,17 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*   RECIPROCITY  eval(wi, x)/|x.z| == eval(x, wi)/|wi.z| at up to 1000     */
 /*                sampled points (deterministic; only when asked: BSDFs      */
 /*                with refraction are not reciprocal in radiance).           */
+/*   KS           the sampler's weighted distribution against eval's, point  */
+/*                by point rather than by region: the sampled points kept    */
+/*                with probability weight/W (W 1.25 times the pilot's       */
+/*                largest weight: importance resampling, so the kept points  */
+/*                follow eval if the weights are right) against points drawn */
+/*                from eval by rejection from the eval-only estimator's      */
+/*                table (the envelope 1.25 times the largest eval/table of   */
+/*                its first half; its second half are the proposals), by     */
+/*                the two-sample K-S test with Canner's weight on Morton     */
+/*                keys of the equal-area square.  An envelope exceeded makes */
+/*                the route INVALID (the report says which).                 */
 /* Heavy tails: INTEGRALS and ENERGY need finite variance.  When the Hill   */
 /* tail index of the weights (or of the eval-only estimates) is below 2,    */
 /* those routes are INVALID (not run) and the report says why.              */
@@ -1366,11 +1377,12 @@ enum mcstat_check_route {
     MCSTAT_CHECK_INTEGRALS = 5,
     MCSTAT_CHECK_ENERGY = 6,
     MCSTAT_CHECK_RECIPROCITY = 7,
-    MCSTAT_CHECK_ROUTES = 8 /* number of routes */
+    MCSTAT_CHECK_KS = 8,
+    MCSTAT_CHECK_ROUTES = 9 /* number of routes */
 };
 
 /* "cells", "mass", "pdf_value", "weight", "support", "integrals", "energy",
- * "reciprocity" and back. */
+ * "reciprocity", "ks" and back. */
 MCSTAT_API const char *mcstat_check_route_name(int route); /* NULL if invalid */
 MCSTAT_API int mcstat_check_route_parse(const char *name, int *route);
 
@@ -1391,14 +1403,18 @@ typedef struct mcstat_check_options {
     int32_t stochastic;    /* 1: weight and pdf are estimates (layered BSDFs): PDF_VALUE and
                               WEIGHT are skipped, INTEGRALS checks them; default 0 */
     int32_t reciprocal;    /* 1: run RECIPROCITY; default 0 */
-    int32_t cells;         /* cells for CELLS; 0 (default): 2 n^0.4, within [8, 8192] */
-    int32_t reserved_i;
-    uint64_t n_pilot;      /* pilot samples for the cells; 0 (default): 32 per cell */
-    uint64_t n_eval;       /* points of the eval-only estimator; 0 (default): n */
-    uint64_t batch;        /* points per callback call; default 65536 */
-    double rtol;           /* relative tolerance of the deterministic routes; default 1e-3
-                              (renderers computing in float32 differ at ~1e-6) */
+    int32_t cells;         /* target cells for CELLS, 0 or 2..2^20; 0 (default): 2 n^0.4 within
+                              [8, 8192]; the tree gives within a factor 1.4 of it */
+    int32_t reserved_i;    /* zero */
+    uint64_t n_pilot;      /* pilot samples for the cells, 0 or >= 64 (at most 2^40); 0
+                              (default): 32 per target cell */
+    uint64_t n_eval;       /* points of the eval-only estimator, 0 or >= 1000; 0 (default): n */
+    uint64_t batch;        /* points per callback call, 64..2^32; default 65536 */
+    double rtol;           /* relative tolerance of the deterministic routes, in (0, 1); default
+                              1e-3 (renderers computing in float32 differ at ~1e-6) */
     double reserved[4];    /* zero */
+    /* routes must not be 0; reserved fields and the model's must be zero
+     * (later releases may give them a meaning): MCSTAT_EINVAL otherwise. */
 } mcstat_check_options;
 
 #define MCSTAT_CHECK_ALL_ROUTES ((1u << MCSTAT_CHECK_ROUTES) - 1u)
@@ -1485,8 +1501,10 @@ typedef struct mcstat_check_report {
 /* uniforms does not depend on batch; alpha in (0, 1) is the level of the   */
 /* whole battery; opt may be NULL (the defaults).                            */
 /* Scratch: work of work_bytes >= mcstat_check_work_size(...) bytes, aligned */
-/* to 16, or work NULL (allocated and freed inside the call).  About 56 n + */
-/* 40 n_eval + 2200 cells + batch (8 dims + 64) bytes.                      */
+/* to 16, or work NULL (allocated and freed inside the call).  About 16 n + */
+/* 12 n_eval + 16 n_pilot + 12 KB per target cell + (76 + 16 dims +         */
+/* 8 n_uniforms) per batch point: 15 MB at n = 1e5 with the defaults, 44 MB */
+/* at 1e6 (most of it the batch and the cubature's rectangles).             */
 /*   mcstat_check_bsdf     wi a direction (normalised inside; wi.z may be   */
 /*                         negative: light arriving from below); ENERGY,     */
 /*                         RECIPROCITY apply;                                */
@@ -1495,11 +1513,12 @@ typedef struct mcstat_check_report {
 /*   mcstat_check_warp     eval ignored (CELLS, MASS, and PDF_VALUE when     */
 /*                         sample_reports).                                  */
 /* Cost: the callbacks are called about n + n_pilot times for samples,      */
-/* 2 n + 2 n_eval times for eval and pdf, and 17 times per cubature        */
-/* rectangle (about 12 per cell); its own work is a few hundred ns per      */
+/* n + n_eval times each for eval and pdf, and pdf 17 times per cubature    */
+/* rectangle (2 to 40 per cell); the check's own work is about 300 ns per   */
 /* sample (bench/RESULTS.md).                                                */
 /* Statuses: MCSTAT_EINVAL (NULL model, callbacks or out, a bad domain,      */
-/* n_uniforms or weight, n < 1000, alpha outside (0, 1), an options size    */
+/* n_uniforms or weight, a BSDF or emitter without eval or with             */
+/* sample_reports 0, n < 1000, alpha outside (0, 1), an options size        */
 /* this library does not know, a bad option, work too small or misaligned,  */
 /* wi zero or not finite), MCSTAT_ETOOBIG (n beyond 2^48 or sizes whose     */
 /* scratch overflows), MCSTAT_ENOMEM, MCSTAT_ECALLBACK (a callback returned */

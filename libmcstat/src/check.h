@@ -34,6 +34,10 @@ MCSTAT_HIDDEN void mcstat__domain_point(const mcstat__domain *d, double s, doubl
  * -1e-4, the square and interval within 1e-6 of [0, 1], the disk's radius
  * within 1 + 1e-6), or not finite. */
 MCSTAT_HIDDEN int mcstat__domain_coords(const mcstat__domain *d, const double *x, double *s, double *t);
+/* The Morton key of (s, t): each quantised to 32 bits, s's bit b at key bit
+ * 2b + 1 and t's at 2b (libmcest's mcest_direction_key on directions);
+ * 1-D domains: s quantised to 64 bits. */
+MCSTAT_HIDDEN uint64_t mcstat__domain_key(const mcstat__domain *d, double s, double t);
 
 /* ---- uniforms ---------------------------------------------------------------
  * Counter-based: number `index` of stream `stream` under `seed` is a pure
@@ -70,12 +74,15 @@ typedef struct mcstat__cell {
     double prob, err; /* integral of pdf over the cell, its estimated error */
     int32_t n_rects;  /* cubature rectangles in the cell */
     int32_t group;    /* the region (a run of consecutive cells) it belongs to */
+    uint64_t p_first, p_count; /* its pilot points: st[2 p_first ..] of the tree's pilot */
 } mcstat__cell;
 
 typedef struct mcstat__tree {
     mcstat__node *nodes;
     mcstat__cell *cells;
     int32_t n_nodes, n_cells, max_nodes, max_cells;
+    double *st;        /* the pilot's (s, t) pairs, grouped by cell (then by rectangle) */
+    uint64_t n_points;
 } mcstat__tree;
 
 /* Nodes and cells a tree over m pilot points with `leaf` points per leaf
@@ -83,7 +90,7 @@ typedef struct mcstat__tree {
 MCSTAT_HIDDEN size_t mcstat__tree_max_cells(uint64_t m, int leaf);
 /* Builds the tree from the pilot's (s, t) pairs st[0..2m) (reordered):
  * nodes split at the median of their points along s and t in turn while
- * they hold at least 2 leaf points; `horizon` cuts the root at s = 1/2
+ * they hold at least 1.4 leaf points; `horizon` cuts the root at s = 1/2
  * first (the sphere: upper and lower hemispheres apart). */
 MCSTAT_HIDDEN void mcstat__tree_build(mcstat__tree *tr, const mcstat__domain *d, double *st, uint64_t m, int leaf,
                                       int horizon);
@@ -95,13 +102,18 @@ MCSTAT_HIDDEN int32_t mcstat__tree_locate(const mcstat__tree *tr, double s, doub
  * density(x(s, t)) * jacobian over the cell.  A cell is done when its
  * error estimate is at most tol_scale * sqrt(prob) (plus 1e-15); rectangles
  * whose error share is above the cell's average are halved along the axis
- * of the larger fourth difference.  At most max_rects rectangles.
+ * of the larger fourth difference.  A rule's 17 points can all miss a thin
+ * feature (the rim of a cone of directions, a sliver of support), so the
+ * pilot points guide it too: a rectangle holding pilot points far beyond
+ * what its integral predicts is halved as well.  At most max_rects
+ * rectangles.
  * `density` is called with up to `batch` points (x in xbuf, results in
  * fbuf).  Returns the callback's status (non-zero stops). */
 typedef int (*mcstat__density_cb)(void *ctx, const double *x, size_t n, double *out);
 typedef struct mcstat__rect {
     double s0, s1, t0, t1, est, err;
     int32_t cell, axis;
+    uint64_t p0, p1; /* its pilot points: st[2 p0 .. 2 p1) */
 } mcstat__rect;
 MCSTAT_HIDDEN int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__density_cb density,
                                           void *ctx, double tol_scale, mcstat__rect *rects, size_t max_rects,

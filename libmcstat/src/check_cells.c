@@ -24,7 +24,7 @@
 
 size_t mcstat__tree_max_cells(uint64_t m, int leaf)
 {
-    return (size_t)(2 * (m / (uint64_t)leaf) + 4);
+    return (size_t)(3 * (m / (uint64_t)leaf) + 4);
 }
 
 static void swap_pair(double *st, uint64_t i, uint64_t j)
@@ -67,11 +67,14 @@ static void select_pairs(double *st, uint64_t n, uint64_t k, int axis)
     }
 }
 
-static int32_t add_leaf(mcstat__tree *tr, int32_t node, double s0, double s1, double t0, double t1)
+static int32_t add_leaf(mcstat__tree *tr, int32_t node, const double *st, uint64_t m, double s0, double s1, double t0,
+                        double t1)
 {
     int32_t c = tr->n_cells++;
     mcstat__cell *cell = &tr->cells[c];
     memset(cell, 0, sizeof *cell);
+    cell->p_first = (uint64_t)(st - tr->st) / 2;
+    cell->p_count = m;
     cell->s0 = s0;
     cell->s1 = s1;
     cell->t0 = t0;
@@ -94,7 +97,9 @@ static void build_node(mcstat__tree *tr, const mcstat__domain *d, int32_t node, 
         for (uint64_t i = 0; i < m; i++)
             if (st[2 * i] < split)
                 swap_pair(st, i, k++);
-    } else if (m >= 2 * (uint64_t)leaf && depth < 48 && have_room) {
+    } else if (10 * m >= 14 * (uint64_t)leaf && depth < 48 && have_room) {
+        /* split from 1.4 leaf points: leaves of 0.7..1.4 leaf points, so
+         * that their number is within a factor 1.4 of pilot/leaf */
         int first = d->two_d ? (depth & 1) : 0;
         for (int attempt = 0; attempt < (d->two_d ? 2 : 1) && axis < 0; attempt++) {
             int a = first ^ attempt;
@@ -111,7 +116,7 @@ static void build_node(mcstat__tree *tr, const mcstat__domain *d, int32_t node, 
         }
     }
     if (axis < 0) {
-        add_leaf(tr, node, s0, s1, t0, t1);
+        add_leaf(tr, node, st, m, s0, s1, t0, t1);
         return;
     }
     int32_t left = tr->n_nodes++, right = tr->n_nodes++;
@@ -133,6 +138,8 @@ void mcstat__tree_build(mcstat__tree *tr, const mcstat__domain *d, double *st, u
 {
     tr->n_nodes = 1;
     tr->n_cells = 0;
+    tr->st = st;
+    tr->n_points = m;
     build_node(tr, d, 0, st, m, 0.0, 1.0, 0.0, 1.0, 0, leaf, horizon);
 }
 
@@ -223,6 +230,21 @@ static int evaluate_dirty(mcstat__rect *rects, size_t nr, const mcstat__domain *
     return 0;
 }
 
+/* Does the rectangle hold many more pilot points than its integral
+ * predicts (a feature its rule's points missed)?  At least 2 points and 16
+ * times the expectation, or any point where the integral is not positive;
+ * rectangles below 1e-12 of the square are left alone. */
+static int pilot_disagrees(const mcstat__rect *r, uint64_t n_points, double mass)
+{
+    uint64_t count = r->p1 - r->p0;
+    if (count == 0 || n_points == 0 || (r->s1 - r->s0) * (r->t1 - r->t0) < 1e-12)
+        return 0;
+    if (!(r->est > 0.0) || !(mass > 0.0))
+        return 1;
+    double expected = (double)n_points * r->est / mass;
+    return count >= 2 && 16.0 * expected < (double)count;
+}
+
 static void sum_cells(mcstat__tree *tr, const mcstat__rect *rects, size_t nr)
 {
     for (int32_t c = 0; c < tr->n_cells; c++) {
@@ -245,7 +267,8 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
     int32_t nc = tr->n_cells;
     for (int32_t c = 0; c < nc && nr < max_rects; c++) {
         const mcstat__cell *cell = &tr->cells[c];
-        mcstat__rect r = {cell->s0, cell->s1, cell->t0, cell->t1, 0.0, 0.0, c, -1};
+        mcstat__rect r = {cell->s0, cell->s1, cell->t0, cell->t1, 0.0, 0.0, c, -1,
+                          cell->p_first, cell->p_first + cell->p_count};
         rects[nr++] = r;
     }
     int st = evaluate_dirty(rects, nr, d, density, ctx, xbuf, fbuf, batch);
@@ -254,12 +277,16 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
         sum_cells(tr, rects, nr);
         /* halve the rects carrying at least their cell's average error, in
          * cells above tolerance */
+        double mass = 0.0;
+        for (int32_t c = 0; c < nc; c++)
+            mass += fmax(tr->cells[c].prob, 0.0);
         size_t n_split = 0, nr0 = nr;
         for (size_t i = 0; i < nr0 && nr < max_rects; i++) {
             mcstat__rect *r = &rects[i];
             const mcstat__cell *cell = &tr->cells[r->cell];
             double tol = tol_scale * sqrt(fmax(cell->prob, 0.0)) + 1e-15;
-            if (!(cell->err > tol) || !(r->err * cell->n_rects >= cell->err))
+            int refine = cell->err > tol && r->err * cell->n_rects >= cell->err;
+            if (!refine && !pilot_disagrees(r, tr->n_points, mass))
                 continue;
             mcstat__rect b = *r;
             if (r->axis == 0) {
@@ -271,6 +298,12 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
                 r->t1 = mid;
                 b.t0 = mid;
             }
+            /* the pilot points follow their halves */
+            uint64_t q = r->p0;
+            for (uint64_t j = r->p0; j < r->p1; j++)
+                if (tr->st[2 * j + r->axis] < (r->axis == 0 ? r->s1 : r->t1))
+                    swap_pair(tr->st, j, q++);
+            r->p1 = b.p0 = q;
             r->axis = b.axis = -1;
             rects[nr++] = b;
             n_split++;

@@ -135,3 +135,28 @@ int mcstat__domain_coords(const mcstat__domain *d, const double *x, double *s, d
     *t = d->dims == 2 ? clamp01(x[1]) : 0.5;
     return 0;
 }
+
+static uint64_t spread32(uint64_t x)
+{
+    x &= 0xffffffffull;
+    x = (x | (x << 16)) & 0x0000ffff0000ffffull;
+    x = (x | (x << 8)) & 0x00ff00ff00ff00ffull;
+    x = (x | (x << 4)) & 0x0f0f0f0f0f0f0f0full;
+    x = (x | (x << 2)) & 0x3333333333333333ull;
+    x = (x | (x << 1)) & 0x5555555555555555ull;
+    return x;
+}
+
+static uint64_t quantise(double v, double scale, uint64_t top)
+{
+    double q = floor(v * scale);
+    return q <= 0.0 ? 0 : (q >= (double)top ? top : (uint64_t)q);
+}
+
+uint64_t mcstat__domain_key(const mcstat__domain *d, double s, double t)
+{
+    if (!d->two_d)
+        return quantise(s, 0x1.0p64, UINT64_MAX - 2047); /* the largest double below 2^64 */
+    uint64_t qs = quantise(s, 0x1.0p32, 0xffffffffull), qt = quantise(t, 0x1.0p32, 0xffffffffull);
+    return (spread32(qs) << 1) | spread32(qt);
+}

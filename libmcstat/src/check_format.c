@@ -11,7 +11,7 @@
 #include <stdio.h>
 
 static const char *const route_names[MCSTAT_CHECK_ROUTES] = {
-    "cells", "mass", "pdf_value", "weight", "support", "integrals", "energy", "reciprocity"};
+    "cells", "mass", "pdf_value", "weight", "support", "integrals", "energy", "reciprocity", "ks"};
 
 static const char *const route_meanings[MCSTAT_CHECK_ROUTES] = {
     "sample() draws from the density pdf() claims (chi-squared on cells of equal probability)",
@@ -21,7 +21,8 @@ static const char *const route_meanings[MCSTAT_CHECK_ROUTES] = {
     "eval() is positive only where pdf() is (no part of the integrand is never sampled)",
     "integrals of eval() over regions agree between the sample weights and an eval-only estimator (Wald test)",
     "the albedo, the mean weight, is at most 1 (one-sided t test)",
-    "eval(wi, wo)/|cos wo| equals eval(wo, wi)/|cos wi|"};
+    "eval(wi, wo)/|cos wo| equals eval(wo, wi)/|cos wi|",
+    "the sampled points, resampled by their weights, follow eval() (K-S with Canner's weight on Morton keys)"};
 
 static const char *const route_blind_spots[MCSTAT_CHECK_ROUTES] = {
     "a pdf() off by a constant factor; anything about eval() and the weights",
@@ -31,7 +32,8 @@ static const char *const route_blind_spots[MCSTAT_CHECK_ROUTES] = {
     "regions neither the sample nor the eval-only points reach",
     "errors that cancel within a region; needs finite variance",
     "energy lost rather than gained; needs finite variance",
-    "BSDFs that are not reciprocal by design (refraction in radiance mode)"};
+    "BSDFs that are not reciprocal by design (refraction in radiance mode)",
+    "eval() and the weights wrong together; weights beyond the pilot's envelope (then no answer)"};
 
 const char *mcstat_check_route_name(int route)
 {
@@ -114,11 +116,19 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
         return;
     }
     if (rr->state == MCSTAT_ROUTE_INVALID) {
-        put(t, "no answer: %s\n",
-            r->heavy_tailed && (i == MCSTAT_CHECK_INTEGRALS || i == MCSTAT_CHECK_ENERGY)
-                ? "the weights are heavy-tailed (tail index below 2: infinite variance), a mean test would be "
-                  "invalid"
-                : "too little to test (too few samples, cells or regions with mass)");
+        int heavy_w = r->tail_index[0] < 2.0, heavy_v = r->tail_index[1] < 2.0;
+        if ((i == MCSTAT_CHECK_ENERGY && heavy_w) || (i == MCSTAT_CHECK_INTEGRALS && (heavy_w || heavy_v))) {
+            put(t, "no answer: %s heavy-tailed (tail index below 2: infinite variance), a mean test would be "
+                   "invalid\n",
+                heavy_w && heavy_v ? "the weights and the eval-only estimates are"
+                                   : (heavy_w ? "the weights are" : "the eval-only estimates are"));
+        } else if (i == MCSTAT_CHECK_KS && rr->count > 0) {
+            put(t, "no answer: %s exceeded its envelope at ", rr->count == 1 ? "a weight" : "eval/table");
+            put_point(t, rr->where, dims);
+            put(t, " (%.6g > %.6g), so the kept points would not follow eval\n", rr->value[0], rr->value[1]);
+        } else {
+            put(t, "no answer: too little to test (too few samples, cells, regions or kept points)\n");
+        }
         return;
     }
     if (rr->deterministic && i != MCSTAT_CHECK_ENERGY) {
@@ -143,6 +153,10 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
     case MCSTAT_CHECK_CELLS: put(t, "X-squared = %.4g, df = %.0f", rr->statistic, rr->df); break;
     case MCSTAT_CHECK_MASS: put(t, "success share %.6g vs mass %.6g", rr->statistic, r->mass); break;
     case MCSTAT_CHECK_INTEGRALS: put(t, "W = %.4g, df = %.0f", rr->statistic, rr->df); break;
+    case MCSTAT_CHECK_KS:
+        put(t, "D2 = %.4g (Canner), %llu resampled points vs %llu from eval", rr->statistic,
+            (unsigned long long)rr->count, (unsigned long long)(rr->checked - rr->count));
+        break;
     default: put(t, "t = %.4g, df = %.0f", rr->statistic, rr->df); break;
     }
     put(t, ", p-value = ");
@@ -178,6 +192,13 @@ static void put_budget(text *t, const mcstat_check_report *r, int i)
         put_g(t, "%.3g", rr->n_for_1pct);
         put(t, " samples\n");
         break;
+    case MCSTAT_CHECK_KS:
+        put(t, "a sup distance of about ");
+        put_g(t, "%.3g", rr->detectable);
+        put(t, " between the CDFs (probability ~0.5); 0.01 needs ");
+        put_g(t, "%.3g", rr->n_for_1pct);
+        put(t, " samples\n");
+        break;
     case MCSTAT_CHECK_ENERGY:
         put(t, "albedo above 1 by ");
         put_g(t, "%.3g", rr->detectable);
@@ -199,6 +220,9 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
     if (!r || (!buf && size > 0) || r->kind < 0 || r->kind > MCSTAT_CHECK_KIND_WARP ||
         mcstat_check_domain_dims(r->domain) == 0)
         return MCSTAT_EINVAL;
+    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+        if (r->route[i].state < MCSTAT_ROUTE_RAN || r->route[i].state > MCSTAT_ROUTE_INVALID)
+            return MCSTAT_EINVAL;
     text t = {buf, size, 0};
     put(&t, "\n\t%s\n\n", kind_title(r->kind));
     if (r->kind == MCSTAT_CHECK_KIND_BSDF)

@@ -31,7 +31,8 @@
 #define CUBATURE_SHARE 0.05 /* cubature error target, in sampling sd of a cell's count */
 #define POWER_Z 0.8416212335729143 /* z of power 0.8 */
 
-enum { STREAM_PILOT = 1, STREAM_TEST = 2, STREAM_EVAL = 3 };
+enum { STREAM_PILOT = 1, STREAM_TEST = 2, STREAM_EVAL = 3, STREAM_KEEP_SAMPLE = 4, STREAM_KEEP_EVAL = 5 };
+#define ENVELOPE_MARGIN 1.25 /* the KS route's envelopes: 1.25 times the largest ratio seen */
 
 static const uint32_t known_sizes[] = {MCSTAT_CHECK_OPTIONS_SIZE_0_2};
 
@@ -58,10 +59,15 @@ typedef struct plan {
 
 typedef struct scratch {
     double *u, *x, *w, *p, *xs, *ws, *ps, *f, *p2; /* one batch each */
+    double *sb;                                    /* (s, t) of a batch's points: 2 per point */
+    int32_t *cellb;                                /* the cell of each compacted point */
     double *st;                                    /* pilot (s, t): 2 n_pilot */
     double *wsave, *vsave;                         /* weights and eval-only values: n, n_eval */
+    double *keys_a, *keys_b;                       /* KS: kept sampled points' keys (n), eval's (n_eval/2) */
+    uint64_t *keyb;                                /* the key of each compacted point */
     double *recip;                                 /* reciprocity points: 4 each */
-    double *counts, *cdf;                          /* per cell */
+    double *counts;                                /* per cell */
+    double *cdf;                                   /* per cubature rectangle */
     mcstat__node *nodes;
     mcstat__cell *cells;
     mcstat__rect *rects;
@@ -93,12 +99,17 @@ static int carve(const plan *pl, char *base, scratch *s, size_t *bytes)
     TAKE(s->ps, B, double);
     TAKE(s->f, B, double);
     TAKE(s->p2, B, double);
+    TAKE(s->sb, 2 * B, double);
+    TAKE(s->cellb, B, int32_t);
     TAKE(s->st, 2 * pl->n_pilot, double);
     TAKE(s->wsave, pl->n, double);
     TAKE(s->vsave, pl->n_eval, double);
+    TAKE(s->keys_a, pl->n, double);
+    TAKE(s->keys_b, pl->n_eval / 2 + 1, double);
+    TAKE(s->keyb, B, uint64_t);
     TAKE(s->recip, 4 * RECIPROCITY_POINTS, double);
     TAKE(s->counts, pl->max_cells, double);
-    TAKE(s->cdf, pl->max_cells, double);
+    TAKE(s->cdf, pl->max_rects, double);
     TAKE(s->nodes, 2 * pl->max_cells, mcstat__node);
     TAKE(s->cells, pl->max_cells, mcstat__cell);
     TAKE(s->rects, pl->max_rects, mcstat__rect);
@@ -132,7 +143,12 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
         return MCSTAT_EINVAL;
     if ((uint64_t)n > (1ull << 48))
         return MCSTAT_ETOOBIG;
-    if (o->routes & ~MCSTAT_CHECK_ALL_ROUTES)
+    if (o->routes == 0 || (o->routes & ~MCSTAT_CHECK_ALL_ROUTES))
+        return MCSTAT_EINVAL;
+    for (int i = 0; i < 4; i++)
+        if (m->reserved[i] != 0.0 || o->reserved[i] != 0.0)
+            return MCSTAT_EINVAL; /* kept zero, so that later releases can give them a meaning */
+    if (o->reserved_i != 0)
         return MCSTAT_EINVAL;
     if ((o->stochastic != 0 && o->stochastic != 1) || (o->reciprocal != 0 && o->reciprocal != 1))
         return MCSTAT_EINVAL;
@@ -214,12 +230,19 @@ typedef struct run {
     scratch s;
     mcstat__tree tr;
     mcstat_check_report *out;
-    uint64_t key_pilot, key_test, key_eval;
+    uint64_t key_pilot, key_test, key_eval, key_keep_sample, key_keep_eval;
+    /* KS: envelopes, their breaches, the points kept */
+    double w_envelope, v_largest, v_envelope;
+    int w_breach, v_breach;
+    double breach_x[3], breach_v[2];
+    uint64_t n_keys_a, n_keys_b;
     double rtol;
     /* deterministic comparisons: points beyond tolerance and the worst */
     uint64_t bad[MCSTAT_CHECK_ROUTES], checked[MCSTAT_CHECK_ROUTES];
     double worst[MCSTAT_CHECK_ROUTES], worst_x[MCSTAT_CHECK_ROUTES][3], worst_v[MCSTAT_CHECK_ROUTES][2];
     uint64_t pdf_without_eval; /* pdf > 0 where eval = 0 (counted, not a failure) */
+    size_t n_rects;            /* cubature rectangles: a fine partition of the domain */
+    uint64_t seed;
 } run;
 
 static void format_point(const run *r, const double *x, char *buf, size_t size)
@@ -241,7 +264,24 @@ static int fail(run *r, const char *fmt, ...)
     return MCSTAT_ECALLBACK;
 }
 
-static int call_sample(run *r, uint64_t key, uint64_t first, size_t k)
+/* Why x is off the domain, in words. */
+static const char *domain_rule(const mcstat__domain *d, const double *x)
+{
+    for (int c = 0; c < d->dims; c++)
+        if (!isfinite(x[c]))
+            return "its coordinates must be finite";
+    switch (d->kind) {
+    case MCSTAT_DOMAIN_SPHERE: return "a direction must have unit length within 1e-4";
+    case MCSTAT_DOMAIN_HEMISPHERE:
+        return fabs(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1.0) <= 2e-4
+                   ? "a direction must have z >= 0 (below the horizon: use the sphere domain)"
+                   : "a direction must have unit length within 1e-4";
+    case MCSTAT_DOMAIN_DISK: return "x^2 + y^2 must be at most 1";
+    default: return "coordinates must lie in [0, 1]";
+    }
+}
+
+static int call_sample(run *r, uint64_t key, const char *stream, uint64_t first, size_t k)
 {
     const plan *pl = &r->pl;
     size_t nu = (size_t)pl->nu;
@@ -258,25 +298,27 @@ static int call_sample(run *r, uint64_t key, uint64_t first, size_t k)
     r->out->calls++;
     int st = r->m->sample(r->m->user, r->wi, r->s.u, k, r->s.x, r->s.w, r->s.p);
     if (st)
-        return fail(r, "sample() returned status %d (call with %zu points starting at sample %llu)", st, k,
-                    (unsigned long long)first);
+        return fail(r, "sample() returned status %d (call with %zu points from sample %llu of the %s)", st, k,
+                    (unsigned long long)first, stream);
     for (size_t i = 0; i < k; i++) {
         double w = r->s.w[i], p = r->s.p[i];
+        if (isfinite(p) && p >= 0.0 && isfinite(w) && w >= 0.0 && p == 0.0)
+            continue; /* a failed sample: its point is not looked at */
+        if (isfinite(p) && p >= 0.0 && isfinite(w) && w >= 0.0 &&
+            !mcstat__domain_coords(&pl->d, r->s.x + i * pl->d.dims, &r->s.sb[2 * i], &r->s.sb[2 * i + 1]))
+            continue;
+        /* something is wrong with this sample: say what */
         char pt[128];
         format_point(r, r->s.x + i * pl->d.dims, pt, sizeof pt);
         if (!isfinite(p) || p < 0.0)
-            return fail(r, "sample() returned pdf %.17g at sample %llu (point %s): a density must be finite and >= 0",
-                        p, (unsigned long long)(first + i), pt);
+            return fail(r, "sample() returned pdf %.17g at sample %llu of the %s (point %s): a density must be finite "
+                        "and >= 0", p, (unsigned long long)(first + i), stream, pt);
         if (!isfinite(w) || w < 0.0)
-            return fail(r, "sample() returned weight %.17g at sample %llu (point %s, pdf %.17g): a weight must be "
-                        "finite and >= 0", w, (unsigned long long)(first + i), pt, p);
-        if (p > 0.0) {
-            double s, t;
-            if (mcstat__domain_coords(&pl->d, r->s.x + i * pl->d.dims, &s, &t))
-                return fail(r, "sample() returned the point %s at sample %llu: not in the %s domain%s", pt,
-                            (unsigned long long)(first + i), mcstat_check_domain_name(pl->d.kind),
-                            pl->d.dims == 3 ? " (a direction must have unit length within 1e-4)" : "");
-        }
+            return fail(r, "sample() returned weight %.17g at sample %llu of the %s (point %s, pdf %.17g): a weight "
+                        "must be finite and >= 0", w, (unsigned long long)(first + i), stream, pt, p);
+        return fail(r, "sample() returned the point %s at sample %llu of the %s: not in the %s domain (%s)", pt,
+                    (unsigned long long)(first + i), stream, mcstat_check_domain_name(pl->d.kind),
+                    domain_rule(&pl->d, r->s.x + i * pl->d.dims));
     }
     return MCSTAT_OK;
 }
@@ -295,8 +337,8 @@ static int call_density(run *r, mcstat_check_density_fn fn, const char *name, co
         if (!isfinite(out[i]) || out[i] < 0.0) {
             char pt[128];
             format_point(r, x + i * r->pl.d.dims, pt, sizeof pt);
-            return fail(r, "%s() returned %.17g at the point %s: %s must be finite and >= 0", name, out[i], pt,
-                        strcmp(name, "pdf") == 0 ? "a density" : "the integrand");
+            return fail(r, "%s() returned %.17g at the point %s (point %zu of a call with %zu): %s must be finite "
+                        "and >= 0", name, out[i], pt, i, n, strcmp(name, "pdf") == 0 ? "a density" : "the integrand");
         }
     return MCSTAT_OK;
 }
@@ -347,19 +389,21 @@ static int pilot_and_cells(run *r)
     uint64_t got = 0;
     for (uint64_t first = 0; first < pl->n_pilot; first += pl->batch) {
         size_t k = (size_t)((pl->n_pilot - first) < pl->batch ? (pl->n_pilot - first) : pl->batch);
-        int st = call_sample(r, r->key_pilot, first, k);
+        int st = call_sample(r, r->key_pilot, "pilot", first, k);
         if (st)
             return st;
         for (size_t i = 0; i < k; i++)
             if (r->s.p[i] > 0.0) {
-                double s, t;
-                mcstat__domain_coords(&pl->d, r->s.x + i * pl->d.dims, &s, &t);
-                r->s.st[2 * got] = s;
-                r->s.st[2 * got + 1] = t;
+                double w = (pl->reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? r->s.w[i] / r->s.p[i] : r->s.w[i];
+                if (w > r->w_envelope)
+                    r->w_envelope = w;
+                r->s.st[2 * got] = r->s.sb[2 * i];
+                r->s.st[2 * got + 1] = r->s.sb[2 * i + 1];
                 got++;
             }
     }
     r->out->n_pilot = pl->n_pilot;
+    r->w_envelope *= ENVELOPE_MARGIN;
     r->tr.nodes = r->s.nodes;
     r->tr.cells = r->s.cells;
     r->tr.max_nodes = (int32_t)(2 * pl->max_cells);
@@ -373,6 +417,7 @@ static int pilot_and_cells(run *r)
                                      r->s.rects, pl->max_rects, r->s.xs, r->s.f, pl->batch, &used);
     if (st)
         return st;
+    r->n_rects = used;
     double mass = 0.0, err = 0.0;
     for (int32_t c = 0; c < r->tr.n_cells; c++) {
         mass += r->tr.cells[c].prob;
@@ -403,7 +448,7 @@ static int tested_sample(run *r, sums *sm)
     int deterministic = !r->o.stochastic;
     for (uint64_t first = 0; first < pl->n; first += pl->batch) {
         size_t k = (size_t)((pl->n - first) < pl->batch ? (pl->n - first) : pl->batch);
-        int st = call_sample(r, r->key_test, first, k);
+        int st = call_sample(r, r->key_test, "tested sample", first, k);
         if (st)
             return st;
         size_t ns = 0;
@@ -416,9 +461,10 @@ static int tested_sample(run *r, sums *sm)
                     compare(r, MCSTAT_CHECK_WEIGHT, x, w, 0.0);
                 continue;
             }
-            double s, t;
-            mcstat__domain_coords(&pl->d, x, &s, &t);
-            r->s.counts[mcstat__tree_locate(&r->tr, s, t)] += 1.0;
+            int32_t c = mcstat__tree_locate(&r->tr, r->s.sb[2 * i], r->s.sb[2 * i + 1]);
+            r->s.counts[c] += 1.0;
+            r->s.cellb[ns] = c;
+            r->s.keyb[ns] = mcstat__domain_key(&pl->d, r->s.sb[2 * i], r->s.sb[2 * i + 1]);
             memcpy(r->s.xs + ns * dims, x, (size_t)dims * sizeof(double));
             r->s.ws[ns] = (pl->reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? w / p : w;
             r->s.ps[ns] = p;
@@ -426,12 +472,13 @@ static int tested_sample(run *r, sums *sm)
         }
         sm->n_succ += ns;
         /* zeros of the failed samples enter the mean weight */
-        if (pl->has_eval) {
-            for (size_t i = 0; i < k - ns; i++) {
-                int s2 = mcstat_moments_add(&sm->all, 0.0);
-                if (s2)
-                    return s2;
-            }
+        if (pl->has_eval && k > ns) {
+            mcstat_moments zeros;
+            int s2 = mcstat_moments_from_summary(k - ns, 0.0, 0.0, &zeros);
+            if (s2 == MCSTAT_OK)
+                s2 = mcstat_moments_merge(&sm->all, &zeros);
+            if (s2)
+                return s2;
         }
         if (ns == 0)
             continue;
@@ -456,12 +503,20 @@ static int tested_sample(run *r, sums *sm)
             compare(r, MCSTAT_CHECK_SUPPORT, x, f > 0.0 && p == 0.0 ? f : 0.0, 0.0);
             if (p > 0.0 && f == 0.0)
                 r->pdf_without_eval++;
-            double s, t;
-            mcstat__domain_coords(&pl->d, x, &s, &t);
-            int g = r->tr.cells[mcstat__tree_locate(&r->tr, s, t)].group;
+            int g = r->tr.cells[r->s.cellb[i]].group;
             sm->a[g] += w;
             sm->a2[g] += w * w;
-            r->s.wsave[sm->n_w++] = w;
+            r->s.wsave[sm->n_w] = w;
+            /* KS: keep the point with probability w / W (importance resampling) */
+            if (w > r->w_envelope && !r->w_breach) {
+                r->w_breach = 1;
+                memcpy(r->breach_x, x, (size_t)dims * sizeof(double));
+                r->breach_v[0] = w;
+                r->breach_v[1] = r->w_envelope;
+            }
+            if (mcstat__uniform(r->key_keep_sample, sm->n_w) * r->w_envelope < w)
+                r->s.keys_a[r->n_keys_a++] = (double)(r->s.keyb[i] >> 11);
+            sm->n_w++;
             if (sm->n_recip < RECIPROCITY_POINTS && f > 0.0 && dims == 3 && fabs(x[2]) > 1e-6) {
                 double *q = r->s.recip + 4 * sm->n_recip++;
                 q[0] = x[0];
@@ -485,18 +540,22 @@ static int eval_only(run *r, sums *sm)
 {
     const plan *pl = &r->pl;
     int dims = pl->d.dims;
-    int32_t nc = r->tr.n_cells;
-    /* the table: cells by pdf's probabilities, mixed with their areas */
+    /* The table: the cubature's rectangles (a partition of the domain,
+     * finer where pdf varies), each drawn with probability proportional to
+     * pdf's integral over it, mixed 9:1 with its area, and uniform inside.
+     * Following pdf closely keeps eval/table close to the sample weights,
+     * so the estimator is nearly as tight as the sampler's and its mean
+     * close to normal at moderate n. */
+    size_t nr = r->n_rects;
+    const mcstat__rect *rects = r->s.rects;
     double mass = 0.0;
-    for (int32_t c = 0; c < nc; c++)
-        mass += fmax(r->tr.cells[c].prob, 0.0);
+    for (size_t i = 0; i < nr; i++)
+        mass += fmax(rects[i].est, 0.0);
     double acc = 0.0;
-    for (int32_t c = 0; c < nc; c++) {
-        const mcstat__cell *cell = &r->tr.cells[c];
-        double area = (cell->s1 - cell->s0) * (cell->t1 - cell->t0);
-        double pi = mass > 0.0 ? (1.0 - DEFENSIVE) * fmax(cell->prob, 0.0) / mass + DEFENSIVE * area : area;
-        acc += pi;
-        r->s.cdf[c] = acc;
+    for (size_t i = 0; i < nr; i++) {
+        double area = (rects[i].s1 - rects[i].s0) * (rects[i].t1 - rects[i].t0);
+        acc += mass > 0.0 ? (1.0 - DEFENSIVE) * fmax(rects[i].est, 0.0) / mass + DEFENSIVE * area : area;
+        r->s.cdf[i] = acc;
     }
     double total = acc;
     for (uint64_t first = 0; first < pl->n_eval; first += pl->batch) {
@@ -504,22 +563,24 @@ static int eval_only(run *r, sums *sm)
         for (size_t i = 0; i < k; i++) {
             uint64_t idx = (first + i) * 3;
             double u = mcstat__uniform(r->key_eval, idx) * total;
-            int32_t lo = 0, hi = nc - 1;
+            size_t lo = 0, hi = nr - 1;
             while (lo < hi) {
-                int32_t mid = lo + (hi - lo) / 2;
+                size_t mid = lo + (hi - lo) / 2;
                 if (r->s.cdf[mid] > u)
                     hi = mid;
                 else
                     lo = mid + 1;
             }
-            const mcstat__cell *cell = &r->tr.cells[lo];
-            double s = cell->s0 + mcstat__uniform(r->key_eval, idx + 1) * (cell->s1 - cell->s0);
-            double t = cell->t0 + mcstat__uniform(r->key_eval, idx + 2) * (cell->t1 - cell->t0);
+            const mcstat__rect *rc = &rects[lo];
+            double s = rc->s0 + mcstat__uniform(r->key_eval, idx + 1) * (rc->s1 - rc->s0);
+            double t = rc->t0 + mcstat__uniform(r->key_eval, idx + 2) * (rc->t1 - rc->t0);
             mcstat__domain_point(&pl->d, s, t, r->s.xs + i * dims);
+            r->s.sb[2 * i] = s;
+            r->s.sb[2 * i + 1] = t;
             double pi = (r->s.cdf[lo] - (lo ? r->s.cdf[lo - 1] : 0.0)) / total;
-            double area = (cell->s1 - cell->s0) * (cell->t1 - cell->t0);
+            double area = (rc->s1 - rc->s0) * (rc->t1 - rc->t0);
             r->s.ps[i] = pi / (area * pl->d.jacobian); /* the table's density */
-            r->s.ws[i] = (double)cell->group;
+            r->s.ws[i] = (double)r->tr.cells[rc->cell].group;
         }
         int st = call_density(r, r->m->eval, "eval", r->s.xs, k, r->s.f);
         if (st)
@@ -532,6 +593,25 @@ static int eval_only(run *r, sums *sm)
             int g = (int)r->s.ws[i];
             sm->b[g] += v;
             sm->b2[g] += v * v;
+            /* KS: the first half sets the envelope, the second half are
+             * the rejection sampler's proposals */
+            uint64_t j = first + i, half = pl->n_eval / 2;
+            if (j < half) {
+                if (v > r->v_largest)
+                    r->v_largest = v;
+            } else {
+                if (j == half)
+                    r->v_envelope = ENVELOPE_MARGIN * r->v_largest;
+                if (v > r->v_envelope && !r->v_breach) {
+                    r->v_breach = 1;
+                    memcpy(r->breach_x + 0, r->s.xs + i * dims, (size_t)dims * sizeof(double));
+                    r->breach_v[0] = v;
+                    r->breach_v[1] = r->v_envelope;
+                }
+                if (mcstat__uniform(r->key_keep_eval, j) * r->v_envelope < v)
+                    r->s.keys_b[r->n_keys_b++] =
+                        (double)(mcstat__domain_key(&pl->d, r->s.sb[2 * i], r->s.sb[2 * i + 1]) >> 11);
+            }
             r->s.vsave[sm->n_v++] = v;
             compare(r, MCSTAT_CHECK_SUPPORT, r->s.xs + i * dims, f > 0.0 && r->s.p2[i] == 0.0 ? f : 0.0, 0.0);
             if (r->s.p2[i] > 0.0 && f == 0.0)
@@ -849,7 +929,7 @@ static void route_integrals(run *r, const sums *sm, double level)
 static void route_energy(run *r, const sums *sm, double level)
 {
     mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ENERGY];
-    if (r->out->heavy_tailed) {
+    if (r->out->tail_index[0] < 2.0) { /* it reads the weights only */
         rr->state = MCSTAT_ROUTE_INVALID;
         return;
     }
@@ -879,6 +959,57 @@ static void route_energy(run *r, const sums *sm, double level)
     double se = sd / sqrt((double)sm->all.n);
     rr->detectable = z * se;
     rr->n_for_1pct = (z * sd / 0.01) * (z * sd / 0.01);
+}
+
+static void route_ks(run *r, double level)
+{
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_KS];
+    uint64_t na = r->n_keys_a, nb = r->n_keys_b;
+    rr->checked = na + nb;
+    if (r->w_breach || r->v_breach) {
+        /* an envelope was exceeded: the kept points do not follow what they should */
+        rr->state = MCSTAT_ROUTE_INVALID;
+        for (int c = 0; c < 3; c++)
+            rr->where[c] = c < r->pl.d.dims ? r->breach_x[c] : NAN;
+        rr->value[0] = r->breach_v[0];
+        rr->value[1] = r->breach_v[1];
+        rr->count = (uint64_t)(r->w_breach ? 1 : 2);
+        return;
+    }
+    if (na < 50 || nb < 50) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    mcstat_ks_options ko;
+    mcstat_ks_options_init(&ko);
+    ko.weight = MCSTAT_KS_WEIGHT_CANNER;
+    ko.critical = 0;
+    uint64_t small = na < nb ? na : nb;
+    if ((double)(small + 1) * (double)(na + nb + 1) <= 4e10) {
+        ko.method = MCSTAT_METHOD_EXACT;
+    } else {
+        ko.method = MCSTAT_METHOD_SIMULATE;
+        ko.n_sim = 2000;
+        ko.seed = r->seed;
+    }
+    mcstat_result res;
+    int st = mcstat_ks_test_2(r->s.keys_a, na, r->s.keys_b, nb, MCSTAT_TWO_SIDED, 0.5, &ko, &res);
+    if (st != MCSTAT_OK) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return;
+    }
+    rr->state = MCSTAT_ROUTE_RAN;
+    rr->count = na;
+    rr->statistic = res.statistic;
+    rr->p_value = res.p_value;
+    double ne = (double)na * (double)nb / (double)(na + nb);
+    rr->effect = res.statistic / sqrt(ne); /* Canner-weighted sup distance of the two CDFs */
+    /* about: the unweighted statistic's critical distance at this level
+     * (Kolmogorov's limit), what is detected with probability ~0.5 */
+    double c = sqrt(-0.5 * log(level / 2));
+    rr->detectable = c / sqrt(ne);
+    double kept = (double)na / (double)r->pl.n;
+    rr->n_for_1pct = 2.0 * (c / 0.01) * (c / 0.01) / (kept > 0.0 ? kept : NAN);
 }
 
 /* ---- the check ---------------------------------------------------------------- */
@@ -930,6 +1061,9 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     r.key_pilot = mcstat__stream_key(seed, STREAM_PILOT);
     r.key_test = mcstat__stream_key(seed, STREAM_TEST);
     r.key_eval = mcstat__stream_key(seed, STREAM_EVAL);
+    r.key_keep_sample = mcstat__stream_key(seed, STREAM_KEEP_SAMPLE);
+    r.key_keep_eval = mcstat__stream_key(seed, STREAM_KEEP_EVAL);
+    r.seed = seed;
     out->kind = kind;
     out->domain = model->domain;
     out->alpha = alpha;
@@ -985,9 +1119,12 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     applies[MCSTAT_CHECK_INTEGRALS] = r.pl.has_eval;
     applies[MCSTAT_CHECK_ENERGY] = bsdf;
     applies[MCSTAT_CHECK_RECIPROCITY] = bsdf && r.o.reciprocal;
-    int statistical[] = {MCSTAT_CHECK_CELLS, MCSTAT_CHECK_MASS, MCSTAT_CHECK_INTEGRALS, MCSTAT_CHECK_ENERGY};
+    applies[MCSTAT_CHECK_KS] = r.pl.has_eval;
+    enum { N_STATISTICAL = 5 };
+    int statistical[N_STATISTICAL] = {MCSTAT_CHECK_CELLS, MCSTAT_CHECK_MASS, MCSTAT_CHECK_INTEGRALS,
+                                      MCSTAT_CHECK_ENERGY, MCSTAT_CHECK_KS};
     int n_stat = 0;
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < N_STATISTICAL; i++)
         if (applies[statistical[i]] && (want & (1u << statistical[i])))
             n_stat++;
     /* the level each statistical route is held to in the worst case of
@@ -1001,6 +1138,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
         case MCSTAT_CHECK_MASS: route_mass(&r, &sm, level); break;
         case MCSTAT_CHECK_INTEGRALS: route_integrals(&r, &sm, level); break;
         case MCSTAT_CHECK_ENERGY: route_energy(&r, &sm, level); break;
+        case MCSTAT_CHECK_KS: route_ks(&r, level); break;
         default: finish_deterministic(&r, i); break;
         }
     }
@@ -1013,9 +1151,9 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     }
 
     /* Holm across the statistical routes that ran */
-    double p[4], adj[4];
-    int idx[4], k = 0;
-    for (int i = 0; i < 4; i++) {
+    double p[N_STATISTICAL], adj[N_STATISTICAL];
+    int idx[N_STATISTICAL], k = 0;
+    for (int i = 0; i < N_STATISTICAL; i++) {
         mcstat_check_route_result *rr = &out->route[statistical[i]];
         if (rr->state == MCSTAT_ROUTE_RAN && !rr->deterministic) {
             p[k] = rr->p_value;
@@ -1024,7 +1162,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     }
     out->p_value = 1.0;
     if (k > 0) {
-        double work_holm[4 * 8];
+        double work_holm[N_STATISTICAL * 8];
         st = mcstat_p_adjust(p, (size_t)k, MCSTAT_P_ADJUST_HOLM, work_holm, sizeof work_holm, adj);
         if (st) {
             free(owned);

@@ -286,7 +286,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
         for (py::handle h : routes) {
             int r = parse_enum(h.ptr(), "routes", mcstat_check_route_parse,
                                "'cells', 'mass', 'pdf_value', 'weight', 'support', 'integrals', 'energy', "
-                               "'reciprocity'");
+                               "'reciprocity', 'ks'");
             o.routes |= 1u << r;
         }
     }
