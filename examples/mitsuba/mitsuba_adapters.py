@@ -3,7 +3,7 @@ and BSDFs with planted bugs that Mitsuba's own chi2 test sees too.
 
 Variants.  In a JIT variant (llvm_ad_rgb) each callable evaluates a whole
 batch in one Dr.Jit kernel; in scalar_rgb it loops in Python (sample() 10 to
-50 times slower per sample, a whole check_bsdf 5 to 10 times: RESULTS.md).  pick_variant() chooses llvm_ad_rgb when
+80 times slower per sample, a whole check_bsdf 6 to 17 times: RESULTS.md).  pick_variant() chooses llvm_ad_rgb when
 it works here and scalar_rgb otherwise.  Dr.Jit's LLVM backend needs a
 libLLVM it can generate code with: LLVM 15 aborts in code generation on some
 CPUs (a process abort, not an exception), so pick_variant() probes llvm in a
