@@ -3,8 +3,9 @@ and BSDFs with planted bugs that Mitsuba's own chi2 test sees too.
 
 Variants.  In a JIT variant (llvm_ad_rgb) each callable evaluates a whole
 batch in one Dr.Jit kernel; in scalar_rgb it loops in Python (sample() 10 to
-80 times slower per sample, a whole check_bsdf 6 to 17 times: RESULTS.md).  pick_variant() chooses llvm_ad_rgb when
-it works here and scalar_rgb otherwise.  Dr.Jit's LLVM backend needs a
+80 times slower per sample, a whole check_bsdf 6 to 17 times: RESULTS.md).
+pick_variant() chooses llvm_ad_rgb when it works here and scalar_rgb
+otherwise.  Dr.Jit's LLVM backend needs a
 libLLVM it can generate code with: LLVM 15 aborts in code generation on some
 CPUs (a process abort, not an exception), so pick_variant() probes llvm in a
 subprocess, and points DRJIT_LIBLLVM_PATH at Debian's libllvm19 when it is
@@ -32,6 +33,7 @@ and a load_dict dictionary) test the same object:
   eval     eval() is the eval of the BSDF with roughness * 1.1; sample() (its
            direction, pdf and weight) correct;
   weight   sample()'s weight is 1.1 * eval/pdf; everything else correct.
+(1.1 is BUG_FACTOR, planted_dict's factor argument.)
 """
 import os
 import subprocess
