@@ -20,8 +20,11 @@
 #   abi         abidw and abidiff (make abi-check)
 #   rust, go    cargo and rustc, or Go, from Debian, only when no toolchain is
 #               on PATH, ~/.cargo/bin or /usr/local/go/bin (make rust-test, go-test)
+#   mitsuba     python + libllvm19: Mitsuba's llvm_ad_rgb variant (Dr.Jit's
+#               LLVM backend; LLVM 15 aborts in code generation on some CPUs),
+#               which examples/mitsuba uses when it runs (else scalar_rgb)
 #   test        everything make test runs (ci/test-steps.mk): python valgrind
-#               fuzz abi rust go.  The sanitizer runtimes of asan-test and
+#               fuzz abi rust go mitsuba.  The sanitizer runtimes of asan-test and
 #               tsan-test come with gcc.
 #   bench       python (make bench, bench-check, bench-python, bench-estimators)
 #   references  python + R (r-base-core: Rscript for tools/refgen's R
@@ -57,7 +60,8 @@ need() {
     abi)        add abigail-tools ;;
     rust)       command -v cargo > /dev/null || add cargo rustc ;;
     go)         command -v go > /dev/null || add golang-go ;;
-    test)       need python; need valgrind; need fuzz; need abi; need rust; need go ;;
+    mitsuba)    need python; add libllvm19 ;;
+    test)       need python; need valgrind; need fuzz; need abi; need rust; need go; need mitsuba ;;
     bench)      need python ;;
     references) need python; add r-base-core ;;
     *) echo "deps-debian.sh: unknown target '$1' (see the top of $0)" >&2; exit 2 ;;
