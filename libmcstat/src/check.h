@@ -97,7 +97,10 @@ MCSTAT_HIDDEN void mcstat__tree_build(mcstat__tree *tr, const mcstat__domain *d,
 MCSTAT_HIDDEN int32_t mcstat__tree_locate(const mcstat__tree *tr, double s, double t);
 
 /* Adaptive cubature of a density over every cell (Genz-Malik degree 7
- * with its embedded degree 5 rule on rectangles, 17 points each):
+ * with its embedded degree 5 rule on rectangles, 17 points each; a halved
+ * rectangle's halves also carry half the change of the estimate the split
+ * made, a second error estimate that sees what the rule alone misses near
+ * singular points):
  * cells[c].prob and .err, cells[c].prob being the integral of
  * density(x(s, t)) * jacobian over the cell.  A cell is done when its
  * error estimate is at most tol_scale * sqrt(prob) (plus 1e-15); rectangles
@@ -114,6 +117,8 @@ typedef struct mcstat__rect {
     double s0, s1, t0, t1, est, err;
     int32_t cell, axis;
     uint64_t p0, p1; /* its pilot points: st[2 p0 .. 2 p1) */
+    double parent;   /* the estimate of the rectangle it was halved from, until compared */
+    int64_t sibling; /* the other half, until compared; -1 after */
 } mcstat__rect;
 MCSTAT_HIDDEN int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__density_cb density,
                                           void *ctx, double tol_scale, mcstat__rect *rects, size_t max_rects,

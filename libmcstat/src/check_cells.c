@@ -230,19 +230,55 @@ static int evaluate_dirty(mcstat__rect *rects, size_t nr, const mcstat__domain *
     return 0;
 }
 
-/* Does the rectangle hold many more pilot points than its integral
- * predicts (a feature its rule's points missed)?  At least 2 points and 16
- * times the expectation, or any point where the integral is not positive;
- * rectangles below 1e-12 of the square are left alone. */
+/* Does the rectangle hold far more or far fewer pilot points than its
+ * integral predicts (a feature its rule's points missed, or a peak it
+ * overshot)?  Beyond 4 Poisson sd of the expectation (at least 3 points
+ * above it), or any point where the integral is not positive; rectangles
+ * below 1e-12 of the square are left alone.  A sampler that disagrees with
+ * pdf() everywhere makes this split everywhere: max_rects bounds the cost. */
 static int pilot_disagrees(const mcstat__rect *r, uint64_t n_points, double mass)
 {
     uint64_t count = r->p1 - r->p0;
-    if (count == 0 || n_points == 0 || (r->s1 - r->s0) * (r->t1 - r->t0) < 1e-12)
+    if (n_points == 0 || (r->s1 - r->s0) * (r->t1 - r->t0) < 1e-12)
         return 0;
-    if (!(r->est > 0.0) || !(mass > 0.0))
+    if (count > 0 && (!(r->est > 0.0) || !(mass > 0.0)))
         return 1;
-    double expected = (double)n_points * r->est / mass;
-    return count >= 2 && 16.0 * expected < (double)count;
+    if (!(mass > 0.0))
+        return 0;
+    double expected = (double)n_points * fmax(r->est, 0.0) / mass, c = (double)count;
+    double sd = sqrt(fmax(expected, 1.0));
+    return (c - expected > 4.0 * sd && c - expected >= 3.0) || (expected - c > 4.0 * sd && expected >= 16.0);
+}
+
+/* Each pair of fresh halves: the change the split made to the estimate is
+ * an error estimate of the halves' sum too; each half keeps at least half
+ * of it (the rule's own estimate can miss a singular point's behaviour
+ * at both levels alike; this one sees it shrink). */
+static void compare_halves(mcstat__rect *rects, size_t nr)
+{
+    for (size_t i = 0; i < nr; i++) {
+        int64_t j = rects[i].sibling;
+        if (j < 0)
+            continue;
+        double change = fabs(rects[i].parent - (rects[i].est + rects[j].est));
+        rects[i].err = fmax(rects[i].err, 0.5 * change);
+        rects[j].err = fmax(rects[j].err, 0.5 * change);
+        rects[i].sibling = rects[j].sibling = -1;
+    }
+}
+
+/* The axis along which the rectangle's pilot points span the smallest
+ * share of its width. */
+static int32_t pilot_axis(const double *st, const mcstat__rect *r)
+{
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (uint64_t j = r->p0; j < r->p1; j++)
+        for (int a = 0; a < 2; a++) {
+            lo[a] = fmin(lo[a], st[2 * j + a]);
+            hi[a] = fmax(hi[a], st[2 * j + a]);
+        }
+    double share_s = (hi[0] - lo[0]) / (r->s1 - r->s0), share_t = (hi[1] - lo[1]) / (r->t1 - r->t0);
+    return share_t < share_s ? 1 : 0;
 }
 
 static void sum_cells(mcstat__tree *tr, const mcstat__rect *rects, size_t nr)
@@ -268,7 +304,7 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
     for (int32_t c = 0; c < nc && nr < max_rects; c++) {
         const mcstat__cell *cell = &tr->cells[c];
         mcstat__rect r = {cell->s0, cell->s1, cell->t0, cell->t1, 0.0, 0.0, c, -1,
-                          cell->p_first, cell->p_first + cell->p_count};
+                          cell->p_first, cell->p_first + cell->p_count, 0.0, -1};
         rects[nr++] = r;
     }
     int st = evaluate_dirty(rects, nr, d, density, ctx, xbuf, fbuf, batch);
@@ -286,8 +322,15 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
             const mcstat__cell *cell = &tr->cells[r->cell];
             double tol = tol_scale * sqrt(fmax(cell->prob, 0.0)) + 1e-15;
             int refine = cell->err > tol && r->err * cell->n_rects >= cell->err;
-            if (!refine && !pilot_disagrees(r, tr->n_points, mass))
-                continue;
+            if (!refine) {
+                if (!pilot_disagrees(r, tr->n_points, mass))
+                    continue;
+                /* the rule saw nothing of what the pilot found: halve across
+                 * the axis along which the points are most concentrated, so
+                 * that a sliver (a lobe against the horizon) gets isolated */
+                if (d->two_d && r->p1 - r->p0 >= 2)
+                    r->axis = pilot_axis(tr->st, r);
+            }
             mcstat__rect b = *r;
             if (r->axis == 0) {
                 double mid = 0.5 * (r->s0 + r->s1);
@@ -305,12 +348,17 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
                     swap_pair(tr->st, j, q++);
             r->p1 = b.p0 = q;
             r->axis = b.axis = -1;
+            r->parent = b.parent = r->est;
+            r->sibling = (int64_t)nr;
+            b.sibling = (int64_t)i;
             rects[nr++] = b;
             n_split++;
         }
         if (n_split == 0)
             break;
         st = evaluate_dirty(rects, nr, d, density, ctx, xbuf, fbuf, batch);
+        if (st == 0)
+            compare_halves(rects, nr);
     }
     if (st == 0)
         sum_cells(tr, rects, nr);

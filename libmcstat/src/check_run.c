@@ -75,6 +75,7 @@ typedef struct scratch {
     uint64_t *keyb;                                /* the key of each compacted point */
     double *recip;                                 /* reciprocity points: 4 each */
     double *counts;                                /* per cell */
+    double *cell_r, *cell_r2;                      /* per cell: sums of pdf/table at the table points */
     double *cdf;                                   /* per cubature rectangle */
     mcstat__node *nodes;
     mcstat__cell *cells;
@@ -118,6 +119,8 @@ static int carve(const plan *pl, char *base, scratch *s, size_t *bytes)
     TAKE(s->keyb, B, uint64_t);
     TAKE(s->recip, 4 * RECIPROCITY_POINTS, double);
     TAKE(s->counts, pl->max_cells, double);
+    TAKE(s->cell_r, pl->max_cells, double);
+    TAKE(s->cell_r2, pl->max_cells, double);
     TAKE(s->cdf, pl->max_rects, double);
     TAKE(s->nodes, 2 * pl->max_cells, mcstat__node);
     TAKE(s->cells, pl->max_cells, mcstat__cell);
@@ -165,7 +168,7 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
         return MCSTAT_EINVAL;
     if (o->batch < 64 || o->batch > ((uint64_t)1 << 32))
         return MCSTAT_EINVAL;
-    if (!(o->rtol > 0.0 && o->rtol < 1.0))
+    if (!(o->rtol > 0.0 && o->rtol < 1.0) || !(o->tolerated >= 0.0 && o->tolerated < 1.0))
         return MCSTAT_EINVAL;
     if (o->n_pilot > (1ull << 40) || o->n_eval > (1ull << 48))
         return MCSTAT_ETOOBIG;
@@ -591,6 +594,7 @@ static int eval_only(run *r, sums *sm)
             double area = (rc->s1 - rc->s0) * (rc->t1 - rc->t0);
             r->s.ps[i] = pi / (area * pl->d.jacobian); /* the table's density */
             r->s.ws[i] = (double)r->tr.cells[rc->cell].group;
+            r->s.cellb[i] = rc->cell;
         }
         int st = call_density(r, r->m->pdf, "pdf", r->s.xs, k, r->s.p2);
         if (st)
@@ -601,6 +605,8 @@ static int eval_only(run *r, sums *sm)
             double ratio = r->s.p2[i] / r->s.ps[i];
             sm->r += ratio;
             sm->r2 += ratio * ratio;
+            r->s.cell_r[r->s.cellb[i]] += ratio;
+            r->s.cell_r2[r->s.cellb[i]] += ratio * ratio;
             r->s.rsave[i + first] = ratio;
         }
         if (!pl->has_eval)
@@ -731,10 +737,15 @@ static void finish_deterministic(run *r, int route)
     rr->deterministic = 1;
     rr->checked = r->checked[route];
     rr->count = r->bad[route];
-    rr->reject = r->bad[route] > 0;
+    double n = (double)r->checked[route], tau = r->o.tolerated;
+    rr->reject = (double)r->bad[route] > floor(tau * n);
     rr->effect = r->worst[route];
-    rr->detectable = r->checked[route] ? -log(0.2) / (double)r->checked[route] : NAN;
-    rr->n_for_1pct = -log(0.2) / 0.01; /* a region of probability 1% is hit with probability 0.8 */
+    /* a wrong region of probability q gives about n q points beyond rtol:
+     * seen with probability ~0.8 once n q exceeds the tolerated count by
+     * 0.84 of its Poisson sd, and at least -ln(0.2) points are expected */
+    rr->detectable = n > 0 ? fmax(tau + POWER_Z * sqrt(tau / n), 0.0) + -log(0.2) / n : NAN;
+    /* a region of 1%: hit -ln(0.2) times; with tau >= 1%, never */
+    rr->n_for_1pct = tau < 0.01 ? -log(0.2) / (0.01 - tau) : INFINITY;
     for (int c = 0; c < 3; c++)
         rr->where[c] = r->worst_x[route][c];
     rr->value[0] = r->worst_v[route][0];
@@ -770,10 +781,21 @@ static void route_cells(run *r, const sums *sm, double level)
      * variance grows by the square of its expectation's cubature error */
     double x2 = 0.0, O = 0.0, E = 0.0, V = 0.0, lastO = 0, lastE = 0, lastV = 0;
     int groups = 0, have_last = 0;
+    double m_eval = (double)r->pl.n_eval;
     for (int32_t c = 0; c < r->tr.n_cells; c++) {
+        /* The cubature's error estimate can fall short (a feature its points
+         * miss, a singular point): the table points give an unbiased
+         * estimate of the cell's probability; where the two differ by more
+         * than 3 of its standard errors, the difference is the error. */
+        double err = 2.0 * r->tr.cells[c].err; /* the estimate can be short near singular points */
+        double p_mc = r->s.cell_r[c] / m_eval;
+        double se = sqrt(fmax(r->s.cell_r2[c] / m_eval - p_mc * p_mc, 0.0) / m_eval);
+        double diff = fabs(r->tr.cells[c].prob - p_mc);
+        if (diff > 3.0 * se && diff > err)
+            err = diff;
         O += r->s.counts[c];
         E += N * fmax(r->tr.cells[c].prob, 0.0) / mass;
-        V += 2.0 * N * r->tr.cells[c].err / mass; /* the estimate can be short near singular points */
+        V += N * err / mass;
         if (E >= 5.0) {
             if (have_last) {
                 x2 += (lastO - lastE) * (lastO - lastE) / (lastE + lastV * lastV);
@@ -812,17 +834,19 @@ static void route_cells(run *r, const sums *sm, double level)
     rr->n_for_1pct = lambda / 1e-4;
 }
 
-/* The mass route.  The share of samples that succeed, x/n, against the
- * mass of pdf(), estimated by Monte Carlo at the table points (the mean of
- * pdf/table: unbiased whatever the cubature's error, which a singular pdf
- * can make larger than its estimate): a two-sample z test,
+/* The mass route: the share of samples that succeed, x/n, against the mass
+ * of pdf().  Two estimates of the mass: the cubature's (precise, but its
+ * error estimate can fall short where a rule's points miss a feature) and
+ * the Monte Carlo mean of pdf/table at the table points (unbiased whatever
+ * the cubature did, but noisier).  When they agree (within 3 standard
+ * errors of the second plus 4 times the cubature's error estimate), the
+ * exact binomial test against the cubature's mass, conservative over 4
+ * times its error; when they do not, and pdf/table is not heavy-tailed
+ * (tail index >= 2.5, so that its variance can be trusted), the two-sample
+ * z test against the Monte Carlo mass m,
  *   z = (x/n - m) / sqrt(m (1 - m)/n + var(pdf/table)/n_eval),
- * m clipped to [1/n, 1 - 1/n] in the binomial variance (one failure among n
- * is no evidence against a mass of 1 within the estimate's error).  When
- * pdf/table is heavy-tailed (a density singular inside a rectangle, tail
- * index below 2.5), its variance cannot be trusted: the exact binomial test
- * against the cubature's mass, conservative over four times its error
- * estimate, is used instead. */
+ * m clipped to [1/n, 1 - 1/n] in the binomial variance; otherwise the
+ * binomial test as above. */
 static void route_mass(run *r, const sums *sm, double level)
 {
     mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_MASS];
@@ -838,7 +862,8 @@ static void route_mass(run *r, const sums *sm, double level)
     rr->count = x;
     rr->state = MCSTAT_ROUTE_RAN;
     rr->statistic = phat;
-    if (tail >= 2.5) {
+    int agree = fabs(r->out->mass - mhat) <= 3.0 * sqrt(var_m) + 4.0 * r->out->mass_error;
+    if (!agree && tail >= 2.5) {
         double mc = fmin(fmax(mhat, 1.0 / (double)n), 1.0 - 1.0 / (double)n);
         double sd = sqrt(mc * (1.0 - mc) / (double)n + var_m);
         double d = phat - mhat;
@@ -1124,10 +1149,10 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     st = pilot_and_cells(&r);
     if (st == MCSTAT_OK) {
         memset(r.s.counts, 0, (size_t)r.tr.n_cells * sizeof(double));
+        memset(r.s.cell_r, 0, (size_t)r.tr.n_cells * sizeof(double));
+        memset(r.s.cell_r2, 0, (size_t)r.tr.n_cells * sizeof(double));
         st = tested_sample(&r, &sm);
     }
-    if (st == MCSTAT_OK && sm.n_succ < 100)
-        st = MCSTAT_ETOOFEW;
     if (st == MCSTAT_OK)
         st = eval_only(&r, &sm);
     uint32_t want = r.o.routes;

@@ -295,10 +295,16 @@ def test_bad_arguments():
 
 
 def test_a_sampler_that_always_fails():
+    # not an error: a report, whose mass route sees pdf() claim samples that never succeed
     m = Lobe(20, WI)
-    with pytest.raises(mcstat.TooFewObservationsError):
-        mcstat.check_bsdf(lambda wi, u: (np.zeros((len(u), 3)), np.zeros(len(u)), np.zeros(len(u))), m.eval, m.pdf,
+    r = mcstat.check_bsdf(lambda wi, u: (np.zeros((len(u), 3)), np.zeros(len(u)), np.zeros(len(u))), m.eval, m.pdf,
                           WI, n=2000)
+    assert r.n_failed == 2000 and r.reject and r.route("mass").reject
+    assert r.route("cells").state == "invalid"
+    # a BSDF that reflects nothing from this side: nothing succeeds and pdf() is 0: consistent
+    r = mcstat.check_bsdf(lambda wi, u: (np.zeros((len(u), 3)), np.zeros(len(u)), np.zeros(len(u))),
+                          lambda wi, x: np.zeros(len(x)), lambda wi, x: np.zeros(len(x)), WI, n=2000)
+    assert not r.reject and r.mass == 0 and r.route("mass").pvalue == 1
 
 
 # ---- calibration (stats suite) ---------------------------------------------------
