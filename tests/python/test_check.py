@@ -353,3 +353,21 @@ def test_pdf_where_eval_is_zero_is_counted_not_rejected():
     assert r.pdf_without_eval > 2000
     assert "pdf() > 0 where eval() = 0 at" in str(r)
     assert abs(r.mass_sampled - 1) < 5 * r.mass_sampled_se + 1e-12
+
+
+def test_tolerated_share_of_points_beyond_rtol():
+    # a handful of points (u0 < 3e-5: about 3 of 1e5) with a weight off, as float32 round-off at grazing
+    # angles gives: within the default tolerated share (1e-4), not with tolerated=0
+    m = Lobe(20, WI)
+
+    def sample(wi, u):
+        x, w, p = m.sample(wi, u)
+        return x, np.where(u[:, 0] < 3e-5, w * 1.01, w), p
+
+    r = mcstat.check_bsdf(sample, m.eval, m.pdf, WI, seed=4)
+    weight = r.route("weight")
+    assert 1 <= weight.count <= 10 and not weight.reject
+    strict = mcstat.check_bsdf(sample, m.eval, m.pdf, WI, seed=4, tolerated=0.0)
+    assert strict.route("weight").reject and strict.reject
+    with pytest.raises(mcstat.InvalidArgumentError, match="tolerated"):
+        mcstat.check_bsdf(sample, m.eval, m.pdf, WI, tolerated=1.0)
