@@ -72,7 +72,6 @@ typedef struct scratch {
     double *wsave, *vsave;                         /* weights and eval-only values: n, n_eval */
     double *rsave;                                 /* pdf/table at the table points: n_eval */
     double *keys_a, *keys_b;                       /* KS: kept sampled points' keys (n), eval's (n_eval/2) */
-    uint64_t *keyb;                                /* the key of each compacted point */
     double *recip;                                 /* reciprocity points: 4 each */
     double *counts;                                /* per cell */
     double *cell_r, *cell_r2;                      /* per cell: sums of pdf/table at the table points */
@@ -116,7 +115,6 @@ static int carve(const plan *pl, char *base, scratch *s, size_t *bytes)
     TAKE(s->rsave, pl->n_eval, double);
     TAKE(s->keys_a, pl->n, double);
     TAKE(s->keys_b, pl->n_eval / 2 + 1, double);
-    TAKE(s->keyb, B, uint64_t);
     TAKE(s->recip, 4 * RECIPROCITY_POINTS, double);
     TAKE(s->counts, pl->max_cells, double);
     TAKE(s->cell_r, pl->max_cells, double);
@@ -477,7 +475,9 @@ static int tested_sample(run *r, sums *sm)
             int32_t c = mcstat__tree_locate(&r->tr, r->s.sb[2 * i], r->s.sb[2 * i + 1]);
             r->s.counts[c] += 1.0;
             r->s.cellb[ns] = c;
-            r->s.keyb[ns] = mcstat__domain_key(&pl->d, r->s.sb[2 * i], r->s.sb[2 * i + 1]);
+            /* compacted in place (ns <= i): the KS route keys the kept ones */
+            r->s.sb[2 * ns] = r->s.sb[2 * i];
+            r->s.sb[2 * ns + 1] = r->s.sb[2 * i + 1];
             memcpy(r->s.xs + ns * dims, x, (size_t)dims * sizeof(double));
             r->s.ws[ns] = (pl->reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? w / p : w;
             r->s.ps[ns] = p;
@@ -528,7 +528,8 @@ static int tested_sample(run *r, sums *sm)
                 r->breach_v[1] = r->w_envelope;
             }
             if (r->n_keys_a < KS_MAX && mcstat__uniform(r->key_keep_sample, sm->n_w) * r->w_envelope < w)
-                r->s.keys_a[r->n_keys_a++] = (double)(r->s.keyb[i] >> 11);
+                r->s.keys_a[r->n_keys_a++] =
+                    (double)(mcstat__domain_key(&pl->d, r->s.sb[2 * i], r->s.sb[2 * i + 1]) >> 11);
             sm->n_w++;
             if (sm->n_recip < RECIPROCITY_POINTS && f > 0.0 && dims == 3 && fabs(x[2]) > 1e-6) {
                 double *q = r->s.recip + 4 * sm->n_recip++;
