@@ -427,7 +427,7 @@ static void decode(fz_input *in, decoded *d, model_state *m)
     o->n_pilot = pilot_or_eval(in, 64, 6000);
     o->n_eval = pilot_or_eval(in, 1000, 4000);
     b = fz_u8(in);
-    o->batch = b < 100 ? 65536 : b < 200 ? 64 + fz_u16(in) % 4000 : b < 230 ? fz_u8(in) : fz_u64(in);
+    o->batch = b < 100 ? 65536u : b < 200 ? 64u + fz_u16(in) % 4000u : b < 230 ? (uint64_t)fz_u8(in) : fz_u64(in);
     b = fz_u8(in);
     o->rtol = b < 200 ? 1e-3 : b < 230 ? pow(10.0, -(b - 199) / 3.0) : fz_double(in);
     if (oflags & 2)

@@ -327,6 +327,21 @@ def fuzz_checks(r):
     seeds.append(check_seed(2, 4, reports=1, faults=[f(0, 2, call=255, sel=0, field=2, arg=dbl(1.1))]))  # pdf off
     seeds.append(check_seed(0, 1, faults=[f(2, 2, call=255, sel=1, threshold=0, arg=dbl(1.1)),
                                           f(0, 2, call=255, sel=0, field=1, arg=dbl(0.9))]))
+    # several faults at once, on later calls (a small batch: many calls), so that longer inputs are in reach
+    seeds.append(check_seed(0, 0, variant=1, reciprocal=1, batch=u8(100) + u16(200), n=3000, work=1,
+                            faults=[f(0, 3, call=4, sel=2, point=31, arg=u8(3)), f(1, 2, call=9, sel=1, threshold=40,
+                                    arg=dbl(1.0001)), f(2, 6, call=255, sel=2, point=3), f(0, 2, call=7, sel=0, field=1,
+                                    arg=dbl(1e-3)), f(1, 7, call=12, sel=2, point=63), f(2, 1, call=255, sel=1,
+                                    threshold=120, arg=dbl(0.0)), f(0, 5, call=11, sel=2, point=5),
+                                    f(2, 0, call=15, arg=u8(7))]))
+    seeds.append(check_seed(1, 1, weight=1, stochastic=1, batch=u8(100) + u16(500), n=4000, work=2,
+                            faults=[f(0, 6, call=3, sel=2, point=9, field=2), f(0, 1, call=5, sel=2, point=2, field=1,
+                                    arg=dbl("DBL_MAX")), f(1, 2, call=255, sel=0, arg=dbl(2.0)), f(2, 2, call=255, sel=0,
+                                    arg=dbl(2.0))]))
+    seeds.append(check_seed(2, 3, reports=1, variant=1, batch=u8(100) + u16(64), n=2000, work=3,
+                            faults=[f(0, 3, call=2, sel=2, point=17, arg=u8(0)), f(0, 3, call=6, sel=2, point=20, arg=u8(8)),
+                                    f(1, 1, call=255, sel=1, threshold=100, arg=dbl(0.0)), f(0, 4, call=9, sel=1,
+                                    threshold=0, field=2), f(1, 0, call=14, arg=u8(250) + u32(2))]))
     return seeds
 
 
