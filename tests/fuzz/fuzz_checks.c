@@ -639,8 +639,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 (unsigned long long)d.seed, d.wi[0], d.wi[1], d.wi[2], d.work_mode);
         for (int i = 0; i < m.n_faults; i++) {
             const fault *f = &m.faults[i];
-            fprintf(stderr, "fault %d: %s() call %s%u sel %d point %u threshold %g what %d field %d value %a status %d\n",
-                    i, cb_names[f->cb], f->every ? "every " : "", f->call, f->sel, f->point, f->threshold, f->what,
+            fprintf(stderr,
+                    "fault %d: %s() call %s%u sel %d point %u threshold %g what %d field %d value %a status %d\n", i,
+                    cb_names[f->cb], f->every ? "every " : "", f->call, f->sel, f->point, f->threshold, f->what,
                     f->field, f->value, f->status);
         }
     }
