@@ -834,7 +834,7 @@ static void route_mass(run *r, const sums *sm, double level)
     rr->count = x;
     rr->state = MCSTAT_ROUTE_RAN;
     rr->statistic = phat;
-    if (tail >= 2.5) {
+    if (tail >= 2.5 && isfinite(mhat)) {
         double mc = fmin(fmax(mhat, 1.0 / (double)n), 1.0 - 1.0 / (double)n);
         double sd = sqrt(mc * (1.0 - mc) / (double)n + var_m);
         double d = phat - mhat;
