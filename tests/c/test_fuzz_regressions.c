@@ -514,6 +514,46 @@ static void test_check_reciprocity_wi_below_hemisphere(void)
     CHECK(r.route[MCSTAT_CHECK_RECIPROCITY].state == MCSTAT_ROUTE_INVALID);
 }
 
+/* fuzz_checks: pdf() finite but near DBL_MAX (valid by the contract: the
+ * callbacks only promise finite values >= 0) made the cubature's integral
+ * overflow; the table built from it was NaN, so was the Monte Carlo mass,
+ * and MASS "ran" with p-value NaN: the Holm-adjusted NaN never rejected and
+ * a density integrating to far above 1 passed.  Oracle: such a pdf() cannot
+ * match any sampler (its integral exceeds 1), so MASS rejects. */
+static int square_sample(void *user, const double *wi, const double *u, size_t n, double *x, double *weight,
+                         double *pdf)
+{
+    (void)user, (void)wi;
+    for (size_t k = 0; k < n; k++) {
+        x[2 * k] = u[2 * k], x[2 * k + 1] = u[2 * k + 1];
+        weight[k] = 1.0, pdf[k] = 1.0;
+    }
+    return 0;
+}
+
+static int square_pdf_huge(void *user, const double *wi, const double *x, size_t n, double *out)
+{
+    (void)user, (void)wi, (void)x;
+    for (size_t k = 0; k < n; k++)
+        out[k] = DBL_MAX / 2;
+    return 0;
+}
+
+static void test_check_mass_pdf_integral_overflows(void)
+{
+    mcstat_check_model m = {MCSTAT_DOMAIN_SQUARE, 2, MCSTAT_WEIGHT_OVER_PDF, 1, NULL, square_sample,
+                            square_pdf_huge, NULL, {0, 0, 0, 0}};
+    mcstat_check_options o;
+    mcstat_check_options_init(&o);
+    o.routes = 1u << MCSTAT_CHECK_MASS;
+    mcstat_check_report r;
+    CHECK_INT(mcstat_check_warp(&m, 1000, 1, 0.05, &o, NULL, 0, &r), MCSTAT_OK);
+    const mcstat_check_route_result *rr = &r.route[MCSTAT_CHECK_MASS];
+    CHECK_INT(rr->state, MCSTAT_ROUTE_RAN);
+    CHECK_MSG(rr->p_value >= 0.0 && rr->p_value <= 1.0, "MASS p-value %g", rr->p_value);
+    CHECK(rr->reject == 1 && r.reject == 1);
+}
+
 int main(void)
 {
     test_var_interval_extreme_alpha();
@@ -531,5 +571,6 @@ int main(void)
     test_t_tiny_m2();
     test_from_bytes_consistency();
     test_check_reciprocity_wi_below_hemisphere();
+    test_check_mass_pdf_integral_overflows();
     return h_report("test_fuzz_regressions");
 }

@@ -648,8 +648,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     static mcstat_check_report r1, r2;
     int st1 = run_once(&d, &m, NULL, 0, &r1);
-    if (fz_verbose())
+    if (fz_verbose()) {
+        static char text[16384];
         fprintf(stderr, "status %d, %llu calls, message: %s\n", st1, (unsigned long long)m.calls, r1.message);
+        if (st1 == MCSTAT_OK && mcstat_check_format(&r1, text, sizeof text, NULL) == MCSTAT_OK)
+            fprintf(stderr, "%s\nmass %a mass_error %a mass_sampled %a se %a tail_index %a %a\n", text, r1.mass,
+                    r1.mass_error, r1.mass_sampled, r1.mass_sampled_se, r1.tail_index[0], r1.tail_index[1]);
+    }
     check_report(st1, &d, &m, &r1);
     if (st1 != MCSTAT_OK && st1 != MCSTAT_ECALLBACK) {
         /* whatever failed: the zeroed or untouched report still formats or is refused */
