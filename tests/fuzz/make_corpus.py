@@ -342,6 +342,27 @@ def fuzz_checks(r):
                             faults=[f(0, 3, call=2, sel=2, point=17, arg=u8(0)), f(0, 3, call=6, sel=2, point=20, arg=u8(8)),
                                     f(1, 1, call=255, sel=1, threshold=100, arg=dbl(0.0)), f(0, 4, call=9, sel=1,
                                     threshold=0, field=2), f(1, 0, call=14, arg=u8(250) + u32(2))]))
+    # random models, options and 1-3 faults (values near the extremes, every call, regions)
+    vals = [0.0, 1e-300, 1e300, "DBL_MAX", "TRUE_MIN", "DBL_MIN", 2.0, 0.5, 1e-12, 1e12, 1.0001, 1e-200, 1e150]
+    for _ in range(24):
+        kind = r.randrange(3)
+        kw = dict(weight=r.randrange(2), reports=1 if kind < 2 else r.randrange(2), variant=r.randrange(2),
+                  albedo=r.choice([0.1, 0.5, 1.0, 1.05]), stochastic=r.randrange(2), reciprocal=r.randrange(2),
+                  n=r.randrange(1000, 4001), seed=r.getrandbits(64), work=r.randrange(4), nu=r.randrange(1, 9),
+                  wi=(r.randrange(256), r.randrange(256)), a=r.choice([0.05, 0.5, 0.002]))
+        if r.random() < 0.3:
+            kw["cells"] = u8(128 + r.randrange(96))
+        if r.random() < 0.3:
+            kw["batch"] = u8(100) + u16(r.randrange(4000))
+        if r.random() < 0.3:
+            kw["routes"] = r.randrange(1, 512)
+        faults = []
+        for _ in range(r.randrange(1, 4)):
+            what = r.choice([1, 2, 2, 3, 4, 5, 6, 7])
+            arg = u8(r.randrange(10)) if what == 3 else dbl(r.choice(vals)) if what in (1, 2) else b""
+            faults.append(f(r.randrange(3), what, call=r.choice([0, 1, 2, 255]), sel=r.choice([0, 1, 2]),
+                            point=r.randrange(2000), threshold=r.randrange(-128, 128), field=r.randrange(3), arg=arg))
+        seeds.append(check_seed(kind, r.randrange(2) if kind < 2 else r.randrange(5), faults=faults, **kw))
     return seeds
 
 
