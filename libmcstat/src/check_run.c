@@ -653,7 +653,7 @@ static int eval_only(run *r, sums *sm)
 static int reciprocity(run *r, const sums *sm)
 {
     double wi_z = fabs(r->wi[2]);
-    if (wi_z < 1e-6)
+    if (wi_z < 1e-6 || (r->pl.d.kind == MCSTAT_DOMAIN_HEMISPHERE && r->wi[2] < 0.0)) /* eval at wi: off the domain */
         return MCSTAT_OK;
     for (uint64_t i = 0; i < sm->n_recip; i++) {
         const double *q = r->s.recip + 4 * i;
@@ -864,6 +864,12 @@ static void route_mass(run *r, const sums *sm, double level)
     rr->state = MCSTAT_ROUTE_RAN;
     rr->statistic = phat;
     int agree = fabs(r->out->mass - mhat) <= 3.0 * sqrt(var_m) + 4.0 * r->out->mass_error;
+    if (!isfinite(r->out->mass) || !isfinite(mhat)) {
+        /* pdf() so large that its integral overflowed: no sampler can match it */
+        rr->p_value = 0.0;
+        rr->effect = rr->detectable = rr->n_for_1pct = NAN;
+        return;
+    }
     if (!agree && tail >= 2.5) {
         double mc = fmin(fmax(mhat, 1.0 / (double)n), 1.0 - 1.0 / (double)n);
         double sd = sqrt(mc * (1.0 - mc) / (double)n + var_m);

@@ -456,6 +456,104 @@ static void test_var_interval_quotient_overflow(void)
     CHECK_REL(r.conf_int[1], 5.316247981451315826321548e-259, 1e-12, "upper bound");
 }
 
+/* fuzz_checks: RECIPROCITY evaluates eval(x, wi) with wi and the sampled
+ * point swapped; for a hemisphere BSDF with wi below the horizon (allowed:
+ * light from below) that passed eval() a point off the model's domain.
+ * Oracle: a uniform hemisphere BSDF whose eval() counts points with z < 0. */
+typedef struct hemi_model {
+    int off_domain;
+} hemi_model;
+
+static int hemi_sample(void *user, const double *wi, const double *u, size_t n, double *x, double *weight,
+                       double *pdf)
+{
+    (void)user, (void)wi;
+    for (size_t k = 0; k < n; k++) {
+        double z = u[3 * k], r = sqrt(fmax(0.0, 1.0 - z * z)), phi = 6.283185307179586 * u[3 * k + 1];
+        x[3 * k] = r * cos(phi), x[3 * k + 1] = r * sin(phi), x[3 * k + 2] = z;
+        pdf[k] = 1.0 / 6.283185307179586;
+        weight[k] = 0.5;
+    }
+    return 0;
+}
+
+static int hemi_density(void *user, const double *wi, const double *x, size_t n, double *out, double scale)
+{
+    hemi_model *m = user;
+    (void)wi;
+    for (size_t k = 0; k < n; k++) {
+        if (x[3 * k + 2] < -1e-4)
+            m->off_domain++;
+        out[k] = scale / 6.283185307179586;
+    }
+    return 0;
+}
+
+static int hemi_pdf(void *user, const double *wi, const double *x, size_t n, double *out)
+{
+    return hemi_density(user, wi, x, n, out, 1.0);
+}
+
+static int hemi_eval(void *user, const double *wi, const double *x, size_t n, double *out)
+{
+    return hemi_density(user, wi, x, n, out, 0.5);
+}
+
+static void test_check_reciprocity_wi_below_hemisphere(void)
+{
+    hemi_model hm = {0};
+    mcstat_check_model m = {MCSTAT_DOMAIN_HEMISPHERE, 3, MCSTAT_WEIGHT_OVER_PDF, 1, &hm, hemi_sample, hemi_pdf,
+                            hemi_eval, {0, 0, 0, 0}};
+    mcstat_check_options o;
+    mcstat_check_options_init(&o);
+    o.reciprocal = 1;
+    const double wi[3] = {0.35, 0.52, -0.78};
+    mcstat_check_report r;
+    CHECK_INT(mcstat_check_bsdf(&m, wi, 1000, 1, 0.05, &o, NULL, 0, &r), MCSTAT_OK);
+    CHECK_MSG(hm.off_domain == 0, "eval() got %d points below the horizon", hm.off_domain);
+    CHECK(r.route[MCSTAT_CHECK_RECIPROCITY].state == MCSTAT_ROUTE_INVALID);
+}
+
+/* fuzz_checks: pdf() finite but near DBL_MAX (valid by the contract: the
+ * callbacks only promise finite values >= 0) made the cubature's integral
+ * overflow; the table built from it was NaN, so was the Monte Carlo mass,
+ * and MASS "ran" with p-value NaN: the Holm-adjusted NaN never rejected and
+ * a density integrating to far above 1 passed.  Oracle: such a pdf() cannot
+ * match any sampler (its integral exceeds 1), so MASS rejects. */
+static int square_sample(void *user, const double *wi, const double *u, size_t n, double *x, double *weight,
+                         double *pdf)
+{
+    (void)user, (void)wi;
+    for (size_t k = 0; k < n; k++) {
+        x[2 * k] = u[2 * k], x[2 * k + 1] = u[2 * k + 1];
+        weight[k] = 1.0, pdf[k] = 1.0;
+    }
+    return 0;
+}
+
+static int square_pdf_huge(void *user, const double *wi, const double *x, size_t n, double *out)
+{
+    (void)user, (void)wi, (void)x;
+    for (size_t k = 0; k < n; k++)
+        out[k] = DBL_MAX / 2;
+    return 0;
+}
+
+static void test_check_mass_pdf_integral_overflows(void)
+{
+    mcstat_check_model m = {MCSTAT_DOMAIN_SQUARE, 2, MCSTAT_WEIGHT_OVER_PDF, 1, NULL, square_sample,
+                            square_pdf_huge, NULL, {0, 0, 0, 0}};
+    mcstat_check_options o;
+    mcstat_check_options_init(&o);
+    o.routes = 1u << MCSTAT_CHECK_MASS;
+    mcstat_check_report r;
+    CHECK_INT(mcstat_check_warp(&m, 1000, 1, 0.05, &o, NULL, 0, &r), MCSTAT_OK);
+    const mcstat_check_route_result *rr = &r.route[MCSTAT_CHECK_MASS];
+    CHECK_INT(rr->state, MCSTAT_ROUTE_RAN);
+    CHECK_MSG(rr->p_value >= 0.0 && rr->p_value <= 1.0, "MASS p-value %g", rr->p_value);
+    CHECK(rr->reject == 1 && r.reject == 1);
+}
+
 int main(void)
 {
     test_var_interval_extreme_alpha();
@@ -472,5 +570,7 @@ int main(void)
     test_tiny_df_no_gsl_abort();
     test_t_tiny_m2();
     test_from_bytes_consistency();
+    test_check_reciprocity_wi_below_hemisphere();
+    test_check_mass_pdf_integral_overflows();
     return h_report("test_fuzz_regressions");
 }

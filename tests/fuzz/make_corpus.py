@@ -260,10 +260,116 @@ def fuzz_format(r):
     return seeds
 
 
+def check_seed(kind, domain, nu=3, weight=0, reports=1, variant=0, albedo=0.8, oflags=0, routes=0x4000,
+               stochastic=0, reciprocal=0, cells=b"\x00", n_pilot=b"\x00", n_eval=b"\x00", batch=b"\x00",
+               rtol=b"\x00", n=1000, a=0.05, seed=1, wi=(60, 40), work=0, faults=()):
+    """fuzz_checks: the model, the options, n, alpha, seed, wi, the scratch, the faults."""
+    s = u8(kind) + u8(domain) + u8(nu - 1) + u8(weight) + u8(reports) + u8(variant) + u8(int(albedo * 240) - 1)
+    s += u8(oflags) + u16(routes) + u8(stochastic) + u8(reciprocal) + cells + n_pilot + n_eval + batch + rtol
+    s += u8(0) + rng(n, 1000, 4000) + alpha(a) + u64(seed) + u8(0) + u8(wi[0]) + u8(wi[1]) + u8(work)
+    s += rng(len(faults), 0, 8)
+    for f in faults:
+        s += f
+    return s
+
+
+def check_fault(cb, what, call=0, sel=2, point=0, threshold=0, field=0, arg=b""):
+    """One fault: cb 0 sample, 1 pdf, 2 eval (call 255: every call); sel 0 all points, 1 a region
+    (x[0] > threshold / 128), 2 one point; what 0 status, 1 set, 2 scale, 3 length, 4 zero, 5 flip,
+    6 subnormal, 7 huge; field (sample) 0 point, 1 weight, 2 pdf."""
+    return u8(cb) + u8(call) + u8(sel) + u16(point) + u8(threshold & 0xFF) + u8(what) + u8(field) + arg
+
+
+def fuzz_checks(r):
+    seeds = []
+    # correct models of every kind and domain, both variants, both weight conventions
+    for domain in range(5):
+        for kind in (0, 1, 2):
+            if kind == 0 and domain > 1 or kind == 1 and domain > 1:
+                continue
+            for variant in (0, 1):
+                seeds.append(check_seed(kind, domain, nu=[3, 2, 2, 2, 1][domain], weight=variant,
+                                        reports=1 if kind < 2 else variant, variant=variant,
+                                        seed=r.getrandbits(64), work=(domain + variant) % 4))
+    # options: small cells and pilot, explicit n_eval, a small batch, tight rtol, reciprocity
+    seeds.append(check_seed(0, 1, routes=0x1FF, reciprocal=1, cells=u8(128 + 14), n_pilot=u8(128) + u16(400),
+                            n_eval=u8(128) + u16(500), batch=u8(100) + u16(100), rtol=u8(210), n=2500, work=1))
+    seeds.append(check_seed(0, 0, stochastic=1, routes=0x21, n=4000, wi=(200, 10), work=2))
+    seeds.append(check_seed(1, 0, routes=0x100, batch=u8(100) + u16(0), n=1500, work=3))
+    # invalid options and arguments
+    seeds.append(check_seed(2, 2, reports=0, routes=0, work=1))
+    seeds.append(check_seed(2, 3, reports=0, cells=u8(240) + u32(1)))
+    seeds.append(check_seed(2, 4, reports=0, n_pilot=u8(200) + u16(10)))
+    seeds.append(check_seed(0, 0, n_eval=u8(230) + u32(5), work=2))
+    seeds.append(check_seed(0, 0, batch=u8(200) + u8(12)))
+    seeds.append(check_seed(0, 1, rtol=u8(240) + dbl(1.5)))
+    seeds.append(check_seed(0, 2))  # a BSDF on the square
+    seeds.append(check_seed(1, 3))  # an emitter on the disk
+    seeds.append(check_seed(0, 1, oflags=0x1c))  # reserved options field
+    # faults: statuses, NaN/Inf/negative values, points off the domain, zero pdf
+    f = check_fault
+    seeds.append(check_seed(0, 1, faults=[f(0, 0, call=1, arg=u8(3))]))
+    seeds.append(check_seed(0, 1, faults=[f(1, 0, call=2, arg=u8(250) + u32(0xFFFFFFFF))]))
+    seeds.append(check_seed(0, 0, faults=[f(2, 1, call=3, point=17, arg=dbl("nan"))]))
+    seeds.append(check_seed(1, 0, faults=[f(0, 1, point=5, field=1, arg=dbl(-1.0))]))
+    seeds.append(check_seed(1, 1, faults=[f(0, 1, point=9, field=2, arg=dbl("inf"))]))
+    seeds.append(check_seed(2, 2, reports=1, faults=[f(0, 1, point=3, field=0, arg=dbl(1.5))]))
+    seeds.append(check_seed(2, 3, reports=0, faults=[f(0, 3, call=1, sel=0, arg=u8(2))]))
+    seeds.append(check_seed(0, 0, faults=[f(0, 3, sel=2, point=40, arg=u8(1))]))   # 4e-5 off: accepted
+    seeds.append(check_seed(0, 0, faults=[f(0, 3, sel=2, point=40, arg=u8(4))]))   # 1.5e-4 off: refused
+    seeds.append(check_seed(0, 1, faults=[f(0, 5, sel=2, point=2)]))               # below the horizon
+    seeds.append(check_seed(0, 1, faults=[f(1, 4, call=255, sel=0)]))              # pdf 0 everywhere
+    seeds.append(check_seed(0, 0, faults=[f(1, 4, call=255, sel=1, threshold=64)]))  # pdf 0 where eval > 0
+    seeds.append(check_seed(0, 1, faults=[f(0, 4, call=255, sel=1, threshold=-32, field=2)]))  # failed samples
+    seeds.append(check_seed(0, 0, faults=[f(0, 4, call=255, sel=0, field=2)]))     # every sample fails: ETOOFEW
+    seeds.append(check_seed(0, 1, faults=[f(2, 7, call=255, sel=1, point=1, threshold=100)]))  # huge eval
+    seeds.append(check_seed(0, 1, weight=1, faults=[f(0, 6, call=255, sel=2, point=7, field=2)]))  # subnormal pdf
+    seeds.append(check_seed(2, 4, reports=1, faults=[f(0, 2, call=255, sel=0, field=2, arg=dbl(1.1))]))  # pdf off
+    seeds.append(check_seed(0, 1, faults=[f(2, 2, call=255, sel=1, threshold=0, arg=dbl(1.1)),
+                                          f(0, 2, call=255, sel=0, field=1, arg=dbl(0.9))]))
+    # several faults at once, on later calls (a small batch: many calls), so that longer inputs are in reach
+    seeds.append(check_seed(0, 0, variant=1, reciprocal=1, batch=u8(100) + u16(200), n=3000, work=1,
+                            faults=[f(0, 3, call=4, sel=2, point=31, arg=u8(3)), f(1, 2, call=9, sel=1, threshold=40,
+                                    arg=dbl(1.0001)), f(2, 6, call=255, sel=2, point=3), f(0, 2, call=7, sel=0, field=1,
+                                    arg=dbl(1e-3)), f(1, 7, call=12, sel=2, point=63), f(2, 1, call=255, sel=1,
+                                    threshold=120, arg=dbl(0.0)), f(0, 5, call=11, sel=2, point=5),
+                                    f(2, 0, call=15, arg=u8(7))]))
+    seeds.append(check_seed(1, 1, weight=1, stochastic=1, batch=u8(100) + u16(500), n=4000, work=2,
+                            faults=[f(0, 6, call=3, sel=2, point=9, field=2), f(0, 1, call=5, sel=2, point=2, field=1,
+                                    arg=dbl("DBL_MAX")), f(1, 2, call=255, sel=0, arg=dbl(2.0)), f(2, 2, call=255, sel=0,
+                                    arg=dbl(2.0))]))
+    seeds.append(check_seed(2, 3, reports=1, variant=1, batch=u8(100) + u16(64), n=2000, work=3,
+                            faults=[f(0, 3, call=2, sel=2, point=17, arg=u8(0)), f(0, 3, call=6, sel=2, point=20, arg=u8(8)),
+                                    f(1, 1, call=255, sel=1, threshold=100, arg=dbl(0.0)), f(0, 4, call=9, sel=1,
+                                    threshold=0, field=2), f(1, 0, call=14, arg=u8(250) + u32(2))]))
+    # random models, options and 1-3 faults (values near the extremes, every call, regions)
+    vals = [0.0, 1e-300, 1e300, "DBL_MAX", "TRUE_MIN", "DBL_MIN", 2.0, 0.5, 1e-12, 1e12, 1.0001, 1e-200, 1e150]
+    for _ in range(24):
+        kind = r.randrange(3)
+        kw = dict(weight=r.randrange(2), reports=1 if kind < 2 else r.randrange(2), variant=r.randrange(2),
+                  albedo=r.choice([0.1, 0.5, 1.0, 1.05]), stochastic=r.randrange(2), reciprocal=r.randrange(2),
+                  n=r.randrange(1000, 4001), seed=r.getrandbits(64), work=r.randrange(4), nu=r.randrange(1, 9),
+                  wi=(r.randrange(256), r.randrange(256)), a=r.choice([0.05, 0.5, 0.002]))
+        if r.random() < 0.3:
+            kw["cells"] = u8(128 + r.randrange(96))
+        if r.random() < 0.3:
+            kw["batch"] = u8(100) + u16(r.randrange(4000))
+        if r.random() < 0.3:
+            kw["routes"] = r.randrange(1, 512)
+        faults = []
+        for _ in range(r.randrange(1, 4)):
+            what = r.choice([1, 2, 2, 3, 4, 5, 6, 7])
+            arg = u8(r.randrange(10)) if what == 3 else dbl(r.choice(vals)) if what in (1, 2) else b""
+            faults.append(f(r.randrange(3), what, call=r.choice([0, 1, 2, 255]), sel=r.choice([0, 1, 2]),
+                            point=r.randrange(2000), threshold=r.randrange(-128, 128), field=r.randrange(3), arg=arg))
+        seeds.append(check_seed(kind, r.randrange(2) if kind < 2 else r.randrange(5), faults=faults, **kw))
+    return seeds
+
+
 def main():
     for name, make in [("fuzz_tests", fuzz_tests), ("fuzz_ks", fuzz_ks), ("fuzz_moments", fuzz_moments),
                        ("fuzz_bytes", fuzz_bytes), ("fuzz_rows", fuzz_rows), ("fuzz_dist", fuzz_dist),
-                       ("fuzz_format", fuzz_format)]:
+                       ("fuzz_format", fuzz_format), ("fuzz_checks", fuzz_checks)]:
         seeds = make(random.Random(name))
         write(name, seeds)
         print("%-13s %3d seeds, %5d bytes" % (name, len(seeds), sum(len(s) for s in seeds)))
