@@ -54,6 +54,7 @@ var (
 	ErrBufferSize      = newError(C.MCSTAT_EBUFSIZE)
 	ErrCorrupt         = newError(C.MCSTAT_ECORRUPT)
 	ErrTooBig          = newError(C.MCSTAT_ETOOBIG)
+	ErrCallback        = newError(C.MCSTAT_ECALLBACK) // a renderer check's callback failed (mcstat.h section 10)
 )
 
 func check(status C.int) error {

@@ -18,6 +18,7 @@ pub const MCSTAT_ENUMERIC: c_int = 6;
 pub const MCSTAT_EBUFSIZE: c_int = 7;
 pub const MCSTAT_ECORRUPT: c_int = 8;
 pub const MCSTAT_ETOOBIG: c_int = 9;
+pub const MCSTAT_ECALLBACK: c_int = 10;
 
 // ---- alternatives, tests, methods, weights ------------------------------------
 pub const MCSTAT_TWO_SIDED: c_int = 0;
