@@ -291,6 +291,12 @@ static const char *domain_rule(const mcstat__domain *d, const double *x)
     }
 }
 
+/* The weight as eval/pdf, whatever the model's convention. */
+static double weight_over_pdf(const run *r, double w, double p)
+{
+    return (r->pl.reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? w / p : w;
+}
+
 static int call_sample(run *r, uint64_t key, const char *stream, uint64_t first, size_t k)
 {
     const plan *pl = &r->pl;
@@ -404,7 +410,7 @@ static int pilot_and_cells(run *r)
             return st;
         for (size_t i = 0; i < k; i++)
             if (r->s.p[i] > 0.0) {
-                double w = (pl->reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? r->s.w[i] / r->s.p[i] : r->s.w[i];
+                double w = weight_over_pdf(r, r->s.w[i], r->s.p[i]);
                 if (w > r->w_envelope)
                     r->w_envelope = w;
                 r->s.st[2 * got] = r->s.sb[2 * i];
@@ -479,7 +485,7 @@ static int tested_sample(run *r, sums *sm)
             r->s.sb[2 * ns] = r->s.sb[2 * i];
             r->s.sb[2 * ns + 1] = r->s.sb[2 * i + 1];
             memcpy(r->s.xs + ns * dims, x, (size_t)dims * sizeof(double));
-            r->s.ws[ns] = (pl->reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? w / p : w;
+            r->s.ws[ns] = weight_over_pdf(r, w, p);
             r->s.ps[ns] = p;
             ns++;
         }
@@ -594,7 +600,6 @@ static int eval_only(run *r, sums *sm)
             double pi = (r->s.cdf[lo] - (lo ? r->s.cdf[lo - 1] : 0.0)) / total;
             double area = (rc->s1 - rc->s0) * (rc->t1 - rc->t0);
             r->s.ps[i] = pi / (area * pl->d.jacobian); /* the table's density */
-            r->s.ws[i] = (double)r->tr.cells[rc->cell].group;
             r->s.cellb[i] = rc->cell;
         }
         int st = call_density(r, r->m->pdf, "pdf", r->s.xs, k, r->s.p2);
@@ -617,7 +622,7 @@ static int eval_only(run *r, sums *sm)
             return st;
         for (size_t i = 0; i < k; i++) {
             double f = r->s.f[i], v = f / r->s.ps[i];
-            int g = (int)r->s.ws[i];
+            int g = r->tr.cells[r->s.cellb[i]].group;
             sm->b[g] += v;
             sm->b2[g] += v * v;
             /* KS: the first half sets the envelope, the second half are
@@ -767,6 +772,22 @@ static double detectable_noncentrality(double df, double a)
     return disc > 0 ? -b + sqrt(disc) : NAN;
 }
 
+/* A route whose statistic is chi-squared with df degrees of freedom under
+ * H0: its upper tail as the p-value; 0 (the route INVALID) if that fails. */
+static int ran_chisq(mcstat_check_route_result *rr, double statistic, double df)
+{
+    double p;
+    if (mcstat_chisq_cdf(statistic, df, 1, &p) != MCSTAT_OK) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        return 0;
+    }
+    rr->state = MCSTAT_ROUTE_RAN;
+    rr->statistic = statistic;
+    rr->df = df;
+    rr->p_value = p;
+    return 1;
+}
+
 static void route_cells(run *r, const sums *sm, double level)
 {
     mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_CELLS];
@@ -820,15 +841,9 @@ static void route_cells(run *r, const sums *sm, double level)
         rr->state = MCSTAT_ROUTE_INVALID;
         return;
     }
-    double df = groups - 1, p;
-    if (mcstat_chisq_cdf(x2, df, 1, &p) != MCSTAT_OK) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+    double df = groups - 1;
+    if (!ran_chisq(rr, x2, df))
         return;
-    }
-    rr->state = MCSTAT_ROUTE_RAN;
-    rr->statistic = x2;
-    rr->df = df;
-    rr->p_value = p;
     rr->effect = sqrt(x2 / N);
     double lambda = detectable_noncentrality(df, level);
     rr->detectable = sqrt(lambda / N);
@@ -944,12 +959,14 @@ static double wald(const double *d, double S[MAX_GROUPS][MAX_GROUPS], int g, int
     return t;
 }
 
-static void route_integrals(run *r, const sums *sm, double level)
+/* The regions' integrals of eval from the sampler (A) and from the
+ * eval-only estimator (B), their difference D and its covariance S, and
+ * the totals with their variances; returns the number of regions. */
+static int region_integrals(const run *r, const sums *sm, double A[MAX_GROUPS], double B[MAX_GROUPS],
+                            double D[MAX_GROUPS], double S[MAX_GROUPS][MAX_GROUPS], double tot[2], double var[2])
 {
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_INTEGRALS];
     int g = region_count(r);
     double n = (double)r->pl.n, m = (double)r->pl.n_eval;
-    double A[MAX_GROUPS], B[MAX_GROUPS], D[MAX_GROUPS], S[MAX_GROUPS][MAX_GROUPS];
     double ta = 0.0, tb = 0.0;
     for (int i = 0; i < g; i++) {
         A[i] = sm->a[i] / n;
@@ -968,10 +985,29 @@ static void route_integrals(run *r, const sums *sm, double level)
             va += ca / n;
             vb += cb / m;
         }
-    r->out->albedo = ta;
-    r->out->albedo_se = sqrt(fmax(va, 0.0));
-    r->out->albedo_eval = tb;
-    r->out->albedo_eval_se = sqrt(fmax(vb, 0.0));
+    tot[0] = ta, tot[1] = tb, var[0] = va, var[1] = vb;
+    return g;
+}
+
+/* The integral of eval from the weights and from eval alone, reported
+ * whether or not the integrals route runs. */
+static void report_albedos(run *r, const sums *sm)
+{
+    double A[MAX_GROUPS], B[MAX_GROUPS], D[MAX_GROUPS], S[MAX_GROUPS][MAX_GROUPS], tot[2], var[2];
+    region_integrals(r, sm, A, B, D, S, tot, var);
+    r->out->albedo = tot[0];
+    r->out->albedo_se = sqrt(fmax(var[0], 0.0));
+    r->out->albedo_eval = tot[1];
+    r->out->albedo_eval_se = sqrt(fmax(var[1], 0.0));
+}
+
+static void route_integrals(run *r, const sums *sm, double level)
+{
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_INTEGRALS];
+    double n = (double)r->pl.n, m = (double)r->pl.n_eval;
+    double A[MAX_GROUPS], B[MAX_GROUPS], D[MAX_GROUPS], S[MAX_GROUPS][MAX_GROUPS], tot[2], var[2];
+    int g = region_integrals(r, sm, A, B, D, S, tot, var);
+    double ta = tot[0], tb = tot[1], va = var[0], vb = var[1];
     if (r->out->heavy_tailed) {
         rr->state = MCSTAT_ROUTE_INVALID;
         return;
@@ -984,15 +1020,8 @@ static void route_integrals(run *r, const sums *sm, double level)
         rr->state = MCSTAT_ROUTE_INVALID; /* eval is zero wherever either estimator looked */
         return;
     }
-    double p;
-    if (mcstat_chisq_cdf(t, df, 1, &p) != MCSTAT_OK) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+    if (!ran_chisq(rr, t, df))
         return;
-    }
-    rr->state = MCSTAT_ROUTE_RAN;
-    rr->statistic = t;
-    rr->df = df;
-    rr->p_value = p;
     rr->effect = tb != 0.0 ? (ta - tb) / tb : NAN;
     double z = mcstat__norm_quantile(level / 2, 1) + POWER_Z;
     double se = sqrt(fmax(va + vb, 0.0));
@@ -1218,13 +1247,8 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
         default: finish_deterministic(&r, i); break;
         }
     }
-    if (r.pl.has_eval && !(want & (1u << MCSTAT_CHECK_INTEGRALS))) {
-        /* the albedos are reported whether or not the route runs */
-        sums copy = sm;
-        mcstat_check_route_result keep = out->route[MCSTAT_CHECK_INTEGRALS];
-        route_integrals(&r, &copy, level);
-        out->route[MCSTAT_CHECK_INTEGRALS] = keep;
-    }
+    if (r.pl.has_eval)
+        report_albedos(&r, &sm);
 
     /* Holm across the statistical routes that ran */
     double p[N_STATISTICAL], adj[N_STATISTICAL];

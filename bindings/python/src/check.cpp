@@ -201,7 +201,16 @@ std::string report_text(const mcstat_check_report &r)
     return s;
 }
 
-int parse_enum(PyObject *o, const char *name, int (*parse)(const char *, int *), const char *choices)
+// "'a', 'b', ..." from a C name function (the library's names, not a copy)
+std::string choices_of(const char *(*name_of)(int))
+{
+    std::string out;
+    for (int i = 0; name_of(i); i++)
+        out += (i ? ", '" : "'") + std::string(name_of(i)) + "'";
+    return out;
+}
+
+int parse_enum(PyObject *o, const char *name, int (*parse)(const char *, int *), const std::string &choices)
 {
     const char *s = get_str(o, name);
     int v;
@@ -257,7 +266,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     mcstat_check_model m{};
     const char *domain_default = kind == MCSTAT_CHECK_KIND_WARP ? "square" : "sphere";
     m.domain = parse_enum(get("domain", py::str(domain_default)).ptr(), "domain", mcstat_check_domain_parse,
-                          "'sphere', 'hemisphere', 'square', 'disk', 'interval'");
+                          choices_of(mcstat_check_domain_name));
     cb.dims = mcstat_check_domain_dims(m.domain);
     int nu_default = kind == MCSTAT_CHECK_KIND_BSDF ? 3 : (m.domain == MCSTAT_DOMAIN_INTERVAL ? 1 : 2);
     uint64_t nu = get_count(get("n_uniforms", py::int_(nu_default)), "n_uniforms");
@@ -285,9 +294,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
             throw py::type_error("routes must be an iterable of route names, not a str");
         o.routes = 0;
         for (py::handle h : routes) {
-            int r = parse_enum(h.ptr(), "routes", mcstat_check_route_parse,
-                               "'cells', 'mass', 'pdf_value', 'weight', 'support', 'integrals', 'energy', "
-                               "'reciprocity', 'ks'");
+            int r = parse_enum(h.ptr(), "routes", mcstat_check_route_parse, choices_of(mcstat_check_route_name));
             o.routes |= 1u << r;
         }
     }
