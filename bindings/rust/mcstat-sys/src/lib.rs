@@ -1,13 +1,25 @@
 //! Raw FFI bindings to libmcstat (`mcstat.h`), written by hand from the
-//! header: the plain structs mirrored field by field (`#[repr(C)]`), the
-//! enums as integer constants, the functions as declared.  The safe API is
-//! the `mcstat` crate; the tests below check every mirrored size against the
-//! library's own `mcstat_sizeof_*`.
+//! header, section by section: the plain structs mirrored field by field
+//! (`#[repr(C)]`, the header's anonymous unions as named Rust unions), the
+//! enums and macros as integer constants, every exported function as
+//! declared (the deprecated names of section 13 too, marked
+//! `#[deprecated]`).  The safe API is the `mcstat` crate.
+//!
+//! Layout: the sizes are asserted at compile time against the header's own
+//! numbers (`MCSTAT_*_OPTIONS_SIZE_*`, the 128-byte accumulator, the
+//! 4096-byte stream), and the tests compare every size with the library's
+//! `mcstat_sizeof_*` and every field offset with the C compiler's.
+//!
+//! `mcstat_stream_add` is a `static inline` function in the header, not an
+//! exported symbol: [`mcstat_stream_add`] is its body in Rust.
 #![allow(non_camel_case_types)]
 
-use std::os::raw::{c_char, c_int, c_uint};
+use std::os::raw::{c_char, c_int, c_uint, c_void};
 
-// ---- status codes -----------------------------------------------------------
+// ============================================================================
+// 1. Conventions: statuses, alternatives.
+// ============================================================================
+
 pub const MCSTAT_OK: c_int = 0;
 pub const MCSTAT_EINVAL: c_int = 1;
 pub const MCSTAT_ETOOFEW: c_int = 2;
@@ -20,38 +32,20 @@ pub const MCSTAT_ECORRUPT: c_int = 8;
 pub const MCSTAT_ETOOBIG: c_int = 9;
 pub const MCSTAT_ECALLBACK: c_int = 10;
 
-// ---- alternatives, tests, methods, weights ------------------------------------
 pub const MCSTAT_TWO_SIDED: c_int = 0;
 pub const MCSTAT_LESS: c_int = 1;
 pub const MCSTAT_GREATER: c_int = 2;
 
-// ---- values of mcstat_result.decision ---------------------------------------
-pub const MCSTAT_DECISION_LESS: i32 = -1;
-pub const MCSTAT_DECISION_EQUAL: i32 = 0;
-pub const MCSTAT_DECISION_GREATER: i32 = 1;
-
-pub const MCSTAT_TEST_T_1: i32 = 1;
-pub const MCSTAT_TEST_T_2: i32 = 2;
-pub const MCSTAT_TEST_VAR_1: i32 = 3;
-pub const MCSTAT_TEST_VAR_2: i32 = 4;
-pub const MCSTAT_TEST_KS_2: i32 = 5;
-
-pub const MCSTAT_METHOD_ANALYTIC: i32 = 0;
-pub const MCSTAT_METHOD_AUTO: i32 = 1;
-pub const MCSTAT_METHOD_EXACT: i32 = 2;
-pub const MCSTAT_METHOD_SIMULATE: i32 = 3;
-pub const MCSTAT_METHOD_ASYMPTOTIC: i32 = 4;
-
-pub const MCSTAT_KS_WEIGHT_NONE: i32 = 0;
-pub const MCSTAT_KS_WEIGHT_CANNER: i32 = 1;
-pub const MCSTAT_KS_DEFAULT_N_SIM: i64 = 10000;
+// ============================================================================
+// 2. Accumulators.
+// ============================================================================
 
 pub const MCSTAT_MOMENTS_VERSION: u32 = 1;
+/// Size of the serialized form written by `mcstat_moments_to_bytes`.
 pub const MCSTAT_MOMENTS_BYTES: usize = 96;
-pub const MCSTAT_ROWS_NO_INTERVALS: c_uint = 1;
-pub const MCSTAT_ROWS_OMIT_NAN: c_uint = 2;
 
-/// `mcstat_moments`: 128 bytes, caller-owned.
+/// `mcstat_moments`: 128 bytes, caller-owned.  Central sums are stored
+/// scaled (see the header): read them through the accessors.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct mcstat_moments {
@@ -68,18 +62,169 @@ pub struct mcstat_moments {
     pub reserved: [f64; 7],
 }
 
-/// `mcstat_result`: what every test fills.
+pub const MCSTAT_STREAM_VERSION: u32 = 1;
+pub const MCSTAT_STREAM_BYTES: usize = 4096;
+pub const MCSTAT_STREAM_CAPACITY: u32 = 492;
+
+/// The named storage of `mcstat_stream`'s anonymous union.
 #[repr(C)]
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_stream_overflow {
+    /// Values left out because the count would pass 2^64 - 1.
+    pub n_overflow: u64,
+    pub reserved_1: u64,
+}
+
+/// `mcstat_stream`'s anonymous union: `reserved` is 0.1.0's name of the storage.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub union mcstat_stream_union {
+    pub reserved: [u64; 2],
+    pub s: mcstat_stream_overflow,
+}
+
+/// `mcstat_stream`: a 4096-byte per-thread buffer in front of an accumulator.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct mcstat_stream {
+    pub moments: mcstat_moments,
+    pub count: u32,
+    pub version: u32,
+    pub n_nonfinite: u64,
+    pub u: mcstat_stream_union,
+    pub buf: [f64; MCSTAT_STREAM_CAPACITY as usize],
+}
+
+impl mcstat_stream {
+    /// The union's `n_overflow` (every bit pattern is a valid `u64`).
+    pub fn n_overflow(&self) -> u64 {
+        unsafe { self.u.s.n_overflow }
+    }
+}
+
+/// The header's `static inline mcstat_stream_add`, line for line: a store
+/// and a counter, and a flush once every `MCSTAT_STREAM_CAPACITY` values
+/// (whose status is dropped, as in C: an overflow is recorded in the stream
+/// and every check on it returns `MCSTAT_ETOOBIG`).
+///
+/// # Safety
+/// `s` must point to a stream initialised by `mcstat_stream_init` (whose
+/// `count` is then always below the capacity).
+#[inline]
+pub unsafe fn mcstat_stream_add(s: *mut mcstat_stream, x: f64) {
+    let s = &mut *s;
+    s.buf[s.count as usize] = x;
+    s.count += 1;
+    if s.count == MCSTAT_STREAM_CAPACITY {
+        let _ = mcstat_stream_flush(s);
+    }
+}
+
+// ============================================================================
+// 3. The tests and their result.
+// ============================================================================
+
+pub const MCSTAT_TEST_T_1: i32 = 1;
+pub const MCSTAT_TEST_T_2: i32 = 2;
+pub const MCSTAT_TEST_VAR_1: i32 = 3;
+pub const MCSTAT_TEST_VAR_2: i32 = 4;
+pub const MCSTAT_TEST_KS_2: i32 = 5;
+pub const MCSTAT_TEST_EQUIV_1: i32 = 6;
+pub const MCSTAT_TEST_EQUIV_2: i32 = 7;
+pub const MCSTAT_TEST_BINOM: i32 = 8;
+pub const MCSTAT_TEST_CHISQ_GOF: i32 = 9;
+
+pub const MCSTAT_METHOD_ANALYTIC: i32 = 0;
+pub const MCSTAT_METHOD_AUTO: i32 = 1;
+pub const MCSTAT_METHOD_EXACT: i32 = 2;
+pub const MCSTAT_METHOD_SIMULATE: i32 = 3;
+pub const MCSTAT_METHOD_ASYMPTOTIC: i32 = 4;
+
+pub const MCSTAT_DECISION_LESS: i32 = -1;
+pub const MCSTAT_DECISION_EQUAL: i32 = 0;
+pub const MCSTAT_DECISION_GREATER: i32 = 1;
+
+/// The named storage of `mcstat_result`'s integer union.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_ints_named {
+    /// KS_2: enum mcstat_ks_weight.
+    pub ks_weight: i32,
+    /// CHISQ_GOF: cells after pooling.
+    pub chisq_cells: i32,
+    /// CHISQ_GOF: parameters estimated.
+    pub chisq_n_estimated: i32,
+}
+
+/// `mcstat_result`'s first anonymous union (`reserved_i` is 0.1.0's name).
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub union mcstat_result_ints {
+    pub reserved_i: [i32; 3],
+    pub s: mcstat_result_ints_named,
+}
+
+/// KS_2's per-test outputs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_ks {
+    pub ks_critical_se: f64,
+    pub ks_n_sim: f64,
+}
+
+/// EQUIV_1 and EQUIV_2's per-test outputs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_tost {
+    pub tost_t_lower: f64,
+    pub tost_t_upper: f64,
+    pub tost_p_lower: f64,
+    pub tost_p_upper: f64,
+    pub tost_lower: f64,
+    pub tost_upper: f64,
+}
+
+/// BINOM's per-test output.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_binom {
+    pub binom_unused_: [f64; 2],
+    pub binom_log_p_value: f64,
+}
+
+/// CHISQ_GOF's per-test outputs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_chisq {
+    pub chisq_unused_: [f64; 2],
+    pub chisq_cells_given: f64,
+    pub chisq_min_expected: f64,
+    pub chisq_pool_below: f64,
+}
+
+/// `mcstat_result`'s second anonymous union (`reserved` is 0.1.0's name).
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub union mcstat_result_per_test {
+    pub reserved: [f64; 7],
+    pub ks: mcstat_result_ks,
+    pub tost: mcstat_result_tost,
+    pub binom: mcstat_result_binom,
+    pub chisq: mcstat_result_chisq,
+}
+
+/// `mcstat_result`: what every test fills.  The header's anonymous unions
+/// are the fields `ints` and `per_test`; read only the member of `test`
+/// (every member is plain data, so the accessors below are safe).
+#[repr(C)]
+#[derive(Clone, Copy)]
 pub struct mcstat_result {
     pub test: i32,
     pub method: i32,
     pub alternative: i32,
     pub reject: i32,
     pub decision: i32,
-    /// The per-test integer outputs (C names them in a union over this
-    /// storage): `[0]` ks_weight, `[1]` chisq_cells, `[2]` chisq_n_estimated.
-    pub reserved_i: [i32; 3],
+    pub ints: mcstat_result_ints,
     pub n: [u64; 2],
     pub statistic: f64,
     pub df: [f64; 2],
@@ -91,13 +236,60 @@ pub struct mcstat_result {
     pub alpha: f64,
     pub critical: [f64; 2],
     pub std_error: f64,
-    /// The per-test outputs (C names them in a union over this storage):
-    /// K-S `[0]` ks_critical_se, `[1]` ks_n_sim; TOST `[0..6]` tost_t_lower,
-    /// tost_t_upper, tost_p_lower, tost_p_upper, tost_lower, tost_upper;
-    /// binomial `[2]` binom_log_p_value; chi-squared `[2..5]`
-    /// chisq_cells_given, chisq_min_expected, chisq_pool_below.
-    pub reserved: [f64; 7],
+    pub per_test: mcstat_result_per_test,
 }
+
+impl mcstat_result {
+    pub fn ints(&self) -> mcstat_result_ints_named {
+        unsafe { self.ints.s }
+    }
+    pub fn reserved(&self) -> [f64; 7] {
+        unsafe { self.per_test.reserved }
+    }
+    pub fn ks(&self) -> mcstat_result_ks {
+        unsafe { self.per_test.ks }
+    }
+    pub fn tost(&self) -> mcstat_result_tost {
+        unsafe { self.per_test.tost }
+    }
+    pub fn binom(&self) -> mcstat_result_binom {
+        unsafe { self.per_test.binom }
+    }
+    pub fn chisq(&self) -> mcstat_result_chisq {
+        unsafe { self.per_test.chisq }
+    }
+}
+
+impl std::fmt::Debug for mcstat_result {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("mcstat_result")
+            .field("test", &self.test)
+            .field("method", &self.method)
+            .field("alternative", &self.alternative)
+            .field("reject", &self.reject)
+            .field("decision", &self.decision)
+            .field("reserved_i", &unsafe { self.ints.reserved_i })
+            .field("n", &self.n)
+            .field("statistic", &self.statistic)
+            .field("df", &self.df)
+            .field("p_value", &self.p_value)
+            .field("p_value_se", &self.p_value_se)
+            .field("conf_int", &self.conf_int)
+            .field("estimate", &self.estimate)
+            .field("null_value", &self.null_value)
+            .field("alpha", &self.alpha)
+            .field("critical", &self.critical)
+            .field("std_error", &self.std_error)
+            .field("reserved", &self.reserved())
+            .finish()
+    }
+}
+
+pub const MCSTAT_KS_WEIGHT_NONE: i32 = 0;
+pub const MCSTAT_KS_WEIGHT_CANNER: i32 = 1;
+pub const MCSTAT_KS_EXACT_MAX_WORK: f64 = 2e11;
+pub const MCSTAT_KS_AUTO_EXACT_WORK: f64 = 1.6e7;
+pub const MCSTAT_KS_DEFAULT_N_SIM: i64 = 10000;
 
 /// Opaque K-S simulation cache.
 #[repr(C)]
@@ -121,14 +313,334 @@ pub struct mcstat_ks_options {
     pub reserved: i32,
 }
 
+/// sizeof(mcstat_ks_options) in each release that changed it.
+pub const MCSTAT_KS_OPTIONS_SIZE_0_1: usize = 48;
+
+// ============================================================================
+// 4. Per-pixel rows.
+// ============================================================================
+
+pub const MCSTAT_ROWS_NO_INTERVALS: c_uint = 1;
+pub const MCSTAT_ROWS_OMIT_NAN: c_uint = 2;
+
+// ============================================================================
+// 5. Multiple testing.
+// ============================================================================
+
+pub const MCSTAT_P_ADJUST_NONE: c_int = 0;
+pub const MCSTAT_P_ADJUST_BONFERRONI: c_int = 1;
+pub const MCSTAT_P_ADJUST_HOLM: c_int = 2;
+pub const MCSTAT_P_ADJUST_HOCHBERG: c_int = 3;
+pub const MCSTAT_P_ADJUST_HOMMEL: c_int = 4;
+pub const MCSTAT_P_ADJUST_BH: c_int = 5;
+pub const MCSTAT_P_ADJUST_BY: c_int = 6;
+
+// ============================================================================
+// 7. Power and sample size (experimental).
+// ============================================================================
+
+pub const MCSTAT_POWER_T_1: i32 = 1;
+pub const MCSTAT_POWER_T_2: i32 = 2;
+pub const MCSTAT_POWER_WELCH: i32 = 3;
+pub const MCSTAT_POWER_VAR_1: i32 = 4;
+pub const MCSTAT_POWER_VAR_2: i32 = 5;
+
+pub const MCSTAT_POWER_SOLVE_POWER: c_int = 0;
+pub const MCSTAT_POWER_SOLVE_N: c_int = 1;
+pub const MCSTAT_POWER_SOLVE_EFFECT: c_int = 2;
+pub const MCSTAT_POWER_SOLVE_ALPHA: c_int = 3;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_power_options {
+    pub size: u32,
+    pub test: i32,
+    pub alternative: i32,
+    pub strict: i32,
+    pub n: f64,
+    pub n_ratio: f64,
+    pub sd_ratio: f64,
+    pub effect: f64,
+    pub alpha: f64,
+    pub power: f64,
+    pub reserved: [f64; 4],
+}
+
+pub const MCSTAT_POWER_OPTIONS_SIZE_0_1: usize = 96;
+
+// ============================================================================
+// 8. Estimator diagnostics (experimental).
+// ============================================================================
+
+pub const MCSTAT_DIAG_DEFAULT_M: u64 = 30;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_diag_options {
+    pub size: u32,
+    pub reserved_i: i32,
+    pub k: u64,
+    pub m: u64,
+    pub tail_k: u64,
+    pub alpha: f64,
+    pub tolerance: f64,
+    pub tail_threshold: f64,
+    pub reserved: [f64; 4],
+}
+
+pub const MCSTAT_DIAG_OPTIONS_SIZE_0_1: usize = 88;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_diagnostics {
+    pub n: u64,
+    pub tail_k: u64,
+    pub k: u64,
+    pub m: u64,
+    pub recommended_k: u64,
+    pub heavy_tail: i32,
+    pub reserved_i: i32,
+    pub mean: f64,
+    pub sd: f64,
+    pub skewness: f64,
+    pub skewness_se: f64,
+    pub kurtosis: f64,
+    pub kurtosis_se: f64,
+    pub tail_index: [f64; 2],
+    pub tail_index_se: [f64; 2],
+    pub max_share: f64,
+    pub t_size: [f64; 2],
+    pub alpha: f64,
+    pub tolerance: f64,
+    pub reserved: [f64; 4],
+}
+
+// ============================================================================
+// 9. Goodness of fit (experimental).
+// ============================================================================
+
+pub const MCSTAT_GOF_PROBABILITIES: i32 = 0;
+pub const MCSTAT_GOF_COUNTS: i32 = 1;
+pub const MCSTAT_GOF_DEFAULT_MIN_EXPECTED: f64 = 5.0;
+
+/// `mcstat_gof_options` (C tag: `mcstat_chisq_options`, 0.1.0's name).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_gof_options {
+    pub size: u32,
+    pub expected: i32,
+    pub pool: i32,
+    pub rescale: i32,
+    pub min_expected: f64,
+    pub n_estimated: i32,
+    pub reserved: i32,
+}
+
+pub const MCSTAT_GOF_OPTIONS_SIZE_0_1: usize = 32;
+
+// ============================================================================
+// 10. Renderer checks (experimental).
+// ============================================================================
+
+pub const MCSTAT_DOMAIN_SPHERE: i32 = 0;
+pub const MCSTAT_DOMAIN_HEMISPHERE: i32 = 1;
+pub const MCSTAT_DOMAIN_SQUARE: i32 = 2;
+pub const MCSTAT_DOMAIN_DISK: i32 = 3;
+pub const MCSTAT_DOMAIN_INTERVAL: i32 = 4;
+
+pub const MCSTAT_WEIGHT_OVER_PDF: i32 = 0;
+pub const MCSTAT_WEIGHT_VALUE: i32 = 1;
+
+pub const MCSTAT_CHECK_MAX_UNIFORMS: i32 = 8;
+
+/// `sample(user, wi, u, n, x, weight, pdf)`: 0 on success.
+pub type mcstat_check_sample_fn = Option<
+    unsafe extern "C" fn(
+        user: *mut c_void,
+        wi: *const f64,
+        u: *const f64,
+        n: usize,
+        x: *mut f64,
+        weight: *mut f64,
+        pdf: *mut f64,
+    ) -> c_int,
+>;
+/// `pdf(user, wi, x, n, out)` and `eval(...)`: 0 on success.
+pub type mcstat_check_density_fn =
+    Option<unsafe extern "C" fn(user: *mut c_void, wi: *const f64, x: *const f64, n: usize, out: *mut f64) -> c_int>;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_check_model {
+    pub domain: i32,
+    pub n_uniforms: i32,
+    pub weight: i32,
+    pub sample_reports: i32,
+    pub user: *mut c_void,
+    pub sample: mcstat_check_sample_fn,
+    pub pdf: mcstat_check_density_fn,
+    pub eval: mcstat_check_density_fn,
+    pub reserved: [f64; 4],
+}
+
+pub const MCSTAT_CHECK_CELLS: i32 = 0;
+pub const MCSTAT_CHECK_MASS: i32 = 1;
+pub const MCSTAT_CHECK_PDF_VALUE: i32 = 2;
+pub const MCSTAT_CHECK_WEIGHT: i32 = 3;
+pub const MCSTAT_CHECK_SUPPORT: i32 = 4;
+pub const MCSTAT_CHECK_INTEGRALS: i32 = 5;
+pub const MCSTAT_CHECK_ENERGY: i32 = 6;
+pub const MCSTAT_CHECK_RECIPROCITY: i32 = 7;
+pub const MCSTAT_CHECK_KS: i32 = 8;
+pub const MCSTAT_CHECK_ROUTES: usize = 9;
+
+pub const MCSTAT_ROUTE_RAN: i32 = 0;
+pub const MCSTAT_ROUTE_SKIPPED: i32 = 1;
+pub const MCSTAT_ROUTE_INVALID: i32 = 2;
+
+pub const MCSTAT_CHECK_ALL_ROUTES: u32 = (1u32 << MCSTAT_CHECK_ROUTES) - 1;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_check_options {
+    pub size: u32,
+    pub routes: u32,
+    pub stochastic: i32,
+    pub reciprocal: i32,
+    pub cells: i32,
+    pub reserved_i: i32,
+    pub n_pilot: u64,
+    pub n_eval: u64,
+    pub batch: u64,
+    pub rtol: f64,
+    pub tolerated: f64,
+    pub reserved: [f64; 4],
+}
+
+pub const MCSTAT_CHECK_OPTIONS_SIZE_0_2: usize = 96;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_check_route_result {
+    pub state: i32,
+    pub deterministic: i32,
+    pub reject: i32,
+    pub reserved_i: i32,
+    pub statistic: f64,
+    pub df: f64,
+    pub p_value: f64,
+    pub p_adjusted: f64,
+    pub effect: f64,
+    pub detectable: f64,
+    pub n_for_1pct: f64,
+    pub checked: u64,
+    pub count: u64,
+    pub r#where: [f64; 3],
+    pub value: [f64; 2],
+    pub reserved: [f64; 3],
+}
+
+pub const MCSTAT_CHECK_KIND_BSDF: i32 = 0;
+pub const MCSTAT_CHECK_KIND_EMITTER: i32 = 1;
+pub const MCSTAT_CHECK_KIND_WARP: i32 = 2;
+
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct mcstat_check_report {
+    pub kind: i32,
+    pub domain: i32,
+    pub reject: i32,
+    pub heavy_tailed: i32,
+    pub alpha: f64,
+    pub p_value: f64,
+    pub wi: [f64; 3],
+    pub n: u64,
+    pub n_failed: u64,
+    pub n_pilot: u64,
+    pub n_eval: u64,
+    pub cells: u64,
+    pub calls: u64,
+    pub pdf_without_eval: u64,
+    pub mass: f64,
+    pub mass_error: f64,
+    pub mass_sampled: f64,
+    pub mass_sampled_se: f64,
+    pub albedo: f64,
+    pub albedo_se: f64,
+    pub albedo_eval: f64,
+    pub albedo_eval_se: f64,
+    pub tail_index: [f64; 2],
+    pub reserved: [f64; 8],
+    pub route: [mcstat_check_route_result; MCSTAT_CHECK_ROUTES],
+    pub message: [c_char; 256],
+}
+
+impl std::fmt::Debug for mcstat_check_report {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let len = self.message.iter().position(|&c| c == 0).unwrap_or(self.message.len());
+        let msg: Vec<u8> = self.message[..len].iter().map(|&c| c as u8).collect();
+        f.debug_struct("mcstat_check_report")
+            .field("kind", &self.kind)
+            .field("domain", &self.domain)
+            .field("reject", &self.reject)
+            .field("heavy_tailed", &self.heavy_tailed)
+            .field("alpha", &self.alpha)
+            .field("p_value", &self.p_value)
+            .field("n", &self.n)
+            .field("route", &self.route)
+            .field("message", &String::from_utf8_lossy(&msg))
+            .finish()
+    }
+}
+
+// ============================================================================
+// 12. Versions.
+// ============================================================================
+
+pub const MCSTAT_VERSION_MAJOR: u32 = 0;
+pub const MCSTAT_VERSION_MINOR: u32 = 1;
+pub const MCSTAT_VERSION_PATCH: u32 = 0;
+pub const MCSTAT_SOVERSION: u32 = 0;
+pub const MCSTAT_VERSION_NUMBER: u32 =
+    MCSTAT_VERSION_MAJOR * 10000 + MCSTAT_VERSION_MINOR * 100 + MCSTAT_VERSION_PATCH;
+
+// ============================================================================
+// 13. Deprecated names (types and constants; the functions are below).
+// ============================================================================
+
+#[deprecated(note = "use mcstat_gof_options")]
+pub type mcstat_chisq_options = mcstat_gof_options;
+#[deprecated(note = "use MCSTAT_GOF_PROBABILITIES")]
+pub const MCSTAT_CHISQ_PROBABILITIES: i32 = MCSTAT_GOF_PROBABILITIES;
+#[deprecated(note = "use MCSTAT_GOF_COUNTS")]
+pub const MCSTAT_CHISQ_COUNTS: i32 = MCSTAT_GOF_COUNTS;
+#[deprecated(note = "use MCSTAT_GOF_DEFAULT_MIN_EXPECTED")]
+pub const MCSTAT_CHISQ_DEFAULT_MIN_EXPECTED: f64 = MCSTAT_GOF_DEFAULT_MIN_EXPECTED;
+#[deprecated(note = "use MCSTAT_GOF_OPTIONS_SIZE_0_1")]
+pub const MCSTAT_CHISQ_OPTIONS_SIZE_0_1: usize = MCSTAT_GOF_OPTIONS_SIZE_0_1;
+
+// The layout, at compile time, against the header's numbers (LP64: the
+// pointers in mcstat_ks_options and mcstat_check_model are 8 bytes).
+#[cfg(target_pointer_width = "64")]
+const _: () = {
+    use std::mem::size_of;
+    assert!(size_of::<mcstat_moments>() == 128);
+    assert!(size_of::<mcstat_stream>() == MCSTAT_STREAM_BYTES);
+    assert!(size_of::<mcstat_result>() == 216);
+    assert!(size_of::<mcstat_ks_options>() == MCSTAT_KS_OPTIONS_SIZE_0_1);
+    assert!(size_of::<mcstat_power_options>() == MCSTAT_POWER_OPTIONS_SIZE_0_1);
+    assert!(size_of::<mcstat_diag_options>() == MCSTAT_DIAG_OPTIONS_SIZE_0_1);
+    assert!(size_of::<mcstat_gof_options>() == MCSTAT_GOF_OPTIONS_SIZE_0_1);
+    assert!(size_of::<mcstat_check_options>() == MCSTAT_CHECK_OPTIONS_SIZE_0_2);
+};
+
 extern "C" {
-    pub fn mcstat_version_number() -> c_uint;
-    pub fn mcstat_version() -> *const c_char;
+    // ---- 1. conventions ------------------------------------------------------
     pub fn mcstat_strerror(status: c_int) -> *const c_char;
     pub fn mcstat_alternative_parse(name: *const c_char, alternative: *mut c_int) -> c_int;
     pub fn mcstat_alternative_name(alternative: c_int) -> *const c_char;
-    pub fn mcstat_decision_name(decision: c_int) -> *const c_char;
 
+    // ---- 2. accumulators -----------------------------------------------------
     pub fn mcstat_moments_init(m: *mut mcstat_moments) -> c_int;
     pub fn mcstat_moments_add(m: *mut mcstat_moments, x: f64) -> c_int;
     pub fn mcstat_moments_add_array(m: *mut mcstat_moments, x: *const f64, n: usize) -> c_int;
@@ -146,7 +658,37 @@ extern "C" {
     pub fn mcstat_moments_kurtosis(m: *const mcstat_moments) -> f64;
     pub fn mcstat_moments_to_bytes(m: *const mcstat_moments, buf: *mut u8, size: usize) -> c_int;
     pub fn mcstat_moments_from_bytes(buf: *const u8, size: usize, m: *mut mcstat_moments) -> c_int;
+    pub fn mcstat_moments_from_summary(n: u64, mean: f64, m2: f64, out: *mut mcstat_moments) -> c_int;
 
+    pub fn mcstat_moments_init_rows(m: *mut mcstat_moments, rows: usize) -> c_int;
+    pub fn mcstat_moments_add_rows(
+        m: *mut mcstat_moments,
+        rows: usize,
+        x: *const f64,
+        n: usize,
+        x_stride: usize,
+        flags: c_uint,
+        status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_moments_merge_rows(dst: *mut mcstat_moments, src: *const mcstat_moments, rows: usize) -> c_int;
+    pub fn mcstat_moments_to_bytes_rows(m: *const mcstat_moments, rows: usize, buf: *mut u8, size: usize) -> c_int;
+    pub fn mcstat_moments_from_bytes_rows(buf: *const u8, size: usize, rows: usize, m: *mut mcstat_moments) -> c_int;
+
+    pub fn mcstat_stream_init(s: *mut mcstat_stream) -> c_int;
+    pub fn mcstat_stream_flush(s: *mut mcstat_stream) -> c_int;
+    pub fn mcstat_stream_merge(dst: *mut mcstat_stream, src: *const mcstat_stream) -> c_int;
+    pub fn mcstat_stream_moments(s: *const mcstat_stream, out: *mut mcstat_moments) -> c_int;
+    pub fn mcstat_stream_check_mean(
+        s: *const mcstat_stream,
+        reference: f64,
+        tolerance: f64,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_stream_check_var(s: *const mcstat_stream, bound: f64, alpha: f64, out: *mut mcstat_result) -> c_int;
+    pub fn mcstat_sizeof_stream() -> usize;
+
+    // ---- 3. the tests and their result -------------------------------------
     pub fn mcstat_result_format(
         r: *const mcstat_result,
         x_name: *const c_char,
@@ -155,9 +697,16 @@ extern "C" {
         size: usize,
         length: *mut usize,
     ) -> c_int;
+    pub fn mcstat_decision_name(decision: c_int) -> *const c_char;
 
     pub fn mcstat_t_test_1(x: *const f64, n: usize, mu0: f64, alternative: c_int, alpha: f64, out: *mut mcstat_result) -> c_int;
-    pub fn mcstat_t_test_1_moments(x: *const mcstat_moments, mu0: f64, alternative: c_int, alpha: f64, out: *mut mcstat_result) -> c_int;
+    pub fn mcstat_t_test_1_moments(
+        x: *const mcstat_moments,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
     pub fn mcstat_t_test_2(
         x: *const f64,
         nx: usize,
@@ -176,8 +725,21 @@ extern "C" {
         alpha: f64,
         out: *mut mcstat_result,
     ) -> c_int;
-    pub fn mcstat_var_test_1(x: *const f64, n: usize, sigma2: f64, alternative: c_int, alpha: f64, out: *mut mcstat_result) -> c_int;
-    pub fn mcstat_var_test_1_moments(x: *const mcstat_moments, sigma2: f64, alternative: c_int, alpha: f64, out: *mut mcstat_result) -> c_int;
+    pub fn mcstat_var_test_1(
+        x: *const f64,
+        n: usize,
+        sigma2: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_var_test_1_moments(
+        x: *const mcstat_moments,
+        sigma2: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
     pub fn mcstat_var_test_2(
         x: *const f64,
         nx: usize,
@@ -199,7 +761,12 @@ extern "C" {
 
     pub fn mcstat_ks_cache_new(max_bytes: usize, cache: *mut *mut mcstat_ks_cache) -> c_int;
     pub fn mcstat_ks_cache_free(cache: *mut mcstat_ks_cache);
-    pub fn mcstat_ks_cache_stats(cache: *const mcstat_ks_cache, hits: *mut u64, misses: *mut u64, entries: *mut u64) -> c_int;
+    pub fn mcstat_ks_cache_stats(
+        cache: *const mcstat_ks_cache,
+        hits: *mut u64,
+        misses: *mut u64,
+        entries: *mut u64,
+    ) -> c_int;
     /// Writes the defaults into the first `size` bytes (the caller's struct).
     pub fn mcstat_ks_options_init_size(opt: *mut mcstat_ks_options, size: usize) -> c_int;
     /// 0.1.0's initialiser: writes 0.1.0's size (`MCSTAT_KS_OPTIONS_SIZE_0_1`).
@@ -216,6 +783,268 @@ extern "C" {
         out: *mut mcstat_result,
     ) -> c_int;
 
+    // ---- 4. per-pixel rows ---------------------------------------------------
+    pub fn mcstat_t_test_1_matrix(
+        x: *const f64,
+        n: usize,
+        x_stride: usize,
+        rows: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_t_test_2_matrix(
+        x: *const f64,
+        nx: usize,
+        x_stride: usize,
+        y: *const f64,
+        ny: usize,
+        y_stride: usize,
+        rows: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_var_test_1_matrix(
+        x: *const f64,
+        n: usize,
+        x_stride: usize,
+        rows: usize,
+        sigma2: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_var_test_2_matrix(
+        x: *const f64,
+        nx: usize,
+        x_stride: usize,
+        y: *const f64,
+        ny: usize,
+        y_stride: usize,
+        rows: usize,
+        ratio: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_t_test_1_moments_rows(
+        x: *const mcstat_moments,
+        rows: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_t_test_2_moments_rows(
+        x: *const mcstat_moments,
+        y: *const mcstat_moments,
+        rows: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_var_test_1_moments_rows(
+        x: *const mcstat_moments,
+        rows: usize,
+        sigma2: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_var_test_2_moments_rows(
+        x: *const mcstat_moments,
+        y: *const mcstat_moments,
+        rows: usize,
+        ratio: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+
+    // ---- 5. multiple testing -------------------------------------------------
+    pub fn mcstat_p_adjust_method_parse(name: *const c_char, method: *mut c_int) -> c_int;
+    pub fn mcstat_p_adjust_method_name(method: c_int) -> *const c_char;
+    pub fn mcstat_p_adjust_work_size(n: usize, method: c_int, bytes: *mut usize) -> c_int;
+    pub fn mcstat_p_adjust(
+        p: *const f64,
+        n: usize,
+        method: c_int,
+        work: *mut c_void,
+        work_bytes: usize,
+        adjusted: *mut f64,
+    ) -> c_int;
+
+    // ---- 6. equivalence ------------------------------------------------------
+    pub fn mcstat_equivalence_test_1(
+        x: *const f64,
+        n: usize,
+        mu0: f64,
+        lower: f64,
+        upper: f64,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_equivalence_test_1_moments(
+        x: *const mcstat_moments,
+        mu0: f64,
+        lower: f64,
+        upper: f64,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_equivalence_test_2(
+        x: *const f64,
+        nx: usize,
+        y: *const f64,
+        ny: usize,
+        lower: f64,
+        upper: f64,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_equivalence_test_2_moments(
+        x: *const mcstat_moments,
+        y: *const mcstat_moments,
+        lower: f64,
+        upper: f64,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+
+    // ---- 7. power (experimental) ---------------------------------------------
+    pub fn mcstat_power_options_init_size(o: *mut mcstat_power_options, size: usize) -> c_int;
+    /// 0.1.0's initialiser: writes `MCSTAT_POWER_OPTIONS_SIZE_0_1` bytes.
+    pub fn mcstat_power_options_init(o: *mut mcstat_power_options) -> c_int;
+    pub fn mcstat_sizeof_power_options() -> usize;
+    pub fn mcstat_power_compute(o: *const mcstat_power_options, power: *mut f64) -> c_int;
+    pub fn mcstat_power_solve(o: *const mcstat_power_options, unknown: c_int, out: *mut mcstat_power_options) -> c_int;
+    pub fn mcstat_power_format(o: *const mcstat_power_options, buf: *mut c_char, size: usize, length: *mut usize) -> c_int;
+
+    // ---- 8. diagnostics (experimental) ---------------------------------------
+    pub fn mcstat_diag_options_init_size(opt: *mut mcstat_diag_options, size: usize) -> c_int;
+    /// 0.1.0's initialiser: writes `MCSTAT_DIAG_OPTIONS_SIZE_0_1` bytes.
+    pub fn mcstat_diag_options_init(opt: *mut mcstat_diag_options) -> c_int;
+    pub fn mcstat_sizeof_diag_options() -> usize;
+    pub fn mcstat_sizeof_diagnostics() -> usize;
+    pub fn mcstat_diag_compute(
+        x: *const f64,
+        n: usize,
+        opt: *const mcstat_diag_options,
+        out: *mut mcstat_diagnostics,
+    ) -> c_int;
+    pub fn mcstat_diag_tail_index(x: *const f64, n: usize, tail_k: usize, index: *mut f64) -> c_int;
+    pub fn mcstat_diag_t_size(skewness: f64, kurtosis: f64, k: u64, m: u64, alpha: f64, size: *mut f64) -> c_int;
+    pub fn mcstat_diag_batch_size(
+        skewness: f64,
+        kurtosis: f64,
+        m: u64,
+        alpha: f64,
+        tolerance: f64,
+        k: *mut u64,
+    ) -> c_int;
+
+    // ---- 9. goodness of fit (experimental) -----------------------------------
+    pub fn mcstat_gof_options_init_size(opt: *mut mcstat_gof_options, size: usize) -> c_int;
+    pub fn mcstat_sizeof_gof_options() -> usize;
+    pub fn mcstat_gof_default_min_expected() -> f64;
+    pub fn mcstat_gof_chisq_test(
+        observed: *const f64,
+        expected: *const f64,
+        k: usize,
+        opt: *const mcstat_gof_options,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_binom_test(x: u64, n: u64, p: f64, alternative: c_int, alpha: f64, out: *mut mcstat_result) -> c_int;
+    pub fn mcstat_battery_test(
+        rejections: u64,
+        k: u64,
+        level: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_battery_test_pvalues(
+        p_values: *const f64,
+        k: usize,
+        level: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+
+    // ---- 10. renderer checks (experimental) ----------------------------------
+    pub fn mcstat_check_domain_dims(domain: c_int) -> c_int;
+    pub fn mcstat_check_domain_parse(name: *const c_char, domain: *mut c_int) -> c_int;
+    pub fn mcstat_check_domain_name(domain: c_int) -> *const c_char;
+    pub fn mcstat_check_route_name(route: c_int) -> *const c_char;
+    pub fn mcstat_check_route_parse(name: *const c_char, route: *mut c_int) -> c_int;
+    pub fn mcstat_check_options_init_size(opt: *mut mcstat_check_options, size: usize) -> c_int;
+    pub fn mcstat_sizeof_check_options() -> usize;
+    pub fn mcstat_sizeof_check_model() -> usize;
+    pub fn mcstat_sizeof_check_report() -> usize;
+    pub fn mcstat_check_work_size(
+        model: *const mcstat_check_model,
+        n: usize,
+        opt: *const mcstat_check_options,
+        bytes: *mut usize,
+    ) -> c_int;
+    pub fn mcstat_check_bsdf(
+        model: *const mcstat_check_model,
+        wi: *const f64,
+        n: usize,
+        seed: u64,
+        alpha: f64,
+        opt: *const mcstat_check_options,
+        work: *mut c_void,
+        work_bytes: usize,
+        out: *mut mcstat_check_report,
+    ) -> c_int;
+    pub fn mcstat_check_emitter(
+        model: *const mcstat_check_model,
+        n: usize,
+        seed: u64,
+        alpha: f64,
+        opt: *const mcstat_check_options,
+        work: *mut c_void,
+        work_bytes: usize,
+        out: *mut mcstat_check_report,
+    ) -> c_int;
+    pub fn mcstat_check_warp(
+        model: *const mcstat_check_model,
+        n: usize,
+        seed: u64,
+        alpha: f64,
+        opt: *const mcstat_check_options,
+        work: *mut c_void,
+        work_bytes: usize,
+        out: *mut mcstat_check_report,
+    ) -> c_int;
+    pub fn mcstat_check_format(r: *const mcstat_check_report, buf: *mut c_char, size: usize, length: *mut usize) -> c_int;
+    pub fn mcstat_check_route_meaning(route: c_int) -> *const c_char;
+    pub fn mcstat_check_route_blind_spot(route: c_int) -> *const c_char;
+
+    // ---- 11. distributions ---------------------------------------------------
     pub fn mcstat_t_cdf(x: f64, df: f64, upper: c_int, p: *mut f64) -> c_int;
     pub fn mcstat_t_logcdf(x: f64, df: f64, upper: c_int, logp: *mut f64) -> c_int;
     pub fn mcstat_t_quantile(p: f64, df: f64, upper: c_int, x: *mut f64) -> c_int;
@@ -226,68 +1055,112 @@ extern "C" {
     pub fn mcstat_f_logcdf(x: f64, df1: f64, df2: f64, upper: c_int, logp: *mut f64) -> c_int;
     pub fn mcstat_f_quantile(p: f64, df1: f64, df2: f64, upper: c_int, x: *mut f64) -> c_int;
 
+    // ---- 12. sizes, versions, GSL's handler ----------------------------------
     pub fn mcstat_sizeof_moments() -> usize;
     pub fn mcstat_sizeof_result() -> usize;
     pub fn mcstat_sizeof_moments_bytes() -> usize;
-    /// The 0.1 name of `mcstat_sizeof_moments_bytes`, kept so that code
-    /// using it still builds.
-    #[deprecated(note = "use mcstat_sizeof_moments_bytes")]
-    pub fn mcstat_moments_bytes() -> usize;
-
+    pub fn mcstat_version_number() -> c_uint;
+    pub fn mcstat_version() -> *const c_char;
     pub fn mcstat_gsl_handler_off();
     pub fn mcstat_gsl_handler_off_if_default() -> c_int;
+
+    // ---- 13. deprecated names ------------------------------------------------
+    #[deprecated(note = "use mcstat_sizeof_moments_bytes")]
+    pub fn mcstat_moments_bytes() -> usize;
+    #[deprecated(note = "use mcstat_sizeof_gof_options")]
+    pub fn mcstat_sizeof_chisq_options() -> usize;
+    #[deprecated(note = "use mcstat_diag_compute")]
+    pub fn mcstat_diagnose(x: *const f64, n: usize, opt: *const mcstat_diag_options, out: *mut mcstat_diagnostics) -> c_int;
+    #[deprecated(note = "use mcstat_diag_tail_index")]
+    pub fn mcstat_tail_index(x: *const f64, n: usize, tail_k: usize, index: *mut f64) -> c_int;
+    #[deprecated(note = "use mcstat_diag_t_size")]
+    pub fn mcstat_t_size_edgeworth(skewness: f64, kurtosis: f64, k: u64, m: u64, alpha: f64, size: *mut f64) -> c_int;
+    #[deprecated(note = "use mcstat_diag_batch_size")]
+    pub fn mcstat_batch_size_recommend(
+        skewness: f64,
+        kurtosis: f64,
+        m: u64,
+        alpha: f64,
+        tolerance: f64,
+        k: *mut u64,
+    ) -> c_int;
+    #[deprecated(note = "use mcstat_gof_options_init_size")]
+    pub fn mcstat_chisq_options_init_size(opt: *mut mcstat_gof_options, size: usize) -> c_int;
+    /// 0.1.0's initialiser: writes `MCSTAT_GOF_OPTIONS_SIZE_0_1` bytes.
+    #[deprecated(note = "use mcstat_gof_options_init_size")]
+    pub fn mcstat_chisq_options_init(opt: *mut mcstat_gof_options) -> c_int;
+    #[deprecated(note = "use mcstat_gof_default_min_expected")]
+    pub fn mcstat_chisq_default_min_expected() -> f64;
+    #[deprecated(note = "use mcstat_gof_chisq_test")]
+    pub fn mcstat_chisq_gof(
+        observed: *const f64,
+        expected: *const f64,
+        k: usize,
+        opt: *const mcstat_gof_options,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    /// 0.1.0's order: `rows` before `n`.
+    #[deprecated(note = "use mcstat_t_test_1_matrix (rows moves after x_stride)")]
+    pub fn mcstat_t_test_1_rows(
+        x: *const f64,
+        rows: usize,
+        n: usize,
+        x_stride: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    #[deprecated(note = "use mcstat_t_test_2_matrix (same arguments)")]
+    pub fn mcstat_t_test_2_rows(
+        x: *const f64,
+        nx: usize,
+        x_stride: usize,
+        y: *const f64,
+        ny: usize,
+        y_stride: usize,
+        rows: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    /// 0.1.0's order: `rows` before `n`.
+    #[deprecated(note = "use mcstat_var_test_1_matrix (rows moves after x_stride)")]
+    pub fn mcstat_var_test_1_rows(
+        x: *const f64,
+        rows: usize,
+        n: usize,
+        x_stride: usize,
+        sigma2: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
+    #[deprecated(note = "use mcstat_var_test_2_matrix (same arguments)")]
+    pub fn mcstat_var_test_2_rows(
+        x: *const f64,
+        nx: usize,
+        x_stride: usize,
+        y: *const f64,
+        ny: usize,
+        y_stride: usize,
+        rows: usize,
+        ratio: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *mut mcstat_result,
+        status: *mut i32,
+    ) -> c_int;
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sizes_match_the_library() {
-        unsafe {
-            assert_eq!(std::mem::size_of::<mcstat_moments>(), mcstat_sizeof_moments());
-            assert_eq!(std::mem::size_of::<mcstat_moments>(), 128);
-            assert_eq!(std::mem::size_of::<mcstat_result>(), mcstat_sizeof_result());
-            assert_eq!(std::mem::size_of::<mcstat_ks_options>(), mcstat_sizeof_ks_options());
-            assert_eq!(mcstat_sizeof_moments_bytes(), MCSTAT_MOMENTS_BYTES);
-        }
-    }
-
-    /// MAJOR.MINOR.PATCH of the repository's mcstat.h, the one source of
-    /// the version: Cargo.toml's must follow it.
-    fn header_version() -> (u32, u32, u32) {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../libmcstat/include/mcstat.h");
-        let text = std::fs::read_to_string(path).expect("the repository's mcstat.h");
-        let get = |name: &str| -> u32 {
-            let key = format!("#define MCSTAT_VERSION_{name} ");
-            let line = text.lines().find(|l| l.starts_with(&key)).expect("a version macro");
-            line[key.len()..].trim().parse().expect("a number")
-        };
-        (get("MAJOR"), get("MINOR"), get("PATCH"))
-    }
-
-    #[test]
-    fn version_is_the_header_version() {
-        let (major, minor, patch) = header_version();
-        let want = format!("{major}.{minor}.{patch}");
-        assert_eq!(env!("CARGO_PKG_VERSION"), want, "Cargo.toml's version differs from mcstat.h's");
-        let v = unsafe { std::ffi::CStr::from_ptr(mcstat_version()) };
-        assert_eq!(v.to_str().unwrap(), want);
-        assert_eq!(unsafe { mcstat_version_number() }, major * 10000 + minor * 100 + patch);
-    }
-
-    #[test]
-    fn ks_options_initialiser_writes_the_callers_size() {
-        // a buffer larger than the struct: the sized initialiser writes the
-        // struct, nothing beyond; the default starts no thread
-        let n = std::mem::size_of::<mcstat_ks_options>();
-        let mut buf = [0xABu8; 128];
-        let st = unsafe { mcstat_ks_options_init_size(buf.as_mut_ptr() as *mut mcstat_ks_options, n) };
-        assert_eq!(st, MCSTAT_OK);
-        assert!(buf[n..].iter().all(|&b| b == 0xAB));
-        let o: mcstat_ks_options = unsafe { std::ptr::read_unaligned(buf.as_ptr() as *const mcstat_ks_options) };
-        assert_eq!((o.size as usize, o.threads), (n, 1));
-        let st = unsafe { mcstat_ks_options_init_size(buf.as_mut_ptr() as *mut mcstat_ks_options, n + 8) };
-        assert_eq!(st, MCSTAT_EINVAL);
-    }
-}
+mod tests;

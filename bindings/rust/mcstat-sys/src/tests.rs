@@ -1,0 +1,274 @@
+use super::*;
+use std::mem::{size_of, MaybeUninit};
+
+/// Byte offset of a (possibly nested, possibly union) field.
+macro_rules! offset {
+    ($t:ty, $($f:tt)+) => {{
+        let u = MaybeUninit::<$t>::uninit();
+        let base = u.as_ptr();
+        #[allow(unused_unsafe)]
+        unsafe { (std::ptr::addr_of!((*base).$($f)+) as *const u8).offset_from(base as *const u8) as usize }
+    }};
+}
+
+#[test]
+fn sizes_match_the_library() {
+    unsafe {
+        assert_eq!(size_of::<mcstat_moments>(), mcstat_sizeof_moments());
+        assert_eq!(size_of::<mcstat_result>(), mcstat_sizeof_result());
+        assert_eq!(size_of::<mcstat_stream>(), mcstat_sizeof_stream());
+        assert_eq!(size_of::<mcstat_ks_options>(), mcstat_sizeof_ks_options());
+        assert_eq!(size_of::<mcstat_power_options>(), mcstat_sizeof_power_options());
+        assert_eq!(size_of::<mcstat_diag_options>(), mcstat_sizeof_diag_options());
+        assert_eq!(size_of::<mcstat_diagnostics>(), mcstat_sizeof_diagnostics());
+        assert_eq!(size_of::<mcstat_gof_options>(), mcstat_sizeof_gof_options());
+        assert_eq!(size_of::<mcstat_check_options>(), mcstat_sizeof_check_options());
+        assert_eq!(size_of::<mcstat_check_model>(), mcstat_sizeof_check_model());
+        assert_eq!(size_of::<mcstat_check_report>(), mcstat_sizeof_check_report());
+        assert_eq!(mcstat_sizeof_moments_bytes(), MCSTAT_MOMENTS_BYTES);
+        #[allow(deprecated)]
+        {
+            assert_eq!(mcstat_moments_bytes(), MCSTAT_MOMENTS_BYTES);
+            assert_eq!(mcstat_sizeof_chisq_options(), size_of::<mcstat_chisq_options>());
+        }
+    }
+}
+
+/// The offsets are those of the C compiler on mcstat.h (offsetof, LP64),
+/// for the fields after each change of alignment or union.
+#[cfg(target_pointer_width = "64")]
+#[test]
+fn offsets_match_the_c_compiler() {
+    assert_eq!(offset!(mcstat_moments, mean), 16);
+    assert_eq!(offset!(mcstat_moments, reserved), 72);
+    assert_eq!(offset!(mcstat_stream, count), 128);
+    assert_eq!(offset!(mcstat_stream, n_nonfinite), 136);
+    assert_eq!(offset!(mcstat_stream, u.s.n_overflow), 144);
+    assert_eq!(offset!(mcstat_stream, buf), 160);
+    assert_eq!(offset!(mcstat_result, ints.s.ks_weight), 20);
+    assert_eq!(offset!(mcstat_result, ints.s.chisq_n_estimated), 28);
+    assert_eq!(offset!(mcstat_result, n), 32);
+    assert_eq!(offset!(mcstat_result, statistic), 48);
+    assert_eq!(offset!(mcstat_result, std_error), 152);
+    assert_eq!(offset!(mcstat_result, per_test.ks.ks_critical_se), 160);
+    assert_eq!(offset!(mcstat_result, per_test.tost.tost_upper), 200);
+    assert_eq!(offset!(mcstat_result, per_test.binom.binom_log_p_value), 176);
+    assert_eq!(offset!(mcstat_result, per_test.chisq.chisq_pool_below), 192);
+    assert_eq!(offset!(mcstat_ks_options, cache), 32);
+    assert_eq!(offset!(mcstat_ks_options, critical), 40);
+    assert_eq!(offset!(mcstat_power_options, n), 16);
+    assert_eq!(offset!(mcstat_power_options, power), 56);
+    assert_eq!(offset!(mcstat_power_options, reserved), 64);
+    assert_eq!(offset!(mcstat_diag_options, k), 8);
+    assert_eq!(offset!(mcstat_diag_options, alpha), 32);
+    assert_eq!(offset!(mcstat_diag_options, tail_threshold), 48);
+    assert_eq!(size_of::<mcstat_diagnostics>(), 200);
+    assert_eq!(offset!(mcstat_diagnostics, heavy_tail), 40);
+    assert_eq!(offset!(mcstat_diagnostics, mean), 48);
+    assert_eq!(offset!(mcstat_diagnostics, tail_index), 96);
+    assert_eq!(offset!(mcstat_diagnostics, t_size), 136);
+    assert_eq!(offset!(mcstat_diagnostics, reserved), 168);
+    assert_eq!(offset!(mcstat_gof_options, min_expected), 16);
+    assert_eq!(offset!(mcstat_gof_options, n_estimated), 24);
+    assert_eq!(size_of::<mcstat_check_model>(), 80);
+    assert_eq!(offset!(mcstat_check_model, user), 16);
+    assert_eq!(offset!(mcstat_check_model, sample), 24);
+    assert_eq!(offset!(mcstat_check_model, eval), 40);
+    assert_eq!(offset!(mcstat_check_model, reserved), 48);
+    assert_eq!(offset!(mcstat_check_options, n_pilot), 24);
+    assert_eq!(offset!(mcstat_check_options, batch), 40);
+    assert_eq!(offset!(mcstat_check_options, rtol), 48);
+    assert_eq!(offset!(mcstat_check_options, reserved), 64);
+    assert_eq!(size_of::<mcstat_check_route_result>(), 152);
+    assert_eq!(offset!(mcstat_check_route_result, statistic), 16);
+    assert_eq!(offset!(mcstat_check_route_result, checked), 72);
+    assert_eq!(offset!(mcstat_check_route_result, r#where), 88);
+    assert_eq!(offset!(mcstat_check_route_result, value), 112);
+    assert_eq!(offset!(mcstat_check_route_result, reserved), 128);
+    assert_eq!(size_of::<mcstat_check_report>(), 1880);
+    assert_eq!(offset!(mcstat_check_report, alpha), 16);
+    assert_eq!(offset!(mcstat_check_report, wi), 32);
+    assert_eq!(offset!(mcstat_check_report, n), 56);
+    assert_eq!(offset!(mcstat_check_report, mass), 112);
+    assert_eq!(offset!(mcstat_check_report, tail_index), 176);
+    assert_eq!(offset!(mcstat_check_report, reserved), 192);
+    assert_eq!(offset!(mcstat_check_report, route), 256);
+    assert_eq!(offset!(mcstat_check_report, message), 1624);
+}
+
+/// MAJOR.MINOR.PATCH of the repository's mcstat.h, the one source of
+/// the version: Cargo.toml's and the constants here must follow it.
+fn header_version() -> (u32, u32, u32) {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../libmcstat/include/mcstat.h");
+    let text = std::fs::read_to_string(path).expect("the repository's mcstat.h");
+    let get = |name: &str| -> u32 {
+        let key = format!("#define MCSTAT_VERSION_{name} ");
+        let line = text.lines().find(|l| l.starts_with(&key)).expect("a version macro");
+        line[key.len()..].trim().parse().expect("a number")
+    };
+    (get("MAJOR"), get("MINOR"), get("PATCH"))
+}
+
+#[test]
+fn version_is_the_header_version() {
+    let (major, minor, patch) = header_version();
+    let want = format!("{major}.{minor}.{patch}");
+    assert_eq!(env!("CARGO_PKG_VERSION"), want, "Cargo.toml's version differs from mcstat.h's");
+    assert_eq!((MCSTAT_VERSION_MAJOR, MCSTAT_VERSION_MINOR, MCSTAT_VERSION_PATCH), (major, minor, patch));
+    let v = unsafe { std::ffi::CStr::from_ptr(mcstat_version()) };
+    assert_eq!(v.to_str().unwrap(), want);
+    assert_eq!(unsafe { mcstat_version_number() }, MCSTAT_VERSION_NUMBER);
+}
+
+#[test]
+fn ks_options_initialiser_writes_the_callers_size() {
+    // a buffer larger than the struct: the sized initialiser writes the
+    // struct, nothing beyond; the default starts no thread
+    let n = size_of::<mcstat_ks_options>();
+    let mut buf = [0xABu8; 128];
+    let st = unsafe { mcstat_ks_options_init_size(buf.as_mut_ptr() as *mut mcstat_ks_options, n) };
+    assert_eq!(st, MCSTAT_OK);
+    assert!(buf[n..].iter().all(|&b| b == 0xAB));
+    let o: mcstat_ks_options = unsafe { std::ptr::read_unaligned(buf.as_ptr() as *const mcstat_ks_options) };
+    assert_eq!((o.size as usize, o.threads), (n, 1));
+    let st = unsafe { mcstat_ks_options_init_size(buf.as_mut_ptr() as *mut mcstat_ks_options, n + 8) };
+    assert_eq!(st, MCSTAT_EINVAL);
+}
+
+/// 0.1.0's fixed-size initialisers write the 0.1.0 struct, as the sized ones do.
+#[test]
+fn old_initialisers_equal_the_sized_ones() {
+    unsafe {
+        let mut a = MaybeUninit::<mcstat_ks_options>::zeroed().assume_init();
+        let mut b = a;
+        assert_eq!(mcstat_ks_options_init(&mut a), MCSTAT_OK);
+        assert_eq!(mcstat_ks_options_init_size(&mut b, MCSTAT_KS_OPTIONS_SIZE_0_1), MCSTAT_OK);
+        assert_eq!((a.size, a.weight, a.n_sim, a.critical), (b.size, b.weight, b.n_sim, b.critical));
+        let mut p = MaybeUninit::<mcstat_power_options>::zeroed().assume_init();
+        let mut q = p;
+        assert_eq!(mcstat_power_options_init(&mut p), MCSTAT_OK);
+        assert_eq!(mcstat_power_options_init_size(&mut q, size_of::<mcstat_power_options>()), MCSTAT_OK);
+        assert_eq!((p.size, p.test, p.alpha, p.n_ratio), (q.size, q.test, q.alpha, q.n_ratio));
+        assert_eq!((p.alpha, p.strict), (0.05, 1));
+        let mut d = MaybeUninit::<mcstat_diag_options>::zeroed().assume_init();
+        let mut e = d;
+        assert_eq!(mcstat_diag_options_init(&mut d), MCSTAT_OK);
+        assert_eq!(mcstat_diag_options_init_size(&mut e, size_of::<mcstat_diag_options>()), MCSTAT_OK);
+        assert_eq!((d.size, d.alpha, d.tolerance, d.tail_threshold), (e.size, 0.05, 0.2, 2.2));
+        let mut c = MaybeUninit::<mcstat_check_options>::zeroed().assume_init();
+        assert_eq!(mcstat_check_options_init_size(&mut c, size_of::<mcstat_check_options>()), MCSTAT_OK);
+        assert_eq!((c.routes, c.batch, c.rtol), (MCSTAT_CHECK_ALL_ROUTES, 65536, 1e-3));
+    }
+}
+
+fn data(n: usize, seed: u64) -> Vec<f64> {
+    // a fixed, deterministic sample (xorshift), not random per run
+    let mut s = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    (0..n)
+        .map(|_| {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64
+        })
+        .collect()
+}
+
+fn result() -> mcstat_result {
+    unsafe { MaybeUninit::<mcstat_result>::zeroed().assume_init() }
+}
+
+/// The deprecated names still link and give bit-identical results.
+#[test]
+#[allow(deprecated)]
+fn deprecated_names_give_the_same_results() {
+    let x = data(60, 1);
+    let y = data(60, 2);
+    unsafe {
+        // rows: 0.1.0's order (rows before n) against the _matrix order
+        let (mut a, mut b) = ([result(); 3], [result(); 3]);
+        let (mut sa, mut sb) = ([9i32; 3], [9i32; 3]);
+        assert_eq!(mcstat_t_test_1_rows(x.as_ptr(), 3, 20, 20, 0.5, MCSTAT_TWO_SIDED, 0.05, 0, a.as_mut_ptr(), sa.as_mut_ptr()), 0);
+        assert_eq!(mcstat_t_test_1_matrix(x.as_ptr(), 20, 20, 3, 0.5, MCSTAT_TWO_SIDED, 0.05, 0, b.as_mut_ptr(), sb.as_mut_ptr()), 0);
+        assert_eq!(sa, [0; 3]);
+        for i in 0..3 {
+            assert_eq!(a[i].p_value.to_bits(), b[i].p_value.to_bits());
+        }
+        assert_eq!(mcstat_var_test_1_rows(x.as_ptr(), 3, 20, 20, 0.1, MCSTAT_GREATER, 0.05, 0, a.as_mut_ptr(), sa.as_mut_ptr()), 0);
+        assert_eq!(mcstat_var_test_1_matrix(x.as_ptr(), 20, 20, 3, 0.1, MCSTAT_GREATER, 0.05, 0, b.as_mut_ptr(), sb.as_mut_ptr()), 0);
+        assert_eq!(a[2].statistic.to_bits(), b[2].statistic.to_bits());
+        assert_eq!(mcstat_t_test_2_rows(x.as_ptr(), 20, 20, y.as_ptr(), 20, 20, 3, 0.0, MCSTAT_LESS, 0.05, 0, a.as_mut_ptr(), sa.as_mut_ptr()), 0);
+        assert_eq!(mcstat_t_test_2_matrix(x.as_ptr(), 20, 20, y.as_ptr(), 20, 20, 3, 0.0, MCSTAT_LESS, 0.05, 0, b.as_mut_ptr(), sb.as_mut_ptr()), 0);
+        assert_eq!(a[1].df[0].to_bits(), b[1].df[0].to_bits());
+        assert_eq!(mcstat_var_test_2_rows(x.as_ptr(), 20, 20, y.as_ptr(), 20, 20, 3, 1.0, MCSTAT_TWO_SIDED, 0.05, 0, a.as_mut_ptr(), sa.as_mut_ptr()), 0);
+        assert_eq!(mcstat_var_test_2_matrix(x.as_ptr(), 20, 20, y.as_ptr(), 20, 20, 3, 1.0, MCSTAT_TWO_SIDED, 0.05, 0, b.as_mut_ptr(), sb.as_mut_ptr()), 0);
+        assert_eq!(a[0].p_value.to_bits(), b[0].p_value.to_bits());
+
+        // goodness of fit
+        let obs = [22.0, 21.0, 22.0, 27.0, 22.0, 36.0];
+        let p = [1.0 / 6.0; 6];
+        let mut o = MaybeUninit::<mcstat_chisq_options>::zeroed().assume_init();
+        assert_eq!(mcstat_chisq_options_init_size(&mut o, size_of::<mcstat_chisq_options>()), 0);
+        let mut o1 = o;
+        assert_eq!(mcstat_chisq_options_init(&mut o1), 0);
+        assert_eq!((o1.size as usize, o1.pool), (MCSTAT_CHISQ_OPTIONS_SIZE_0_1, 1));
+        assert_eq!(mcstat_chisq_default_min_expected(), mcstat_gof_default_min_expected());
+        let (mut r1, mut r2) = (result(), result());
+        assert_eq!(mcstat_chisq_gof(obs.as_ptr(), p.as_ptr(), 6, &o, 0.05, &mut r1), 0);
+        assert_eq!(mcstat_gof_chisq_test(obs.as_ptr(), p.as_ptr(), 6, &o, 0.05, &mut r2), 0);
+        assert_eq!(r1.statistic, 6.72);
+        assert_eq!(r1.p_value.to_bits(), r2.p_value.to_bits());
+        assert_eq!(r2.ints().chisq_cells, 6);
+
+        // diagnostics
+        let z = data(500, 3);
+        let mut d1 = MaybeUninit::<mcstat_diagnostics>::zeroed().assume_init();
+        let mut d2 = d1;
+        assert_eq!(mcstat_diagnose(z.as_ptr(), z.len(), std::ptr::null(), &mut d1), 0);
+        assert_eq!(mcstat_diag_compute(z.as_ptr(), z.len(), std::ptr::null(), &mut d2), 0);
+        assert_eq!(d1.tail_index[1].to_bits(), d2.tail_index[1].to_bits());
+        assert_eq!(d1.recommended_k, d2.recommended_k);
+        let (mut i1, mut i2) = ([0.0; 2], [0.0; 2]);
+        assert_eq!(mcstat_tail_index(z.as_ptr(), z.len(), 0, i1.as_mut_ptr()), 0);
+        assert_eq!(mcstat_diag_tail_index(z.as_ptr(), z.len(), 0, i2.as_mut_ptr()), 0);
+        assert_eq!(i1, i2);
+        assert_eq!(mcstat_t_size_edgeworth(2.0, 6.0, 1, 30, 0.05, i1.as_mut_ptr()), 0);
+        assert_eq!(mcstat_diag_t_size(2.0, 6.0, 1, 30, 0.05, i2.as_mut_ptr()), 0);
+        assert_eq!(i1, i2);
+        let (mut k1, mut k2) = (0u64, 0u64);
+        assert_eq!(mcstat_batch_size_recommend(2.0, 6.0, 30, 0.05, 0.2, &mut k1), 0);
+        assert_eq!(mcstat_diag_batch_size(2.0, 6.0, 30, 0.05, 0.2, &mut k2), 0);
+        assert!(k1 > 1 && k1 == k2);
+    }
+}
+
+/// mcstat_stream_add (the header's inline function, in Rust) gives the
+/// moments of add_array on the same values, across several flushes.
+#[test]
+fn stream_add_is_add_array() {
+    let x = data(3 * MCSTAT_STREAM_CAPACITY as usize + 17, 4);
+    unsafe {
+        let mut s: Box<mcstat_stream> = Box::new(MaybeUninit::zeroed().assume_init());
+        assert_eq!(mcstat_stream_init(&mut *s), 0);
+        for &v in &x {
+            mcstat_stream_add(&mut *s, v);
+        }
+        assert_eq!(s.count, 17);
+        assert_eq!(s.moments.n, 3 * MCSTAT_STREAM_CAPACITY as u64);
+        assert_eq!(s.n_overflow(), 0);
+        let mut via_stream = MaybeUninit::<mcstat_moments>::zeroed().assume_init();
+        assert_eq!(mcstat_stream_moments(&*s, &mut via_stream), 0);
+        let mut direct = MaybeUninit::<mcstat_moments>::zeroed().assume_init();
+        mcstat_moments_init(&mut direct);
+        // the stream flushes blocks of CAPACITY values, then the rest
+        for chunk in x.chunks(MCSTAT_STREAM_CAPACITY as usize) {
+            let mut part = MaybeUninit::<mcstat_moments>::zeroed().assume_init();
+            mcstat_moments_init(&mut part);
+            mcstat_moments_add_array(&mut part, chunk.as_ptr(), chunk.len());
+            mcstat_moments_merge(&mut direct, &part);
+        }
+        assert_eq!(via_stream.n, direct.n);
+        assert_eq!(mcstat_moments_mean(&via_stream).to_bits(), mcstat_moments_mean(&direct).to_bits());
+        assert_eq!(mcstat_moments_var(&via_stream).to_bits(), mcstat_moments_var(&direct).to_bits());
+    }
+}
