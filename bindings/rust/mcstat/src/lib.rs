@@ -2,27 +2,88 @@
 //! bindings to libmcstat.
 //!
 //! Slices in, `Result<TestResult, Error>` out.  The numbers, the decisions
-//! and the R-style text are computed by libmcstat; this crate converts types
-//! and errors and nothing more.
+//! and the R-style text are computed by libmcstat; this crate converts
+//! types and errors, and never hands out a NaN standing for "does not
+//! apply": such fields are `Option`s or shorter slices.
 //!
-//! ```no_run
-//! use mcstat::{t_test_2, Alternative};
-//! let (new, trusted) = (vec![1.0, 1.2, 0.9, 1.1], vec![1.0, 1.05, 0.95, 1.02]);
+//! ```
+//! use mcstat::{t_test_2, Alternative, Decision};
+//! let new = [1.0, 1.2, 0.9, 1.1, 1.3, 0.8];
+//! let trusted = [1.0, 1.05, 0.95, 1.02, 0.97, 1.01];
 //! let r = t_test_2(&new, &trusted, 0.0, Alternative::TwoSided, 0.05)?;
+//! assert_eq!(r.df().len(), 1);           // Welch: one degree of freedom
+//! assert!(!r.reject() && r.decision() == Decision::Equal);
 //! println!("{r}");                       // R's print.htest block + the decision
 //! println!("{}", r.format("new", "trusted"));
 //! # Ok::<(), mcstat::Error>(())
 //! ```
+//!
+//! The families, each in its module and re-exported here: the tests on
+//! slices and on accumulators ([`Moments`]), per-pixel rows ([`rows`]),
+//! accumulator arrays and the per-thread [`Stream`], Kolmogorov-Smirnov
+//! ([`ks_test_2`]), equivalence (TOST), multiple testing ([`p_adjust`]),
+//! power ([`power`]), estimator diagnostics ([`diag`]), goodness of fit and
+//! the binomial battery test ([`gof`]), renderer checks ([`check`]) and the
+//! distributions ([`dist`]).
 use std::ffi::{CStr, CString};
 use std::fmt;
-use std::os::raw::c_int;
+use std::os::raw::{c_char, c_int};
 use std::ptr;
 
 pub use mcstat_sys as sys;
 
+pub mod check;
+pub mod diag;
+pub mod dist;
+pub mod gof;
+mod ks;
+mod moments;
+pub mod p_adjust;
+pub mod power;
+pub mod rows;
+
+pub use check::{check_bsdf, check_emitter, check_warp, CheckModel, CheckOptions, CheckReport, Domain, Route};
+pub use diag::{diagnose, DiagOptions, Diagnostics};
+pub use gof::{battery_test, battery_test_p_values, binom_test, gof_chisq_test, GofOptions};
+pub use ks::{ks_test_2, KsCache, KsOptions};
+pub use moments::{t_test_1_moments, t_test_2_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
+pub use p_adjust::{p_adjust, PAdjustMethod};
+pub use power::{Power, PowerSolution, PowerTest};
+pub use rows::{Matrix, RowFlags, RowResults, Statuses};
+
 // ---- errors --------------------------------------------------------------------
 
-/// What went wrong, one kind per libmcstat status code.
+/// What went wrong: one variant per libmcstat status code, each with a
+/// message (libmcstat's sentence, or what the binding found wrong with an
+/// argument, or what a renderer check's callback did).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Error {
+    /// MCSTAT_EINVAL: an invalid argument.
+    InvalidArgument(String),
+    /// MCSTAT_ETOOFEW: too few observations.
+    TooFewObservations(String),
+    /// MCSTAT_ENONFINITE: NaN or infinity in the data.
+    NonFinite(String),
+    /// MCSTAT_EDEGENERATE: the data have (essentially) zero spread.
+    DegenerateData(String),
+    /// MCSTAT_ENOMEM.
+    OutOfMemory(String),
+    /// MCSTAT_ENUMERIC: a numerical method failed to converge.
+    Numerical(String),
+    /// MCSTAT_EBUFSIZE.
+    BufferSize(String),
+    /// MCSTAT_ECORRUPT: serialized bytes are corrupt, truncated or of another version.
+    Corrupt(String),
+    /// MCSTAT_ETOOBIG: sizes too large for the method, or a count past 2^64 - 1.
+    TooBig(String),
+    /// MCSTAT_ECALLBACK: a renderer check's callback failed, panicked or
+    /// returned invalid values; the message says which and where.
+    Callback(String),
+    /// A status this crate does not know (a newer library).
+    Other { status: i32, message: String },
+}
+
+/// The kind of an [`Error`], without its message: for comparisons.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ErrorKind {
     InvalidArgument,
@@ -34,51 +95,93 @@ pub enum ErrorKind {
     BufferSize,
     Corrupt,
     TooBig,
-    /// A status this crate does not know (a newer library).
+    Callback,
     Other(i32),
 }
 
-/// A libmcstat status with its sentence (`mcstat_strerror`).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Error {
-    status: i32,
-    message: String,
+fn strerror(status: c_int) -> String {
+    unsafe { CStr::from_ptr(sys::mcstat_strerror(status)) }.to_string_lossy().into_owned()
 }
 
 impl Error {
-    fn from_status(status: c_int) -> Error {
-        let message = unsafe { CStr::from_ptr(sys::mcstat_strerror(status)) }
-            .to_string_lossy()
-            .into_owned();
-        Error { status, message }
+    /// The error of a C status, with libmcstat's sentence for it.
+    pub fn from_status(status: i32) -> Error {
+        Error::with_message(status, strerror(status))
+    }
+    /// The error of a C status with a message of the caller's.
+    pub fn with_message(status: i32, message: impl Into<String>) -> Error {
+        let m = message.into();
+        match status {
+            sys::MCSTAT_EINVAL => Error::InvalidArgument(m),
+            sys::MCSTAT_ETOOFEW => Error::TooFewObservations(m),
+            sys::MCSTAT_ENONFINITE => Error::NonFinite(m),
+            sys::MCSTAT_EDEGENERATE => Error::DegenerateData(m),
+            sys::MCSTAT_ENOMEM => Error::OutOfMemory(m),
+            sys::MCSTAT_ENUMERIC => Error::Numerical(m),
+            sys::MCSTAT_EBUFSIZE => Error::BufferSize(m),
+            sys::MCSTAT_ECORRUPT => Error::Corrupt(m),
+            sys::MCSTAT_ETOOBIG => Error::TooBig(m),
+            sys::MCSTAT_ECALLBACK => Error::Callback(m),
+            status => Error::Other { status, message: m },
+        }
+    }
+    /// An invalid argument found by the binding (e.g. slices of different
+    /// lengths), with a message naming it.
+    pub(crate) fn invalid(message: impl Into<String>) -> Error {
+        Error::InvalidArgument(message.into())
     }
     /// The C status code (`MCSTAT_E*`).
     pub fn status(&self) -> i32 {
-        self.status
-    }
-    pub fn kind(&self) -> ErrorKind {
-        match self.status {
-            sys::MCSTAT_EINVAL => ErrorKind::InvalidArgument,
-            sys::MCSTAT_ETOOFEW => ErrorKind::TooFewObservations,
-            sys::MCSTAT_ENONFINITE => ErrorKind::NonFinite,
-            sys::MCSTAT_EDEGENERATE => ErrorKind::DegenerateData,
-            sys::MCSTAT_ENOMEM => ErrorKind::OutOfMemory,
-            sys::MCSTAT_ENUMERIC => ErrorKind::Numerical,
-            sys::MCSTAT_EBUFSIZE => ErrorKind::BufferSize,
-            sys::MCSTAT_ECORRUPT => ErrorKind::Corrupt,
-            sys::MCSTAT_ETOOBIG => ErrorKind::TooBig,
-            s => ErrorKind::Other(s),
+        match self {
+            Error::InvalidArgument(_) => sys::MCSTAT_EINVAL,
+            Error::TooFewObservations(_) => sys::MCSTAT_ETOOFEW,
+            Error::NonFinite(_) => sys::MCSTAT_ENONFINITE,
+            Error::DegenerateData(_) => sys::MCSTAT_EDEGENERATE,
+            Error::OutOfMemory(_) => sys::MCSTAT_ENOMEM,
+            Error::Numerical(_) => sys::MCSTAT_ENUMERIC,
+            Error::BufferSize(_) => sys::MCSTAT_EBUFSIZE,
+            Error::Corrupt(_) => sys::MCSTAT_ECORRUPT,
+            Error::TooBig(_) => sys::MCSTAT_ETOOBIG,
+            Error::Callback(_) => sys::MCSTAT_ECALLBACK,
+            Error::Other { status, .. } => *status,
         }
     }
-    /// libmcstat's sentence for the status.
+    pub fn kind(&self) -> ErrorKind {
+        match self {
+            Error::InvalidArgument(_) => ErrorKind::InvalidArgument,
+            Error::TooFewObservations(_) => ErrorKind::TooFewObservations,
+            Error::NonFinite(_) => ErrorKind::NonFinite,
+            Error::DegenerateData(_) => ErrorKind::DegenerateData,
+            Error::OutOfMemory(_) => ErrorKind::OutOfMemory,
+            Error::Numerical(_) => ErrorKind::Numerical,
+            Error::BufferSize(_) => ErrorKind::BufferSize,
+            Error::Corrupt(_) => ErrorKind::Corrupt,
+            Error::TooBig(_) => ErrorKind::TooBig,
+            Error::Callback(_) => ErrorKind::Callback,
+            Error::Other { status, .. } => ErrorKind::Other(*status),
+        }
+    }
+    /// The message: libmcstat's sentence for the status, or a more precise one.
     pub fn message(&self) -> &str {
-        &self.message
+        match self {
+            Error::InvalidArgument(m)
+            | Error::TooFewObservations(m)
+            | Error::NonFinite(m)
+            | Error::DegenerateData(m)
+            | Error::OutOfMemory(m)
+            | Error::Numerical(m)
+            | Error::BufferSize(m)
+            | Error::Corrupt(m)
+            | Error::TooBig(m)
+            | Error::Callback(m) => m,
+            Error::Other { message, .. } => message,
+        }
     }
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} (mcstat status {})", self.message, self.status)
+        write!(f, "{} (mcstat status {})", self.message(), self.status())
     }
 }
 
@@ -86,7 +189,7 @@ impl std::error::Error for Error {}
 
 pub type Result<T> = std::result::Result<T, Error>;
 
-fn check(status: c_int) -> Result<()> {
+pub(crate) fn check(status: c_int) -> Result<()> {
     if status == sys::MCSTAT_OK {
         Ok(())
     } else {
@@ -94,31 +197,112 @@ fn check(status: c_int) -> Result<()> {
     }
 }
 
+/// A NUL-free C string of a name (the C side refuses what it does not know).
+pub(crate) fn c_name(s: &str) -> Result<CString> {
+    CString::new(s).map_err(|_| Error::invalid(format!("{s:?} contains a NUL byte")))
+}
+
+pub(crate) fn static_str(p: *const c_char) -> Option<&'static str> {
+    if p.is_null() {
+        None
+    } else {
+        unsafe { CStr::from_ptr(p) }.to_str().ok()
+    }
+}
+
+/// Runs one of libmcstat's formatters twice: for the length, then the text.
+pub(crate) fn format_with(f: impl Fn(*mut c_char, usize, *mut usize) -> c_int) -> Result<String> {
+    let mut len: usize = 0;
+    let st = f(ptr::null_mut(), 0, &mut len);
+    if st != sys::MCSTAT_OK && st != sys::MCSTAT_EBUFSIZE {
+        return Err(Error::from_status(st));
+    }
+    let mut buf = vec![0u8; len + 1];
+    check(f(buf.as_mut_ptr().cast(), buf.len(), ptr::null_mut()))?;
+    buf.truncate(len);
+    Ok(String::from_utf8_lossy(&buf).into_owned())
+}
+
+// ---- versions, GSL, layout -------------------------------------------------------
+
 /// The version of the linked library, "MAJOR.MINOR.PATCH".
 pub fn version() -> &'static str {
-    unsafe { CStr::from_ptr(sys::mcstat_version()) }.to_str().unwrap_or("?")
+    static_str(unsafe { sys::mcstat_version() }).unwrap_or("?")
+}
+
+/// MAJOR * 10000 + MINOR * 100 + PATCH of the linked library.
+pub fn version_number() -> u32 {
+    unsafe { sys::mcstat_version_number() }
+}
+
+/// Turns GSL's process-wide error handler off (GSL's own calls then return
+/// error codes instead of aborting).  mcstat never needs this: it validates
+/// before calling GSL.
+pub fn gsl_handler_off() {
+    unsafe { sys::mcstat_gsl_handler_off() }
+}
+
+/// Turns GSL's handler off only if no handler was installed; true if it did.
+pub fn gsl_handler_off_if_default() -> bool {
+    unsafe { sys::mcstat_gsl_handler_off_if_default() != 0 }
+}
+
+/// Checks that the structs this crate passes to libmcstat have the sizes
+/// the linked library expects (a mismatched mcstat-sys and library would
+/// otherwise corrupt memory): a cheap test a program may run at start-up.
+/// `InvalidArgument` names the first struct that differs.
+pub fn check_layout() -> Result<()> {
+    use std::mem::size_of;
+    let sizes: [(&str, usize, usize); 12] = unsafe {
+        [
+            ("mcstat_moments", size_of::<sys::mcstat_moments>(), sys::mcstat_sizeof_moments()),
+            ("mcstat_result", size_of::<sys::mcstat_result>(), sys::mcstat_sizeof_result()),
+            ("mcstat_stream", size_of::<sys::mcstat_stream>(), sys::mcstat_sizeof_stream()),
+            ("mcstat_ks_options", size_of::<sys::mcstat_ks_options>(), sys::mcstat_sizeof_ks_options()),
+            ("mcstat_power_options", size_of::<sys::mcstat_power_options>(), sys::mcstat_sizeof_power_options()),
+            ("mcstat_diag_options", size_of::<sys::mcstat_diag_options>(), sys::mcstat_sizeof_diag_options()),
+            ("mcstat_diagnostics", size_of::<sys::mcstat_diagnostics>(), sys::mcstat_sizeof_diagnostics()),
+            ("mcstat_gof_options", size_of::<sys::mcstat_gof_options>(), sys::mcstat_sizeof_gof_options()),
+            ("mcstat_check_options", size_of::<sys::mcstat_check_options>(), sys::mcstat_sizeof_check_options()),
+            ("mcstat_check_model", size_of::<sys::mcstat_check_model>(), sys::mcstat_sizeof_check_model()),
+            ("mcstat_check_report", size_of::<sys::mcstat_check_report>(), sys::mcstat_sizeof_check_report()),
+            ("serialized mcstat_moments", sys::MCSTAT_MOMENTS_BYTES, sys::mcstat_sizeof_moments_bytes()),
+        ]
+    };
+    for (name, ours, theirs) in sizes {
+        if ours != theirs {
+            return Err(Error::invalid(format!(
+                "{name} is {ours} bytes in mcstat-sys but {theirs} in the linked libmcstat {}",
+                version()
+            )));
+        }
+    }
+    Ok(())
 }
 
 // ---- enums ---------------------------------------------------------------------
 
 /// A claim about the first sample: `Less` means mean(x) < mu0 (or var(x) <
 /// sigma2, mean(x) < mean(y), ...); for K-S, x tends to be smaller than y.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// `Display` gives libmcstat's name ("two-sided", "less", "greater"),
+/// `FromStr` parses them (also R's "two.sided").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Alternative {
+    #[default]
     TwoSided,
     Less,
     Greater,
 }
 
 impl Alternative {
-    fn raw(self) -> c_int {
+    pub(crate) fn raw(self) -> c_int {
         match self {
             Alternative::TwoSided => sys::MCSTAT_TWO_SIDED,
             Alternative::Less => sys::MCSTAT_LESS,
             Alternative::Greater => sys::MCSTAT_GREATER,
         }
     }
-    fn from_raw(v: i32) -> Alternative {
+    pub(crate) fn from_raw(v: i32) -> Alternative {
         match v {
             sys::MCSTAT_LESS => Alternative::Less,
             sys::MCSTAT_GREATER => Alternative::Greater,
@@ -127,18 +311,25 @@ impl Alternative {
     }
 }
 
+impl fmt::Display for Alternative {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(static_str(unsafe { sys::mcstat_alternative_name(self.raw()) }).unwrap_or("?"))
+    }
+}
+
 impl std::str::FromStr for Alternative {
     type Err = Error;
-    /// "two-sided" (also "two.sided", "two_sided"), "less", "greater", as libmcstat parses them.
     fn from_str(s: &str) -> Result<Alternative> {
-        let c = CString::new(s).map_err(|_| Error::from_status(sys::MCSTAT_EINVAL))?;
+        let c = c_name(s)?;
         let mut v: c_int = -1;
-        check(unsafe { sys::mcstat_alternative_parse(c.as_ptr(), &mut v) })?;
+        if unsafe { sys::mcstat_alternative_parse(c.as_ptr(), &mut v) } != sys::MCSTAT_OK {
+            return Err(Error::invalid(format!("unknown alternative {s:?} (two-sided, less, greater)")));
+        }
         Ok(Alternative::from_raw(v))
     }
 }
 
-/// The paper's three-way outcome.
+/// The paper's three-way outcome; `Display` gives "less", "equal", "greater".
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Decision {
     Less,
@@ -146,17 +337,68 @@ pub enum Decision {
     Greater,
 }
 
+impl Decision {
+    fn raw(self) -> c_int {
+        match self {
+            Decision::Less => sys::MCSTAT_DECISION_LESS,
+            Decision::Equal => sys::MCSTAT_DECISION_EQUAL,
+            Decision::Greater => sys::MCSTAT_DECISION_GREATER,
+        }
+    }
+}
+
+impl fmt::Display for Decision {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(static_str(unsafe { sys::mcstat_decision_name(self.raw()) }).unwrap_or("?"))
+    }
+}
+
 /// Which test produced a result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Test {
+    /// One-sample t.
     T1,
+    /// Welch's two-sample t.
     T2,
+    /// One-sample chi-squared test of the variance.
     Var1,
+    /// Two-sample F test of the ratio of variances.
     Var2,
+    /// Two-sample Kolmogorov-Smirnov.
     Ks2,
+    /// One-sample equivalence (TOST).
+    Equiv1,
+    /// Welch two-sample equivalence (TOST).
+    Equiv2,
+    /// Exact binomial test (also the battery meta-test).
+    Binom,
+    /// Pearson's chi-squared goodness of fit.
+    ChisqGof,
+    // The pooled two-sample and paired t tests go here when the library
+    // exports them (mcstat_t_test_2_pooled, mcstat_t_test_paired).
+    /// A test this crate does not know (a newer library).
+    Other(i32),
 }
 
-/// How the p-value was obtained.
+impl Test {
+    fn from_raw(v: i32) -> Test {
+        match v {
+            sys::MCSTAT_TEST_T_1 => Test::T1,
+            sys::MCSTAT_TEST_T_2 => Test::T2,
+            sys::MCSTAT_TEST_VAR_1 => Test::Var1,
+            sys::MCSTAT_TEST_VAR_2 => Test::Var2,
+            sys::MCSTAT_TEST_KS_2 => Test::Ks2,
+            sys::MCSTAT_TEST_EQUIV_1 => Test::Equiv1,
+            sys::MCSTAT_TEST_EQUIV_2 => Test::Equiv2,
+            sys::MCSTAT_TEST_BINOM => Test::Binom,
+            sys::MCSTAT_TEST_CHISQ_GOF => Test::ChisqGof,
+            v => Test::Other(v),
+        }
+    }
+}
+
+/// How the p-value was obtained (`Auto` is a K-S option only: results
+/// never carry it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
     Analytic,
@@ -167,13 +409,22 @@ pub enum Method {
 }
 
 impl Method {
-    fn raw(self) -> i32 {
+    pub(crate) fn raw(self) -> i32 {
         match self {
             Method::Analytic => sys::MCSTAT_METHOD_ANALYTIC,
             Method::Auto => sys::MCSTAT_METHOD_AUTO,
             Method::Exact => sys::MCSTAT_METHOD_EXACT,
             Method::Simulate => sys::MCSTAT_METHOD_SIMULATE,
             Method::Asymptotic => sys::MCSTAT_METHOD_ASYMPTOTIC,
+        }
+    }
+    fn from_raw(v: i32) -> Method {
+        match v {
+            sys::MCSTAT_METHOD_EXACT => Method::Exact,
+            sys::MCSTAT_METHOD_SIMULATE => Method::Simulate,
+            sys::MCSTAT_METHOD_ASYMPTOTIC => Method::Asymptotic,
+            sys::MCSTAT_METHOD_AUTO => Method::Auto,
+            _ => Method::Analytic,
         }
     }
 }
@@ -189,45 +440,104 @@ pub enum KsWeight {
 
 // ---- results -------------------------------------------------------------------
 
-/// A test's result: a copy of libmcstat's `mcstat_result`.  `Display` prints
-/// the R-style block with the data named "x" and "y"; `format` names them.
+/// The outputs particular to one test (the named unions of `mcstat_result`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Details {
+    /// The t, chi-squared and F tests have none.
+    None,
+    Ks {
+        weight: KsWeight,
+        /// Monte Carlo standard error of the critical value (0 unless simulated).
+        critical_se: f64,
+        /// Replicates simulated (0 unless simulated).
+        n_sim: u64,
+    },
+    Tost {
+        /// t for H1: mean > lower bound, and its one-sided p-value.
+        t_lower: f64,
+        p_lower: f64,
+        /// t for H1: mean < upper bound, and its one-sided p-value.
+        t_upper: f64,
+        p_upper: f64,
+        /// The bounds tested (mu0 + lower, mu0 + upper for one sample).
+        lower: f64,
+        upper: f64,
+    },
+    Binom {
+        /// log(p-value), finite where the p-value underflows to 0.
+        log_p_value: f64,
+    },
+    ChisqGof {
+        /// Cells after pooling.
+        cells: u32,
+        /// Parameters estimated from the counts.
+        n_estimated: u32,
+        /// Cells given.
+        cells_given: u64,
+        /// Smallest expected count after pooling.
+        min_expected: f64,
+        /// The pooling threshold, `None` when pooling was off.
+        pool_below: Option<f64>,
+    },
+}
+
+/// A test's result: a copy of libmcstat's `mcstat_result`.  Fields that do
+/// not apply to the test are `None` or left out of the slices (a t test has
+/// one degree of freedom, a K-S test none); infinities are meaningful (the
+/// open end of a one-sided interval).  `Display` prints the R-style block
+/// with the data named "x" and "y"; [`TestResult::format`] names them.
 #[derive(Clone, Copy, Debug)]
 pub struct TestResult {
     raw: sys::mcstat_result,
 }
 
+fn some(v: f64) -> Option<f64> {
+    if v.is_nan() {
+        None
+    } else {
+        Some(v)
+    }
+}
+
+fn pair(v: [f64; 2]) -> Option<(f64, f64)> {
+    if v[0].is_nan() || v[1].is_nan() {
+        None
+    } else {
+        Some((v[0], v[1]))
+    }
+}
+
+/// The leading values that are not NaN.
+fn leading(v: &[f64]) -> &[f64] {
+    &v[..v.iter().position(|x| x.is_nan()).unwrap_or(v.len())]
+}
+
 impl TestResult {
+    pub(crate) fn from_raw(raw: sys::mcstat_result) -> TestResult {
+        TestResult { raw }
+    }
+    /// The C struct, NaN placeholders and all.
     pub fn raw(&self) -> &sys::mcstat_result {
         &self.raw
     }
     pub fn test(&self) -> Test {
-        match self.raw.test {
-            sys::MCSTAT_TEST_T_1 => Test::T1,
-            sys::MCSTAT_TEST_T_2 => Test::T2,
-            sys::MCSTAT_TEST_VAR_1 => Test::Var1,
-            sys::MCSTAT_TEST_VAR_2 => Test::Var2,
-            _ => Test::Ks2,
-        }
+        Test::from_raw(self.raw.test)
     }
     pub fn method(&self) -> Method {
-        match self.raw.method {
-            sys::MCSTAT_METHOD_EXACT => Method::Exact,
-            sys::MCSTAT_METHOD_SIMULATE => Method::Simulate,
-            sys::MCSTAT_METHOD_ASYMPTOTIC => Method::Asymptotic,
-            sys::MCSTAT_METHOD_AUTO => Method::Auto,
-            _ => Method::Analytic,
-        }
+        Method::from_raw(self.raw.method)
     }
     pub fn alternative(&self) -> Alternative {
         Alternative::from_raw(self.raw.alternative)
     }
-    /// t, X-squared, F, or the K-S statistic (D, or Canner's D2).
+    /// t, X-squared, F, the K-S statistic (D or Canner's D2), the count of
+    /// a binomial test.
     pub fn statistic(&self) -> f64 {
         self.raw.statistic
     }
-    /// Degrees of freedom (the second is NaN except for F).
-    pub fn df(&self) -> [f64; 2] {
-        self.raw.df
+    /// Degrees of freedom: one (t, Welch, chi-squared, TOST, GOF), two (F)
+    /// or none (K-S, binomial).
+    pub fn df(&self) -> &[f64] {
+        leading(&self.raw.df)
     }
     pub fn p_value(&self) -> f64 {
         self.raw.p_value
@@ -236,28 +546,37 @@ impl TestResult {
     pub fn p_value_se(&self) -> f64 {
         self.raw.p_value_se
     }
-    pub fn conf_int(&self) -> [f64; 2] {
-        self.raw.conf_int
+    /// The (1 - alpha) confidence interval (1 - 2 alpha for TOST); `None`
+    /// for K-S and goodness of fit, and for rows computed without intervals.
+    pub fn conf_int(&self) -> Option<(f64, f64)> {
+        pair(self.raw.conf_int)
     }
-    pub fn estimate(&self) -> [f64; 2] {
-        self.raw.estimate
+    /// mean of x (and of y); variance of x; ratio of variances; x/n.
+    /// Empty for K-S and goodness of fit.
+    pub fn estimate(&self) -> &[f64] {
+        leading(&self.raw.estimate)
     }
-    pub fn null_value(&self) -> f64 {
-        self.raw.null_value
+    /// mu0, sigma0^2, the ratio or p under H0; `None` for K-S and GOF.
+    pub fn null_value(&self) -> Option<f64> {
+        some(self.raw.null_value)
     }
     pub fn alpha(&self) -> f64 {
         self.raw.alpha
     }
-    /// Reject when the statistic is below `critical()[0]` or above `critical()[1]`.
-    pub fn critical(&self) -> [f64; 2] {
-        self.raw.critical
+    /// Reject when the statistic is below `.0` or above `.1` (an infinite
+    /// bound for a one-sided test); `None` when not computed (K-S with
+    /// `critical: false`, rows without intervals).
+    pub fn critical(&self) -> Option<(f64, f64)> {
+        pair(self.raw.critical)
     }
-    pub fn std_error(&self) -> f64 {
-        self.raw.std_error
+    /// The estimate's standard error (t tests and TOST); `None` otherwise.
+    pub fn std_error(&self) -> Option<f64> {
+        some(self.raw.std_error)
     }
-    /// Sample sizes (the second is 0 for one-sample tests).
-    pub fn n(&self) -> [u64; 2] {
-        self.raw.n
+    /// Sample sizes: one for one-sample tests, two for two-sample tests.
+    pub fn n(&self) -> &[u64] {
+        let k = if self.raw.n[1] == 0 { 1 } else { 2 };
+        &self.raw.n[..k]
     }
     pub fn reject(&self) -> bool {
         self.raw.reject != 0
@@ -269,37 +588,65 @@ impl TestResult {
             _ => Decision::Greater,
         }
     }
+    /// The per-test outputs of K-S, TOST, binomial and GOF results.
+    pub fn details(&self) -> Details {
+        let r = &self.raw;
+        match self.test() {
+            Test::Ks2 => Details::Ks {
+                weight: if r.ints().ks_weight == sys::MCSTAT_KS_WEIGHT_NONE { KsWeight::None } else { KsWeight::Canner },
+                critical_se: r.ks().ks_critical_se,
+                n_sim: r.ks().ks_n_sim as u64,
+            },
+            Test::Equiv1 | Test::Equiv2 => {
+                let t = r.tost();
+                Details::Tost {
+                    t_lower: t.tost_t_lower,
+                    p_lower: t.tost_p_lower,
+                    t_upper: t.tost_t_upper,
+                    p_upper: t.tost_p_upper,
+                    lower: t.tost_lower,
+                    upper: t.tost_upper,
+                }
+            }
+            Test::Binom => Details::Binom { log_p_value: r.binom().binom_log_p_value },
+            Test::ChisqGof => {
+                let c = r.chisq();
+                Details::ChisqGof {
+                    cells: r.ints().chisq_cells as u32,
+                    n_estimated: r.ints().chisq_n_estimated as u32,
+                    cells_given: c.chisq_cells_given as u64,
+                    min_expected: c.chisq_min_expected,
+                    pool_below: if c.chisq_pool_below > 0.0 { Some(c.chisq_pool_below) } else { None },
+                }
+            }
+            _ => Details::None,
+        }
+    }
+    // When the library exports mcstat_result_log_p_value and
+    // mcstat_result_conf_int, `log_p_value()` (every test) and
+    // `conf_int_at(level)` wrap them here.
+
     /// The R-style block (R's print.htest plus a "decision at alpha" line),
     /// with the data named `x_name` and `y_name`.
+    pub fn try_format(&self, x_name: &str, y_name: &str) -> Result<String> {
+        let xn = c_name(x_name)?;
+        let yn = c_name(y_name)?;
+        format_with(|buf, size, len| unsafe { sys::mcstat_result_format(&self.raw, xn.as_ptr(), yn.as_ptr(), buf, size, len) })
+    }
+    /// As [`TestResult::try_format`]; NUL bytes in the names are dropped.
     pub fn format(&self, x_name: &str, y_name: &str) -> String {
-        let xn = CString::new(x_name.replace('\0', "")).unwrap();
-        let yn = CString::new(y_name.replace('\0', "")).unwrap();
-        let mut len: usize = 0;
-        let st = unsafe {
-            sys::mcstat_result_format(&self.raw, xn.as_ptr(), yn.as_ptr(), ptr::null_mut(), 0, &mut len)
-        };
-        if st != sys::MCSTAT_OK && st != sys::MCSTAT_EBUFSIZE {
-            return format!("<mcstat result: {}>", Error::from_status(st));
-        }
-        let mut buf = vec![0u8; len + 1];
-        let st = unsafe {
-            sys::mcstat_result_format(&self.raw, xn.as_ptr(), yn.as_ptr(), buf.as_mut_ptr().cast(), buf.len(), ptr::null_mut())
-        };
-        if st != sys::MCSTAT_OK {
-            return format!("<mcstat result: {}>", Error::from_status(st));
-        }
-        buf.truncate(len);
-        String::from_utf8_lossy(&buf).into_owned()
+        self.try_format(&x_name.replace('\0', ""), &y_name.replace('\0', ""))
+            .unwrap_or_else(|e| format!("<mcstat result: {e}>"))
     }
 }
 
 impl fmt::Display for TestResult {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.format("x", "y"))
+        f.write_str(&self.try_format("x", "y").map_err(|_| fmt::Error)?)
     }
 }
 
-fn run(f: impl FnOnce(*mut sys::mcstat_result) -> c_int) -> Result<TestResult> {
+pub(crate) fn run(f: impl FnOnce(*mut sys::mcstat_result) -> c_int) -> Result<TestResult> {
     let mut raw = std::mem::MaybeUninit::<sys::mcstat_result>::zeroed();
     check(f(raw.as_mut_ptr()))?;
     Ok(TestResult { raw: unsafe { raw.assume_init() } })
@@ -314,10 +661,12 @@ pub fn t_test_1(x: &[f64], mu0: f64, alternative: Alternative, alpha: f64) -> Re
 
 /// Welch's two-sample t test of mean(x) - mean(y) against `mu0`.
 pub fn t_test_2(x: &[f64], y: &[f64], mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe {
-        sys::mcstat_t_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), mu0, alternative.raw(), alpha, out)
-    })
+    run(|out| unsafe { sys::mcstat_t_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), mu0, alternative.raw(), alpha, out) })
 }
+
+// The pooled two-sample and paired t tests (mcstat_t_test_2_pooled,
+// mcstat_t_test_2_pooled_moments, mcstat_t_test_paired) go here when the
+// library exports them.
 
 /// One-sample chi-squared test of var(x) against `sigma2`.
 pub fn var_test_1(x: &[f64], sigma2: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
@@ -326,235 +675,29 @@ pub fn var_test_1(x: &[f64], sigma2: f64, alternative: Alternative, alpha: f64) 
 
 /// Two-sample F test of var(x)/var(y) against `ratio`.
 pub fn var_test_2(x: &[f64], y: &[f64], ratio: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe {
-        sys::mcstat_var_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), ratio, alternative.raw(), alpha, out)
-    })
+    run(|out| unsafe { sys::mcstat_var_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), ratio, alternative.raw(), alpha, out) })
 }
 
-// ---- accumulators --------------------------------------------------------------
+// ---- equivalence (TOST) ---------------------------------------------------------
 
-/// Streaming, mergeable moments (`mcstat_moments`, 128 bytes, no allocation).
-#[derive(Clone, Copy, Debug)]
-pub struct Moments {
-    raw: sys::mcstat_moments,
+/// Is mean(x) within [mu0 + lower, mu0 + upper]?  Two one-sided t tests at
+/// `alpha` each (alpha in (0, 0.5)); `reject()` means EQUIVALENT, and
+/// [`Details::Tost`] holds both one-sided tests.
+pub fn equivalence_test_1(x: &[f64], mu0: f64, lower: f64, upper: f64, alpha: f64) -> Result<TestResult> {
+    run(|out| unsafe { sys::mcstat_equivalence_test_1(x.as_ptr(), x.len(), mu0, lower, upper, alpha, out) })
 }
 
-impl Default for Moments {
-    fn default() -> Self {
-        Moments::new()
-    }
+/// [`equivalence_test_1`] on an accumulator.
+pub fn equivalence_test_1_moments(x: &Moments, mu0: f64, lower: f64, upper: f64, alpha: f64) -> Result<TestResult> {
+    run(|out| unsafe { sys::mcstat_equivalence_test_1_moments(x.raw(), mu0, lower, upper, alpha, out) })
 }
 
-impl Moments {
-    pub fn new() -> Moments {
-        let mut raw = std::mem::MaybeUninit::<sys::mcstat_moments>::zeroed();
-        unsafe {
-            sys::mcstat_moments_init(raw.as_mut_ptr());
-            Moments { raw: raw.assume_init() }
-        }
-    }
-    /// Adds one value (NonFinite for NaN or infinity; `self` unchanged).
-    pub fn add(&mut self, x: f64) -> Result<()> {
-        check(unsafe { sys::mcstat_moments_add(&mut self.raw, x) })
-    }
-    /// Adds a slice (NonFinite if any value is NaN or infinite; `self` unchanged).
-    pub fn add_slice(&mut self, x: &[f64]) -> Result<()> {
-        check(unsafe { sys::mcstat_moments_add_array(&mut self.raw, x.as_ptr(), x.len()) })
-    }
-    /// Merges `other` into `self` exactly.
-    pub fn merge(&mut self, other: &Moments) -> Result<()> {
-        check(unsafe { sys::mcstat_moments_merge(&mut self.raw, &other.raw) })
-    }
-    pub fn n(&self) -> u64 {
-        self.raw.n
-    }
-    /// NaN when empty.
-    pub fn mean(&self) -> f64 {
-        unsafe { sys::mcstat_moments_mean(&self.raw) }
-    }
-    /// Sample variance; NaN for fewer than two values.
-    pub fn var(&self) -> f64 {
-        unsafe { sys::mcstat_moments_var(&self.raw) }
-    }
-    pub fn sd(&self) -> f64 {
-        unsafe { sys::mcstat_moments_sd(&self.raw) }
-    }
-    pub fn skewness(&self) -> f64 {
-        unsafe { sys::mcstat_moments_skewness(&self.raw) }
-    }
-    pub fn kurtosis(&self) -> f64 {
-        unsafe { sys::mcstat_moments_kurtosis(&self.raw) }
-    }
-    pub fn min(&self) -> f64 {
-        self.raw.min
-    }
-    pub fn max(&self) -> f64 {
-        self.raw.max
-    }
-    /// The portable, versioned, checksummed serialization (96 bytes).
-    pub fn to_bytes(&self) -> [u8; sys::MCSTAT_MOMENTS_BYTES] {
-        let mut b = [0u8; sys::MCSTAT_MOMENTS_BYTES];
-        // cannot fail: valid accumulator, right size
-        let st = unsafe { sys::mcstat_moments_to_bytes(&self.raw, b.as_mut_ptr(), b.len()) };
-        debug_assert_eq!(st, sys::MCSTAT_OK);
-        b
-    }
-    /// Corrupt for bytes that are truncated, damaged or of another version.
-    pub fn from_bytes(b: &[u8]) -> Result<Moments> {
-        let mut m = Moments::new();
-        check(unsafe { sys::mcstat_moments_from_bytes(b.as_ptr(), b.len(), &mut m.raw) })?;
-        Ok(m)
-    }
-    pub fn raw(&self) -> &sys::mcstat_moments {
-        &self.raw
-    }
+/// Is mean(x) - mean(y) within [lower, upper]?  (Welch: unequal variances.)
+pub fn equivalence_test_2(x: &[f64], y: &[f64], lower: f64, upper: f64, alpha: f64) -> Result<TestResult> {
+    run(|out| unsafe { sys::mcstat_equivalence_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), lower, upper, alpha, out) })
 }
 
-/// One-sample t test on an accumulator.
-pub fn t_test_1_moments(x: &Moments, mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_t_test_1_moments(&x.raw, mu0, alternative.raw(), alpha, out) })
-}
-
-/// Welch's t test on accumulators.
-pub fn t_test_2_moments(x: &Moments, y: &Moments, mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_t_test_2_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })
-}
-
-/// One-sample chi-squared test on an accumulator.
-pub fn var_test_1_moments(x: &Moments, sigma2: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_var_test_1_moments(&x.raw, sigma2, alternative.raw(), alpha, out) })
-}
-
-/// F test on accumulators.
-pub fn var_test_2_moments(x: &Moments, y: &Moments, ratio: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_var_test_2_moments(&x.raw, &y.raw, ratio, alternative.raw(), alpha, out) })
-}
-
-// ---- Kolmogorov-Smirnov ---------------------------------------------------------
-
-/// Simulated null distributions shared by a battery of K-S tests (thread-safe:
-/// libmcstat locks it).
-pub struct KsCache {
-    raw: *mut sys::mcstat_ks_cache,
-}
-
-// The C cache has its own lock and is documented as shareable by threads.
-unsafe impl Send for KsCache {}
-unsafe impl Sync for KsCache {}
-
-impl KsCache {
-    /// A cache holding at most `max_bytes` of distributions (least recently used dropped).
-    pub fn new(max_bytes: usize) -> Result<KsCache> {
-        let mut raw = ptr::null_mut();
-        check(unsafe { sys::mcstat_ks_cache_new(max_bytes, &mut raw) })?;
-        Ok(KsCache { raw })
-    }
-    /// (hits, misses, entries held).
-    pub fn stats(&self) -> (u64, u64, u64) {
-        let (mut h, mut m, mut e) = (0u64, 0u64, 0u64);
-        unsafe { sys::mcstat_ks_cache_stats(self.raw, &mut h, &mut m, &mut e) };
-        (h, m, e)
-    }
-}
-
-impl Drop for KsCache {
-    fn drop(&mut self) {
-        unsafe { sys::mcstat_ks_cache_free(self.raw) }
-    }
-}
-
-/// K-S options; `Default` is libmcstat's (Canner's weight, method auto, 1
-/// thread (none started), 10000 simulations, seed 0, critical value computed).
-#[derive(Clone, Copy)]
-pub struct KsOptions<'a> {
-    pub weight: KsWeight,
-    pub method: Method,
-    pub threads: i32,
-    pub n_sim: i64,
-    pub seed: u64,
-    pub critical: bool,
-    pub cache: Option<&'a KsCache>,
-}
-
-impl Default for KsOptions<'_> {
-    fn default() -> Self {
-        let mut o = std::mem::MaybeUninit::<sys::mcstat_ks_options>::zeroed();
-        let o = unsafe {
-            sys::mcstat_ks_options_init_size(o.as_mut_ptr(), std::mem::size_of::<sys::mcstat_ks_options>());
-            o.assume_init()
-        };
-        KsOptions {
-            weight: if o.weight == sys::MCSTAT_KS_WEIGHT_NONE { KsWeight::None } else { KsWeight::Canner },
-            method: Method::Auto,
-            threads: o.threads,
-            n_sim: o.n_sim,
-            seed: o.seed,
-            critical: o.critical != 0,
-            cache: None,
-        }
-    }
-}
-
-/// Two-sample Kolmogorov-Smirnov test of x against y.
-pub fn ks_test_2(x: &[f64], y: &[f64], alternative: Alternative, alpha: f64, opt: &KsOptions) -> Result<TestResult> {
-    let mut o = std::mem::MaybeUninit::<sys::mcstat_ks_options>::zeroed();
-    let mut o = unsafe {
-        sys::mcstat_ks_options_init_size(o.as_mut_ptr(), std::mem::size_of::<sys::mcstat_ks_options>());
-        o.assume_init()
-    };
-    o.weight = match opt.weight {
-        KsWeight::None => sys::MCSTAT_KS_WEIGHT_NONE,
-        KsWeight::Canner => sys::MCSTAT_KS_WEIGHT_CANNER,
-    };
-    o.method = opt.method.raw();
-    o.threads = opt.threads;
-    o.n_sim = opt.n_sim;
-    o.seed = opt.seed;
-    o.critical = opt.critical as i32;
-    o.cache = opt.cache.map_or(ptr::null_mut(), |c| c.raw);
-    run(|out| unsafe {
-        sys::mcstat_ks_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), alternative.raw(), alpha, &o, out)
-    })
-}
-
-// ---- distributions -------------------------------------------------------------
-
-/// Tail probabilities and quantiles of t, chi-squared and F.  `upper` selects
-/// the tail: false gives P[X <= x], true gives P[X > x]; a quantile solves
-/// that tail's probability = p.
-pub mod dist {
-    use super::{check, sys, Result};
-
-    fn call(f: impl FnOnce(*mut f64) -> i32) -> Result<f64> {
-        let mut v = f64::NAN;
-        check(f(&mut v))?;
-        Ok(v)
-    }
-    pub fn t_cdf(x: f64, df: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_t_cdf(x, df, upper as i32, o) })
-    }
-    pub fn t_logcdf(x: f64, df: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_t_logcdf(x, df, upper as i32, o) })
-    }
-    pub fn t_quantile(p: f64, df: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_t_quantile(p, df, upper as i32, o) })
-    }
-    pub fn chisq_cdf(x: f64, df: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_chisq_cdf(x, df, upper as i32, o) })
-    }
-    pub fn chisq_logcdf(x: f64, df: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_chisq_logcdf(x, df, upper as i32, o) })
-    }
-    pub fn chisq_quantile(p: f64, df: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_chisq_quantile(p, df, upper as i32, o) })
-    }
-    pub fn f_cdf(x: f64, df1: f64, df2: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_f_cdf(x, df1, df2, upper as i32, o) })
-    }
-    pub fn f_logcdf(x: f64, df1: f64, df2: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_f_logcdf(x, df1, df2, upper as i32, o) })
-    }
-    pub fn f_quantile(p: f64, df1: f64, df2: f64, upper: bool) -> Result<f64> {
-        call(|o| unsafe { sys::mcstat_f_quantile(p, df1, df2, upper as i32, o) })
-    }
+/// [`equivalence_test_2`] on accumulators.
+pub fn equivalence_test_2_moments(x: &Moments, y: &Moments, lower: f64, upper: f64, alpha: f64) -> Result<TestResult> {
+    run(|out| unsafe { sys::mcstat_equivalence_test_2_moments(x.raw(), y.raw(), lower, upper, alpha, out) })
 }
