@@ -698,12 +698,22 @@ impl CheckReport {
     pub fn mass_sampled(&self) -> Option<(f64, f64)> {
         some(self.raw.mass_sampled).map(|m| (m, self.raw.mass_sampled_se))
     }
-    /// The mean weight and its standard error (models with eval).
+    fn is_warp(&self) -> bool {
+        self.raw.kind == sys::MCSTAT_CHECK_KIND_WARP
+    }
+    /// The mean weight and its standard error (`None` for warps: no integrand).
     pub fn albedo(&self) -> Option<(f64, f64)> {
+        if self.is_warp() {
+            return None;
+        }
         some(self.raw.albedo).map(|a| (a, self.raw.albedo_se))
     }
-    /// The eval-only estimate of the same integral, and its standard error.
+    /// The eval-only estimate of the same integral, and its standard error
+    /// (`None` for warps).
     pub fn albedo_eval(&self) -> Option<(f64, f64)> {
+        if self.is_warp() {
+            return None;
+        }
         some(self.raw.albedo_eval).map(|a| (a, self.raw.albedo_eval_se))
     }
     /// Hill's upper tail index of the weights and of the eval-only estimates.
