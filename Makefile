@@ -73,13 +73,14 @@ rust-deps:
 go-deps:
 	@export PATH="$(TOOL_PATH)"; command -v go > /dev/null || { echo "no go: tools/deps-debian.sh go installs it"; exit 1; }
 
-# Rust: against the staged libmcstat.so, then linked statically (no
-# LD_LIBRARY_PATH: the static feature must not need the shared library).
+# Rust: against the staged libmcstat.so, then linked statically.  Neither
+# run sets LD_LIBRARY_PATH: the build scripts record the library's directory
+# as an rpath, and the static feature must not need the shared library.
 rust-test: install-test rust-deps
-	cd bindings/rust && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) LD_LIBRARY_PATH=$(STAGE)/lib \
-	  cargo test --locked -j $(JOBS)
 	cd bindings/rust && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) \
-	  cargo test --locked -j $(JOBS) -p mcstat --features static
+	  env -u LD_LIBRARY_PATH cargo test --locked -j $(JOBS)
+	cd bindings/rust && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) \
+	  env -u LD_LIBRARY_PATH cargo test --locked -j $(JOBS) -p mcstat --features static
 
 go-test: install-test go-deps
 	cd bindings/go && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) LD_LIBRARY_PATH=$(STAGE)/lib \
