@@ -701,3 +701,8 @@ pub fn equivalence_test_2(x: &[f64], y: &[f64], lower: f64, upper: f64, alpha: f
 pub fn equivalence_test_2_moments(x: &Moments, y: &Moments, lower: f64, upper: f64, alpha: f64) -> Result<TestResult> {
     run(|out| unsafe { sys::mcstat_equivalence_test_2_moments(x.raw(), y.raw(), lower, upper, alpha, out) })
 }
+
+// The README's Rust blocks, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+pub struct ReadmeDoctests;

@@ -91,7 +91,7 @@ impl Statuses {
         if st != sys::MCSTAT_OK && self.codes.first().map_or(true, |&c| c == PENDING) {
             return Err(Error::from_status(st));
         }
-        if self.codes.iter().any(|&c| c == PENDING) {
+        if self.codes.contains(&PENDING) {
             return Err(Error::with_message(st.max(sys::MCSTAT_EINVAL), "libmcstat left rows without a status"));
         }
         Ok(())
