@@ -1,6 +1,10 @@
 // Package mcstat binds libmcstat, statistical hypothesis tests for Monte
 // Carlo estimators, through cgo.  The library is found with pkg-config
-// (mcstat.pc; set PKG_CONFIG_PATH for a non-system prefix).
+// through mcstat-rpath.pc, installed beside mcstat.pc by `cmake --install`:
+// it adds a run path to the installed library, so programs and tests run
+// without LD_LIBRARY_PATH (cgo takes only --cflags and --libs from
+// pkg-config and cannot compute a run path itself).  For a non-system
+// prefix set PKG_CONFIG_PATH to the absolute path of PREFIX/lib/pkgconfig.
 //
 // The numbers, decisions and R-style text are computed by libmcstat; this
 // package converts types and errors.  Errors are *Error values carrying the
@@ -13,7 +17,7 @@
 //	fmt.Print(r.Format("new", "trusted"))
 package mcstat
 
-// #cgo pkg-config: mcstat
+// #cgo pkg-config: mcstat-rpath
 // #include <stdlib.h>
 // #include <mcstat.h>
 import "C"
