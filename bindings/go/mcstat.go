@@ -401,6 +401,30 @@ func (m *Moments) AddSlice(x []float64) error {
 	return check(C.mcstat_moments_add_array(&m.raw, ptr(x), C.size_t(len(x))))
 }
 
+// AddSliceOmitNaN adds values, skipping NaN ones, and returns how many it
+// skipped (ErrNonFinite if any is +-Inf; m unchanged).
+func (m *Moments) AddSliceOmitNaN(x []float64) (omitted int, err error) {
+	var o C.size_t
+	if err := check(C.mcstat_moments_add_array_omit_nan(&m.raw, ptr(x), C.size_t(len(x)), &o)); err != nil {
+		return 0, err
+	}
+	return int(o), nil
+}
+
+// MomentsFromSummary returns an accumulator standing for n values of mean
+// `mean` and sum of squared deviations m2 = (n-1) var, as read from a file of
+// summaries: the t and variance tests on it give exactly the summary's
+// results (its skewness, kurtosis, min and max describe a two-point
+// stand-in, not the data).  ErrTooFew for n == 0, ErrInvalidArgument for
+// m2 < 0, ErrNonFinite for NaN or Inf.
+func MomentsFromSummary(n uint64, mean, m2 float64) (*Moments, error) {
+	m := &Moments{}
+	if err := check(C.mcstat_moments_from_summary(C.uint64_t(n), C.double(mean), C.double(m2), &m.raw)); err != nil {
+		return nil, err
+	}
+	return m, nil
+}
+
 // Merge merges other into m exactly.
 func (m *Moments) Merge(other *Moments) error {
 	return check(C.mcstat_moments_merge(&m.raw, &other.raw))
