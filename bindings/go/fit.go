@@ -26,7 +26,7 @@ func EquivalenceTest1(x []float64, mu0, lower, upper, alpha float64) (*Result, e
 // EquivalenceTest1Moments is EquivalenceTest1 on an accumulator.
 func EquivalenceTest1Moments(x *Moments, mu0, lower, upper, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
-		return C.mcstat_equivalence_test_1_moments(&x.raw, C.double(mu0), C.double(lower), C.double(upper),
+		return C.mcstat_equivalence_test_1_moments(x.c(), C.double(mu0), C.double(lower), C.double(upper),
 			C.double(alpha), o)
 	})
 }
@@ -43,7 +43,7 @@ func EquivalenceTest2(x, y []float64, lower, upper, alpha float64) (*Result, err
 // EquivalenceTest2Moments is EquivalenceTest2 on accumulators.
 func EquivalenceTest2Moments(x, y *Moments, lower, upper, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
-		return C.mcstat_equivalence_test_2_moments(&x.raw, &y.raw, C.double(lower), C.double(upper),
+		return C.mcstat_equivalence_test_2_moments(x.c(), y.c(), C.double(lower), C.double(upper),
 			C.double(alpha), o)
 	})
 }

@@ -315,6 +315,9 @@ func fromC(r *C.struct_mcstat_result) *Result {
 // Format returns the R-style block (R's print.htest plus a "decision at
 // alpha" line) with the data named xName and yName.
 func (r *Result) Format(xName, yName string) string {
+	if r == nil {
+		return "<nil>"
+	}
 	xn, yn := C.CString(xName), C.CString(yName)
 	defer C.free(unsafe.Pointer(xn))
 	defer C.free(unsafe.Pointer(yn))
@@ -383,7 +386,7 @@ func VarTest2(x, y []float64, ratio float64, alt Alternative, alpha float64) (*R
 // ---- accumulators --------------------------------------------------------------
 
 // Moments is a streaming, mergeable accumulator (mcstat_moments, 128 bytes).
-// The zero value is not ready: use NewMoments.
+// The zero value is an empty accumulator.  Not safe for concurrent use.
 type Moments struct{ raw C.struct_mcstat_moments }
 
 // NewMoments returns an empty accumulator.
@@ -393,19 +396,32 @@ func NewMoments() *Moments {
 	return m
 }
 
+// c is the C accumulator, initialised on first use (the zero value is
+// empty), or NULL for a nil m (libmcstat then refuses with
+// ErrInvalidArgument).
+func (m *Moments) c() *C.struct_mcstat_moments {
+	if m == nil {
+		return nil
+	}
+	if m.raw.version == 0 && m.raw.n == 0 {
+		C.mcstat_moments_init(&m.raw)
+	}
+	return &m.raw
+}
+
 // Add adds one value (ErrNonFinite for NaN or Inf; m unchanged).
-func (m *Moments) Add(x float64) error { return check(C.mcstat_moments_add(&m.raw, C.double(x))) }
+func (m *Moments) Add(x float64) error { return check(C.mcstat_moments_add(m.c(), C.double(x))) }
 
 // AddSlice adds values (ErrNonFinite if any is NaN or Inf; m unchanged).
 func (m *Moments) AddSlice(x []float64) error {
-	return check(C.mcstat_moments_add_array(&m.raw, ptr(x), C.size_t(len(x))))
+	return check(C.mcstat_moments_add_array(m.c(), ptr(x), C.size_t(len(x))))
 }
 
 // AddSliceOmitNaN adds values, skipping NaN ones, and returns how many it
 // skipped (ErrNonFinite if any is +-Inf; m unchanged).
 func (m *Moments) AddSliceOmitNaN(x []float64) (omitted int, err error) {
 	var o C.size_t
-	if err := check(C.mcstat_moments_add_array_omit_nan(&m.raw, ptr(x), C.size_t(len(x)), &o)); err != nil {
+	if err := check(C.mcstat_moments_add_array_omit_nan(m.c(), ptr(x), C.size_t(len(x)), &o)); err != nil {
 		return 0, err
 	}
 	return int(o), nil
@@ -427,22 +443,44 @@ func MomentsFromSummary(n uint64, mean, m2 float64) (*Moments, error) {
 
 // Merge merges other into m exactly.
 func (m *Moments) Merge(other *Moments) error {
-	return check(C.mcstat_moments_merge(&m.raw, &other.raw))
+	return check(C.mcstat_moments_merge(m.c(), other.c()))
 }
 
-func (m *Moments) N() uint64         { return uint64(m.raw.n) }
-func (m *Moments) Mean() float64     { return float64(C.mcstat_moments_mean(&m.raw)) }
-func (m *Moments) Var() float64      { return float64(C.mcstat_moments_var(&m.raw)) }
-func (m *Moments) SD() float64       { return float64(C.mcstat_moments_sd(&m.raw)) }
-func (m *Moments) Skewness() float64 { return float64(C.mcstat_moments_skewness(&m.raw)) }
-func (m *Moments) Kurtosis() float64 { return float64(C.mcstat_moments_kurtosis(&m.raw)) }
-func (m *Moments) Min() float64      { return float64(m.raw.min) }
-func (m *Moments) Max() float64      { return float64(m.raw.max) }
+// N is the number of values added.
+func (m *Moments) N() uint64 {
+	if c := m.c(); c != nil {
+		return uint64(c.n)
+	}
+	return 0
+}
+
+// Mean, Var, SD, Skewness (g1) and Kurtosis (excess g2) are NaN when
+// undefined (too few values).
+func (m *Moments) Mean() float64     { return float64(C.mcstat_moments_mean(m.c())) }
+func (m *Moments) Var() float64      { return float64(C.mcstat_moments_var(m.c())) }
+func (m *Moments) SD() float64       { return float64(C.mcstat_moments_sd(m.c())) }
+func (m *Moments) Skewness() float64 { return float64(C.mcstat_moments_skewness(m.c())) }
+func (m *Moments) Kurtosis() float64 { return float64(C.mcstat_moments_kurtosis(m.c())) }
+
+// Min and Max are the extreme values added (+Inf and -Inf when empty).
+func (m *Moments) Min() float64 {
+	if c := m.c(); c != nil {
+		return float64(c.min)
+	}
+	return math.Inf(1)
+}
+
+func (m *Moments) Max() float64 {
+	if c := m.c(); c != nil {
+		return float64(c.max)
+	}
+	return math.Inf(-1)
+}
 
 // MarshalBinary writes the portable, versioned, checksummed form (96 bytes).
 func (m *Moments) MarshalBinary() ([]byte, error) {
 	b := make([]byte, C.MCSTAT_MOMENTS_BYTES)
-	if err := check(C.mcstat_moments_to_bytes(&m.raw, (*C.uchar)(unsafe.Pointer(&b[0])), C.size_t(len(b)))); err != nil {
+	if err := check(C.mcstat_moments_to_bytes(m.c(), (*C.uchar)(unsafe.Pointer(&b[0])), C.size_t(len(b)))); err != nil {
 		return nil, err
 	}
 	return b, nil
@@ -452,6 +490,9 @@ func (m *Moments) MarshalBinary() ([]byte, error) {
 func (m *Moments) UnmarshalBinary(b []byte) error {
 	if len(b) == 0 {
 		return newError(C.MCSTAT_ECORRUPT)
+	}
+	if m == nil {
+		return invalid("UnmarshalBinary into a nil *Moments")
 	}
 	var tmp C.struct_mcstat_moments
 	if err := check(C.mcstat_moments_from_bytes((*C.uchar)(unsafe.Pointer(&b[0])), C.size_t(len(b)), &tmp)); err != nil {
@@ -464,28 +505,28 @@ func (m *Moments) UnmarshalBinary(b []byte) error {
 // TTest1Moments is TTest1 on an accumulator.
 func TTest1Moments(x *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
-		return C.mcstat_t_test_1_moments(&x.raw, C.double(mu0), C.int(alt), C.double(alpha), o)
+		return C.mcstat_t_test_1_moments(x.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // TTest2Moments is TTest2 on accumulators.
 func TTest2Moments(x, y *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
-		return C.mcstat_t_test_2_moments(&x.raw, &y.raw, C.double(mu0), C.int(alt), C.double(alpha), o)
+		return C.mcstat_t_test_2_moments(x.c(), y.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // VarTest1Moments is VarTest1 on an accumulator.
 func VarTest1Moments(x *Moments, sigma2 float64, alt Alternative, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
-		return C.mcstat_var_test_1_moments(&x.raw, C.double(sigma2), C.int(alt), C.double(alpha), o)
+		return C.mcstat_var_test_1_moments(x.c(), C.double(sigma2), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // VarTest2Moments is VarTest2 on accumulators.
 func VarTest2Moments(x, y *Moments, ratio float64, alt Alternative, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
-		return C.mcstat_var_test_2_moments(&x.raw, &y.raw, C.double(ratio), C.int(alt), C.double(alpha), o)
+		return C.mcstat_var_test_2_moments(x.c(), y.c(), C.double(ratio), C.int(alt), C.double(alpha), o)
 	})
 }
 
@@ -506,6 +547,9 @@ func NewKSCache(maxBytes int) (*KSCache, error) {
 
 // Close frees the cache; no test may be using it.
 func (c *KSCache) Close() {
+	if c == nil {
+		return
+	}
 	C.mcstat_ks_cache_free(c.raw)
 	c.raw = nil
 }
@@ -513,6 +557,9 @@ func (c *KSCache) Close() {
 // Stats returns the lookups that hit, those that missed, and the entries held.
 func (c *KSCache) Stats() (hits, misses, entries uint64) {
 	var h, m, e C.uint64_t
+	if c == nil {
+		return 0, 0, 0
+	}
 	C.mcstat_ks_cache_stats(c.raw, &h, &m, &e)
 	return uint64(h), uint64(m), uint64(e)
 }

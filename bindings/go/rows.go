@@ -183,17 +183,27 @@ func NewMomentsRows(rows int) (*MomentsRows, error) {
 }
 
 func (m *MomentsRows) first() *C.struct_mcstat_moments {
-	if len(m.raw) == 0 {
+	if m == nil || len(m.raw) == 0 {
 		return nil
 	}
 	return &m.raw[0]
 }
 
 // Len is the number of accumulators.
-func (m *MomentsRows) Len() int { return len(m.raw) }
+func (m *MomentsRows) Len() int {
+	if m == nil {
+		return 0
+	}
+	return len(m.raw)
+}
 
-// At returns a copy of accumulator i.
-func (m *MomentsRows) At(i int) *Moments { return &Moments{raw: m.raw[i]} }
+// At returns a copy of accumulator i (nil when i is out of range).
+func (m *MomentsRows) At(i int) *Moments {
+	if i < 0 || i >= m.Len() {
+		return nil
+	}
+	return &Moments{raw: m.raw[i]}
+}
 
 // Add adds row i of x to accumulator i (x.Rows must be Len()).  One image
 // with one value per pixel is Cols = 1; a stack of k images stored
@@ -205,8 +215,8 @@ func (m *MomentsRows) Add(x Matrix, flags RowFlags) (rowErr []error, err error) 
 	if err != nil {
 		return nil, err
 	}
-	if x.Rows != len(m.raw) {
-		return nil, invalid(fmt.Sprintf("x has %d rows, the array %d accumulators", x.Rows, len(m.raw)))
+	if x.Rows != m.Len() {
+		return nil, invalid(fmt.Sprintf("x has %d rows, the array %d accumulators", x.Rows, m.Len()))
 	}
 	if x.Rows == 0 {
 		return []error{}, nil
@@ -230,23 +240,23 @@ func (m *MomentsRows) Add(x Matrix, flags RowFlags) (rowErr []error, err error) 
 
 // Merge merges other[i] into m[i] for every i (equal lengths; other may be m).
 func (m *MomentsRows) Merge(other *MomentsRows) error {
-	if len(other.raw) != len(m.raw) {
-		return invalid(fmt.Sprintf("merging %d accumulators into %d", len(other.raw), len(m.raw)))
+	if other.Len() != m.Len() {
+		return invalid(fmt.Sprintf("merging %d accumulators into %d", other.Len(), m.Len()))
 	}
-	if len(m.raw) == 0 {
+	if m.Len() == 0 {
 		return nil
 	}
-	return check(C.mcstat_moments_merge_rows(m.first(), other.first(), sz(len(m.raw))))
+	return check(C.mcstat_moments_merge_rows(m.first(), other.first(), sz(m.Len())))
 }
 
 // MarshalBinary writes the array as Len() records of 96 bytes (each
 // MarshalBinary of one accumulator, in row order; no header).
 func (m *MomentsRows) MarshalBinary() ([]byte, error) {
-	b := make([]byte, len(m.raw)*int(C.mcstat_sizeof_moments_bytes()))
+	b := make([]byte, m.Len()*int(C.mcstat_sizeof_moments_bytes()))
 	if len(b) == 0 {
 		return b, nil
 	}
-	if err := check(C.mcstat_moments_to_bytes_rows(m.first(), sz(len(m.raw)), (*C.uchar)(unsafe.Pointer(&b[0])),
+	if err := check(C.mcstat_moments_to_bytes_rows(m.first(), sz(m.Len()), (*C.uchar)(unsafe.Pointer(&b[0])),
 		sz(len(b)))); err != nil {
 		return nil, err
 	}
@@ -257,6 +267,9 @@ func (m *MomentsRows) MarshalBinary() ([]byte, error) {
 // len(b) / 96 (ErrCorrupt for a length not a multiple of 96 or a damaged
 // record; m unchanged).
 func (m *MomentsRows) UnmarshalBinary(b []byte) error {
+	if m == nil {
+		return invalid("UnmarshalBinary into a nil *MomentsRows")
+	}
 	rec := int(C.mcstat_sizeof_moments_bytes())
 	if len(b)%rec != 0 {
 		return newError(C.MCSTAT_ECORRUPT)
@@ -274,8 +287,8 @@ func (m *MomentsRows) UnmarshalBinary(b []byte) error {
 }
 
 func twoRows(x, y *MomentsRows) error {
-	if len(x.raw) != len(y.raw) {
-		return invalid(fmt.Sprintf("x has %d accumulators, y %d", len(x.raw), len(y.raw)))
+	if x.Len() != y.Len() {
+		return invalid(fmt.Sprintf("x has %d accumulators, y %d", x.Len(), y.Len()))
 	}
 	return nil
 }

@@ -269,6 +269,51 @@ func TestMomentsOmitNaNAndSummary(t *testing.T) {
 	if relErr(a.PValue, b.PValue) > 1e-12 || relErr(a.Statistic, b.Statistic) > 1e-12 {
 		t.Errorf("summary: %g vs %g", b.PValue, a.PValue)
 	}
+	// the zero value is an empty accumulator, bit for bit NewMoments'
+	var zero Moments
+	if !math.IsInf(zero.Min(), 1) || zero.N() != 0 {
+		t.Errorf("zero value: min %g", zero.Min())
+	}
+	_ = zero.AddSlice(lew)
+	zb, _ := zero.MarshalBinary()
+	fresh := NewMoments()
+	_ = fresh.AddSlice(lew)
+	if fb, _ := fresh.MarshalBinary(); !bytes.Equal(zb, fb) {
+		t.Error("the zero Moments differs from NewMoments()")
+	}
+	// nil accumulators are refused
+	var none *Moments
+	if err := none.Add(1); !errors.Is(err, ErrInvalidArgument) || none.N() != 0 || !math.IsNaN(none.Mean()) {
+		t.Errorf("nil Add: %v", err)
+	}
+	if _, err := TTest2Moments(fresh, none, 0, TwoSided, 0.05); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("nil y: %v", err)
+	}
+	if _, err := none.MarshalBinary(); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("nil MarshalBinary: %v", err)
+	}
+	if err := none.UnmarshalBinary(zb); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("nil UnmarshalBinary: %v", err)
+	}
+	if err := fresh.Merge(none); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("merging nil: %v", err)
+	}
+	var rows *MomentsRows
+	if r, err := TTest1Rows(rows, 0, TwoSided, 0.05, 0); err != nil || len(r) != 0 || rows.At(0) != nil {
+		t.Errorf("nil rows: %v", err)
+	}
+	if err := rows.UnmarshalBinary(zb); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("nil rows UnmarshalBinary: %v", err)
+	}
+	var cache *KSCache
+	cache.Close()
+	if h, m, e := cache.Stats(); h+m+e != 0 {
+		t.Error("nil cache stats")
+	}
+	var res *Result
+	if res.String() != "<nil>" {
+		t.Error("nil result")
+	}
 	if _, err := MomentsFromSummary(0, 1, 0); !errors.Is(err, ErrTooFew) {
 		t.Errorf("n = 0: %v", err)
 	}
@@ -337,14 +382,28 @@ func TestStream(t *testing.T) {
 	if _, err := s.CheckMean(0, -1, 0.05); err == nil {
 		t.Error("negative tolerance accepted")
 	}
-	var zero Stream // not made by NewStream: refused, not written through
-	if err := zero.Add(1); !errors.Is(err, ErrInvalidArgument) {
-		t.Errorf("zero stream Add: %v", err)
+	// the zero value is an empty stream; a nil one is refused, never written through
+	var zero Stream
+	if err := zero.AddSlice(data[:600]); err != nil {
+		t.Fatal(err)
 	}
-	if err := zero.AddSlice([]float64{1, 2}); !errors.Is(err, ErrInvalidArgument) {
-		t.Errorf("zero stream AddSlice: %v", err)
+	if m, err := zero.Moments(); err != nil || m.N() != 600 {
+		t.Errorf("zero stream: %v", err)
 	}
-	if err := zero.Flush(); !errors.Is(err, ErrInvalidArgument) {
-		t.Errorf("zero stream Flush: %v", err)
+	var none *Stream
+	if err := none.Add(1); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("nil stream Add: %v", err)
+	}
+	if err := none.AddSlice([]float64{1, 2}); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("nil stream AddSlice: %v", err)
+	}
+	if err := none.Flush(); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("nil stream Flush: %v", err)
+	}
+	if _, err := none.CheckVar(1, 0.05); !errors.Is(err, ErrInvalidArgument) || none.NNonFinite() != 0 {
+		t.Errorf("nil stream CheckVar: %v", err)
+	}
+	if err := s.Merge(none); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("merging a nil stream: %v", err)
 	}
 }

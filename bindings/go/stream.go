@@ -19,7 +19,7 @@ import "C"
 // values.  NaN and Inf values are not added but counted (NNonFinite), and a
 // check on a stream that has seen one fails with ErrNonFinite.  A Stream is
 // not safe for concurrent use: keep one per goroutine and Merge them at the
-// end of a frame.  The zero value is not ready: use NewStream.
+// end of a frame.  The zero value is an empty stream.
 type Stream struct{ raw C.struct_mcstat_stream }
 
 // NewStream returns an empty stream.
@@ -30,55 +30,83 @@ func NewStream() *Stream {
 }
 
 // Reset empties s.
-func (s *Stream) Reset() error { return check(C.mcstat_stream_init(&s.raw)) }
+func (s *Stream) Reset() error {
+	if s == nil {
+		return invalid("Reset of a nil *Stream")
+	}
+	return check(C.mcstat_stream_init(&s.raw))
+}
+
+// c is the C stream, initialised on first use (the zero value is empty),
+// or NULL for a nil s (libmcstat then refuses with ErrInvalidArgument).
+func (s *Stream) c() *C.struct_mcstat_stream {
+	if s == nil {
+		return nil
+	}
+	if s.raw.version == 0 && s.raw.count == 0 && s.raw.moments.n == 0 && s.raw.n_nonfinite == 0 {
+		C.mcstat_stream_init(&s.raw)
+	}
+	return &s.raw
+}
 
 // ready guards the inline add, which writes through the buffer index
 // without any check of its own.
 func (s *Stream) ready() bool {
-	return s.raw.version == C.MCSTAT_STREAM_VERSION && s.raw.count < C.MCSTAT_STREAM_CAPACITY
+	c := s.c()
+	return c != nil && c.version == C.MCSTAT_STREAM_VERSION && c.count < C.MCSTAT_STREAM_CAPACITY
 }
 
 // Add adds one value (ErrInvalidArgument for a stream not made by NewStream).
 func (s *Stream) Add(x float64) error {
 	if !s.ready() {
-		return invalid("stream not initialised (use NewStream)")
+		return invalid("nil or damaged *Stream")
 	}
-	C.gomcstat_stream_add(&s.raw, C.double(x))
+	C.gomcstat_stream_add(s.c(), C.double(x))
 	return nil
 }
 
 // AddSlice adds values in order, as repeated Add.
 func (s *Stream) AddSlice(x []float64) error {
 	if !s.ready() {
-		return invalid("stream not initialised (use NewStream)")
+		return invalid("nil or damaged *Stream")
 	}
 	if len(x) > 0 {
-		C.gomcstat_stream_add_n(&s.raw, ptr(x), C.size_t(len(x)))
+		C.gomcstat_stream_add_n(s.c(), ptr(x), C.size_t(len(x)))
 	}
 	return nil
 }
 
 // Flush adds the buffered values to the moments (ErrTooBig when the count
 // would pass 2^64 - 1: they are then left out and counted in NOverflow).
-func (s *Stream) Flush() error { return check(C.mcstat_stream_flush(&s.raw)) }
+func (s *Stream) Flush() error { return check(C.mcstat_stream_flush(s.c())) }
 
 // Merge merges other into s (other unchanged; it may be s).
-func (s *Stream) Merge(other *Stream) error { return check(C.mcstat_stream_merge(&s.raw, &other.raw)) }
+func (s *Stream) Merge(other *Stream) error { return check(C.mcstat_stream_merge(s.c(), other.c())) }
 
 // Moments returns the moments of every value s has seen, flushed or not.
 func (s *Stream) Moments() (*Moments, error) {
 	m := &Moments{}
-	if err := check(C.mcstat_stream_moments(&s.raw, &m.raw)); err != nil {
+	if err := check(C.mcstat_stream_moments(s.c(), &m.raw)); err != nil {
 		return nil, err
 	}
 	return m, nil
 }
 
 // NNonFinite is the number of NaN and Inf values seen (and left out).
-func (s *Stream) NNonFinite() uint64 { return uint64(s.raw.n_nonfinite) }
+func (s *Stream) NNonFinite() uint64 {
+	if s == nil {
+		return 0
+	}
+	return uint64(s.raw.n_nonfinite)
+}
 
 // NOverflow is the number of values left out because the count would pass 2^64 - 1.
-func (s *Stream) NOverflow() uint64 { return uint64(C.gomcstat_stream_n_overflow(&s.raw)) }
+func (s *Stream) NOverflow() uint64 {
+	if s == nil {
+		return 0
+	}
+	return uint64(C.gomcstat_stream_n_overflow(&s.raw))
+}
 
 // CheckMean checks that the mean of the values is reference to within
 // tolerance (>= 0) at level alpha: the two-sided one-sample t test when
@@ -87,7 +115,7 @@ func (s *Stream) NOverflow() uint64 { return uint64(C.gomcstat_stream_n_overflow
 // Result.Reject means the check failed.
 func (s *Stream) CheckMean(reference, tolerance, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
-		return C.mcstat_stream_check_mean(&s.raw, C.double(reference), C.double(tolerance), C.double(alpha), o)
+		return C.mcstat_stream_check_mean(s.c(), C.double(reference), C.double(tolerance), C.double(alpha), o)
 	})
 }
 
@@ -96,6 +124,6 @@ func (s *Stream) CheckMean(reference, tolerance, alpha float64) (*Result, error)
 // is significantly above the bound.
 func (s *Stream) CheckVar(bound, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
-		return C.mcstat_stream_check_var(&s.raw, C.double(bound), C.double(alpha), o)
+		return C.mcstat_stream_check_var(s.c(), C.double(bound), C.double(alpha), o)
 	})
 }
