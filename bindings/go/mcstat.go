@@ -15,6 +15,27 @@
 //	if errors.Is(err, mcstat.ErrDegenerate) { ... }
 //	fmt.Print(r)                          // R's print.htest block + the decision
 //	fmt.Print(r.Format("new", "trusted"))
+//
+// The families, in the order of mcstat.h:
+//
+//   - accumulators: Moments (MarshalBinary is the portable 96-byte form),
+//     MomentsRows (one per pixel), Stream (a renderer thread's buffer);
+//   - the tests: TTest1, TTest2 (Welch), VarTest1, VarTest2 (F) on slices
+//     and on accumulators, KSTest2 (KSOptions, KSCache);
+//   - per-pixel rows: the *Matrix tests on a Matrix and the *Rows tests on
+//     a MomentsRows, one RowResult (a Result or an error) per row;
+//   - PAdjust (R's p.adjust); EquivalenceTest1/2 (TOST);
+//   - PowerOptions (Compute, Solve, String as R's power.t.test);
+//   - Diagnose, TailIndex, TSize, BatchSize;
+//   - GOFChisqTest, BinomTest, BatteryTest, BatteryTestPValues;
+//   - CheckBSDF, CheckEmitter, CheckWarp: a Model's Go functions called
+//     back from libmcstat (an error or panic in one ends the check with an
+//     error matching ErrCallback);
+//   - the t, chi-squared and F distributions (TCDF, ...);
+//   - Version, VersionNumber, CheckABI, GSLHandlerOff.
+//
+// Result fields that do not apply to a test are absent (nil, or a shorter
+// slice), never NaN placeholders.  Bad input gives an error, never a panic.
 package mcstat
 
 // #cgo pkg-config: mcstat-rpath
@@ -321,17 +342,9 @@ func (r *Result) Format(xName, yName string) string {
 	xn, yn := C.CString(xName), C.CString(yName)
 	defer C.free(unsafe.Pointer(xn))
 	defer C.free(unsafe.Pointer(yn))
-	var n C.size_t
-	st := C.mcstat_result_format(&r.raw, xn, yn, nil, 0, &n)
-	if st != C.MCSTAT_OK && st != C.MCSTAT_EBUFSIZE {
-		return "<mcstat result: " + newError(st).Message + ">"
-	}
-	buf := (*C.char)(C.malloc(n + 1))
-	defer C.free(unsafe.Pointer(buf))
-	if st = C.mcstat_result_format(&r.raw, xn, yn, buf, n+1, nil); st != C.MCSTAT_OK {
-		return "<mcstat result: " + newError(st).Message + ">"
-	}
-	return C.GoStringN(buf, C.int(n))
+	return formatC("result", func(buf *C.char, size C.size_t, n *C.size_t) C.int {
+		return C.mcstat_result_format(&r.raw, xn, yn, buf, size, n)
+	})
 }
 
 func (r *Result) String() string { return r.Format("x", "y") }
