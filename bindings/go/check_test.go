@@ -312,3 +312,31 @@ func TestCheckNames(t *testing.T) {
 		t.Error("Routes")
 	}
 }
+
+// Checks on several goroutines at once: each call has its own handle, so
+// callbacks reach their own model, and each report is the serial one.
+func TestCheckConcurrent(t *testing.T) {
+	serial := map[bool]*CheckReport{}
+	for _, bug := range []bool{false, true} {
+		r, err := CheckWarp(diskWarp(bug), 20000, 7, 0.01, nil)
+		if err != nil || r.Reject != bug {
+			t.Fatalf("bug %v: %v %v", bug, err, r)
+		}
+		serial[bug] = r
+	}
+	errs := make(chan error, 4)
+	for g := 0; g < 4; g++ {
+		go func(bug bool) {
+			r, err := CheckWarp(diskWarp(bug), 20000, 7, 0.01, nil)
+			if err == nil && (r.Reject != bug || r.PValue != serial[bug].PValue || r.String() != serial[bug].String()) {
+				err = fmt.Errorf("bug %v: reject %v p %g, serially %g", bug, r.Reject, r.PValue, serial[bug].PValue)
+			}
+			errs <- err
+		}(g%2 == 1)
+	}
+	for g := 0; g < 4; g++ {
+		if err := <-errs; err != nil {
+			t.Error(err)
+		}
+	}
+}

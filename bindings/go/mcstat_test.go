@@ -428,6 +428,9 @@ func TestKSSimulatedWithCache(t *testing.T) {
 	if a.Method != MethodSimulate || a.PValueSE <= 0 || math.Abs(a.PValue-pCanner) > 5*a.PValueSE+1e-3 || a.PValue != b.PValue {
 		t.Errorf("simulated: p %g +- %g (exact %g), again %g", a.PValue, a.PValueSE, pCanner, b.PValue)
 	}
+	if a.KS == nil || a.KS.NSim != 4000 || !(a.KS.CriticalSE >= 0) || a.KS.Weight != KSWeightCanner {
+		t.Errorf("simulated K-S details %+v", a.KS)
+	}
 	if h, m, e := cache.Stats(); h < 1 || m < 1 || e < 1 {
 		t.Errorf("cache stats %d %d %d", h, m, e)
 	}
