@@ -240,26 +240,28 @@ func (opt *CheckOptions) toC() C.struct_mcstat_check_options {
 }
 
 // RouteReport is one route's outcome.  Values a route does not produce are
-// NaN (statistics of deterministic routes, everything of a skipped route).
+// absent (nil): a skipped route has none, a deterministic one no
+// statistic or p-value, a statistical one no Where and Value.
 type RouteReport struct {
 	Route         Route
 	State         RouteState
 	Deterministic bool // a tolerance check, not a test
 	Reject        bool
-	Statistic     float64
-	DF            float64
-	PValue        float64
-	PAdjusted     float64 // Holm-adjusted across the statistical routes
-	Effect        float64 // the departure measured
-	Detectable    float64 // the smallest departure this run detects with probability 0.8
-	NFor1Pct      float64 // samples needed to detect a 1% departure with probability 0.8
-	Checked       uint64  // points checked (CELLS: samples)
-	Count         uint64  // points beyond tolerance (CELLS: pooled cells)
-	Where         [3]float64
-	Value         [2]float64
+	Statistic     *float64
+	DF            *float64
+	PValue        *float64
+	PAdjusted     *float64  // Holm-adjusted across the statistical routes
+	Effect        *float64  // the departure measured
+	Detectable    *float64  // the smallest departure this run detects with probability 0.8
+	NFor1Pct      *float64  // samples needed to detect a 1% departure with probability 0.8
+	Checked       uint64    // points checked (CELLS: samples)
+	Count         uint64    // points beyond tolerance (CELLS: pooled cells)
+	Where         []float64 // deterministic routes: the point of the largest difference
+	Value         []float64 // deterministic routes: the two values that differ there
 }
 
 // CheckReport is a renderer check's report; String() is its text block.
+// The totals a check cannot form are NaN (a warp has no albedo: no eval()).
 type CheckReport struct {
 	Kind           CheckKind
 	Domain         Domain
@@ -308,11 +310,10 @@ func reportFromC(c *C.struct_mcstat_check_report) *CheckReport {
 	for i := range r.Routes {
 		q := &c.route[i]
 		r.Routes[i] = RouteReport{Route: Route(i), State: RouteState(q.state), Deterministic: q.deterministic != 0,
-			Reject: q.reject != 0, Statistic: float64(q.statistic), DF: float64(q.df), PValue: float64(q.p_value),
-			PAdjusted: float64(q.p_adjusted), Effect: float64(q.effect), Detectable: float64(q.detectable),
-			NFor1Pct: float64(q.n_for_1pct), Checked: uint64(q.checked), Count: uint64(q.count),
-			Where: [3]float64{float64(q.where[0]), float64(q.where[1]), float64(q.where[2])},
-			Value: [2]float64{float64(q.value[0]), float64(q.value[1])}}
+			Reject: q.reject != 0, Statistic: optional(q.statistic), DF: optional(q.df), PValue: optional(q.p_value),
+			PAdjusted: optional(q.p_adjusted), Effect: optional(q.effect), Detectable: optional(q.detectable),
+			NFor1Pct: optional(q.n_for_1pct), Checked: uint64(q.checked), Count: uint64(q.count),
+			Where: present(q.where[0], q.where[1], q.where[2]), Value: present(q.value[0], q.value[1])}
 	}
 	return r
 }

@@ -148,6 +148,19 @@ func TestCheckBSDF(t *testing.T) {
 		r.Routes[RouteReciprocity].State != RouteSkipped || math.Abs(r.Albedo-0.8) > 0.05 {
 		t.Errorf("a correct lobe: %+v\n%s", r, r)
 	}
+	// what each route produces, and nothing else
+	cells, pv, rec := r.Routes[RouteCells], r.Routes[RoutePDFValue], r.Routes[RouteReciprocity]
+	if cells.Statistic == nil || cells.DF == nil || *cells.DF < 8 || cells.PAdjusted == nil || cells.Where != nil ||
+		cells.Deterministic {
+		t.Errorf("cells route %+v", cells)
+	}
+	if pv.PValue != nil || pv.Statistic != nil || len(pv.Where) != 3 || len(pv.Value) != 2 || !pv.Deterministic ||
+		pv.Detectable == nil || pv.Checked != 20000 {
+		t.Errorf("pdf_value route %+v", pv)
+	}
+	if rec.Statistic != nil || rec.Effect != nil || rec.NFor1Pct != nil || rec.Where != nil || rec.Value != nil {
+		t.Errorf("skipped route %+v", rec)
+	}
 	bad := newLobe(40, wi)
 	bad.pdfScale = 1.1
 	r, err = CheckBSDF(bad.model(), wi, 20000, 1, 0.01, nil)
