@@ -82,8 +82,9 @@ rust-test: install-test rust-deps
 	cd bindings/rust && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) \
 	  env -u LD_LIBRARY_PATH cargo test --locked -j $(JOBS) -p mcstat --features static
 
+# Go: no LD_LIBRARY_PATH: the run path comes from mcstat-rpath.pc.
 go-test: install-test go-deps
-	cd bindings/go && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) LD_LIBRARY_PATH=$(STAGE)/lib \
+	cd bindings/go && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) \
 	  go test -count=1 -v .
 
 # Mitsuba 3 from PyPI (examples/mitsuba/requirements.txt).  Only when pip

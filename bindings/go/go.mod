@@ -1,3 +1,3 @@
-module mcstat/bindings/go
+module github.com/mcstat/mcstat/bindings/go
 
 go 1.19

@@ -1,6 +1,10 @@
 // Package mcstat binds libmcstat, statistical hypothesis tests for Monte
 // Carlo estimators, through cgo.  The library is found with pkg-config
-// (mcstat.pc; set PKG_CONFIG_PATH for a non-system prefix).
+// through mcstat-rpath.pc, installed beside mcstat.pc by `cmake --install`:
+// it adds a run path to the installed library, so programs and tests run
+// without LD_LIBRARY_PATH (cgo takes only --cflags and --libs from
+// pkg-config and cannot compute a run path itself).  For a non-system
+// prefix set PKG_CONFIG_PATH to the absolute path of PREFIX/lib/pkgconfig.
 //
 // The numbers, decisions and R-style text are computed by libmcstat; this
 // package converts types and errors.  Errors are *Error values carrying the
@@ -11,15 +15,52 @@
 //	if errors.Is(err, mcstat.ErrDegenerate) { ... }
 //	fmt.Print(r)                          // R's print.htest block + the decision
 //	fmt.Print(r.Format("new", "trusted"))
+//
+// The families, in the order of mcstat.h:
+//
+//   - accumulators: Moments (MarshalBinary is the portable 96-byte form),
+//     MomentsRows (one per pixel), Stream (a renderer thread's buffer);
+//   - the tests: TTest1, TTest2 (Welch), VarTest1, VarTest2 (F) on slices
+//     and on accumulators, KSTest2 (KSOptions, KSCache);
+//   - per-pixel rows: the *Matrix tests on a Matrix and the *Rows tests on
+//     a MomentsRows, one RowResult (a Result or an error) per row;
+//   - PAdjust (R's p.adjust); EquivalenceTest1/2 (TOST);
+//   - PowerOptions (Compute, Solve, String as R's power.t.test);
+//   - Diagnose, TailIndex, TSize, BatchSize;
+//   - GOFChisqTest, BinomTest, BatteryTest, BatteryTestPValues;
+//   - CheckBSDF, CheckEmitter, CheckWarp: a Model's Go functions called
+//     back from libmcstat (an error or panic in one ends the check with an
+//     error matching ErrCallback);
+//   - the t, chi-squared and F distributions (TCDF, ...);
+//   - Version, VersionNumber, CheckABI, GSLHandlerOff.
+//
+// Result fields that do not apply to a test are absent (nil, or a shorter
+// slice), never NaN placeholders.  Bad input gives an error, never a panic.
 package mcstat
 
-// #cgo pkg-config: mcstat
+// #cgo pkg-config: mcstat-rpath
 // #include <stdlib.h>
 // #include <mcstat.h>
+//
+// /* mcstat_result's per-test outputs live in anonymous unions, which cgo
+//    cannot name: read them here. */
+// static int32_t gomcstat_ks_weight(const mcstat_result *r) { return r->ks_weight; }
+// static double gomcstat_ks_critical_se(const mcstat_result *r) { return r->ks_critical_se; }
+// static double gomcstat_ks_n_sim(const mcstat_result *r) { return r->ks_n_sim; }
+// static double gomcstat_binom_log_p_value(const mcstat_result *r) { return r->binom_log_p_value; }
+// static void gomcstat_tost(const mcstat_result *r, double d[6]) {
+//     d[0] = r->tost_t_lower; d[1] = r->tost_t_upper; d[2] = r->tost_p_lower;
+//     d[3] = r->tost_p_upper; d[4] = r->tost_lower; d[5] = r->tost_upper;
+// }
+// static void gomcstat_gof(const mcstat_result *r, double d[3], int i[2]) {
+//     d[0] = r->chisq_cells_given; d[1] = r->chisq_min_expected; d[2] = r->chisq_pool_below;
+//     i[0] = r->chisq_cells; i[1] = r->chisq_n_estimated;
+// }
 import "C"
 
 import (
 	"fmt"
+	"math"
 	"unsafe"
 )
 
@@ -112,12 +153,31 @@ func (d Decision) String() string { return C.GoString(C.mcstat_decision_name(C.i
 type Test int
 
 const (
-	TestT1   Test = C.MCSTAT_TEST_T_1
-	TestT2   Test = C.MCSTAT_TEST_T_2
-	TestVar1 Test = C.MCSTAT_TEST_VAR_1
-	TestVar2 Test = C.MCSTAT_TEST_VAR_2
-	TestKS2  Test = C.MCSTAT_TEST_KS_2
+	TestT1       Test = C.MCSTAT_TEST_T_1       // one-sample t
+	TestT2       Test = C.MCSTAT_TEST_T_2       // Welch's two-sample t
+	TestVar1     Test = C.MCSTAT_TEST_VAR_1     // one-sample chi-squared test of the variance
+	TestVar2     Test = C.MCSTAT_TEST_VAR_2     // F test of the ratio of variances
+	TestKS2      Test = C.MCSTAT_TEST_KS_2      // two-sample Kolmogorov-Smirnov
+	TestEquiv1   Test = C.MCSTAT_TEST_EQUIV_1   // one-sample equivalence (TOST)
+	TestEquiv2   Test = C.MCSTAT_TEST_EQUIV_2   // Welch two-sample equivalence (TOST)
+	TestBinom    Test = C.MCSTAT_TEST_BINOM     // exact binomial test (also the battery meta-test)
+	TestChisqGOF Test = C.MCSTAT_TEST_CHISQ_GOF // Pearson's chi-squared goodness of fit
 )
+
+var testNames = map[Test]string{TestT1: "t_1", TestT2: "t_2", TestVar1: "var_1", TestVar2: "var_2",
+	TestKS2: "ks_2", TestEquiv1: "equiv_1", TestEquiv2: "equiv_2", TestBinom: "binom", TestChisqGOF: "chisq_gof"}
+
+func (t Test) String() string {
+	if s, ok := testNames[t]; ok {
+		return s
+	}
+	return fmt.Sprintf("Test(%d)", int(t))
+}
+
+// oneSample reports whether the test has a single sample (N has one entry).
+func (t Test) oneSample() bool {
+	return t == TestT1 || t == TestVar1 || t == TestEquiv1 || t == TestBinom || t == TestChisqGOF
+}
 
 // Method says how a p-value was obtained (Auto only as a K-S option).
 type Method int
@@ -140,60 +200,151 @@ const (
 
 // ---- results -------------------------------------------------------------------
 
-// Result is a copy of libmcstat's mcstat_result.  String() is the R-style
+// Result is a test's outcome, copied from libmcstat's mcstat_result.  A
+// field that does not apply to the test is absent rather than NaN: a nil
+// slice or pointer, or a slice holding only the entries that apply (DF has
+// one entry for a t test, two for F, none for K-S).  String() is the R-style
 // block with the data named "x" and "y"; Format names them.
 type Result struct {
 	Test        Test
-	Method      Method
-	Alternative Alternative
-	Reject      bool
-	Decision    Decision
-	N           [2]uint64
-	Statistic   float64
-	DF          [2]float64 // DF[1] is NaN except for F
+	Method      Method      // how the p-value was obtained
+	Alternative Alternative // GOF: Greater; TOST: TwoSided (unused)
+	Reject      bool        // H0 rejected at Alpha (TOST: equivalence shown)
+	Decision    Decision    // the paper's three-way outcome
+	N           []uint64    // per sample (binomial: trials; GOF: total count)
+	Statistic   float64     // t, X-squared, F, D (K-S), x (binomial)
+	DF          []float64   // degrees of freedom: t, chi-squared 1 entry, F 2; K-S, binomial none
 	PValue      float64
-	PValueSE    float64 // Monte Carlo standard error of a simulated p-value; 0 when exact
-	ConfInt     [2]float64
-	Estimate    [2]float64
-	NullValue   float64
+	PValueSE    float64   // Monte Carlo standard error of a simulated p-value; 0 when exact
+	ConfInt     []float64 // [lower, upper] at 1-Alpha (TOST: 1-2 Alpha), an open end +-Inf; nil when none was computed
+	Estimate    []float64 // mean(s), variance, ratio of variances, proportion; nil for K-S and GOF
+	NullValue   *float64  // mu0, sigma0^2, ratio or p under H0; nil for K-S and GOF
 	Alpha       float64
-	Critical    [2]float64 // reject when Statistic < Critical[0] or > Critical[1]
-	StdError    float64
-	raw         C.mcstat_result
+	// Critical is [lower, upper]: reject when Statistic < Critical[0] or >
+	// Critical[1] (an absent side is -Inf or +Inf).  For the binomial test
+	// it is the acceptance region of counts.  nil when not computed (K-S
+	// with Critical false, rows with NoIntervals).
+	Critical []float64
+	StdError *float64 // standard error of the estimate (t tests, TOST); nil otherwise
+
+	KS    *KSDetails    // K-S only
+	TOST  *TOSTDetails  // equivalence tests only
+	Binom *BinomDetails // binomial and battery tests only
+	GOF   *GOFDetails   // chi-squared goodness of fit only
+
+	raw C.struct_mcstat_result
 }
 
-func fromC(r *C.mcstat_result) *Result {
-	return &Result{
-		Test: Test(r.test), Method: Method(r.method), Alternative: Alternative(r.alternative),
-		Reject: r.reject != 0, Decision: Decision(r.decision),
-		N:         [2]uint64{uint64(r.n[0]), uint64(r.n[1])},
-		Statistic: float64(r.statistic), DF: [2]float64{float64(r.df[0]), float64(r.df[1])},
-		PValue: float64(r.p_value), PValueSE: float64(r.p_value_se),
-		ConfInt:   [2]float64{float64(r.conf_int[0]), float64(r.conf_int[1])},
-		Estimate:  [2]float64{float64(r.estimate[0]), float64(r.estimate[1])},
-		NullValue: float64(r.null_value), Alpha: float64(r.alpha),
-		Critical: [2]float64{float64(r.critical[0]), float64(r.critical[1])},
-		StdError: float64(r.std_error), raw: *r,
+// KSDetails are the K-S test's own outputs.
+type KSDetails struct {
+	Weight     KSWeight
+	CriticalSE float64 // Monte Carlo standard error of Critical[1]; 0 unless simulated
+	NSim       float64 // replicates simulated; 0 unless simulated
+}
+
+// TOSTDetails are the two one-sided tests of an equivalence test.
+type TOSTDetails struct {
+	TLower, TUpper float64 // t for H1: mean > Lower, and for H1: mean < Upper
+	PLower, PUpper float64 // their one-sided p-values
+	Lower, Upper   float64 // the bounds tested (mu0 + lower, mu0 + upper)
+}
+
+// BinomDetails are the binomial test's own outputs.
+type BinomDetails struct {
+	LogPValue float64 // log(PValue), finite where PValue underflows to 0
+}
+
+// GOFDetails are the chi-squared goodness-of-fit test's own outputs.
+type GOFDetails struct {
+	Cells       int     // cells after pooling
+	NEstimated  int     // parameters estimated from the counts
+	CellsGiven  int     // cells given (k)
+	MinExpected float64 // smallest expected count after pooling
+	PoolBelow   float64 // the pooling threshold; 0 when pooling was off
+}
+
+// present returns v without its trailing NaN entries (nil when none is left).
+func present(v ...C.double) []float64 {
+	n := len(v)
+	for n > 0 && math.IsNaN(float64(v[n-1])) {
+		n--
 	}
+	if n == 0 {
+		return nil
+	}
+	out := make([]float64, n)
+	for i := range out {
+		out[i] = float64(v[i])
+	}
+	return out
+}
+
+// pair returns [a, b], or nil when either is NaN (not computed).
+func pair(a, b C.double) []float64 {
+	if math.IsNaN(float64(a)) || math.IsNaN(float64(b)) {
+		return nil
+	}
+	return []float64{float64(a), float64(b)}
+}
+
+func optional(v C.double) *float64 {
+	if math.IsNaN(float64(v)) {
+		return nil
+	}
+	f := float64(v)
+	return &f
+}
+
+func fromC(r *C.struct_mcstat_result) *Result {
+	t := Test(r.test)
+	n := []uint64{uint64(r.n[0]), uint64(r.n[1])}
+	if t.oneSample() {
+		n = n[:1]
+	}
+	res := &Result{
+		Test: t, Method: Method(r.method), Alternative: Alternative(r.alternative),
+		Reject: r.reject != 0, Decision: Decision(r.decision), N: n,
+		Statistic: float64(r.statistic), DF: present(r.df[0], r.df[1]),
+		PValue: float64(r.p_value), PValueSE: float64(r.p_value_se),
+		ConfInt:   pair(r.conf_int[0], r.conf_int[1]),
+		Estimate:  present(r.estimate[0], r.estimate[1]),
+		NullValue: optional(r.null_value), Alpha: float64(r.alpha),
+		Critical: pair(r.critical[0], r.critical[1]), StdError: optional(r.std_error),
+		raw: *r,
+	}
+	switch t {
+	case TestKS2:
+		res.KS = &KSDetails{Weight: KSWeight(C.gomcstat_ks_weight(r)),
+			CriticalSE: float64(C.gomcstat_ks_critical_se(r)), NSim: float64(C.gomcstat_ks_n_sim(r))}
+	case TestEquiv1, TestEquiv2:
+		var d [6]C.double
+		C.gomcstat_tost(r, &d[0])
+		res.TOST = &TOSTDetails{TLower: float64(d[0]), TUpper: float64(d[1]), PLower: float64(d[2]),
+			PUpper: float64(d[3]), Lower: float64(d[4]), Upper: float64(d[5])}
+	case TestBinom:
+		res.Binom = &BinomDetails{LogPValue: float64(C.gomcstat_binom_log_p_value(r))}
+	case TestChisqGOF:
+		var d [3]C.double
+		var i [2]C.int
+		C.gomcstat_gof(r, &d[0], &i[0])
+		res.GOF = &GOFDetails{Cells: int(i[0]), NEstimated: int(i[1]), CellsGiven: int(d[0]),
+			MinExpected: float64(d[1]), PoolBelow: float64(d[2])}
+	}
+	return res
 }
 
 // Format returns the R-style block (R's print.htest plus a "decision at
 // alpha" line) with the data named xName and yName.
 func (r *Result) Format(xName, yName string) string {
+	if r == nil {
+		return "<nil>"
+	}
 	xn, yn := C.CString(xName), C.CString(yName)
 	defer C.free(unsafe.Pointer(xn))
 	defer C.free(unsafe.Pointer(yn))
-	var n C.size_t
-	st := C.mcstat_result_format(&r.raw, xn, yn, nil, 0, &n)
-	if st != C.MCSTAT_OK && st != C.MCSTAT_EBUFSIZE {
-		return "<mcstat result: " + newError(st).Message + ">"
-	}
-	buf := (*C.char)(C.malloc(n + 1))
-	defer C.free(unsafe.Pointer(buf))
-	if st = C.mcstat_result_format(&r.raw, xn, yn, buf, n+1, nil); st != C.MCSTAT_OK {
-		return "<mcstat result: " + newError(st).Message + ">"
-	}
-	return C.GoStringN(buf, C.int(n))
+	return formatC("result", func(buf *C.char, size C.size_t, n *C.size_t) C.int {
+		return C.mcstat_result_format(&r.raw, xn, yn, buf, size, n)
+	})
 }
 
 func (r *Result) String() string { return r.Format("x", "y") }
@@ -205,8 +356,8 @@ func ptr(x []float64) *C.double {
 	return (*C.double)(unsafe.Pointer(&x[0]))
 }
 
-func run(f func(out *C.mcstat_result) C.int) (*Result, error) {
-	var out C.mcstat_result
+func run(f func(out *C.struct_mcstat_result) C.int) (*Result, error) {
+	var out C.struct_mcstat_result
 	if err := check(f(&out)); err != nil {
 		return nil, err
 	}
@@ -217,14 +368,14 @@ func run(f func(out *C.mcstat_result) C.int) (*Result, error) {
 
 // TTest1 is the one-sample t test of mean(x) against mu0.
 func TTest1(x []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.mcstat_result) C.int {
+	return run(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_1(ptr(x), C.size_t(len(x)), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // TTest2 is Welch's two-sample t test of mean(x) - mean(y) against mu0.
 func TTest2(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.mcstat_result) C.int {
+	return run(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_2(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.double(mu0), C.int(alt),
 			C.double(alpha), o)
 	})
@@ -232,14 +383,14 @@ func TTest2(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Resul
 
 // VarTest1 is the one-sample chi-squared test of var(x) against sigma2.
 func VarTest1(x []float64, sigma2 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.mcstat_result) C.int {
+	return run(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_var_test_1(ptr(x), C.size_t(len(x)), C.double(sigma2), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // VarTest2 is the F test of var(x)/var(y) against ratio.
 func VarTest2(x, y []float64, ratio float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.mcstat_result) C.int {
+	return run(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_var_test_2(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.double(ratio), C.int(alt),
 			C.double(alpha), o)
 	})
@@ -248,8 +399,8 @@ func VarTest2(x, y []float64, ratio float64, alt Alternative, alpha float64) (*R
 // ---- accumulators --------------------------------------------------------------
 
 // Moments is a streaming, mergeable accumulator (mcstat_moments, 128 bytes).
-// The zero value is not ready: use NewMoments.
-type Moments struct{ raw C.mcstat_moments }
+// The zero value is an empty accumulator.  Not safe for concurrent use.
+type Moments struct{ raw C.struct_mcstat_moments }
 
 // NewMoments returns an empty accumulator.
 func NewMoments() *Moments {
@@ -258,32 +409,91 @@ func NewMoments() *Moments {
 	return m
 }
 
+// c is the C accumulator, initialised on first use (the zero value is
+// empty), or NULL for a nil m (libmcstat then refuses with
+// ErrInvalidArgument).
+func (m *Moments) c() *C.struct_mcstat_moments {
+	if m == nil {
+		return nil
+	}
+	if m.raw.version == 0 && m.raw.n == 0 {
+		C.mcstat_moments_init(&m.raw)
+	}
+	return &m.raw
+}
+
 // Add adds one value (ErrNonFinite for NaN or Inf; m unchanged).
-func (m *Moments) Add(x float64) error { return check(C.mcstat_moments_add(&m.raw, C.double(x))) }
+func (m *Moments) Add(x float64) error { return check(C.mcstat_moments_add(m.c(), C.double(x))) }
 
 // AddSlice adds values (ErrNonFinite if any is NaN or Inf; m unchanged).
 func (m *Moments) AddSlice(x []float64) error {
-	return check(C.mcstat_moments_add_array(&m.raw, ptr(x), C.size_t(len(x))))
+	return check(C.mcstat_moments_add_array(m.c(), ptr(x), C.size_t(len(x))))
+}
+
+// AddSliceOmitNaN adds values, skipping NaN ones, and returns how many it
+// skipped (ErrNonFinite if any is +-Inf; m unchanged).
+func (m *Moments) AddSliceOmitNaN(x []float64) (omitted int, err error) {
+	var o C.size_t
+	if err := check(C.mcstat_moments_add_array_omit_nan(m.c(), ptr(x), C.size_t(len(x)), &o)); err != nil {
+		return 0, err
+	}
+	return int(o), nil
+}
+
+// MomentsFromSummary returns an accumulator standing for n values of mean
+// `mean` and sum of squared deviations m2 = (n-1) var, as read from a file of
+// summaries: the t and variance tests on it give exactly the summary's
+// results (its skewness, kurtosis, min and max describe a two-point
+// stand-in, not the data).  ErrTooFew for n == 0, ErrInvalidArgument for
+// m2 < 0, ErrNonFinite for NaN or Inf.
+func MomentsFromSummary(n uint64, mean, m2 float64) (*Moments, error) {
+	m := &Moments{}
+	if err := check(C.mcstat_moments_from_summary(C.uint64_t(n), C.double(mean), C.double(m2), &m.raw)); err != nil {
+		return nil, err
+	}
+	return m, nil
 }
 
 // Merge merges other into m exactly.
 func (m *Moments) Merge(other *Moments) error {
-	return check(C.mcstat_moments_merge(&m.raw, &other.raw))
+	return check(C.mcstat_moments_merge(m.c(), other.c()))
 }
 
-func (m *Moments) N() uint64         { return uint64(m.raw.n) }
-func (m *Moments) Mean() float64     { return float64(C.mcstat_moments_mean(&m.raw)) }
-func (m *Moments) Var() float64      { return float64(C.mcstat_moments_var(&m.raw)) }
-func (m *Moments) SD() float64       { return float64(C.mcstat_moments_sd(&m.raw)) }
-func (m *Moments) Skewness() float64 { return float64(C.mcstat_moments_skewness(&m.raw)) }
-func (m *Moments) Kurtosis() float64 { return float64(C.mcstat_moments_kurtosis(&m.raw)) }
-func (m *Moments) Min() float64      { return float64(m.raw.min) }
-func (m *Moments) Max() float64      { return float64(m.raw.max) }
+// N is the number of values added.
+func (m *Moments) N() uint64 {
+	if c := m.c(); c != nil {
+		return uint64(c.n)
+	}
+	return 0
+}
+
+// Mean, Var, SD, Skewness (g1) and Kurtosis (excess g2) are NaN when
+// undefined (too few values).
+func (m *Moments) Mean() float64     { return float64(C.mcstat_moments_mean(m.c())) }
+func (m *Moments) Var() float64      { return float64(C.mcstat_moments_var(m.c())) }
+func (m *Moments) SD() float64       { return float64(C.mcstat_moments_sd(m.c())) }
+func (m *Moments) Skewness() float64 { return float64(C.mcstat_moments_skewness(m.c())) }
+func (m *Moments) Kurtosis() float64 { return float64(C.mcstat_moments_kurtosis(m.c())) }
+
+// Min and Max are the extreme values added (+Inf and -Inf when empty).
+func (m *Moments) Min() float64 {
+	if c := m.c(); c != nil {
+		return float64(c.min)
+	}
+	return math.Inf(1)
+}
+
+func (m *Moments) Max() float64 {
+	if c := m.c(); c != nil {
+		return float64(c.max)
+	}
+	return math.Inf(-1)
+}
 
 // MarshalBinary writes the portable, versioned, checksummed form (96 bytes).
 func (m *Moments) MarshalBinary() ([]byte, error) {
 	b := make([]byte, C.MCSTAT_MOMENTS_BYTES)
-	if err := check(C.mcstat_moments_to_bytes(&m.raw, (*C.uchar)(unsafe.Pointer(&b[0])), C.size_t(len(b)))); err != nil {
+	if err := check(C.mcstat_moments_to_bytes(m.c(), (*C.uchar)(unsafe.Pointer(&b[0])), C.size_t(len(b)))); err != nil {
 		return nil, err
 	}
 	return b, nil
@@ -294,7 +504,10 @@ func (m *Moments) UnmarshalBinary(b []byte) error {
 	if len(b) == 0 {
 		return newError(C.MCSTAT_ECORRUPT)
 	}
-	var tmp C.mcstat_moments
+	if m == nil {
+		return invalid("UnmarshalBinary into a nil *Moments")
+	}
+	var tmp C.struct_mcstat_moments
 	if err := check(C.mcstat_moments_from_bytes((*C.uchar)(unsafe.Pointer(&b[0])), C.size_t(len(b)), &tmp)); err != nil {
 		return err
 	}
@@ -304,29 +517,29 @@ func (m *Moments) UnmarshalBinary(b []byte) error {
 
 // TTest1Moments is TTest1 on an accumulator.
 func TTest1Moments(x *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.mcstat_result) C.int {
-		return C.mcstat_t_test_1_moments(&x.raw, C.double(mu0), C.int(alt), C.double(alpha), o)
+	return run(func(o *C.struct_mcstat_result) C.int {
+		return C.mcstat_t_test_1_moments(x.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // TTest2Moments is TTest2 on accumulators.
 func TTest2Moments(x, y *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.mcstat_result) C.int {
-		return C.mcstat_t_test_2_moments(&x.raw, &y.raw, C.double(mu0), C.int(alt), C.double(alpha), o)
+	return run(func(o *C.struct_mcstat_result) C.int {
+		return C.mcstat_t_test_2_moments(x.c(), y.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // VarTest1Moments is VarTest1 on an accumulator.
 func VarTest1Moments(x *Moments, sigma2 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.mcstat_result) C.int {
-		return C.mcstat_var_test_1_moments(&x.raw, C.double(sigma2), C.int(alt), C.double(alpha), o)
+	return run(func(o *C.struct_mcstat_result) C.int {
+		return C.mcstat_var_test_1_moments(x.c(), C.double(sigma2), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // VarTest2Moments is VarTest2 on accumulators.
 func VarTest2Moments(x, y *Moments, ratio float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.mcstat_result) C.int {
-		return C.mcstat_var_test_2_moments(&x.raw, &y.raw, C.double(ratio), C.int(alt), C.double(alpha), o)
+	return run(func(o *C.struct_mcstat_result) C.int {
+		return C.mcstat_var_test_2_moments(x.c(), y.c(), C.double(ratio), C.int(alt), C.double(alpha), o)
 	})
 }
 
@@ -334,7 +547,7 @@ func VarTest2Moments(x, y *Moments, ratio float64, alt Alternative, alpha float6
 
 // KSCache holds simulated null distributions shared by K-S tests (safe for
 // concurrent use: libmcstat locks it).  Close frees it.
-type KSCache struct{ raw *C.mcstat_ks_cache }
+type KSCache struct{ raw *C.struct_mcstat_ks_cache }
 
 // NewKSCache makes a cache of at most maxBytes (least recently used dropped).
 func NewKSCache(maxBytes int) (*KSCache, error) {
@@ -347,6 +560,9 @@ func NewKSCache(maxBytes int) (*KSCache, error) {
 
 // Close frees the cache; no test may be using it.
 func (c *KSCache) Close() {
+	if c == nil {
+		return
+	}
 	C.mcstat_ks_cache_free(c.raw)
 	c.raw = nil
 }
@@ -354,6 +570,9 @@ func (c *KSCache) Close() {
 // Stats returns the lookups that hit, those that missed, and the entries held.
 func (c *KSCache) Stats() (hits, misses, entries uint64) {
 	var h, m, e C.uint64_t
+	if c == nil {
+		return 0, 0, 0
+	}
 	C.mcstat_ks_cache_stats(c.raw, &h, &m, &e)
 	return uint64(h), uint64(m), uint64(e)
 }
@@ -361,8 +580,8 @@ func (c *KSCache) Stats() (hits, misses, entries uint64) {
 // ksOptionsInit is libmcstat's default options, initialised for the size of
 // the struct this package was compiled against (cgo cannot call the
 // header's mcstat_ks_options_init macro).
-func ksOptionsInit() C.mcstat_ks_options {
-	var o C.mcstat_ks_options
+func ksOptionsInit() C.struct_mcstat_ks_options {
+	var o C.struct_mcstat_ks_options
 	C.mcstat_ks_options_init_size(&o, C.size_t(unsafe.Sizeof(o)))
 	return o
 }
@@ -405,7 +624,7 @@ func KSTest2(x, y []float64, alt Alternative, alpha float64, opt *KSOptions) (*R
 			o.cache = opt.Cache.raw
 		}
 	}
-	return run(func(r *C.mcstat_result) C.int {
+	return run(func(r *C.struct_mcstat_result) C.int {
 		return C.mcstat_ks_test_2(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.int(alt), C.double(alpha),
 			&o, r)
 	})

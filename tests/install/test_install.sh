@@ -21,7 +21,7 @@ libdir=$(dirname "$(find "$stage" -name libmcstat.a | head -1)")
 [ -f "$libdir/libmcstat.a" ] || fail "no static library"
 ls "$libdir"/libmcstat.so.* > /dev/null || fail "no versioned shared library"
 for f in cmake/mcstat/mcstatConfig.cmake cmake/mcstat/mcstatConfigVersion.cmake cmake/mcstat/mcstatTargets.cmake \
-         pkgconfig/mcstat.pc; do
+         pkgconfig/mcstat.pc pkgconfig/mcstat-rpath.pc; do
     [ -f "$libdir/$f" ] || fail "missing $libdir/$f"
 done
 

@@ -1,0 +1,355 @@
+package mcstat
+
+// The renderer checks with Go callbacks: the C tests' models (a disk warp
+// and a Phong-like lobe, tests/c/test_check.c), correct ones passing and
+// planted bugs caught by the route that must catch them; callback errors,
+// panics and invalid values reported as ErrCallback, never a crash.
+
+import (
+	"errors"
+	"fmt"
+	"io"
+	"math"
+	"strings"
+	"testing"
+)
+
+// diskWarp maps the square to the disk by r = sqrt(u1) (the bug: r = u1^0.45).
+func diskWarp(bug bool) *Model {
+	return &Model{
+		Domain: DomainDisk, NUniforms: 2,
+		Sample: func(wi, u, x, weight, pdf []float64) error {
+			for k := 0; k < len(x)/2; k++ {
+				r := math.Sqrt(u[2*k])
+				if bug {
+					r = math.Pow(u[2*k], 0.45)
+				}
+				phi := 2 * math.Pi * u[2*k+1]
+				x[2*k], x[2*k+1] = r*math.Cos(phi), r*math.Sin(phi)
+			}
+			return nil
+		},
+		PDF: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = 0
+				if x[2*k]*x[2*k]+x[2*k+1]*x[2*k+1] <= 1 {
+					out[k] = 1 / math.Pi
+				}
+			}
+			return nil
+		},
+	}
+}
+
+// lobe is a cosine-power lobe around the mirror direction of wi, with albedo
+// rho; pdfScale != 1 plants a pdf() that disagrees with the sampler.
+type lobe struct {
+	e, rho, pdfScale float64
+	r                [3]float64
+}
+
+func newLobe(e float64, wi [3]float64) *lobe {
+	L := &lobe{e: e, rho: 0.8, pdfScale: 1, r: [3]float64{-wi[0], -wi[1], wi[2]}}
+	n := math.Sqrt(L.r[0]*L.r[0] + L.r[1]*L.r[1] + L.r[2]*L.r[2])
+	for i := range L.r {
+		L.r[i] /= n
+	}
+	return L
+}
+
+func (L *lobe) density(e float64, x []float64) float64 {
+	c := L.r[0]*x[0] + L.r[1]*x[1] + L.r[2]*x[2]
+	if x[2] > 0 && c > 0 {
+		return (e + 1) / (2 * math.Pi) * math.Pow(c, e)
+	}
+	return 0
+}
+
+func (L *lobe) model() *Model {
+	// an orthonormal frame around r
+	a := [3]float64{1, 0, 0}
+	if math.Abs(L.r[0]) > 0.9 {
+		a = [3]float64{0, 1, 0}
+	}
+	cross := func(p, q [3]float64) [3]float64 {
+		return [3]float64{p[1]*q[2] - p[2]*q[1], p[2]*q[0] - p[0]*q[2], p[0]*q[1] - p[1]*q[0]}
+	}
+	t1 := cross(L.r, a)
+	n := math.Sqrt(t1[0]*t1[0] + t1[1]*t1[1] + t1[2]*t1[2])
+	for i := range t1 {
+		t1[i] /= n
+	}
+	t2 := cross(L.r, t1)
+	return &Model{
+		Domain: DomainSphere, NUniforms: 3, Weight: WeightOverPDF, SampleReports: true,
+		Sample: func(wi, u, x, weight, pdf []float64) error {
+			for k := range weight {
+				c := math.Pow(u[3*k], 1/(L.e+1))
+				s := math.Sqrt(math.Max(0, 1-c*c))
+				phi := 2 * math.Pi * u[3*k+1]
+				w := x[3*k : 3*k+3]
+				for i := range w {
+					w[i] = c*L.r[i] + s*(math.Cos(phi)*t1[i]+math.Sin(phi)*t2[i])
+				}
+				pdf[k] = L.density(L.e, w)
+				weight[k] = 0
+				if pdf[k] > 0 {
+					weight[k] = L.rho
+				}
+			}
+			return nil
+		},
+		PDF: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = L.density(L.e*L.pdfScale, x[3*k:3*k+3])
+			}
+			return nil
+		},
+		Eval: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = L.rho * L.density(L.e, x[3*k:3*k+3])
+			}
+			return nil
+		},
+	}
+}
+
+func TestCheckWarp(t *testing.T) {
+	for _, bug := range []bool{false, true} {
+		r, err := CheckWarp(diskWarp(bug), 20000, 3, 0.01, nil)
+		if err != nil {
+			t.Fatalf("bug %v: %v", bug, err)
+		}
+		if r.Reject != bug || r.Routes[RouteCells].Reject != bug || r.Kind != KindWarp || r.Domain != DomainDisk ||
+			r.WI != nil || r.N != 20000 || r.Calls == 0 {
+			t.Errorf("bug %v: %+v", bug, r)
+		}
+		if !bug && math.Abs(r.Mass-1) > 1e-9 {
+			t.Errorf("disk mass %.15g", r.Mass)
+		}
+		if text := r.String(); !strings.Contains(text, "cells") || strings.HasPrefix(text, "<mcstat") {
+			t.Errorf("report:\n%s", text)
+		}
+	}
+	bytes, err := CheckWorkSize(diskWarp(false), 20000, nil)
+	if err != nil || bytes <= 0 {
+		t.Errorf("work size %d %v", bytes, err)
+	}
+}
+
+func TestCheckBSDF(t *testing.T) {
+	wi := [3]float64{0.5, 0.1, 0.86}
+	ok := newLobe(40, wi)
+	r, err := CheckBSDF(ok.model(), wi, 20000, 1, 0.01, nil)
+	if err != nil {
+		t.Fatal(err)
+	}
+	if r.Reject || r.Kind != KindBSDF || len(r.WI) != 3 || r.Routes[RouteWeight].State != RouteRan ||
+		r.Routes[RouteReciprocity].State != RouteSkipped || math.Abs(r.Albedo-0.8) > 0.05 {
+		t.Errorf("a correct lobe: %+v\n%s", r, r)
+	}
+	// what each route produces, and nothing else
+	cells, pv, rec := r.Routes[RouteCells], r.Routes[RoutePDFValue], r.Routes[RouteReciprocity]
+	if cells.Statistic == nil || cells.DF == nil || *cells.DF < 8 || cells.PAdjusted == nil || cells.Where != nil ||
+		cells.Deterministic {
+		t.Errorf("cells route %+v", cells)
+	}
+	if pv.PValue != nil || pv.Statistic != nil || len(pv.Where) != 3 || len(pv.Value) != 2 || !pv.Deterministic ||
+		pv.Detectable == nil || pv.Checked != 20000 {
+		t.Errorf("pdf_value route %+v", pv)
+	}
+	if rec.Statistic != nil || rec.Effect != nil || rec.NFor1Pct != nil || rec.Where != nil || rec.Value != nil {
+		t.Errorf("skipped route %+v", rec)
+	}
+	bad := newLobe(40, wi)
+	bad.pdfScale = 1.1
+	r, err = CheckBSDF(bad.model(), wi, 20000, 1, 0.01, nil)
+	if err != nil || !r.Reject || !r.Routes[RoutePDFValue].Reject {
+		t.Errorf("pdf() of the wrong lobe not caught: %v\n%s", err, r)
+	}
+	// options reach the library: only the cells route
+	o := DefaultCheckOptions()
+	o.Routes = Routes(RouteCells)
+	r, err = CheckBSDF(bad.model(), wi, 20000, 1, 0.01, &o)
+	if err != nil || r.Routes[RoutePDFValue].State != RouteSkipped || r.Routes[RouteCells].State != RouteRan {
+		t.Errorf("routes option: %v %+v", err, r.Routes)
+	}
+	// an emitter: uniform directions, constant radiance
+	em := &Model{Domain: DomainSphere, NUniforms: 2, SampleReports: true,
+		Sample: func(wi, u, x, weight, pdf []float64) error {
+			for k := range weight {
+				z := 1 - 2*u[2*k]
+				s, phi := math.Sqrt(math.Max(0, 1-z*z)), 2*math.Pi*u[2*k+1]
+				x[3*k], x[3*k+1], x[3*k+2] = s*math.Cos(phi), s*math.Sin(phi), z
+				pdf[k], weight[k] = 1/(4*math.Pi), 2*4*math.Pi
+			}
+			return nil
+		},
+		PDF: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = 1 / (4 * math.Pi)
+			}
+			return nil
+		},
+		Eval: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = 2
+			}
+			return nil
+		},
+	}
+	r, err = CheckEmitter(em, 10000, 2, 0.01, nil)
+	if err != nil || r.Reject || r.Kind != KindEmitter || r.Routes[RouteEnergy].State != RouteSkipped {
+		t.Errorf("emitter: %v\n%s", err, r)
+	}
+}
+
+func TestCheckCallbackFailures(t *testing.T) {
+	sentinel := io.ErrUnexpectedEOF
+	calls := 0
+	m := diskWarp(false)
+	m.PDF = func(wi, x, out []float64) error {
+		calls++
+		return fmt.Errorf("renderer lost its scene: %w", sentinel)
+	}
+	_, err := CheckWarp(m, 5000, 1, 0.05, nil)
+	var ce *CallbackError
+	if !errors.Is(err, ErrCallback) || !errors.Is(err, sentinel) || !errors.As(err, &ce) || ce.Callback != "pdf" ||
+		calls != 1 {
+		t.Errorf("an error from pdf(): %v (%d calls)", err, calls)
+	}
+	// a panic is recovered at the C boundary and reported
+	m = diskWarp(false)
+	m.Sample = func(wi, u, x, weight, pdf []float64) error {
+		var table []float64
+		x[0] = table[len(u)] // index out of range
+		return nil
+	}
+	_, err = CheckWarp(m, 5000, 1, 0.05, nil)
+	var pe *PanicError
+	if !errors.Is(err, ErrCallback) || !errors.As(err, &pe) || !strings.Contains(err.Error(), "index out of range") {
+		t.Errorf("a panic in sample(): %v", err)
+	}
+	b := newLobe(10, [3]float64{0, 0, 1}).model()
+	b.Eval = func(wi, x, out []float64) error { panic("eval exploded") }
+	if _, err = CheckBSDF(b, [3]float64{0, 0, 1}, 5000, 1, 0.05, nil); !errors.Is(err, ErrCallback) ||
+		!errors.As(err, &ce) || ce.Callback != "eval" {
+		t.Errorf("a panic in eval(): %v", err)
+	}
+	// invalid values: libmcstat's sentence, no Go error
+	m = diskWarp(false)
+	m.PDF = func(wi, x, out []float64) error {
+		for k := range out {
+			out[k] = math.NaN()
+		}
+		return nil
+	}
+	_, err = CheckWarp(m, 5000, 1, 0.05, nil)
+	if !errors.Is(err, ErrCallback) || !errors.As(err, &ce) || ce.Err != nil || ce.Message == "" {
+		t.Errorf("NaN densities: %v", err)
+	}
+	// the check still works after the failures (handles released, nothing left behind)
+	if r, err := CheckWarp(diskWarp(false), 5000, 1, 0.05, nil); err != nil || r.Reject {
+		t.Errorf("after failures: %v", err)
+	}
+}
+
+func TestCheckBadInput(t *testing.T) {
+	if _, err := CheckWarp(nil, 5000, 1, 0.05, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("nil model: %v", err)
+	}
+	if _, err := CheckWarp(&Model{Domain: DomainDisk, NUniforms: 2}, 5000, 1, 0.05, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("no callbacks: %v", err)
+	}
+	if _, err := CheckWarp(diskWarp(false), 10, 1, 0.05, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("n = 10: %v", err)
+	}
+	if _, err := CheckWarp(diskWarp(false), -1, 1, 0.05, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("n = -1: %v", err)
+	}
+	m := diskWarp(false)
+	m.NUniforms = 9
+	if _, err := CheckWarp(m, 5000, 1, 0.05, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("9 uniforms: %v", err)
+	}
+	m = diskWarp(false)
+	m.Domain = Domain(12)
+	if _, err := CheckWorkSize(m, 5000, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("domain 12: %v", err)
+	}
+	o := DefaultCheckOptions()
+	o.Routes = 0
+	if _, err := CheckWarp(diskWarp(false), 5000, 1, 0.05, &o); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("no routes: %v", err)
+	}
+	lobe := newLobe(10, [3]float64{0, 0, 1}).model()
+	lobe.Eval = nil // a BSDF needs eval
+	if _, err := CheckBSDF(lobe, [3]float64{0, 0, 1}, 5000, 1, 0.05, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("BSDF without eval: %v", err)
+	}
+	if _, err := CheckBSDF(newLobe(10, [3]float64{0, 0, 1}).model(), [3]float64{}, 5000, 1, 0.05, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("wi zero: %v", err)
+	}
+}
+
+func TestCheckNames(t *testing.T) {
+	for r := Route(0); int(r) < NumRoutes; r++ {
+		p, err := ParseRoute(r.String())
+		if err != nil || p != r || r.Meaning() == "" || r.BlindSpot() == "" {
+			t.Errorf("route %d %q: %v", int(r), r, err)
+		}
+	}
+	if Route(NumRoutes).Meaning() != "" || !strings.HasPrefix(Route(NumRoutes).String(), "Route(") {
+		t.Error("an invalid route has a name")
+	}
+	if _, err := ParseRoute("colour"); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("route colour: %v", err)
+	}
+	dims := map[Domain]int{DomainSphere: 3, DomainHemisphere: 3, DomainSquare: 2, DomainDisk: 2, DomainInterval: 1}
+	for d, n := range dims {
+		p, err := ParseDomain(d.String())
+		if err != nil || p != d || d.Dims() != n {
+			t.Errorf("domain %v: %v %d", d, err, d.Dims())
+		}
+	}
+	if Domain(9).Dims() != 0 {
+		t.Error("domain 9 has dimensions")
+	}
+	if _, err := ParseDomain("cube"); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("cube: %v", err)
+	}
+	if o := DefaultCheckOptions(); o.Routes != AllRoutes || o.Batch != 65536 || o.RTol != 1e-3 {
+		t.Errorf("defaults %+v", o)
+	}
+	if Routes(RouteCells, RouteKS) != 1|1<<8 {
+		t.Error("Routes")
+	}
+}
+
+// Checks on several goroutines at once: each call has its own handle, so
+// callbacks reach their own model, and each report is the serial one.
+func TestCheckConcurrent(t *testing.T) {
+	serial := map[bool]*CheckReport{}
+	for _, bug := range []bool{false, true} {
+		r, err := CheckWarp(diskWarp(bug), 20000, 7, 0.01, nil)
+		if err != nil || r.Reject != bug {
+			t.Fatalf("bug %v: %v %v", bug, err, r)
+		}
+		serial[bug] = r
+	}
+	errs := make(chan error, 4)
+	for g := 0; g < 4; g++ {
+		go func(bug bool) {
+			r, err := CheckWarp(diskWarp(bug), 20000, 7, 0.01, nil)
+			if err == nil && (r.Reject != bug || r.PValue != serial[bug].PValue || r.String() != serial[bug].String()) {
+				err = fmt.Errorf("bug %v: reject %v p %g, serially %g", bug, r.Reject, r.PValue, serial[bug].PValue)
+			}
+			errs <- err
+		}(g%2 == 1)
+	}
+	for g := 0; g < 4; g++ {
+		if err := <-errs; err != nil {
+			t.Error(err)
+		}
+	}
+}
