@@ -17,7 +17,7 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 .PHONY: asan-test tsan-test valgrind-test abi-check portability-test
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
-.PHONY: all deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps python-deps build test ctest python pytest install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -60,6 +60,12 @@ STAGE_PC := $(STAGE)/lib/pkgconfig
 
 install-test: build
 	tests/install/test_install.sh $(BUILD)
+
+# mcstat vendored into a parent project by add_subdirectory and by FetchContent
+# (tests/vendor): libraries only, no tests or install rules of its own, the
+# parent's build type untouched.  About 20 s on 2 cores with a warm ccache.
+vendor-test:
+	tests/vendor/test_vendor.sh $(BUILD)
 
 ctypes-test: install-test
 	python3 examples/ctypes/test_ctypes.py $(STAGE)/lib/libmcstat.so

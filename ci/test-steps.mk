@@ -10,6 +10,8 @@ TEST_STEPS += pytest
 # cmake --install into build/stage, and CMake and pkg-config consumers of it,
 # shared and static (tests/install)
 TEST_STEPS += install-test
+# mcstat vendored by a parent project: add_subdirectory and FetchContent (tests/vendor)
+TEST_STEPS += vendor-test
 # the installed library through ctypes (examples/ctypes)
 TEST_STEPS += ctypes-test
 # the Rust and Go bindings against the installed library (bindings/rust, bindings/go)
