@@ -520,7 +520,7 @@ pub fn ks_test_2(x: &[f64], y: &[f64], alternative: Alternative, alpha: f64, opt
 // ---- distributions -------------------------------------------------------------
 
 /// Tail probabilities and quantiles of t, chi-squared and F.  `upper` selects
-/// the tail: false gives P[X <= x], true gives P[X > x]; a quantile solves
+/// the tail: false gives `P[X <= x]`, true gives `P[X > x]`; a quantile solves
 /// that tail's probability = p.
 pub mod dist {
     use super::{check, sys, Result};
