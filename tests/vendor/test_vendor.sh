@@ -4,6 +4,7 @@
 # it (URL, no network).  Each time the parent builds and runs its consumer
 # against mcstat::mcstat and mcstat::mcstat_static, and:
 #   - ctest -N lists the parent's two tests and none of mcstat's;
+#   - it configures without a CMake warning;
 #   - the parent's CMAKE_BUILD_TYPE is what the parent gave (empty stays empty);
 #   - no target of mcstat's tests, fuzz drivers, examples, benchmarks or libmcest exists;
 #   - cmake --install of the parent installs its own files only, and mcstat's
@@ -69,6 +70,7 @@ configure() { # build_dir args...
     shift
     cmake -G "Unix Makefiles" -S tests/vendor/parent -B "$b" "$@" > "$b.configure.log" 2>&1 \
         || { cat "$b.configure.log"; fail "configure $b"; }
+    if grep -q "CMake .*Warning" "$b.configure.log"; then cat "$b.configure.log"; fail "configure $b: CMake warnings"; fi
 }
 
 # 1. add_subdirectory, no build type given
