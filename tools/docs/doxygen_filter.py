@@ -21,8 +21,9 @@ ESCAPE = re.compile(r'([\\@<>&#%$"`~|])')
 
 
 def comments(text):
-    """(start, end) of each /* */ comment outside string and char literals,
-    with a flag: True when it opens a function body's brace depth."""
+    """(start, end, in_body) of each /* */ comment outside string and char
+    literals; in_body is True inside a function body (a brace that follows
+    a closing parenthesis)."""
     i, n = 0, len(text)
     out = []
     depth_body = 0  # > 0 inside a function body
