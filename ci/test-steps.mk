@@ -10,6 +10,8 @@ TEST_STEPS += pytest
 # cmake --install into build/stage, and CMake and pkg-config consumers of it,
 # shared and static (tests/install)
 TEST_STEPS += install-test
+# mcstat vendored by a parent project: add_subdirectory and FetchContent (tests/vendor)
+TEST_STEPS += vendor-test
 # the installed library through ctypes (examples/ctypes)
 TEST_STEPS += ctypes-test
 # the Rust and Go bindings against the installed library (bindings/rust, bindings/go)
@@ -18,6 +20,8 @@ TEST_STEPS += rust-test go-test
 TEST_STEPS += mitsuba-test
 # the shared library's ABI against the baseline of its SOVERSION (libmcstat/abi)
 TEST_STEPS += abi-check
+# the API reference of C, Python, Rust and Go into build/docs, warnings as errors (make docs)
+TEST_STEPS += docs
 # every C test under ASan + UBSan, the threaded ones under TSan, memcheck
 TEST_STEPS += asan-test tsan-test valgrind-test
 # 64-bit long double, -ffast-math refused, flush-to-zero callers (tests/ftz)

@@ -23,8 +23,10 @@
 #   mitsuba     python + libllvm19: Mitsuba's llvm_ad_rgb variant (Dr.Jit's
 #               LLVM backend; LLVM 15 aborts in code generation on some CPUs),
 #               which examples/mitsuba uses when it runs (else scalar_rgb)
+#   docs        python rust go + doxygen (make docs: the API reference; sphinx
+#               comes from requirements-dev.txt)
 #   test        everything make test runs (ci/test-steps.mk): python valgrind
-#               fuzz abi rust go mitsuba.  The sanitizer runtimes of asan-test and
+#               fuzz abi rust go mitsuba docs.  The sanitizer runtimes of asan-test and
 #               tsan-test come with gcc.
 #   bench       python (make bench, bench-check, bench-python, bench-estimators)
 #   references  python + R (r-base-core: Rscript for tools/refgen's R
@@ -61,7 +63,8 @@ need() {
     rust)       command -v cargo > /dev/null || add cargo rustc ;;
     go)         command -v go > /dev/null || add golang-go ;;
     mitsuba)    need python; add libllvm19 ;;
-    test)       need python; need valgrind; need fuzz; need abi; need rust; need go; need mitsuba ;;
+    docs)       need python; need rust; need go; add doxygen ;;
+    test)       need python; need valgrind; need fuzz; need abi; need rust; need go; need mitsuba; need docs ;;
     bench)      need python ;;
     references) need python; add r-base-core ;;
     *) echo "deps-debian.sh: unknown target '$1' (see the top of $0)" >&2; exit 2 ;;

@@ -17,8 +17,8 @@
  *     if (MCSTAT_CHECK_MEAN(frame, reference, tolerance, 0.001)) ...  // failed
  *     if (MCSTAT_CHECK_VAR_BELOW(frame, bound, 0.001)) ...            // failed
  *
- * With MCSTAT_CHECKS undefined or 0 every macro expands to nothing (or to
- * the constant 0 for the checks) and NONE OF ITS ARGUMENTS IS EVALUATED, as
+ * With MCSTAT_CHECKS undefined or 0 every macro expands to nothing (the
+ * checks to 0) and NONE OF ITS ARGUMENTS IS EVALUATED, as
  * with assert(): keep side effects out of them.  MCSTAT_CHECK_ONLY(...)
  * keeps its argument (declarations, statements) only when checks are on.
  *
@@ -53,6 +53,13 @@
     mcstat_check_print_failure_((what), (file), (line), (status), (result))
 #endif
 
+/* C++ callers may build with -Wzero-as-null-pointer-constant, which NULL trips. */
+#if defined(__cplusplus) && __cplusplus >= 201103L
+#define MCSTAT_CHECK_NULL_ nullptr
+#else
+#define MCSTAT_CHECK_NULL_ NULL
+#endif
+
 /* The default failure report (static inline: the header needs no extra
  * library symbol). */
 static inline void mcstat_check_print_failure_(const char *what, const char *file, int line, int status,
@@ -64,7 +71,7 @@ static inline void mcstat_check_print_failure_(const char *what, const char *fil
         return;
     }
     char text[2048];
-    if (mcstat_result_format(r, "samples", NULL, text, sizeof text, NULL) == MCSTAT_OK)
+    if (mcstat_result_format(r, "samples", MCSTAT_CHECK_NULL_, text, sizeof text, MCSTAT_CHECK_NULL_) == MCSTAT_OK)
         fputs(text, stderr);
 }
 
@@ -75,7 +82,10 @@ static inline int mcstat_check_mean_at_(const mcstat_stream *s, double reference
     int st = mcstat_stream_check_mean(s, reference, tolerance, alpha, &r);
     if (st == MCSTAT_OK && !r.reject)
         return 0;
-    MCSTAT_CHECK_ON_FAILURE(what, file, line, st, st == MCSTAT_OK ? &r : (const mcstat_result *)0);
+    const mcstat_result *shown = MCSTAT_CHECK_NULL_; /* no result to show when the test could not run */
+    if (st == MCSTAT_OK)
+        shown = &r;
+    MCSTAT_CHECK_ON_FAILURE(what, file, line, st, shown);
     return 1;
 }
 
@@ -86,7 +96,10 @@ static inline int mcstat_check_var_at_(const mcstat_stream *s, double bound, dou
     int st = mcstat_stream_check_var(s, bound, alpha, &r);
     if (st == MCSTAT_OK && !r.reject)
         return 0;
-    MCSTAT_CHECK_ON_FAILURE(what, file, line, st, st == MCSTAT_OK ? &r : (const mcstat_result *)0);
+    const mcstat_result *shown = MCSTAT_CHECK_NULL_; /* no result to show when the test could not run */
+    if (st == MCSTAT_OK)
+        shown = &r;
+    MCSTAT_CHECK_ON_FAILURE(what, file, line, st, shown);
     return 1;
 }
 
@@ -102,12 +115,27 @@ static inline int mcstat_check_var_at_(const mcstat_stream *s, double bound, dou
 
 #else /* checks off: nothing at all, arguments not evaluated */
 
+#include <stddef.h>
+
+/* The value arguments are named inside sizeof, which never evaluates them:
+ * a variable the caller keeps only for a check is then not "unused" under
+ * -Wall.  The stream argument is not named: it may be declared only inside
+ * MCSTAT_CHECK_ONLY.  The checks are a function call rather than the bare
+ * constant 0, so that a check used as a statement, its value ignored, is not
+ * a "statement with no effect". */
+static inline int mcstat_check_off_(size_t unused)
+{
+    (void)unused;
+    return 0;
+}
+
 #define MCSTAT_CHECK_ONLY(...)
 #define MCSTAT_CHECK_INIT(s) ((void)0)
-#define MCSTAT_CHECK_ADD(s, x) ((void)0)
+#define MCSTAT_CHECK_ADD(s, x) ((void)sizeof(x))
 #define MCSTAT_CHECK_MERGE(dst, src) ((void)0)
-#define MCSTAT_CHECK_MEAN(s, reference, tolerance, alpha) (0)
-#define MCSTAT_CHECK_VAR_BELOW(s, bound, alpha) (0)
+#define MCSTAT_CHECK_MEAN(s, reference, tolerance, alpha) \
+    mcstat_check_off_(sizeof(reference) + sizeof(tolerance) + sizeof(alpha))
+#define MCSTAT_CHECK_VAR_BELOW(s, bound, alpha) mcstat_check_off_(sizeof(bound) + sizeof(alpha))
 
 #endif
 #endif /* MCSTAT_CHECK_H */

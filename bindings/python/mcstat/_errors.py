@@ -73,7 +73,7 @@ class NonFiniteError(McstatError):
 
 class DegenerateDataError(McstatError):
     """A sample is constant to within rounding (MCSTAT_EDEGENERATE): its
-    standard deviation is zero or below 10 eps |mean|.  Welch's test needs
+    standard deviation is zero or below 10 eps ``|mean|``.  Welch's test needs
     spread in only one of its samples."""
 
     status = 4

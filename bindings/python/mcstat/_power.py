@@ -52,7 +52,7 @@ class EquivalenceResult:
     ----------
     equivalent : bool
         Both one-sided tests reject at `alpha`: the mean (difference) lies
-        inside `bounds`, i.e. "|bias| < margin" is supported.  Same as
+        inside `bounds`, i.e. ``|bias| < margin`` is supported.  Same as
         `reject` (H0 "outside the bounds" rejected).
     decision : str
         ``"equivalent"`` or ``"not equivalent"``.
@@ -218,13 +218,17 @@ def power(test: str = "t", *, n: Optional[float] = None, effect: Optional[float]
     whose power reaches the target.
 
     test:
-      ``"t"``      one-sample t; effect d = (mean - mu0)/sd
-      ``"t2"``     two-sample t, n per group, common sd (R's type="two.sample")
-      ``"welch"``  Welch's t, n_y = n_ratio * n, sd_y = sd_ratio * sd_x;
-                   effect d = (mean_x - mean_y)/sd_x (Welch-Satterthwaite
-                   approximation)
-      ``"var"``    one-sample chi-squared; effect rho = sigma^2/sigma0^2 (exact)
-      ``"f"``      two-sample F, n_y = n_ratio * n; effect rho = (var_x/var_y)/ratio0 (exact)
+      ``"t"``
+        one-sample t; effect d = (mean - mu0)/sd
+      ``"t2"``
+        two-sample t, n per group, common sd (R's type="two.sample")
+      ``"welch"``
+        Welch's t, n_y = n_ratio * n, sd_y = sd_ratio * sd_x; effect
+        d = (mean_x - mean_y)/sd_x (Welch-Satterthwaite approximation)
+      ``"var"``
+        one-sample chi-squared; effect rho = sigma^2/sigma0^2 (exact)
+      ``"f"``
+        two-sample F, n_y = n_ratio * n; effect rho = (var_x/var_y)/ratio0 (exact)
 
     For the t tests, ``delta`` and ``sd`` may be given instead of ``effect``
     (effect = delta / sd, sd defaults to 1).  ``strict`` (two-sided): count

@@ -404,7 +404,7 @@ sample : callable
     weight (eval/pdf, or eval with ``weight="value"``), pdf (k,) the density
     the sampler reports.  A failed sample has pdf 0 and weight 0.
 eval : callable
-    ``eval(wi, wo) -> (k,)``: f(wi, wo) |cos wo| (Mitsuba's eval).
+    ``eval(wi, wo) -> (k,)``: f(wi, wo) ``|cos wo|`` (Mitsuba's eval).
 pdf : callable
     ``pdf(wi, wo) -> (k,)``: the density, in solid angle.
 wi : array_like (3,)
@@ -422,7 +422,7 @@ stochastic : bool
     The weight and pdf are estimates (layered BSDFs): pdf_value and weight
     are skipped, "integrals" checks them statistically.
 reciprocal : bool
-    Check eval(wi, wo)/|cos wo| == eval(wo, wi)/|cos wi| at up to 1000
+    Check ``eval(wi, wo)/|cos wo| == eval(wo, wi)/|cos wi|`` at up to 1000
     sampled directions.
 energy : bool
     Check albedo <= 1 (turn off for BSDFs that scale radiance at

@@ -116,10 +116,10 @@ H0: x and y come from the same continuous distribution (paper, section
 2.5).  F and G are the empirical CDFs of x and y, z the pooled one; the
 statistic is
 
-- ``weight="none"``: D = sup |F - G| (as R's ``ks.test`` and SciPy's
+- ``weight="none"``: D = ``sup |F - G|`` (as R's ``ks.test`` and SciPy's
   ``ks_2samp`` report it);
-- ``weight="canner"`` (the paper's): D2 = sqrt(nx ny / (nx + ny)) *
-  sup |F - G| / sqrt(z (1 - z)), over the pooled points with 0 < z < 1.
+- ``weight="canner"`` (the paper's): D2 = ``sqrt(nx ny / (nx + ny)) *
+  sup |F - G| / sqrt(z (1 - z))``, over the pooled points with 0 < z < 1.
 
 With ties the ECDFs are compared only after the last of a run of equal
 values, and p-values are conditional on the tie pattern.

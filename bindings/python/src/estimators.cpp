@@ -352,7 +352,7 @@ seed : int, optional
 bug : {None, "no_cosine", "barycentric", "no_jacobian"}, optional
     Plants one of the paper's errors (section 3.4) in estimator A:
     the receiver's cosine omitted, a non-area-preserving barycentric map
-    (b1 = u1, b2 = (1 - u1) u2), or the Jacobian n_tri.z/|z|^3 omitted.
+    (b1 = u1, b2 = (1 - u1) u2), or the Jacobian ``n_tri.z/|z|^3`` omitted.
 first_index : int, optional
     Index of the first estimate: estimate number first_index + k is a pure
     function of (seed, method, bug, first_index + k), so a run split into
@@ -383,7 +383,7 @@ Examples
 
 const char *IRRADIANCE_EXACT_DOC = R"doc(irradiance_exact(*, triangle, point, normal, radiance=1.0)
 
-Lambert's formula: the exact irradiance, E = (L/2) |sum_k Theta_k n.gamma_k|
+Lambert's formula: the exact irradiance, E = ``(L/2) |sum_k Theta_k n.gamma_k|``
 over the emitter clipped to the receiver's upper half-space.
 
 Accurate to a few ulps (within 4e-16 of 60-digit references on tiny,

@@ -109,7 +109,7 @@ The outcome of one hypothesis test (returned by `t_test`, `var_test` and
 Attributes
 ----------
 statistic : float
-    t, X-squared or F; for `ks_test` D = sup |F - G| (weight "none") or
+    t, X-squared or F; for `ks_test` D = ``sup |F - G|`` (weight "none") or
     Canner's D2 (weight "canner"), one-sided versions for "less" and
     "greater"; for `binom_test` the number of successes.
 df : float or tuple of float
