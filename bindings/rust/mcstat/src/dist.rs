@@ -1,6 +1,6 @@
 //! Tail probabilities and quantiles of the t, chi-squared and F
-//! distributions.  `upper` selects the tail: false gives P[X <= x], true
-//! gives P[X > x]; a quantile solves that tail's probability = p.  Log
+//! distributions.  `upper` selects the tail: false gives `P[X <= x]`, true
+//! gives `P[X > x]`; a quantile solves that tail's probability = p.  Log
 //! versions stay finite where the probability underflows.
 use crate::{check, sys, Result};
 

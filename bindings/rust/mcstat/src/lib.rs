@@ -21,7 +21,7 @@
 //! The families, each in its module and re-exported here: the tests on
 //! slices and on accumulators ([`Moments`]), per-pixel rows ([`rows`]),
 //! accumulator arrays and the per-thread [`Stream`], Kolmogorov-Smirnov
-//! ([`ks_test_2`]), equivalence (TOST), multiple testing ([`p_adjust`]),
+//! ([`ks_test_2`]), equivalence (TOST), multiple testing ([`p_adjust()`]),
 //! power ([`power`]), estimator diagnostics ([`diag`]), goodness of fit and
 //! the binomial battery test ([`gof`]), renderer checks ([`check`]) and the
 //! distributions ([`dist`]).

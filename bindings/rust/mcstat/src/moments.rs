@@ -174,7 +174,7 @@ impl MomentsArray {
         status.finish(st)?;
         Ok(status)
     }
-    /// self[i] <- self[i] merged with other[i].  Err (nothing changed) for
+    /// `self[i]` <- `self[i]` merged with `other[i]`.  Err (nothing changed) for
     /// arrays of different lengths or a count past 2^64 - 1.
     pub fn merge(&mut self, other: &[Moments]) -> Result<()> {
         if other.len() != self.rows.len() {

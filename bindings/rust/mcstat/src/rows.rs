@@ -149,7 +149,7 @@ impl RowResults {
     pub fn statuses(&self) -> &Statuses {
         &self.status
     }
-    /// The rows' p-values, in the form [`crate::p_adjust`] takes: a failed
+    /// The rows' p-values, in the form [`crate::p_adjust()`] takes: a failed
     /// row's is NaN, R's NA, which p_adjust leaves NaN and does not count.
     pub fn p_values(&self) -> Vec<f64> {
         self.raw
@@ -283,7 +283,7 @@ pub fn t_test_1_moments_rows(x: &[Moments], mu0: f64, alternative: Alternative, 
     })
 }
 
-/// Welch's t test of x[i] against y[i].
+/// Welch's t test of `x[i]` against `y[i]`.
 pub fn t_test_2_moments_rows(
     x: &[Moments],
     y: &[Moments],
@@ -321,7 +321,7 @@ pub fn var_test_1_moments_rows(
     })
 }
 
-/// The F test of x[i] against y[i].
+/// The F test of `x[i]` against `y[i]`.
 pub fn var_test_2_moments_rows(
     x: &[Moments],
     y: &[Moments],
