@@ -344,3 +344,20 @@ def test_log_pvalue_where_pvalue_underflows():
     assert b.pvalue == 0.0 and math.isfinite(b.log_pvalue)
     v = mcstat.var_test(x * 1e3, sigma2=1e-6, alternative="greater")
     assert v.pvalue == 0.0 and math.isfinite(v.log_pvalue) and v.log_pvalue < -708
+
+
+def test_ks_nan_policy_like_scipy():
+    x = np.array([0.1, 0.5, np.nan, 0.7, 1.9, 0.3])
+    y = np.array([0.2, 0.9, 1.3, 2.2, 0.8])
+    r = mcstat.ks_test(x, y, weight="none", nan_policy="propagate")
+    s = st.ks_2samp(x, y)
+    assert math.isnan(s.statistic) and math.isnan(r.statistic) and math.isnan(r.pvalue)
+    assert r.decision == "" and not r.reject and math.isnan(r.log_pvalue)
+    o = mcstat.ks_test(x, y, weight="none", nan_policy="omit")
+    so = st.ks_2samp(x, y, nan_policy="omit")
+    assert o.statistic == so.statistic and rel_err(o.pvalue, so.pvalue) <= 1e-12
+    assert o.nobs == (5, 5)
+    with pytest.raises(mcstat.NonFiniteError):
+        mcstat.ks_test(x, y, weight="none")
+    with pytest.raises(mcstat.InvalidArgumentError, match="nan_policy must be"):
+        mcstat.ks_test(x, y, nan_policy="drop")

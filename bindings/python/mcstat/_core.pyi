@@ -150,6 +150,7 @@ def ks_test(
     threads: Optional[int] = None,
     cache: Optional[KSCache] = None,
     critical: bool = True,
+    nan_policy: _TestNanPolicy = "raise",
 ) -> TestResult: ...
 def chisq_gof(
     observed: npt.ArrayLike,

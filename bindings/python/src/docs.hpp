@@ -128,7 +128,7 @@ InvalidArgumentError, TypeError
     non-positive ratio, sigma2 with two samples or ratio with one.
 )doc";
 
-inline constexpr const char KS_TEST_DOC[] = R"doc(ks_test($module, /, x, y, *, weight='canner', alternative='two-sided', alpha=0.05, method='auto', n_sim=None, seed=None, threads=None, cache=None, critical=True)
+inline constexpr const char KS_TEST_DOC[] = R"doc(ks_test($module, /, x, y, *, weight='canner', alternative='two-sided', alpha=0.05, method='auto', n_sim=None, seed=None, threads=None, cache=None, critical=True, nan_policy='raise')
 --
 
 Two-sample Kolmogorov-Smirnov test, unweighted or with Canner's weight.
@@ -198,6 +198,10 @@ critical : bool, optional
     Compute the critical value (default).  With the exact method it costs
     10-40 p-value evaluations (1000 + 1000, Canner: ~4 ms instead of
     ~0.2 ms); False leaves ``critical_values[1]`` NaN.
+nan_policy : {"raise", "omit", "propagate"}, optional
+    NaN raises `NonFiniteError` (the default), is dropped from its sample,
+    or with "propagate" (SciPy's default) makes statistic and pvalue NaN
+    (decided here, before libmcstat, which never returns NaN with success).
 
 Returns
 -------
