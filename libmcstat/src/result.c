@@ -181,15 +181,26 @@ static int var_bound(const mcstat_result *r, double p, int upper, double *out)
     return MCSTAT_OK;
 }
 
+/* a b exactly where Dekker's split cannot overflow (each factor and the
+ * product below 2^995); beyond, the rounded product (its error is then far
+ * below what the other terms round by). */
+static mcstat_dd prod(double a, double b)
+{
+    double p = a * b;
+    if (!(fabs(a) <= 0x1p995 && fabs(b) <= 0x1p995 && fabs(p) <= 0x1p995))
+        return (mcstat_dd){p, 0.0};
+    return dd_two_prod(a, b);
+}
+
 /* est - c se in double-double (est already one). */
 static double t_bound(mcstat_dd est, double se, double c)
 {
     if (isinf(c))
         return c > 0 ? -INFINITY : INFINITY;
-    double cs = c * se;
-    if (!(fabs(cs) <= 0x1p900) || !(fabs(est.hi) <= 0x1p900)) /* beyond Dekker's split: plain doubles */
-        return est.hi - cs;
-    mcstat_dd b = dd_add(est, dd_two_prod(-c, se));
+    mcstat_dd cs = prod(-c, se);
+    if (!(fabs(cs.hi) <= 0x1p1000) || !(fabs(est.hi) <= 0x1p1000)) /* a sum that may overflow: plain doubles */
+        return est.hi + cs.hi;
+    mcstat_dd b = dd_add(est, cs);
     return b.hi + b.lo;
 }
 
@@ -201,17 +212,17 @@ static double t_bound(mcstat_dd est, double se, double c)
 static mcstat_dd t_estimate(const mcstat_result *r, double null, double t)
 {
     int two = r->test == MCSTAT_TEST_T_2 || r->test == MCSTAT_TEST_T_2_POOLED || r->test == MCSTAT_TEST_EQUIV_2;
-    double ts = t * r->std_error;
-    double e_stat = fabs(null) + fabs(ts);
+    mcstat_dd ts = prod(t, r->std_error); /* an infinite t (data far from a huge null): the estimates */
+    double e_stat = fabs(null) + fabs(ts.hi);
     double e_est = two ? fmax(fabs(r->estimate[0]), fabs(r->estimate[1])) : fabs(r->estimate[0]);
-    if (isfinite(e_est) && e_est < e_stat) {
+    if (isfinite(e_est) && !(e_stat <= e_est)) {
         mcstat_dd d = two ? dd_two_sum(r->estimate[0], -r->estimate[1]) : (mcstat_dd){r->estimate[0], 0.0};
         if (isfinite(d.hi))
             return d;
     }
-    if (!(fabs(ts) <= 0x1p900) || !(fabs(null) <= 0x1p900))
-        return (mcstat_dd){null + ts, 0.0};
-    return dd_add((mcstat_dd){null, 0.0}, dd_two_prod(t, r->std_error));
+    if (!(fabs(ts.hi) <= 0x1p1000) || !(fabs(null) <= 0x1p1000))
+        return (mcstat_dd){null + ts.hi, 0.0};
+    return dd_add((mcstat_dd){null, 0.0}, ts);
 }
 
 int mcstat_result_conf_int(const mcstat_result *r, double confidence_level, double conf_int[2])
@@ -235,7 +246,7 @@ int mcstat_result_conf_int(const mcstat_result *r, double confidence_level, doub
         double t = tost ? r->tost_t_lower : r->statistic, null = tost ? r->tost_lower : r->null_value;
         if (tost)
             alt = MCSTAT_TWO_SIDED;
-        if (!isfinite(t) || !isfinite(null) || !(r->std_error > 0.0 && r->std_error <= DBL_MAX) ||
+        if (isnan(t) || !isfinite(null) || !(r->std_error > 0.0 && r->std_error <= DBL_MAX) ||
             !valid_df(r->df[0]))
             return MCSTAT_EINVAL;
         if ((st = mcstat_t_quantile(alt == MCSTAT_TWO_SIDED ? 0.5 * a : a, r->df[0], 1, &c)))

@@ -400,12 +400,39 @@ static void test_other_results(void)
     free(b);
 }
 
+/* Results at the edges of the doubles: the interval at another level is
+ * still formed (no NaN, no refusal) where the statistic is infinite or
+ * std_error * t would overflow Dekker's split. */
+static void test_interval_edges(void)
+{
+    mcstat_result r;
+    double ci[2], lp;
+    /* data near 1 against mu0 = 1e308: t = -Inf, the interval from the mean */
+    const double x[] = {1.0, 1.0 + 1e-10, 1.0 + 2e-10};
+    CHECK_INT(mcstat_t_test_1(x, 3, 1e308, 0, 0.05, &r), MCSTAT_OK);
+    CHECK(isinf(r.statistic) && r.statistic < 0);
+    CHECK_INT(mcstat_result_log_p_value(&r, &lp), MCSTAT_OK);
+    CHECK(lp == -INFINITY); /* the tail is exactly 0 */
+    CHECK_INT(mcstat_result_conf_int(&r, 0.95, ci), MCSTAT_OK);
+    CHECK_NEAR(ci[0], r.conf_int[0], r.conf_int[1] - r.conf_int[0], 1e-9, "mean interval, t = -Inf");
+    CHECK_NEAR(ci[1], r.conf_int[1], r.conf_int[1] - r.conf_int[0], 1e-9, "mean interval, t = -Inf");
+    /* values near +-DBL_MAX: std_error 1.4e308, t 4e-309 */
+    const double y[] = {-1.7e308, 1.7e308, 0.0}, z[] = {1.7e308, -1.7e308, 1.0};
+    CHECK_INT(mcstat_t_test_2_pooled(y, 3, z, 3, 0.0, 0, 0.05, &r), MCSTAT_OK);
+    CHECK_INT(mcstat_result_conf_int(&r, 0.5, ci), MCSTAT_OK);
+    CHECK(isfinite(ci[0]) && isfinite(ci[1]) && ci[0] < 0.0 && ci[1] > 0.0);
+    CHECK_REL(-ci[0], ci[1], 1e-12, "symmetric interval near DBL_MAX");
+    CHECK_INT(mcstat_result_log_p_value(&r, &lp), MCSTAT_OK);
+    CHECK(lp == 0.0 || (lp < 0.0 && lp > -1e-300));
+}
+
 int main(void)
 {
     test_reference();
     test_bad_input();
     test_paired_overflow();
     test_other_results();
+    test_interval_edges();
     printf("test_t_extra: %d checks, %d failures\n", h_checks, h_failures);
     return h_failures != 0;
 }
