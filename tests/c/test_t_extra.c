@@ -13,6 +13,9 @@
 #include <stdint.h>
 #include <string.h>
 
+static uint64_t rng_state = 20261203;
+#include "test_rng.h"
+
 /* |got - want| <= tol * scale, plus a few of want's ulps (R rounds est,
  * then est -+ c se): bounds near 0 are judged on the interval's scale, not
  * their own. */
@@ -426,6 +429,84 @@ static void test_interval_edges(void)
     CHECK(lp == 0.0 || (lp < 0.0 && lp > -1e-300));
 }
 
+/* A value of any magnitude: 10^[-300, 300], either sign, sometimes 0. */
+static double wild(void)
+{
+    double u = unif();
+    if (u < 0.05)
+        return 0.0;
+    return (unif() < 0.5 ? -1.0 : 1.0) * pow(10.0, 600.0 * unif() - 300.0);
+}
+
+/* No result with status OK carries NaN, and its log p-value and intervals
+ * at other levels are never NaN with OK either: random data across the
+ * doubles' range (offsets, spreads, sizes), nulls, levels and alternatives. */
+static void test_never_nan_with_ok(void)
+{
+    double x[40], y[40];
+    int ok = 0;
+    for (int it = 0; it < 4000; it++) {
+        size_t nx = 2 + (size_t)(unif() * 30), ny = 2 + (size_t)(unif() * 30);
+        double cx = wild(), cy = unif() < 0.5 ? cx : wild(), sx = fabs(wild()), sy = fabs(wild());
+        for (size_t i = 0; i < nx; i++)
+            x[i] = cx + sx * normal();
+        for (size_t i = 0; i < ny; i++)
+            y[i] = unif() < 0.3 ? x[i % nx] + sy * normal() : cy + sy * normal();
+        double mu0 = unif() < 0.5 ? 0.0 : wild(), alpha = unif() < 0.5 ? 0.05 : pow(10.0, -300.0 * unif());
+        int alt = (int)(unif() * 3);
+        mcstat_result r;
+        int st;
+        switch (it % 3) {
+        case 0: st = mcstat_t_test_2_pooled(x, nx, y, ny, mu0, alt, alpha, &r); break;
+        case 1: st = mcstat_t_test_paired(x, y, nx < ny ? nx : ny, mu0, alt, alpha, &r); break;
+        default: st = mcstat_t_test_2(x, nx, y, ny, mu0, alt, alpha, &r); break;
+        }
+        if (st)
+            continue;
+        ok++;
+        CHECK_MSG(!isnan(r.statistic) && !isnan(r.p_value) && !isnan(r.df[0]) && !isnan(r.conf_int[0]) &&
+                      !isnan(r.conf_int[1]) && !isnan(r.std_error) && !isnan(r.estimate[0]),
+                  "iteration %d: NaN with OK", it);
+        double lp, ci[2];
+        st = mcstat_result_log_p_value(&r, &lp);
+        CHECK_MSG(st == MCSTAT_OK && !isnan(lp) && lp <= 0.0, "iteration %d: log p %g, status %d", it, lp, st);
+        if (st == MCSTAT_OK && r.p_value > 1e-300)
+            CHECK_NEAR(lp, log(r.p_value), fmax(1.0, fabs(lp)), 1e-10, "iteration %d", it);
+        const double levels[] = {0.5, 0.95, 0.999999, 1e-300, 1.0 - 1e-16};
+        for (int k = 0; k < 5; k++) {
+            st = mcstat_result_conf_int(&r, levels[k], ci);
+            if (st == MCSTAT_OK)
+                CHECK_MSG(!isnan(ci[0]) && !isnan(ci[1]) && ci[0] <= ci[1], "iteration %d level %g: [%g, %g]", it,
+                          levels[k], ci[0], ci[1]);
+            else
+                CHECK_MSG(st == MCSTAT_ENUMERIC, "iteration %d level %g: status %d", it, levels[k], st);
+        }
+    }
+    CHECK_MSG(ok > 2000, "only %d of 4000 random tests ran", ok);
+    /* results with arbitrary fields (a caller's struct, a corrupt file):
+     * an error status or a non-NaN answer, never a crash */
+    const double vals[] = {NAN, INFINITY, -INFINITY, 0.0, -1.0, 1e-320, 1e308, 3.0, 0.5};
+    for (int it = 0; it < 20000; it++) {
+        mcstat_result r;
+        memset(&r, 0, sizeof r);
+        r.test = (int)(unif() * 13);
+        r.method = (int)(unif() * 5);
+        r.alternative = (int)(unif() * 4);
+        r.n[0] = (uint64_t)(unif() * 5);
+        r.n[1] = (uint64_t)(unif() * 5);
+        double *f[] = {&r.statistic, &r.df[0], &r.df[1], &r.p_value, &r.std_error, &r.null_value,
+                       &r.estimate[0], &r.estimate[1], &r.reserved[0], &r.reserved[1], &r.reserved[2],
+                       &r.reserved[3], &r.reserved[4], &r.reserved[5]};
+        for (size_t k = 0; k < sizeof f / sizeof f[0]; k++)
+            *f[k] = vals[(int)(unif() * 9)];
+        double lp, ci[2];
+        if (mcstat_result_log_p_value(&r, &lp) == MCSTAT_OK)
+            CHECK_MSG(!isnan(lp), "fields %d: NaN log p with OK (test %d)", it, r.test);
+        if (mcstat_result_conf_int(&r, unif(), ci) == MCSTAT_OK)
+            CHECK_MSG(!isnan(ci[0]) && !isnan(ci[1]), "fields %d: NaN interval with OK (test %d)", it, r.test);
+    }
+}
+
 int main(void)
 {
     test_reference();
@@ -433,6 +514,7 @@ int main(void)
     test_paired_overflow();
     test_other_results();
     test_interval_edges();
+    test_never_nan_with_ok();
     printf("test_t_extra: %d checks, %d failures\n", h_checks, h_failures);
     return h_failures != 0;
 }
