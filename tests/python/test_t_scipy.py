@@ -215,7 +215,7 @@ def test_nan_policy_like_scipy(kw, scipy_fn):
     t, p = r
     assert math.isnan(t) and math.isnan(p)
     assert all(math.isnan(v) for v in r.confidence_interval())
-    assert "NaN in the data" in str(r)
+    assert "NaN in the data" in str(r) and "decision=''" in repr(r)
     # omit: as SciPy's (ttest_rel drops the pairs)
     ro = mcstat.t_test(x, y, nan_policy="omit", **kw)
     if kw.get("paired"):
@@ -353,6 +353,7 @@ def test_ks_nan_policy_like_scipy():
     s = st.ks_2samp(x, y)
     assert math.isnan(s.statistic) and math.isnan(r.statistic) and math.isnan(r.pvalue)
     assert r.decision == "" and not r.reject and math.isnan(r.log_pvalue)
+    assert "decision=''" in repr(r) and "NaN in the data" in str(r)
     o = mcstat.ks_test(x, y, weight="none", nan_policy="omit")
     so = st.ks_2samp(x, y, nan_policy="omit")
     assert o.statistic == so.statistic and rel_err(o.pvalue, so.pvalue) <= 1e-12

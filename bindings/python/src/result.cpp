@@ -318,7 +318,8 @@ InvalidArgumentError
                 if (r.method == MCSTAT_METHOD_SIMULATE)
                     t += " (se " + short_num(r.p_value_se) + ", n_sim=" + short_num(r.ks_n_sim) + ")";
                 return t + ", alternative='" + mcstat_alternative_name(r.alternative) + "', decision='" +
-                       mcstat_decision_name(r.decision) + "' at alpha=" + short_num(r.alpha) + ">";
+                       (is_nan_result(r) ? "" : mcstat_decision_name(r.decision)) + "' at alpha=" + short_num(r.alpha) +
+                       ">";
             }
             return std::string("<TestResult ") + method_name(r) + ": statistic=" + short_num(r.statistic) +
                    ", df=" + df + ", pvalue=" + short_num(r.p_value) + ", alternative='" +
