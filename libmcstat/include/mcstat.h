@@ -418,7 +418,9 @@ enum mcstat_test {
     MCSTAT_TEST_EQUIV_1 = 6, /* one-sample equivalence (TOST), mcstat_equivalence_test_1 */
     MCSTAT_TEST_EQUIV_2 = 7, /* Welch two-sample equivalence (TOST), mcstat_equivalence_test_2 */
     MCSTAT_TEST_BINOM = 8,   /* exact binomial test (also the battery meta-test) */
-    MCSTAT_TEST_CHISQ_GOF = 9 /* Pearson's chi-squared goodness of fit of cell counts */
+    MCSTAT_TEST_CHISQ_GOF = 9, /* Pearson's chi-squared goodness of fit of cell counts */
+    MCSTAT_TEST_T_2_POOLED = 10, /* Student's two-sample t, pooled variance */
+    MCSTAT_TEST_T_PAIRED = 11    /* paired t (one-sample t on the differences) */
 };
 
 enum mcstat_method {
@@ -530,6 +532,35 @@ MCSTAT_API int mcstat_result_format(const mcstat_result *r, const char *x_name,
 /* "less", "equal" or "greater" for a decision value, NULL otherwise. */
 MCSTAT_API const char *mcstat_decision_name(int decision);
 
+/* *log_p <- the natural log of r's p-value, finite wherever the tail is
+ * representable in log even when p_value underflows to 0: t, chi-squared
+ * and F tests from the statistic and df through the log tails of section
+ * 11 (two-sided: log 2 + the smaller log tail, capped at 0); TOST the
+ * larger of its two one-sided log p's; the binomial test its
+ * binom_log_p_value; K-S the log of Kolmogorov's limit when asymptotic
+ * (unweighted), else log(p_value) (exact and simulated p-values carry no
+ * more).  MCSTAT_EINVAL for NULL, an unknown test or a result whose fields
+ * are NaN (a failed row). */
+MCSTAT_API int mcstat_result_log_p_value(const mcstat_result *r, double *log_p);
+
+/* conf_int <- r's confidence interval at confidence_level in (0, 1) in
+ * place of 1 - alpha, for the same alternative (one-sided ones keep their
+ * infinite end, or 0 for a variance):
+ *   t tests   estimate +- t quantile * std_error on the result's df, the
+ *             estimate (the difference for two samples) taken from the
+ *             stored estimates or as null_value + statistic * std_error,
+ *             whichever rounds less (so a 1e9 offset keeps its digits);
+ *   TOST      the two-sided t interval at that level (the result's own
+ *             conf_int is the one at 1 - 2 alpha that TOST amounts to);
+ *   variance  [X^2 sigma0^2 / c1, X^2 sigma0^2 / c0], chi-squared quantiles;
+ *   F         [F ratio0 / c1, F ratio0 / c0], F quantiles;
+ *   binomial  Clopper-Pearson, as the test's.
+ * At level 1 - alpha it reproduces r->conf_int to rounding.  MCSTAT_EINVAL
+ * for NULL, a level outside (0, 1) (or NaN), a test with no parameter
+ * interval (K-S, chi-squared goodness of fit) or a result whose fields are
+ * NaN; MCSTAT_ENUMERIC if a bound cannot be formed. */
+MCSTAT_API int mcstat_result_conf_int(const mcstat_result *r, double confidence_level, double conf_int[2]);
+
 /* ------------------------------------------------------------------------ */
 /* The tests.                                                                */
 /* Each comes on arrays and on accumulators.  Common arguments:              */
@@ -557,6 +588,28 @@ MCSTAT_API int mcstat_t_test_2(const double *x, size_t nx, const double *y, size
 MCSTAT_API int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
                                        double mu0, int alternative, double alpha,
                                        mcstat_result *out);
+
+/* Student's two-sample t test with pooled variance (R's t.test(var.equal =
+ * TRUE), SciPy's ttest_ind default): s_p^2 = (M2_x + M2_y)/(nx + ny - 2),
+ * standard error s_p sqrt(1/nx + 1/ny), df = nx + ny - 2; test
+ * MCSTAT_TEST_T_2_POOLED, estimates as Welch's.  MCSTAT_EDEGENERATE only
+ * when both samples are constant (as Welch). */
+MCSTAT_API int mcstat_t_test_2_pooled(const double *x, size_t nx, const double *y, size_t ny,
+                                      double mu0, int alternative, double alpha, mcstat_result *out);
+MCSTAT_API int mcstat_t_test_2_pooled_moments(const mcstat_moments *x, const mcstat_moments *y,
+                                              double mu0, int alternative, double alpha,
+                                              mcstat_result *out);
+
+/* Paired t test of mean(x - y) against mu0 (R's t.test(paired = TRUE),
+ * SciPy's ttest_rel): the one-sample t on the n differences x_i - y_i, each
+ * one rounding of the exact difference, accumulated as mcstat_moments (a
+ * difference that overflows is taken halved, with mu0 halved: t, df and p
+ * are unchanged).  Test MCSTAT_TEST_T_PAIRED; n[0] = n[1] = n pairs;
+ * estimate[0] the mean difference; df = n - 1.  MCSTAT_ENONFINITE for NaN
+ * or +-Inf in x or y, MCSTAT_ETOOFEW for n < 2, MCSTAT_EDEGENERATE when the
+ * differences are constant. */
+MCSTAT_API int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0,
+                                    int alternative, double alpha, mcstat_result *out);
 
 /* One-sample chi-squared test of var(x) against sigma2 > 0: statistic
  * (n-1) s^2 / sigma2 on n-1 degrees of freedom (section 2.2, eq. 2). */

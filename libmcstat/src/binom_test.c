@@ -155,6 +155,12 @@ static int conf_int(const binom *b, double x, int alternative, double alpha, dou
     return MCSTAT_OK;
 }
 
+int mcstat__binom_conf_int(double x, double n, int alternative, double alpha, double ci[2])
+{
+    binom b = {n, 0.5, 0.5}; /* the interval does not depend on p */
+    return conf_int(&b, x, alternative, alpha, ci);
+}
+
 /* The acceptance region [c0, c1] of counts whose p-value is above alpha
  * (reject iff x < c0 or x > c1), by bisection: the p-value is monotone on
  * each side of n p (nondecreasing below it, nonincreasing above). */

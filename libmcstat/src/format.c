@@ -93,6 +93,13 @@ static int describe(const mcstat_result *r, test_text *t)
         *t = (test_text){"Welch Two Sample t-test", "t", {"df", NULL}, "difference in means",
                          {"mean of x", "mean of y"}, 1};
         return 1;
+    case MCSTAT_TEST_T_2_POOLED:
+        *t = (test_text){"Two Sample t-test", "t", {"df", NULL}, "difference in means",
+                         {"mean of x", "mean of y"}, 1};
+        return 1;
+    case MCSTAT_TEST_T_PAIRED:
+        *t = (test_text){"Paired t-test", "t", {"df", NULL}, "mean difference", {"mean difference", NULL}, 1};
+        return 1;
     case MCSTAT_TEST_VAR_1:
         *t = (test_text){"One Sample Chi-squared test on variance", "X-squared", {"df", NULL}, "variance",
                          {"variance of x", NULL}, 0};

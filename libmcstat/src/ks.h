@@ -83,6 +83,8 @@ MCSTAT_HIDDEN int mcstat__ks_cache_put(mcstat_ks_cache *c, const mcstat__ks_data
  * the critical value at alpha. */
 MCSTAT_HIDDEN double mcstat__ks_asymp_sf(uint64_t n1, uint64_t n2, int two_sided, double d);
 MCSTAT_HIDDEN double mcstat__ks_asymp_critical(uint64_t n1, uint64_t n2, int two_sided, double alpha);
+/* log of mcstat__ks_asymp_sf, finite where that underflows to 0. */
+MCSTAT_HIDDEN double mcstat__ks_asymp_log_sf(uint64_t n1, uint64_t n2, int two_sided, double d);
 /* Kolmogorov's limit P(K > t). */
 MCSTAT_HIDDEN double mcstat__kolmogorov_sf(double t);
 

@@ -62,6 +62,26 @@ double mcstat__ks_asymp_sf(uint64_t n1, uint64_t n2, int two_sided, double d)
     return p > 1.0 ? 1.0 : p < 0.0 ? 0.0 : p;
 }
 
+/* For t >= 1, log P(K > t) = log 2 - 2 t^2 + log(1 - e^{-6 t^2} + e^{-16 t^2} - ...):
+ * the series divided by its first term, whose exponent alone underflows. */
+double mcstat__ks_asymp_log_sf(uint64_t n1, uint64_t n2, int two_sided, double d)
+{
+    double t = root_ne(n1, n2) * d;
+    if (!two_sided)
+        return t > 0.0 ? -2.0 * t * t : 0.0;
+    if (t < 1.0)
+        return log(mcstat__ks_asymp_sf(n1, n2, 1, d));
+    double s = 0.0;
+    for (int k = 2; k <= 100; k++) {
+        double term = exp(-2.0 * ((double)k * (double)k - 1.0) * t * t);
+        s += (k & 1) ? term : -term;
+        if (term < 1e-17)
+            break;
+    }
+    double lp = M_LN2 - 2.0 * t * t + log1p(s);
+    return lp > 0.0 ? 0.0 : lp;
+}
+
 double mcstat__ks_asymp_critical(uint64_t n1, uint64_t n2, int two_sided, double alpha)
 {
     double t;

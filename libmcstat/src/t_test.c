@@ -98,13 +98,13 @@ int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, doubl
     return MCSTAT_OK;
 }
 
-int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
-                     double alpha, mcstat_qcache *qc, mcstat_result *out)
+static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative, double alpha,
+                    int pooled, mcstat_qcache *qc, mcstat_result *out)
 {
     if (!x || !y || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
     int st = mcstat__moments_check(x);
-    if (st == MCSTAT_EDEGENERATE) /* Welch needs spread only in the pair (R's rule) */
+    if (st == MCSTAT_EDEGENERATE) /* both tests need spread only in the pair (R's rule) */
         st = MCSTAT_OK;
     if (st)
         return st;
@@ -115,7 +115,7 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
         return st;
     mcstat_result r;
     mcstat__result_clear(&r);
-    r.test = MCSTAT_TEST_T_2;
+    r.test = pooled ? MCSTAT_TEST_T_2_POOLED : MCSTAT_TEST_T_2;
     r.method = MCSTAT_METHOD_ANALYTIC;
     r.alternative = alternative;
     r.alpha = alpha;
@@ -130,6 +130,13 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
     int e = ex > ey ? ex : ey;
     double a = scale2(vx / nx, 2 * (ex - e)), b = scale2(vy / ny, 2 * (ey - e));
     double se = sqrt(a + b); /* units of 2^e */
+    if (pooled) {
+        /* Student: the pooled variance (M2x + M2y)/(nx + ny - 2), as R's
+         * t.test(var.equal = TRUE) forms it from the two variances */
+        double df = nx + ny - 2.0;
+        double sp2 = scale2(vx * (nx - 1.0), 2 * (ex - e)) / df + scale2(vy * (ny - 1.0), 2 * (ey - e)) / df;
+        se = sqrt(sp2 * (1.0 / nx + 1.0 / ny));
+    }
     mcstat_dd mx = mcstat__moments_mean_dd(x), my = mcstat__moments_mean_dd(y);
     mcstat_dd diff = dd_add(mx, dd_neg(my)), ds;
     if (isfinite(diff.hi)) {
@@ -156,7 +163,7 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
     /* Welch-Satterthwaite, normalised by the larger term so nothing over- or
      * underflows: df = (a + b)^2 / (a^2/(nx-1) + b^2/(ny-1)). */
     double m = fmax(a, b), ra = a / m, rb = b / m;
-    double df = (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
+    double df = pooled ? nx + ny - 2.0 : (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
     r.df[0] = df;
     r.estimate[0] = x->mean;
     r.estimate[1] = y->mean;
@@ -176,6 +183,18 @@ int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu
     r.conf_int[1] = ci_bound(ds, r.critical[0], se, e);
     *out = r;
     return MCSTAT_OK;
+}
+
+int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
+                     double alpha, mcstat_qcache *qc, mcstat_result *out)
+{
+    return t_test_2(x, y, mu0, alternative, alpha, 0, qc, out);
+}
+
+int mcstat__t_test_2_pooled(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
+                            double alpha, mcstat_qcache *qc, mcstat_result *out)
+{
+    return t_test_2(x, y, mu0, alternative, alpha, 1, qc, out);
 }
 
 /* The public calls: a fresh cache, which still answers the second
@@ -222,4 +241,86 @@ int mcstat_t_test_2(const double *x, size_t nx, const double *y, size_t ny, doub
     if (!st)
         st = mcstat_moments_add_array(&my, y, ny);
     return st ? st : mcstat_t_test_2_moments(&mx, &my, mu0, alternative, alpha, out);
+}
+
+int mcstat_t_test_2_pooled_moments(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
+                                   double alpha, mcstat_result *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    return mcstat__t_test_2_pooled(x, y, mu0, alternative, alpha, &qc, out);
+}
+
+int mcstat_t_test_2_pooled(const double *x, size_t nx, const double *y, size_t ny, double mu0, int alternative,
+                           double alpha, mcstat_result *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    if (!x || !y || !check_args(mu0, alternative, alpha, out))
+        return MCSTAT_EINVAL;
+    mcstat_moments mx, my;
+    mcstat_moments_init(&mx);
+    mcstat_moments_init(&my);
+    int st = mcstat_moments_add_array(&mx, x, nx);
+    if (!st)
+        st = mcstat_moments_add_array(&my, y, ny);
+    return st ? st : mcstat_t_test_2_pooled_moments(&mx, &my, mu0, alternative, alpha, out);
+}
+
+/* The differences (x_i - y_i) * 2^-s into m, a block at a time (no
+ * allocation).  MCSTAT_ENONFINITE when a difference overflows. */
+static int add_differences(mcstat_moments *m, const double *x, const double *y, size_t n, int s)
+{
+    double d[256];
+    mcstat_moments_init(m);
+    for (size_t i = 0; i < n;) {
+        size_t k = n - i < 256 ? n - i : 256;
+        for (size_t j = 0; j < k; j++)
+            d[j] = s ? scale2(x[i + j], -s) - scale2(y[i + j], -s) : x[i + j] - y[i + j];
+        int st = mcstat_moments_add_array(m, d, k);
+        if (st)
+            return st;
+        i += k;
+    }
+    return MCSTAT_OK;
+}
+
+int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative, double alpha,
+                         mcstat_result *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    if (!x || !y || !check_args(mu0, alternative, alpha, out))
+        return MCSTAT_EINVAL;
+    for (size_t i = 0; i < n; i++) /* NaN or Inf in the data, not an overflowing difference */
+        if (!isfinite(x[i]) || !isfinite(y[i]))
+            return MCSTAT_ENONFINITE;
+    if (n < 2)
+        return MCSTAT_ETOOFEW;
+    /* Each difference is one rounding of the exact x_i - y_i.  Where one
+     * overflows (x near DBL_MAX, y near -DBL_MAX) the test runs on the
+     * differences halved, against mu0 halved: t, df and p are unchanged,
+     * the estimate, standard error and interval are doubled back. */
+    int s = 0;
+    mcstat_moments m;
+    int st = add_differences(&m, x, y, n, 0);
+    if (st == MCSTAT_ENONFINITE) {
+        s = 1;
+        st = add_differences(&m, x, y, n, s);
+    }
+    if (st)
+        return st;
+    mcstat_result r;
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    if ((st = mcstat__t_test_1(&m, scale2(mu0, -s), alternative, alpha, &qc, &r)))
+        return st;
+    r.test = MCSTAT_TEST_T_PAIRED;
+    r.n[1] = r.n[0];
+    r.null_value = mu0;
+    r.estimate[0] = scale2(r.estimate[0], s);
+    r.std_error = scale2(r.std_error, s);
+    r.conf_int[0] = scale2(r.conf_int[0], s);
+    r.conf_int[1] = scale2(r.conf_int[1], s);
+    *out = r;
+    return MCSTAT_OK;
 }

@@ -49,9 +49,17 @@ MCSTAT_HIDDEN int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alte
                                    mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0,
                                    int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
+/* Student's pooled-variance two-sample t (Welch's code with the pooled
+ * standard error and nx + ny - 2 degrees of freedom). */
+MCSTAT_HIDDEN int mcstat__t_test_2_pooled(const mcstat_moments *x, const mcstat_moments *y, double mu0,
+                                          int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, double alpha,
                                      mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double ratio,
                                      int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
+
+/* The Clopper-Pearson interval of binom_test.c for x successes in n trials
+ * at level 1 - alpha (one-sided alternatives keep the end 0 or 1). */
+MCSTAT_HIDDEN int mcstat__binom_conf_int(double x, double n, int alternative, double alpha, double ci[2]);
 
 #endif /* MCSTAT_TESTS_CORE_H */

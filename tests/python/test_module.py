@@ -127,7 +127,7 @@ def test_ks_and_estimators_surface():
         assert name in mcstat.__all__ and hasattr(mcstat, name)
     sig = inspect.signature(mcstat.ks_test)
     assert list(sig.parameters) == ["x", "y", "weight", "alternative", "alpha", "method", "n_sim", "seed",
-                                    "threads", "cache", "critical"]
+                                    "threads", "cache", "critical", "nan_policy"]
     assert sig.parameters["weight"].default == "canner" and sig.parameters["method"].default == "auto"
     assert sig.parameters["weight"].kind is inspect.Parameter.KEYWORD_ONLY
     assert "OPPOSITE of SciPy" in mcstat.ks_test.__doc__

@@ -56,6 +56,8 @@ GENERATORS = {
     "chisq": ("R", [G + "make_chisq_ref.R"], [], [D + "ref_chisq.h", D + "chisq_ref.json"],
               "R's chisq.test"),
     "p_adjust": ("R", [G + "make_p_adjust_ref.R"], [], [D + "p_adjust_ref.txt"], "R's p.adjust"),
+    "t": ("R", [G + "make_t_ref.R"], [], [D + "t_ref.tsv"],
+          "R's t.test (pooled, paired, Welch, one-sample), var.test, pt(log.p) and qt: log p-values, other levels"),
     "power": ("R", [G + "make_power_ref.R"], [], [D + "power_ref.tsv", D + "equivalence_ref.tsv"],
               "R's power.t.test, closed forms, TOST"),
     "ffi": ("python", [G + "make_ffi_ref.py"],

@@ -10,6 +10,8 @@ question           test                                        call
 unbiased?          one-sample t, mean vs mu                    ``t_test(x, mu=...)``
 variance below?    one-sample chi-squared on the variance      ``var_test(x, sigma2=...)``
 two agree?         Welch two-sample t                          ``t_test(x, y)``
+agree, equal var?  Student's pooled two-sample t               ``t_test(x, y, equal_var=True)``
+agree, paired?     paired t                                    ``t_test(x, y, paired=True)``
 which varies less  two-sample F                                ``var_test(x, y)``
 same distribution  two-sample Kolmogorov-Smirnov (Canner)      ``ks_test(x, y)``
 counts fit?        Pearson's chi-squared goodness of fit       ``chisq_gof(x, p)``

@@ -1,13 +1,14 @@
 # Type stubs for the compiled module mcstat._core (see the docstrings there).
-from typing import Any, Callable, Dict, List, Literal, Optional, Tuple, Union, overload
+from typing import Any, Callable, Dict, Iterator, List, Literal, Optional, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
 
-from ._result import BatchResult
+from ._result import BatchResult, ConfidenceInterval
 
 _Alternative = Literal["two-sided", "less", "greater"]
 _NanPolicy = Literal["raise", "omit"]
+_TestNanPolicy = Literal["raise", "omit", "propagate"]
 _OnError = Literal["raise", "nan"]
 _Sample = Union[npt.ArrayLike, "Moments"]
 _Weight = Literal["none", "canner"]
@@ -62,6 +63,10 @@ class TestResult:
     @property
     def cells(self) -> Optional[int]: ...
     def format(self, x_name: str = "x", y_name: str = "y") -> str: ...
+    def confidence_interval(self, confidence_level: float = 0.95) -> ConfidenceInterval: ...
+    def __len__(self) -> int: ...
+    def __iter__(self) -> Iterator[float]: ...
+    def __getitem__(self, index: int) -> float: ...
 
 class Moments:
     def __init__(self, values: Optional[npt.ArrayLike] = None, *, nan_policy: _NanPolicy = "raise") -> None: ...
@@ -100,9 +105,11 @@ def t_test(
     alternative: _Alternative = "two-sided",
     alpha: float = 0.05,
     axis: int = -1,
-    nan_policy: _NanPolicy = "raise",
+    nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    equal_var: bool = False,
+    paired: bool = False,
 ) -> Union[TestResult, BatchResult]: ...
 def var_test(
     x: _Sample,
@@ -113,7 +120,7 @@ def var_test(
     alternative: _Alternative = "two-sided",
     alpha: float = 0.05,
     axis: int = -1,
-    nan_policy: _NanPolicy = "raise",
+    nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
 ) -> Union[TestResult, BatchResult]: ...
@@ -143,6 +150,7 @@ def ks_test(
     threads: Optional[int] = None,
     cache: Optional[KSCache] = None,
     critical: bool = True,
+    nan_policy: _TestNanPolicy = "raise",
 ) -> TestResult: ...
 def chisq_gof(
     observed: npt.ArrayLike,

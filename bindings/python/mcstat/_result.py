@@ -2,15 +2,25 @@
 """BatchResult: the fields of row-wise tests as arrays."""
 from __future__ import annotations
 
-from typing import Any, Dict, Tuple
+from typing import Any, Dict, NamedTuple, Tuple
 
 import numpy as np
 
 from ._errors import _BY_STATUS, McstatError
 
+class ConfidenceInterval(NamedTuple):
+    """A confidence interval, ``(low, high)``, as SciPy's (returned by
+    ``TestResult.confidence_interval``)."""
+
+    low: float
+    high: float
+
+
 _METHODS = {
     "t_1": "One Sample t-test",
     "t_2": "Welch Two Sample t-test",
+    "t_2_pooled": "Two Sample t-test",
+    "t_paired": "Paired t-test",
     "var_1": "One Sample Chi-squared test on variance",
     "var_2": "F test to compare two variances",
 }
@@ -141,10 +151,14 @@ def _describe_rows(bad: np.ndarray, shape: Tuple[int, ...]) -> Tuple[np.ndarray,
 
 
 def _make_batch(kind: str, fields: Dict[str, np.ndarray], alternative: int, alpha: float, null_value: float,
-                axis: int, errors_as_nan: bool, intervals: bool) -> BatchResult:
+                axis: int, errors_as_nan: bool, intervals: bool, nan_rows: Any = None) -> BatchResult:
+    # nan_rows (nan_policy="propagate"): rows whose data hold NaN; their NaN
+    # fields are the answer, not an error
     status = fields["status"]
-    if not errors_as_nan and status.size and status.any():
-        bad = status != 0
+    bad = status != 0
+    if nan_rows is not None:
+        bad = bad & ~np.asarray(nan_rows, dtype=bool)
+    if not errors_as_nan and status.size and bad.any():
         first = int(status.flat[np.argmax(bad)])
         cls = _BY_STATUS.get(first, McstatError)
         from ._core import strerror

@@ -114,7 +114,8 @@ void register_check(py::module_ &mod);
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);
 
-enum class Kind { T1, T2, V1, V2 };
+// T2P: Student's pooled two-sample t; TP: the paired t.
+enum class Kind { T1, T2, V1, V2, T2P, TP };
 
 struct TestArgs {
     Kind kind;
@@ -123,9 +124,14 @@ struct TestArgs {
     double alpha;
     int axis;
     bool omit_nan;
+    bool propagate_nan; // nan_policy="propagate": NaN data give a NaN result, decided here, not in C
     bool intervals;
     bool errors_as_nan;
 };
+
+// The result a test on data with NaN gets under nan_policy="propagate" (as
+// SciPy: statistic, p-value, df and the rest NaN), with the sample sizes.
+mcstat_result nan_result(const TestArgs &a, uint64_t nx, uint64_t ny);
 
 // One test per row of N-D arrays (axis moved last); returns the
 // BatchResult built by mcstat._result (which also raises for bad rows).

@@ -5,14 +5,18 @@
 
 namespace mcs {
 
-inline constexpr const char T_TEST_DOC[] = R"doc(t_test($module, /, x, y=None, *, mu=0.0, alternative='two-sided', alpha=0.05, axis=-1, nan_policy='raise', intervals=True, on_error='raise')
+inline constexpr const char T_TEST_DOC[] = R"doc(t_test($module, /, x, y=None, *, mu=0.0, alternative='two-sided', alpha=0.05, axis=-1, nan_policy='raise', intervals=True, on_error='raise', equal_var=False, paired=False)
 --
 
-Student's one-sample t test, or Welch's two-sample t test.
+Student's one-sample t test, Welch's two-sample t test, Student's pooled
+two-sample t test (``equal_var=True``) or the paired t test
+(``paired=True``).
 
 One sample (``y`` is None): H0 mean(x) = mu (paper, section 2.1).  Two
 samples: H0 mean(x) - mean(y) = mu, with Welch-Satterthwaite degrees of
-freedom (section 2.3).
+freedom (section 2.3) -- the paper's test and mcstat's default.  NOTE:
+SciPy's ``ttest_ind`` defaults to the pooled test (``equal_var=True``) and
+R's ``t.test`` to Welch's; pass ``equal_var=True`` for SciPy's default.
 
 Parameters
 ----------
@@ -22,7 +26,7 @@ x, y : array_like or Moments
     accumulator may stand in for either sample (an array beside it must
     then be 1-D).  With N-D input, one test per row along `axis`.
 mu : float, optional
-    Mean (difference of means) under H0.
+    Mean (difference of means, mean difference) under H0.
 alternative : {"two-sided", "less", "greater"}, optional
     A claim about the first sample: "less" means mean(x) < mu (or
     mean(x) - mean(y) < mu).
@@ -32,21 +36,35 @@ alpha : float, optional
 axis : int, optional
     The axis holding each sample in N-D input (default: the last).  x and
     y must then have the same shape except along `axis` (no broadcasting).
-nan_policy : {"raise", "omit"}, optional
-    NaN raises `NonFiniteError`, or is omitted from its sample (row).
-    Infinities always raise.
+nan_policy : {"raise", "omit", "propagate"}, optional
+    NaN raises `NonFiniteError` (the default), is omitted from its sample
+    (row; paired: the pair is dropped), or, with "propagate" (SciPy's
+    default), makes the result NaN as SciPy's: statistic, pvalue, df and
+    the other fields NaN, ``decision`` "" (row-wise: those rows NaN, with
+    a non-zero ``status``, not raised).  This is decided here before
+    calling libmcstat, which never returns NaN with success.  Infinities
+    always raise.
 intervals : bool, optional
     False skips the critical values and the confidence interval (NaN):
-    the cheap path when only p-values and decisions are wanted.
+    the cheap path when only p-values and decisions are wanted (the pooled
+    and paired tests compute them regardless).
 on_error : {"raise", "nan"}, optional
     Row-wise tests only: a failed row raises (the exception's ``rows``
     names them), or gets NaN fields, ``reject`` False and a non-zero
     ``status``.  A single test always raises.
+equal_var : bool, optional
+    True: Student's test with pooled variance, df = nx + ny - 2 (R's
+    ``t.test(var.equal=TRUE)``, SciPy's ``ttest_ind`` default).
+paired : bool, optional
+    True: the paired test, the one-sample t on the differences x - y
+    (R's ``t.test(paired=TRUE)``, SciPy's ``ttest_rel``); x and y must be
+    arrays of the same length (along `axis`), not accumulators.
 
 Returns
 -------
 TestResult or BatchResult
-    One result, or arrays of results for N-D input.
+    One result, or arrays of results for N-D input.  A TestResult unpacks
+    as SciPy's: ``t, p = mcstat.t_test(x, y)``.
 
 Raises
 ------
@@ -55,10 +73,13 @@ TooFewObservationsError
 NonFiniteError
     NaN or infinity in the data.
 DegenerateDataError
-    Constant data (Welch: both samples constant).
+    Constant data (Welch and pooled: both samples constant; paired:
+    constant differences).
 InvalidArgumentError
     alpha outside (0, 1), non-finite mu, unknown alternative, nan_policy or
-    on_error, axis out of range, scalar input, mismatched shapes.
+    on_error, axis out of range, scalar input, mismatched shapes; paired
+    samples of different lengths, paired with equal_var, paired or
+    equal_var without y, paired with accumulators.
 TypeError
     x is None, or an option of the wrong type.
 
@@ -107,7 +128,7 @@ InvalidArgumentError, TypeError
     non-positive ratio, sigma2 with two samples or ratio with one.
 )doc";
 
-inline constexpr const char KS_TEST_DOC[] = R"doc(ks_test($module, /, x, y, *, weight='canner', alternative='two-sided', alpha=0.05, method='auto', n_sim=None, seed=None, threads=None, cache=None, critical=True)
+inline constexpr const char KS_TEST_DOC[] = R"doc(ks_test($module, /, x, y, *, weight='canner', alternative='two-sided', alpha=0.05, method='auto', n_sim=None, seed=None, threads=None, cache=None, critical=True, nan_policy='raise')
 --
 
 Two-sample Kolmogorov-Smirnov test, unweighted or with Canner's weight.
@@ -177,6 +198,10 @@ critical : bool, optional
     Compute the critical value (default).  With the exact method it costs
     10-40 p-value evaluations (1000 + 1000, Canner: ~4 ms instead of
     ~0.2 ms); False leaves ``critical_values[1]`` NaN.
+nan_policy : {"raise", "omit", "propagate"}, optional
+    NaN raises `NonFiniteError` (the default), is dropped from its sample,
+    or with "propagate" (SciPy's default) makes statistic and pvalue NaN
+    (decided here, before libmcstat, which never returns NaN with success).
 
 Returns
 -------

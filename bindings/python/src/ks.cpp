@@ -8,12 +8,19 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+
+#include <algorithm>
+#include <iterator>
+#include <vector>
 #include "kwargs.hpp"
 #include "docs.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace mcs {
 
@@ -84,6 +91,7 @@ struct KSParsed {
     PyObject *x = nullptr, *y = nullptr;
     PyObject *weight = nullptr, *alternative = nullptr, *alpha = nullptr, *method = nullptr;
     PyObject *n_sim = nullptr, *seed = nullptr, *threads = nullptr, *cache = nullptr, *critical = nullptr;
+    PyObject *nan_policy = nullptr;
 };
 
 void ks_parse(PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames, KSParsed &p)
@@ -91,7 +99,7 @@ void ks_parse(PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames, KSPars
     mcs_kwargs::parse("ks_test", args, nargs, kwnames, {{"x", &p.x}, {"y", &p.y}},
                       {{"weight", &p.weight}, {"alternative", &p.alternative}, {"alpha", &p.alpha},
                        {"method", &p.method}, {"n_sim", &p.n_sim}, {"seed", &p.seed}, {"threads", &p.threads},
-                       {"cache", &p.cache}, {"critical", &p.critical}});
+                       {"cache", &p.cache}, {"critical", &p.critical}, {"nan_policy", &p.nan_policy}});
     if (!p.x || !p.y)
         throw py::type_error(std::string("ks_test() missing required argument '") + (p.x ? "y" : "x") + "'");
     if (p.x == Py_None || p.y == Py_None)
@@ -184,10 +192,54 @@ PyObject *ks_test(PyObject *, PyObject *const *args, Py_ssize_t nargs, PyObject 
             o.critical = t != 0;
         }
 
+        // nan_policy: "raise" (libmcstat refuses NaN), "omit" (dropped here)
+        // or "propagate" (a NaN result, decided here: libmcstat never
+        // returns NaN with success)
+        int nan_policy = 0;
+        if (p.nan_policy) {
+            const char *s = get_str(p.nan_policy, "nan_policy");
+            if (!std::strcmp(s, "omit"))
+                nan_policy = 1;
+            else if (!std::strcmp(s, "propagate"))
+                nan_policy = 2;
+            else if (std::strcmp(s, "raise"))
+                throw_invalid(std::string("nan_policy must be 'raise', 'omit' or 'propagate', got '") + s + "'");
+        }
         carray xa = sample_of(p.x, "x"), ya = sample_of(p.y, "y");
         const double *x = xa.data(), *y = ya.data();
         size_t nx = static_cast<size_t>(xa.size()), ny = static_cast<size_t>(ya.size());
+        std::vector<double> kx, ky;
+        auto nan_in = [](const double *v, size_t n) {
+            return std::any_of(v, v + n, [](double a) { return std::isnan(a); });
+        };
         Result res;
+        if (nan_policy == 2 && (nan_in(x, nx) || nan_in(y, ny))) {
+            mcstat_result &r = res.r;
+            std::memset(&r, 0, sizeof r);
+            r.test = MCSTAT_TEST_KS_2;
+            r.method = o.method == MCSTAT_METHOD_AUTO ? MCSTAT_METHOD_EXACT : o.method;
+            r.alternative = alternative;
+            r.alpha = alpha;
+            r.n[0] = nx;
+            r.n[1] = ny;
+            r.ks_weight = o.weight;
+            r.statistic = r.df[0] = r.df[1] = r.p_value = r.p_value_se = NAN;
+            r.conf_int[0] = r.conf_int[1] = r.estimate[0] = r.estimate[1] = r.null_value = NAN;
+            r.critical[0] = r.critical[1] = r.std_error = r.ks_critical_se = NAN;
+            return make_result(res);
+        }
+        if (nan_policy == 1) {
+            std::copy_if(x, x + nx, std::back_inserter(kx), [](double a) { return !std::isnan(a); });
+            std::copy_if(y, y + ny, std::back_inserter(ky), [](double a) { return !std::isnan(a); });
+            if (kx.size() != nx) {
+                x = kx.data();
+                nx = kx.size();
+            }
+            if (ky.size() != ny) {
+                y = ky.data();
+                ny = ky.size();
+            }
+        }
         int st;
         {
             py::gil_scoped_release nogil;

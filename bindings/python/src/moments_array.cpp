@@ -288,7 +288,7 @@ const MomentsArray *as_moments_array(py::handle obj)
 
 py::object test_moments_array(const TestArgs &a, py::handle x, py::handle y)
 {
-    bool two = a.kind == Kind::T2 || a.kind == Kind::V2;
+    bool two = a.kind == Kind::T2 || a.kind == Kind::V2 || a.kind == Kind::T2P;
     const MomentsArray *ax = as_moments_array(x), *ay = two ? as_moments_array(y) : nullptr;
     const MomentsArray *shaped = ax ? ax : ay;
     // A single Moments beside an array is compared with every pixel.

@@ -24,6 +24,8 @@ std::string method_name(const mcstat_result &r)
     switch (r.test) {
     case MCSTAT_TEST_T_1: return "One Sample t-test";
     case MCSTAT_TEST_T_2: return "Welch Two Sample t-test";
+    case MCSTAT_TEST_T_2_POOLED: return "Two Sample t-test";
+    case MCSTAT_TEST_T_PAIRED: return "Paired t-test";
     case MCSTAT_TEST_VAR_1: return "One Sample Chi-squared test on variance";
     case MCSTAT_TEST_VAR_2: return "F test to compare two variances";
     case MCSTAT_TEST_CHISQ_GOF: return "Chi-squared test for given probabilities";
@@ -54,27 +56,67 @@ const char *pvalue_method_name(int method)
     }
 }
 
-bool two_estimates(const mcstat_result &r) { return r.test == MCSTAT_TEST_T_2; }
+bool two_estimates(const mcstat_result &r) { return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_T_2_POOLED; }
 bool two_df(const mcstat_result &r) { return r.test == MCSTAT_TEST_VAR_2; }
+// (the paired test counts pairs: one number)
 bool two_samples(const mcstat_result &r)
 {
-    return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_VAR_2 || r.test == MCSTAT_TEST_KS_2;
+    return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_T_2_POOLED || r.test == MCSTAT_TEST_VAR_2 ||
+           r.test == MCSTAT_TEST_KS_2;
+}
+
+// nan_policy="propagate" on data with NaN: every field NaN (tests.cpp).
+bool is_nan_result(const mcstat_result &r) { return std::isnan(r.p_value); }
+
+double log_pvalue(const mcstat_result &r)
+{
+    double lp;
+    return mcstat_result_log_p_value(&r, &lp) == MCSTAT_OK ? lp : NAN;
+}
+
+py::object confidence_interval(const mcstat_result &r, PyObject *level_obj)
+{
+    static py::object make = py::module_::import("mcstat._result").attr("ConfidenceInterval");
+    double level = get_double(level_obj, "confidence_level");
+    if (!(level > 0.0 && level < 1.0))
+        throw_invalid("confidence_level must be in (0, 1), got " + repr(level_obj));
+    if (is_nan_result(r))
+        return make(NAN, NAN);
+    if (r.test == MCSTAT_TEST_KS_2 || r.test == MCSTAT_TEST_CHISQ_GOF)
+        throw_invalid(std::string("the ") + (r.test == MCSTAT_TEST_KS_2 ? "Kolmogorov-Smirnov" : "chi-squared goodness-of-fit") +
+                      " test has no confidence interval (it estimates no parameter)");
+    double ci[2];
+    int st = mcstat_result_conf_int(&r, level, ci);
+    if (st)
+        throw_status(st, "confidence_interval");
+    return make(ci[0], ci[1]);
 }
 
 std::string format(const mcstat_result &r, const char *x_name, const char *y_name)
 {
     char buf[1024];
     size_t len = 0;
+    std::string text;
     int st = mcstat_result_format(&r, x_name, y_name, buf, sizeof buf, &len);
-    if (st == MCSTAT_OK)
-        return std::string(buf, len);
-    if (st != MCSTAT_EBUFSIZE)
-        throw_status(st, "formatting a result");
-    std::vector<char> big(len + 1);
-    st = mcstat_result_format(&r, x_name, y_name, big.data(), big.size(), &len);
-    if (st)
-        throw_status(st, "formatting a result");
-    return std::string(big.data(), len);
+    if (st == MCSTAT_OK) {
+        text.assign(buf, len);
+    } else {
+        if (st != MCSTAT_EBUFSIZE)
+            throw_status(st, "formatting a result");
+        std::vector<char> big(len + 1);
+        st = mcstat_result_format(&r, x_name, y_name, big.data(), big.size(), &len);
+        if (st)
+            throw_status(st, "formatting a result");
+        text.assign(big.data(), len);
+    }
+    if (is_nan_result(r)) { // no decision was made: say so instead of "equal"
+        size_t d = text.find("decision at alpha");
+        size_t c = d == std::string::npos ? d : text.find(": ", d);
+        size_t e = c == std::string::npos ? c : text.find('\n', c);
+        if (e != std::string::npos)
+            text.replace(c + 2, e - c - 2, "none (NaN in the data, nan_policy='propagate')");
+    }
+    return text;
 }
 
 py::object pair(double a, double b) { return py::make_tuple(a, b); }
@@ -117,8 +159,10 @@ df : float or tuple of float
 pvalue : float
     p-value for `alternative`.
 log_pvalue : float
-    Its natural logarithm; `binom_test` computes it directly, so it stays
-    finite where `pvalue` underflows to 0.
+    Its natural logarithm, computed by libmcstat from the statistic's log
+    tail (`binom_test`: directly), so it stays finite where `pvalue`
+    underflows to 0 (t, chi-squared, F, TOST, asymptotic K-S; an exact or
+    simulated K-S p-value is its log).
 conf_int : tuple of float
     ``(low, high)`` confidence interval at level ``1 - alpha`` for the
     tested parameter (mean, difference in means, variance or ratio of
@@ -171,6 +215,9 @@ nobs : int or tuple of int
 
 Notes
 -----
+A TestResult unpacks like SciPy's results: ``t, p = mcstat.t_test(x, y)``
+(``result[0]`` is `statistic`, ``result[1]`` `pvalue`).
+
 ``str(result)`` is the R-style block (R's ``print.htest`` layout plus a
 decision line) with data names "x" and "y"; ``result.format(x_name,
 y_name)`` names them.
@@ -180,10 +227,8 @@ y_name)`` names them.
             return two_df(s.r) ? pair(s.r.df[0], s.r.df[1]) : py::float_(s.r.df[0]);
         })
         .def_property_readonly("pvalue", [](const Result &s) { return s.r.p_value; })
-        .def_property_readonly("log_pvalue", [](const Result &s) {
-            // the binomial test keeps it where the p-value underflows
-            return s.r.test == MCSTAT_TEST_BINOM ? s.r.binom_log_p_value : std::log(s.r.p_value);
-        })
+        // libmcstat's, from the statistic's log tail: finite where pvalue underflows
+        .def_property_readonly("log_pvalue", [](const Result &s) { return log_pvalue(s.r); })
         .def_property_readonly("conf_int", [](const Result &s) { return pair(s.r.conf_int[0], s.r.conf_int[1]); })
         .def_property_readonly("estimate", [](const Result &s) -> py::object {
             return two_estimates(s.r) ? pair(s.r.estimate[0], s.r.estimate[1]) : py::float_(s.r.estimate[0]);
@@ -214,7 +259,9 @@ y_name)`` names them.
         })
         .def_property_readonly("alpha", [](const Result &s) { return s.r.alpha; })
         .def_property_readonly("reject", [](const Result &s) { return s.r.reject != 0; })
-        .def_property_readonly("decision", [](const Result &s) { return py::str(mcstat_decision_name(s.r.decision)); })
+        .def_property_readonly("decision", [](const Result &s) {
+            return py::str(is_nan_result(s.r) ? "" : mcstat_decision_name(s.r.decision));
+        })
         .def_property_readonly("critical_values",
                                [](const Result &s) { return pair(s.r.critical[0], s.r.critical[1]); })
         .def_property_readonly("pvalue_se", [](const Result &s) { return s.r.p_value_se; })
@@ -223,6 +270,34 @@ y_name)`` names them.
             if (two_samples(s.r))
                 return py::make_tuple(s.r.n[0], s.r.n[1]);
             return py::int_(s.r.n[0]);
+        })
+        .def(
+            "confidence_interval",
+            [](const Result &s, py::handle level) { return confidence_interval(s.r, level.ptr()); },
+            py::arg("confidence_level") = 0.95, R"doc(
+The confidence interval for the tested parameter at `confidence_level`
+(default 0.95, as SciPy's; `conf_int` is the one at ``1 - alpha``), for the
+test's alternative (one-sided ones keep an infinite end).  Returns a
+named tuple ``ConfidenceInterval(low, high)`` like SciPy's.  t tests:
+estimate -+ t quantile * std_error; variance and F tests from their
+statistics; TOST: the two-sided t interval; binomial: Clopper-Pearson.
+NaN for a result of ``nan_policy="propagate"``.
+
+Raises
+------
+InvalidArgumentError
+    confidence_level outside (0, 1); the K-S and chi-squared
+    goodness-of-fit tests (no parameter, no interval).
+)doc")
+        // unpacks like SciPy's results: t, p = mcstat.t_test(x, y)
+        .def("__len__", [](const Result &) { return 2; })
+        .def("__iter__", [](const Result &s) {
+            return py::iter(py::make_tuple(s.r.statistic, s.r.p_value));
+        })
+        .def("__getitem__", [](const Result &s, py::ssize_t i) {
+            if (i < -2 || i > 1)
+                throw py::index_error("TestResult index out of range (it unpacks as statistic, pvalue)");
+            return (i == 0 || i == -2) ? s.r.statistic : s.r.p_value;
         })
         .def(
             "format",
@@ -243,12 +318,14 @@ y_name)`` names them.
                 if (r.method == MCSTAT_METHOD_SIMULATE)
                     t += " (se " + short_num(r.p_value_se) + ", n_sim=" + short_num(r.ks_n_sim) + ")";
                 return t + ", alternative='" + mcstat_alternative_name(r.alternative) + "', decision='" +
-                       mcstat_decision_name(r.decision) + "' at alpha=" + short_num(r.alpha) + ">";
+                       (is_nan_result(r) ? "" : mcstat_decision_name(r.decision)) + "' at alpha=" + short_num(r.alpha) +
+                       ">";
             }
             return std::string("<TestResult ") + method_name(r) + ": statistic=" + short_num(r.statistic) +
                    ", df=" + df + ", pvalue=" + short_num(r.p_value) + ", alternative='" +
-                   mcstat_alternative_name(r.alternative) + "', decision='" + mcstat_decision_name(r.decision) +
-                   "' at alpha=" + short_num(r.alpha) + ">";
+                   mcstat_alternative_name(r.alternative) + "', decision='" +
+                   (is_nan_result(r) ? "" : mcstat_decision_name(r.decision)) + "' at alpha=" + short_num(r.alpha) +
+                   ">";
         })
         .def("__reduce__", [](py::object self) {
             const Result &s = self.cast<const Result &>();
@@ -269,6 +346,7 @@ void register_result_helpers(py::module_ &mod)
         mcstat_result r;
         std::memset(&r, 0, sizeof r);
         r.test = kind == "t_1" ? MCSTAT_TEST_T_1 : kind == "t_2" ? MCSTAT_TEST_T_2
+               : kind == "t_2_pooled" ? MCSTAT_TEST_T_2_POOLED : kind == "t_paired" ? MCSTAT_TEST_T_PAIRED
                : kind == "var_1" ? MCSTAT_TEST_VAR_1 : MCSTAT_TEST_VAR_2;
         r.method = MCSTAT_METHOD_ANALYTIC;
         if (mcstat_alternative_parse(alternative.c_str(), &r.alternative))

@@ -135,6 +135,44 @@ void scatter(const mcstat_result *res, const int32_t *st, size_t r0, size_t k, c
     }
 }
 
+// Rows of the pooled and the paired test, which have no libmcstat matrix
+// call: each row through the single call (bit for bit that call), a failed
+// row cleared to NaN as the matrix calls clear theirs.
+void extra_rows(const TestArgs &a, const double *px, size_t nx, size_t sx, const double *py_, size_t ny, size_t sy,
+                size_t k, mcstat_result *res, int32_t *st)
+{
+    std::vector<double> kx, ky;
+    for (size_t i = 0; i < k; i++) {
+        const double *x = px + i * sx, *y = py_ + i * sy;
+        int s;
+        if (a.kind == Kind::T2P) {
+            mcstat_moments mx, my;
+            mcstat_moments_init(&mx);
+            mcstat_moments_init(&my);
+            s = a.omit_nan ? mcstat_moments_add_array_omit_nan(&mx, x, nx, nullptr) : mcstat_moments_add_array(&mx, x, nx);
+            if (!s)
+                s = a.omit_nan ? mcstat_moments_add_array_omit_nan(&my, y, ny, nullptr)
+                               : mcstat_moments_add_array(&my, y, ny);
+            if (!s)
+                s = mcstat_t_test_2_pooled_moments(&mx, &my, a.null_value, a.alternative, a.alpha, &res[i]);
+        } else if (a.omit_nan) { // paired: the pairs without NaN
+            kx.clear();
+            ky.clear();
+            for (size_t j = 0; j < nx; j++)
+                if (!std::isnan(x[j]) && !std::isnan(y[j])) {
+                    kx.push_back(x[j]);
+                    ky.push_back(y[j]);
+                }
+            s = mcstat_t_test_paired(kx.data(), ky.data(), kx.size(), a.null_value, a.alternative, a.alpha, &res[i]);
+        } else {
+            s = mcstat_t_test_paired(x, y, nx, a.null_value, a.alternative, a.alpha, &res[i]);
+        }
+        if (s)
+            res[i] = nan_result(a, 0, 0);
+        st[i] = s;
+    }
+}
+
 void run_range(const TestArgs &a, const Layout &X, const Layout &Y, bool two, size_t begin, size_t end,
                const Outputs &o)
 {
@@ -165,6 +203,10 @@ void run_range(const TestArgs &a, const Layout &X, const Layout &Y, bool two, si
             mcstat_var_test_2_matrix(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
                                    res.data(), st.data());
             break;
+        case Kind::T2P:
+        case Kind::TP:
+            extra_rows(a, px, X.n, sx, py_, Y.n, sy, k, res.data(), st.data());
+            break;
         }
         scatter(res.data(), st.data(), r0, k, o);
     }
@@ -176,6 +218,8 @@ const char *kind_name(Kind k)
     case Kind::T1: return "t_1";
     case Kind::T2: return "t_2";
     case Kind::V1: return "var_1";
+    case Kind::T2P: return "t_2_pooled";
+    case Kind::TP: return "t_paired";
     default: return "var_2";
     }
 }
@@ -192,9 +236,9 @@ struct BatchOutputs {
 
     BatchOutputs(const std::vector<py::ssize_t> &shape, Kind kind)
     {
-        bool two = kind == Kind::T2 || kind == Kind::V2;
+        bool two = kind == Kind::T2 || kind == Kind::V2 || kind == Kind::T2P; // (paired: the number of pairs)
         o.ndf = kind == Kind::V2 ? 2 : 1;
-        o.nest = kind == Kind::T2 ? 2 : 1;
+        o.nest = kind == Kind::T2 || kind == Kind::T2P ? 2 : 1;
         o.nobs_per_row = two ? 2 : 1;
         auto with = [&](int k) {
             std::vector<py::ssize_t> s = shape;
@@ -226,6 +270,10 @@ struct BatchOutputs {
         o.nobs = nobs.mutable_data();
     }
 
+    // Under nan_policy="propagate", the rows whose data hold NaN: NaN fields
+    // (libmcstat refused them) that are not errors.
+    py::object nan_rows = py::none();
+
     // The Python BatchResult (mcstat._result._make_batch) of these arrays.
     py::object result(const TestArgs &a) const
     {
@@ -243,7 +291,7 @@ struct BatchOutputs {
         fields["nobs"] = nobs;
         static py::object make = py::module_::import("mcstat._result").attr("_make_batch");
         return make(kind_name(a.kind), fields, a.alternative, a.alpha, a.null_value, a.axis, a.errors_as_nan,
-                    a.intervals);
+                    a.intervals, py::arg("nan_rows") = nan_rows);
     }
 };
 
@@ -283,6 +331,9 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
         throw_invalid("axis " + std::to_string(axis) + " is out of range for " + std::to_string(nd) + "-D input");
     if (axis < 0)
         axis += nd;
+    if (a.kind == Kind::TP && x.shape(axis) != y.shape(axis))
+        throw_invalid("paired=True needs x and y of the same length along axis " + std::to_string(axis) +
+                      " (the pairs), got " + std::to_string(x.shape(axis)) + " and " + std::to_string(y.shape(axis)));
     if (two) {
         for (int d = 0; d < nd; d++) {
             if (d != axis && x.shape(d) != y.shape(d)) {
@@ -311,6 +362,13 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
         Y = layout_of(yv, rows);
 
     BatchOutputs out(outer, a.kind);
+    if (a.propagate_nan) {
+        py::object isnan = np.attr("isnan");
+        py::object m = isnan(xv).attr("any")(-1);
+        if (two)
+            m = m.attr("__or__")(isnan(yv).attr("any")(-1));
+        out.nan_rows = m;
+    }
     for_row_ranges(rows, [&](size_t b, size_t e) { run_range(a, X, Y, two, b, e, out.o); });
     return out.result(a);
 }
@@ -326,7 +384,7 @@ namespace mcs {
 py::object run_moments_rows(const TestArgs &a, const mcstat_moments *x, const mcstat_moments *y, size_t rows,
                             const std::vector<py::ssize_t> &shape)
 {
-    bool two = a.kind == Kind::T2 || a.kind == Kind::V2;
+    bool two = a.kind == Kind::T2 || a.kind == Kind::V2 || a.kind == Kind::T2P;
     BatchOutputs out(shape, a.kind);
     const Outputs &o = out.o;
     unsigned flags = a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS;
@@ -352,6 +410,17 @@ py::object run_moments_rows(const TestArgs &a, const mcstat_moments *x, const mc
             case Kind::V2:
                 mcstat_var_test_2_moments_rows(px, py_, k, a.null_value, a.alternative, a.alpha, flags, res.data(),
                                                st.data());
+                break;
+            case Kind::T2P: // no rows call: one per pixel, failed pixels cleared to NaN
+                for (size_t i = 0; i < k; i++) {
+                    st[i] = mcstat_t_test_2_pooled_moments(&px[i], &py_[i], a.null_value, a.alternative, a.alpha,
+                                                           &res[i]);
+                    if (st[i])
+                        res[i] = nan_result(a, 0, 0);
+                }
+                break;
+            case Kind::TP: // refused by tests.cpp: accumulators hold no pairs
+                std::fill(st.begin(), st.begin() + static_cast<ptrdiff_t>(k), MCSTAT_EINVAL);
                 break;
             }
             scatter(res.data(), st.data(), r0, k, o);

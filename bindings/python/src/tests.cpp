@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace mcs {
 
@@ -26,6 +27,7 @@ struct Parsed {
     PyObject *ratio = nullptr;      // var_test only
     PyObject *alternative = nullptr, *alpha = nullptr, *axis = nullptr, *nan_policy = nullptr;
     PyObject *intervals = nullptr, *on_error = nullptr;
+    PyObject *equal_var = nullptr, *paired = nullptr; // t_test only
 };
 
 void parse(const char *fname, bool is_var, PyObject *const *args, Py_ssize_t nargs, PyObject *kwnames,
@@ -36,7 +38,8 @@ void parse(const char *fname, bool is_var, PyObject *const *args, Py_ssize_t nar
                       {{"alternative", &p.alternative}, {"alpha", &p.alpha},
                        {is_var ? "sigma2" : "mu", &p.null_value}, {is_var ? "ratio" : nullptr, &p.ratio},
                        {"axis", &p.axis}, {"nan_policy", &p.nan_policy}, {"intervals", &p.intervals},
-                       {"on_error", &p.on_error}});
+                       {"on_error", &p.on_error}, {is_var ? nullptr : "equal_var", &p.equal_var},
+                       {is_var ? nullptr : "paired", &p.paired}});
     if (!p.x)
         throw py::type_error(std::string(fname) + "() missing required argument 'x'");
     if (p.x == Py_None)
@@ -61,12 +64,15 @@ void common_args(const Parsed &p, TestArgs &a)
         a.axis = static_cast<int>(v);
     }
     a.omit_nan = false;
+    a.propagate_nan = false;
     if (p.nan_policy) {
         const char *s = get_str(p.nan_policy, "nan_policy");
         if (!std::strcmp(s, "omit"))
             a.omit_nan = true;
+        else if (!std::strcmp(s, "propagate"))
+            a.propagate_nan = true;
         else if (std::strcmp(s, "raise"))
-            throw_invalid(std::string("nan_policy must be 'raise' or 'omit', got '") + s + "'");
+            throw_invalid(std::string("nan_policy must be 'raise', 'omit' or 'propagate', got '") + s + "'");
     }
     a.intervals = true;
     if (p.intervals) {
@@ -107,9 +113,27 @@ mcstat_moments moments_of(py::handle obj, bool omit, const char *name)
     return m;
 }
 
+bool truthy(PyObject *o)
+{
+    int t = PyObject_IsTrue(o);
+    if (t < 0)
+        throw py::error_already_set();
+    return t != 0;
+}
+
+bool has_nan(const double *x, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (std::isnan(x[i]))
+            return true;
+    return false;
+}
+
 std::string sizes_detail(const TestArgs &a, size_t nx, size_t ny)
 {
-    bool two = a.kind == Kind::T2 || a.kind == Kind::V2;
+    if (a.kind == Kind::TP)
+        return std::to_string(nx) + " pairs";
+    bool two = a.kind != Kind::T1 && a.kind != Kind::V1;
     return two ? "x has " + std::to_string(nx) + " values, y has " + std::to_string(ny)
                : "x has " + std::to_string(nx) + " values";
 }
@@ -120,8 +144,27 @@ int call_moments(const TestArgs &a, const mcstat_moments *mx, const mcstat_momen
     case Kind::T1: return mcstat_t_test_1_moments(mx, a.null_value, a.alternative, a.alpha, r);
     case Kind::T2: return mcstat_t_test_2_moments(mx, my, a.null_value, a.alternative, a.alpha, r);
     case Kind::V1: return mcstat_var_test_1_moments(mx, a.null_value, a.alternative, a.alpha, r);
-    default: return mcstat_var_test_2_moments(mx, my, a.null_value, a.alternative, a.alpha, r);
+    case Kind::T2P: return mcstat_t_test_2_pooled_moments(mx, my, a.null_value, a.alternative, a.alpha, r);
+    case Kind::V2: return mcstat_var_test_2_moments(mx, my, a.null_value, a.alternative, a.alpha, r);
+    default: return MCSTAT_EINVAL; // the paired test needs the pairs (run() refuses accumulators)
     }
+}
+
+// The paired test on two 1-D arrays of equal length; nan_policy="omit"
+// drops the pairs with NaN on either side (as SciPy's ttest_rel).
+int call_paired(const TestArgs &a, const double *x, const double *y, size_t n, mcstat_result *r)
+{
+    if (!a.omit_nan || (!has_nan(x, n) && !has_nan(y, n)))
+        return mcstat_t_test_paired(x, y, n, a.null_value, a.alternative, a.alpha, r);
+    std::vector<double> kx, ky;
+    kx.reserve(n);
+    ky.reserve(n);
+    for (size_t i = 0; i < n; i++)
+        if (!std::isnan(x[i]) && !std::isnan(y[i])) {
+            kx.push_back(x[i]);
+            ky.push_back(y[i]);
+        }
+    return mcstat_t_test_paired(kx.data(), ky.data(), kx.size(), a.null_value, a.alternative, a.alpha, r);
 }
 
 int call_arrays(const TestArgs &a, const double *x, size_t nx, const double *y, size_t ny, mcstat_result *r)
@@ -133,22 +176,54 @@ int call_arrays(const TestArgs &a, const double *x, size_t nx, const double *y, 
         return mcstat_t_test_2_matrix(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
     case Kind::V1:
         return mcstat_var_test_1_matrix(x, nx, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
-    default:
+    case Kind::V2:
         return mcstat_var_test_2_matrix(x, nx, 0, y, ny, 0, 1, a.null_value, a.alternative, a.alpha, flags, r,
                                       nullptr);
+    case Kind::TP:
+        return call_paired(a, x, y, nx, r);
+    default: { // pooled: no matrix call; the accumulators, NaN omitted if asked
+        if (!a.omit_nan)
+            return mcstat_t_test_2_pooled(x, nx, y, ny, a.null_value, a.alternative, a.alpha, r);
+        mcstat_moments mx, my;
+        mcstat_moments_init(&mx);
+        mcstat_moments_init(&my);
+        int st = mcstat_moments_add_array_omit_nan(&mx, x, nx, nullptr);
+        if (!st)
+            st = mcstat_moments_add_array_omit_nan(&my, y, ny, nullptr);
+        return st ? st : mcstat_t_test_2_pooled_moments(&mx, &my, a.null_value, a.alternative, a.alpha, r);
+    }
     }
 }
+
 
 py::object run(const Parsed &p, TestArgs &a)
 {
     bool two = p.y != nullptr;
     // Per-pixel accumulators: one test per pixel (moments_array.cpp).
-    if (as_moments_array(p.x) || (two && as_moments_array(p.y)))
+    if (as_moments_array(p.x) || (two && as_moments_array(p.y))) {
+        if (a.kind == Kind::TP)
+            throw_invalid("paired=True needs the values of x and y (the pairs), not an mcstat.MomentsArray");
         return test_moments_array(a, p.x, two ? py::handle(p.y) : py::handle());
+    }
     const mcstat_moments *mx = as_moments(p.x), *my = two ? as_moments(p.y) : nullptr;
     mcstat_result r;
     if (mx || my) { // accumulators (an array beside one is turned into moments)
+        if (a.kind == Kind::TP)
+            throw_invalid("paired=True needs the values of x and y (the pairs), not mcstat.Moments");
         mcstat_moments bx, by;
+        // nan_policy="propagate": an array with NaN beside an accumulator
+        // gives the NaN result; accumulators hold no NaN
+        if (a.propagate_nan) {
+            for (int k = 0; k < (two ? 2 : 1); k++) {
+                PyObject *o = k ? p.y : p.x;
+                if (as_moments(o))
+                    continue;
+                py::array v = as_contiguous_array(o, k ? "y" : "x");
+                if (has_nan(static_cast<const double *>(v.data()), static_cast<size_t>(v.size())))
+                    return make_result(nan_result(a, mx ? mx->n : static_cast<uint64_t>(k ? 0 : v.size()),
+                                                  my ? my->n : static_cast<uint64_t>(k ? v.size() : 0)));
+            }
+        }
         if (!mx) {
             bx = moments_of(p.x, a.omit_nan, "x");
             mx = &bx;
@@ -179,6 +254,13 @@ py::object run(const Parsed &p, TestArgs &a)
         ya = as_contiguous_array(ya, "y");
     const double *x = static_cast<const double *>(xa.data()), *y = two ? static_cast<const double *>(ya.data()) : nullptr;
     size_t nx = static_cast<size_t>(xa.size()), ny = two ? static_cast<size_t>(ya.size()) : 0;
+    if (a.kind == Kind::TP && nx != ny)
+        throw_invalid("paired=True needs x and y of the same length (the pairs), got x with " + std::to_string(nx) +
+                      " values and y with " + std::to_string(ny));
+    // nan_policy="propagate" is decided here: libmcstat never returns NaN
+    // with success, so NaN data get the NaN result without a call
+    if (a.propagate_nan && (has_nan(x, nx) || (two && has_nan(y, ny))))
+        return make_result(nan_result(a, nx, ny));
     int st;
     if (nx + ny >= GIL_RELEASE_MIN) {
         py::gil_scoped_release nogil;
@@ -198,7 +280,13 @@ PyObject *t_test(PyObject *, PyObject *const *args, Py_ssize_t nargs, PyObject *
         parse("t_test", false, args, nargs, kwnames, p);
         TestArgs a;
         common_args(p, a);
-        a.kind = p.y ? Kind::T2 : Kind::T1;
+        bool equal_var = p.equal_var && truthy(p.equal_var), paired = p.paired && truthy(p.paired);
+        if (paired && equal_var)
+            throw_invalid("paired=True and equal_var=True exclude each other: the paired test has one sample "
+                          "of differences");
+        if ((paired || equal_var) && !p.y)
+            throw_invalid(std::string(paired ? "paired=True" : "equal_var=True") + " needs y (a second sample)");
+        a.kind = paired ? Kind::TP : equal_var ? Kind::T2P : p.y ? Kind::T2 : Kind::T1;
         a.null_value = p.null_value ? get_double(p.null_value, "mu") : 0.0;
         if (!std::isfinite(a.null_value))
             throw_invalid("mu must be finite, got " + repr(p.null_value));
@@ -242,6 +330,30 @@ PyMethodDef methods[] = {
     {nullptr, nullptr, 0, nullptr}};
 
 } // namespace
+
+mcstat_result nan_result(const TestArgs &a, uint64_t nx, uint64_t ny)
+{
+    mcstat_result r;
+    std::memset(&r, 0, sizeof r);
+    switch (a.kind) {
+    case Kind::T1: r.test = MCSTAT_TEST_T_1; break;
+    case Kind::T2: r.test = MCSTAT_TEST_T_2; break;
+    case Kind::T2P: r.test = MCSTAT_TEST_T_2_POOLED; break;
+    case Kind::TP: r.test = MCSTAT_TEST_T_PAIRED; break;
+    case Kind::V1: r.test = MCSTAT_TEST_VAR_1; break;
+    case Kind::V2: r.test = MCSTAT_TEST_VAR_2; break;
+    }
+    r.method = MCSTAT_METHOD_ANALYTIC;
+    r.alternative = a.alternative;
+    r.alpha = a.alpha;
+    r.null_value = a.null_value;
+    r.n[0] = nx;
+    r.n[1] = ny;
+    r.statistic = r.df[0] = r.df[1] = r.p_value = r.p_value_se = NAN;
+    r.conf_int[0] = r.conf_int[1] = r.estimate[0] = r.estimate[1] = NAN;
+    r.critical[0] = r.critical[1] = r.std_error = NAN;
+    return r;
+}
 
 std::string repr(PyObject *o)
 {
