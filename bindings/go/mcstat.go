@@ -162,10 +162,13 @@ const (
 	TestEquiv2   Test = C.MCSTAT_TEST_EQUIV_2   // Welch two-sample equivalence (TOST)
 	TestBinom    Test = C.MCSTAT_TEST_BINOM     // exact binomial test (also the battery meta-test)
 	TestChisqGOF Test = C.MCSTAT_TEST_CHISQ_GOF // Pearson's chi-squared goodness of fit
+	TestT2Pooled Test = C.MCSTAT_TEST_T_2_POOLED // Student's pooled-variance two-sample t
+	TestTPaired  Test = C.MCSTAT_TEST_T_PAIRED   // paired t (the differences' one-sample t)
 )
 
 var testNames = map[Test]string{TestT1: "t_1", TestT2: "t_2", TestVar1: "var_1", TestVar2: "var_2",
-	TestKS2: "ks_2", TestEquiv1: "equiv_1", TestEquiv2: "equiv_2", TestBinom: "binom", TestChisqGOF: "chisq_gof"}
+	TestKS2: "ks_2", TestEquiv1: "equiv_1", TestEquiv2: "equiv_2", TestBinom: "binom", TestChisqGOF: "chisq_gof",
+	TestT2Pooled: "t_2_pooled", TestTPaired: "t_paired"}
 
 func (t Test) String() string {
 	if s, ok := testNames[t]; ok {
@@ -381,6 +384,55 @@ func TTest2(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Resul
 	})
 }
 
+// TTest2Pooled is Student's pooled-variance two-sample t test of mean(x) -
+// mean(y) against mu0 (R's t.test(var.equal = TRUE), SciPy's ttest_ind
+// default).
+func TTest2Pooled(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.struct_mcstat_result) C.int {
+		return C.mcstat_t_test_2_pooled(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.double(mu0),
+			C.int(alt), C.double(alpha), o)
+	})
+}
+
+// TTestPaired is the paired t test of mean(x - y) against mu0 (R's
+// t.test(paired = TRUE), SciPy's ttest_rel); x and y have the same length.
+func TTestPaired(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
+	if len(x) != len(y) {
+		return nil, invalid(fmt.Sprintf("paired samples differ in length: x has %d, y %d", len(x), len(y)))
+	}
+	return run(func(o *C.struct_mcstat_result) C.int {
+		return C.mcstat_t_test_paired(ptr(x), ptr(y), C.size_t(len(x)), C.double(mu0), C.int(alt),
+			C.double(alpha), o)
+	})
+}
+
+// LogPValue is the natural logarithm of the p-value, finite wherever the
+// tail is representable in log, also where PValue underflows to 0.
+func (r *Result) LogPValue() (float64, error) {
+	if r == nil {
+		return 0, invalid("nil *Result")
+	}
+	var v C.double
+	if err := check(C.mcstat_result_log_p_value(&r.raw, &v)); err != nil {
+		return 0, err
+	}
+	return float64(v), nil
+}
+
+// ConfIntAt is the confidence interval at confidenceLevel in (0, 1)
+// instead of 1 - Alpha (a one-sided alternative keeps its infinite end);
+// an error for tests without a parameter interval (K-S, goodness of fit).
+func (r *Result) ConfIntAt(confidenceLevel float64) ([2]float64, error) {
+	if r == nil {
+		return [2]float64{}, invalid("nil *Result")
+	}
+	var ci [2]C.double
+	if err := check(C.mcstat_result_conf_int(&r.raw, C.double(confidenceLevel), &ci[0])); err != nil {
+		return [2]float64{}, err
+	}
+	return [2]float64{float64(ci[0]), float64(ci[1])}, nil
+}
+
 // VarTest1 is the one-sample chi-squared test of var(x) against sigma2.
 func VarTest1(x []float64, sigma2 float64, alt Alternative, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
@@ -526,6 +578,13 @@ func TTest1Moments(x *Moments, mu0 float64, alt Alternative, alpha float64) (*Re
 func TTest2Moments(x, y *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_2_moments(x.c(), y.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
+	})
+}
+
+// TTest2PooledMoments is TTest2Pooled on accumulators.
+func TTest2PooledMoments(x, y *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.struct_mcstat_result) C.int {
+		return C.mcstat_t_test_2_pooled_moments(x.c(), y.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 

@@ -133,6 +133,8 @@ pub const MCSTAT_TEST_EQUIV_1: i32 = 6;
 pub const MCSTAT_TEST_EQUIV_2: i32 = 7;
 pub const MCSTAT_TEST_BINOM: i32 = 8;
 pub const MCSTAT_TEST_CHISQ_GOF: i32 = 9;
+pub const MCSTAT_TEST_T_2_POOLED: i32 = 10;
+pub const MCSTAT_TEST_T_PAIRED: i32 = 11;
 
 pub const MCSTAT_METHOD_ANALYTIC: i32 = 0;
 pub const MCSTAT_METHOD_AUTO: i32 = 1;
@@ -725,11 +727,35 @@ extern "C" {
         alpha: f64,
         out: *mut mcstat_result,
     ) -> c_int;
-    // The pooled two-sample and paired t tests (mcstat_t_test_2_pooled,
-    // mcstat_t_test_2_pooled_moments, mcstat_t_test_paired) and the result
-    // accessors (mcstat_result_log_p_value, mcstat_result_conf_int) are
-    // declared here when the library exports them; check_coverage.py
-    // fails until they are.
+    pub fn mcstat_t_test_2_pooled(
+        x: *const f64,
+        nx: usize,
+        y: *const f64,
+        ny: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_t_test_2_pooled_moments(
+        x: *const mcstat_moments,
+        y: *const mcstat_moments,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_t_test_paired(
+        x: *const f64,
+        y: *const f64,
+        n: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_result_log_p_value(r: *const mcstat_result, log_p: *mut f64) -> c_int;
+    pub fn mcstat_result_conf_int(r: *const mcstat_result, confidence_level: f64, conf_int: *mut f64) -> c_int;
     pub fn mcstat_var_test_1(
         x: *const f64,
         n: usize,

@@ -46,7 +46,7 @@ pub use check::{check_bsdf, check_emitter, check_warp, CheckModel, CheckOptions,
 pub use diag::{diagnose, DiagOptions, Diagnostics};
 pub use gof::{battery_test, battery_test_p_values, binom_test, gof_chisq_test, GofOptions};
 pub use ks::{ks_test_2, KsCache, KsOptions};
-pub use moments::{t_test_1_moments, t_test_2_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
+pub use moments::{t_test_1_moments, t_test_2_moments, t_test_2_pooled_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
 pub use p_adjust::{p_adjust, PAdjustMethod};
 pub use power::{Power, PowerSolution, PowerTest};
 pub use rows::{Matrix, RowFlags, RowResults, Statuses};
@@ -374,8 +374,10 @@ pub enum Test {
     Binom,
     /// Pearson's chi-squared goodness of fit.
     ChisqGof,
-    // The pooled two-sample and paired t tests go here when the library
-    // exports them (mcstat_t_test_2_pooled, mcstat_t_test_paired).
+    /// Student's pooled-variance two-sample t.
+    T2Pooled,
+    /// The paired t (one-sample t on the differences).
+    TPaired,
     /// A test this crate does not know (a newer library).
     Other(i32),
 }
@@ -392,6 +394,8 @@ impl Test {
             sys::MCSTAT_TEST_EQUIV_2 => Test::Equiv2,
             sys::MCSTAT_TEST_BINOM => Test::Binom,
             sys::MCSTAT_TEST_CHISQ_GOF => Test::ChisqGof,
+            sys::MCSTAT_TEST_T_2_POOLED => Test::T2Pooled,
+            sys::MCSTAT_TEST_T_PAIRED => Test::TPaired,
             v => Test::Other(v),
         }
     }
@@ -622,9 +626,21 @@ impl TestResult {
             _ => Details::None,
         }
     }
-    // When the library exports mcstat_result_log_p_value and
-    // mcstat_result_conf_int, `log_p_value()` (every test) and
-    // `conf_int_at(level)` wrap them here.
+    /// The natural logarithm of the p-value, finite wherever the tail is
+    /// representable in log, also where `p_value()` underflows to 0.
+    pub fn log_p_value(&self) -> Result<f64> {
+        let mut v = 0.0;
+        check(unsafe { sys::mcstat_result_log_p_value(&self.raw, &mut v) })?;
+        Ok(v)
+    }
+    /// The confidence interval at `confidence_level` in (0, 1) instead of
+    /// 1 - alpha (one-sided alternatives keep their infinite end).  An error
+    /// for tests without a parameter interval (K-S, goodness of fit).
+    pub fn conf_int_at(&self, confidence_level: f64) -> Result<(f64, f64)> {
+        let mut ci = [0.0f64; 2];
+        check(unsafe { sys::mcstat_result_conf_int(&self.raw, confidence_level, ci.as_mut_ptr()) })?;
+        Ok((ci[0], ci[1]))
+    }
 
     /// The R-style block (R's print.htest plus a "decision at alpha" line),
     /// with the data named `x_name` and `y_name`.
@@ -664,9 +680,25 @@ pub fn t_test_2(x: &[f64], y: &[f64], mu0: f64, alternative: Alternative, alpha:
     run(|out| unsafe { sys::mcstat_t_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), mu0, alternative.raw(), alpha, out) })
 }
 
-// The pooled two-sample and paired t tests (mcstat_t_test_2_pooled,
-// mcstat_t_test_2_pooled_moments, mcstat_t_test_paired) go here when the
-// library exports them.
+/// Student's pooled-variance two-sample t test of mean(x) - mean(y) against
+/// `mu0` (R's `t.test(var.equal = TRUE)`, SciPy's `ttest_ind` default).
+pub fn t_test_2_pooled(x: &[f64], y: &[f64], mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
+    run(|out| unsafe {
+        sys::mcstat_t_test_2_pooled(x.as_ptr(), x.len(), y.as_ptr(), y.len(), mu0, alternative.raw(), alpha, out)
+    })
+}
+
+/// The paired t test of mean(x - y) against `mu0` (R's `t.test(paired =
+/// TRUE)`, SciPy's `ttest_rel`); x and y must have the same length.
+pub fn t_test_paired(x: &[f64], y: &[f64], mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
+    if x.len() != y.len() {
+        return Err(Error::with_message(
+            sys::MCSTAT_EINVAL,
+            format!("paired samples differ in length: x has {}, y has {}", x.len(), y.len()),
+        ));
+    }
+    run(|out| unsafe { sys::mcstat_t_test_paired(x.as_ptr(), y.as_ptr(), x.len(), mu0, alternative.raw(), alpha, out) })
+}
 
 /// One-sample chi-squared test of var(x) against `sigma2`.
 pub fn var_test_1(x: &[f64], sigma2: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {

@@ -116,6 +116,11 @@ pub fn t_test_2_moments(x: &Moments, y: &Moments, mu0: f64, alternative: Alterna
     run(|out| unsafe { sys::mcstat_t_test_2_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })
 }
 
+/// Student's pooled-variance t test on accumulators.
+pub fn t_test_2_pooled_moments(x: &Moments, y: &Moments, mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
+    run(|out| unsafe { sys::mcstat_t_test_2_pooled_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })
+}
+
 /// One-sample chi-squared test on an accumulator.
 pub fn var_test_1_moments(x: &Moments, sigma2: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
     run(|out| unsafe { sys::mcstat_var_test_1_moments(&x.raw, sigma2, alternative.raw(), alpha, out) })

@@ -928,3 +928,82 @@ fn route_and_domain_names() {
     let s = RouteSet::all().without(Route::Ks);
     assert!(!s.contains(Route::Ks) && s.contains(Route::Cells) && s.with(Route::Ks) == RouteSet::all());
 }
+
+fn tsv_num(s: &str) -> f64 {
+    match s {
+        "NA" | "NaN" => f64::NAN,
+        "Inf" => f64::INFINITY,
+        "-Inf" => f64::NEG_INFINITY,
+        _ => hex_float(s),
+    }
+}
+
+/// |got - want| within tol of scale (plus a few ulps of want).
+fn near(got: f64, want: f64, scale: f64, tol: f64) -> bool {
+    got == want || (got - want).abs() <= tol * scale + 8.0 * f64::EPSILON * want.abs()
+}
+
+#[test]
+fn pooled_and_paired_t_against_r() {
+    let alts = [Alternative::TwoSided, Alternative::Less, Alternative::Greater];
+    let mut seen = (0, 0);
+    for line in read("t_ref.tsv").lines().filter(|l| !l.starts_with('#')) {
+        let f: Vec<&str> = line.split('\t').collect();
+        if f[0] != "pooled" && f[0] != "paired" {
+            continue;
+        }
+        let a = alts[f[1].parse::<usize>().unwrap()];
+        let (mu, alpha) = (tsv_num(f[2]), tsv_num(f[3]));
+        let x: Vec<f64> = f[4].split(',').map(tsv_num).collect();
+        let y: Vec<f64> = f[5].split(',').map(tsv_num).collect();
+        let v: Vec<f64> = f[6..18].iter().map(|s| tsv_num(s)).collect();
+        let (stat, df, p, logp, lo, hi, se, conf2, lo2, hi2) = (v[0], v[1], v[2], v[3], v[4], v[5], v[8], v[9], v[10], v[11]);
+        let r = if f[0] == "pooled" {
+            seen.0 += 1;
+            let r = t_test_2_pooled(&x, &y, mu, a, alpha).unwrap();
+            assert_eq!(r.test(), Test::T2Pooled);
+            let (mut mx, mut my) = (Moments::new(), Moments::new());
+            mx.add_slice(&x).unwrap();
+            my.add_slice(&y).unwrap();
+            let rm = t_test_2_pooled_moments(&mx, &my, mu, a, alpha).unwrap();
+            assert_eq!(rm.statistic().to_bits(), r.statistic().to_bits(), "{line}");
+            r
+        } else {
+            seen.1 += 1;
+            let r = t_test_paired(&x, &y, mu, a, alpha).unwrap();
+            assert_eq!(r.test(), Test::TPaired);
+            assert_eq!(r.estimate().len(), 1);
+            r
+        };
+        assert!(near(r.statistic(), stat, stat.abs(), 1e-11), "statistic {} vs R {stat}", r.statistic());
+        assert_eq!(r.df().len(), 1);
+        assert!(near(r.df()[0], df, df, 1e-13));
+        if p > 1e-300 {
+            assert!(near(r.p_value(), p, p, 1e-11), "p {} vs R {p}", r.p_value());
+        }
+        let lp = r.log_p_value().unwrap();
+        assert!(near(lp, logp, logp.abs().max(1.0), 1e-12), "log p {lp} vs R {logp}");
+        assert!(lp.is_finite());
+        let width = if (hi - lo).is_finite() { hi - lo } else { se };
+        let (l, h) = r.conf_int().unwrap();
+        assert!(near(l, lo, width, 1e-10) && near(h, hi, width, 1e-10), "interval {l} {h} vs R {lo} {hi}");
+        let width2 = if (hi2 - lo2).is_finite() { hi2 - lo2 } else { se };
+        let (l2, h2) = r.conf_int_at(conf2).unwrap();
+        assert!(near(l2, lo2, width2, 1e-10) && near(h2, hi2, width2, 1e-10), "at {conf2}: {l2} {h2} vs R {lo2} {hi2}");
+    }
+    assert!(seen.0 >= 20 && seen.1 >= 20, "rows read: {seen:?}");
+}
+
+#[test]
+fn paired_lengths_and_levels_are_checked() {
+    let x = [1.0, 2.0, 3.5, 4.0];
+    let e = t_test_paired(&x, &x[..3], 0.0, Alternative::TwoSided, 0.05).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument);
+    assert!(e.message().contains("x has 4, y has 3"), "{e}");
+    let r = t_test_2_pooled(&x, &[0.5, 1.0, 1.25], 0.0, Alternative::TwoSided, 0.05).unwrap();
+    for bad in [0.0, 1.0, f64::NAN, -0.5] {
+        assert_eq!(r.conf_int_at(bad).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    }
+    let k = ks_test_2(&x, &[0.5, 1.0, 1.25], Alternative::TwoSided, 0.05, &KsOptions::default()).unwrap();
+    assert_eq!(k.conf_int_at(0.9).unwrap_err().kind(), ErrorKind::InvalidArgument);
+}
