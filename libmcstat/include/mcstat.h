@@ -794,7 +794,12 @@ enum mcstat_p_adjust_method {
 };
 
 /* Parses R's names: "none", "bonferroni", "holm", "hochberg", "hommel", "BH"
- * (also "bh", "fdr"), "BY" (also "by").  MCSTAT_EINVAL for anything else. */
+ * (also "fdr"), "BY"; and statsmodels' multipletests names for the same
+ * methods: "b", "bonf"; "h" (Holm); "sh", "simes-hochberg"; "ho";
+ * "fdr_bh", "fdr_i", "fdr_p", "fdri", "fdrp"; "fdr_by", "fdr_n", "fdr_c",
+ * "fdrn", "fdrcorr".  Case is ignored (ASCII).  MCSTAT_EINVAL for anything
+ * else, statsmodels' methods this library lacks included ("sidak",
+ * "holm-sidak", "fdr_tsbh", "fdr_tsbky", "fdr_gbs", ...). */
 MCSTAT_API int mcstat_p_adjust_method_parse(const char *name, int *method);
 /* R's name of a method ("BH", "holm", ...), or NULL for an invalid value. */
 MCSTAT_API const char *mcstat_p_adjust_method_name(int method);
