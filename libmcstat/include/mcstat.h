@@ -1151,7 +1151,10 @@ MCSTAT_API int mcstat_diag_batch_size(double skewness, double kurtosis, uint64_t
 /* ------------------------------------------------------------------------ */
 enum mcstat_gof_expected {
     MCSTAT_GOF_PROBABILITIES = 0, /* expected[i] are cell probabilities */
-    MCSTAT_GOF_COUNTS = 1         /* expected[i] are expected counts */
+    MCSTAT_GOF_COUNTS = 1,        /* expected[i] are expected counts */
+    MCSTAT_GOF_AUTO = 2           /* probabilities if they sum to 1, else counts
+                                     (SciPy's chisquare takes counts, R's
+                                     chisq.test probabilities) */
 };
 
 #define MCSTAT_GOF_DEFAULT_MIN_EXPECTED 5.0

@@ -148,7 +148,7 @@ def chisq_gof(
     observed: npt.ArrayLike,
     expected: npt.ArrayLike,
     *,
-    expected_kind: Literal["probabilities", "counts"] = "probabilities",
+    expected_kind: Literal["auto", "probabilities", "counts"] = "auto",
     pool: bool = True,
     min_expected: float = 5.0,
     n_estimated: int = 0,
@@ -166,6 +166,7 @@ def p_adjust(
 def set_num_threads(n: int) -> None: ...
 def get_num_threads() -> int: ...
 def strerror(status: int) -> str: ...
+def _status_text(status: int) -> str: ...
 def _t_test_2_summary_rows(
     nx: npt.ArrayLike, mean_x: npt.ArrayLike, m2_x: npt.ArrayLike, ny: npt.ArrayLike, mean_y: npt.ArrayLike,
     m2_y: npt.ArrayLike, alternative: int, alpha: float,

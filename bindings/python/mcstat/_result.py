@@ -147,12 +147,12 @@ def _make_batch(kind: str, fields: Dict[str, np.ndarray], alternative: int, alph
         bad = status != 0
         first = int(status.flat[np.argmax(bad)])
         cls = _BY_STATUS.get(first, McstatError)
-        from ._core import strerror
+        from ._core import _status_text
 
         rows, shown = _describe_rows(bad, status.shape)
         nbad = int(bad.sum())
         others = int((bad & (status != first)).sum())
         extra = f"; {others} of them failed for another reason" if others else ""
-        raise cls(f"{strerror(first)}: {nbad} of {status.size} rows failed (rows {shown}){extra}; "
+        raise cls(f"{_status_text(first)}: {nbad} of {status.size} rows failed (rows {shown}){extra}; "
                   "pass on_error='nan' to get NaN for failed rows instead", rows=rows)
     return BatchResult(kind, fields, alternative, alpha, null_value, intervals)

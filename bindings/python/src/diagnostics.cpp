@@ -41,8 +41,21 @@ void register_diagnostics(py::module_ &mod)
             uint64_t xx = count(x, "x"), nn = count(n, "n");
             mcstat_result r;
             int st = mcstat_binom_test(xx, nn, p, parse_alternative(alternative.ptr()), alpha, &r);
+            if (st == MCSTAT_EINVAL) {
+                // in the order of mcstat_binom_test's checks
+                if (!(alpha > 0.0 && alpha < 1.0))
+                    throw_invalid("alpha must be in (0, 1), got " + repr(py::float_(alpha).ptr()));
+                if (!(p >= 0.0 && p <= 1.0))
+                    throw_invalid("p must be in [0, 1], got " + repr(py::float_(p).ptr()));
+                throw_invalid("x (successes) must be at most n (trials), got x=" + std::to_string(xx) +
+                              ", n=" + std::to_string(nn));
+            }
+            if (st == MCSTAT_ETOOFEW)
+                throw_status(st, "binom_test needs n >= 1 trials, got n=0");
+            if (st == MCSTAT_ETOOBIG)
+                throw_status(st, "n=" + std::to_string(nn) + " trials is beyond the exact test's range (2**53)");
             if (st)
-                throw_status(st, "binom_test(x=" + std::to_string(xx) + ", n=" + std::to_string(nn) + ")");
+                throw_status(st);
             return make_result(r);
         },
         py::arg("x"), py::arg("n"), py::arg("p"), py::arg("alternative"), py::arg("alpha"));
