@@ -933,7 +933,11 @@ enum mcstat_power_unknown {
     MCSTAT_POWER_SOLVE_POWER = 0,
     MCSTAT_POWER_SOLVE_N = 1,
     MCSTAT_POWER_SOLVE_EFFECT = 2,
-    MCSTAT_POWER_SOLVE_ALPHA = 3
+    MCSTAT_POWER_SOLVE_ALPHA = 3,
+    /* n as a real number, the root of power(n) = target (R's power.t.test's
+     * n; SOLVE_N gives the smallest integer reaching the target, this
+     * rounded up when it is not one); out->power is left at the target */
+    MCSTAT_POWER_SOLVE_N_EXACT = 4
 };
 
 /* Grows by appending fields (section 1, compatibility): always start
