@@ -16,8 +16,9 @@ with open(os.path.join(HERE, "..", "data", "chisq_ref.json")) as f:
 
 @pytest.mark.parametrize("case", CASES, ids=[c["name"] for c in CASES])
 def test_against_r(case):
+    pooling = dict(min_expected=case["min_expected"]) if case["pool"] else {}
     r = mcstat.chisq_gof(case["x"], case["p"], expected_kind="counts" if case["counts"] else "probabilities",
-                         pool=bool(case["pool"]), min_expected=case["min_expected"], n_estimated=case["n_estimated"])
+                         pool=bool(case["pool"]), n_estimated=case["n_estimated"], **pooling)
     assert rel_err(r.statistic, case["statistic"]) < 1e-12
     assert r.df == case["df"]
     assert r.cells == case["cells"]
@@ -155,3 +156,11 @@ def test_mismatched_sums_say_what_is_wrong():
         mcstat.chisq_gof([10, 1, 30], [0.5, 0.0, 0.5], pool=False)
     r = mcstat.chisq_gof([10, 20, 30], [1, 2, 3], rescale=True)
     assert r.statistic == pytest.approx(0.0, abs=1e-12)
+
+
+def test_min_expected_without_pooling_raises():
+    with pytest.raises(mcstat.InvalidArgumentError, match="^min_expected applies to pooling"):
+        mcstat.chisq_gof([10, 20, 30], [0.2, 0.3, 0.5], pool=False, min_expected=1.0)
+    a = mcstat.chisq_gof([10, 20, 30], [0.2, 0.3, 0.5], min_expected=1.0)
+    b = mcstat.chisq_gof([10, 20, 30], [0.2, 0.3, 0.5], pool=False)
+    assert a.statistic == pytest.approx(b.statistic)

@@ -150,7 +150,7 @@ def chisq_gof(
     *,
     expected_kind: Literal["auto", "probabilities", "counts"] = "auto",
     pool: bool = True,
-    min_expected: float = 5.0,
+    min_expected: Optional[float] = None,
     n_estimated: int = 0,
     rescale: bool = False,
     alpha: float = 0.05,

@@ -11,7 +11,7 @@ namespace mcs {
 
 namespace {
 
-const char *CHISQ_DOC = R"doc(chisq_gof(observed, expected, *, expected_kind="auto", pool=True, min_expected=5.0, n_estimated=0, rescale=False, alpha=0.05)
+const char *CHISQ_DOC = R"doc(chisq_gof(observed, expected, *, expected_kind="auto", pool=True, min_expected=None, n_estimated=0, rescale=False, alpha=0.05)
 
 Pearson's chi-squared goodness-of-fit test of cell counts.
 
@@ -35,7 +35,8 @@ pool : bool
     ``pool=False`` is R's ``chisq.test(x, p = p)`` (every expectation must
     then be > 0).
 min_expected : float
-    The pooling threshold on expected counts (Cochran's 5 by default).
+    The pooling threshold on expected counts (Cochran's 5 by default);
+    with ``pool=False`` it does not apply, and giving it raises.
 n_estimated : int
     Parameters of the expected probabilities estimated from these counts:
     df = (cells after pooling) - 1 - n_estimated.
@@ -102,8 +103,12 @@ std::string explain_invalid(const double *o, const double *e, size_t k, const mc
 }
 
 py::object chisq_gof(py::object observed, py::object expected, const std::string &kind, bool pool,
-                     double min_expected, int n_estimated, bool rescale, double alpha)
+                     py::object min_expected_arg, int n_estimated, bool rescale, double alpha)
 {
+    if (!min_expected_arg.is_none() && !pool)
+        throw_invalid("min_expected applies to pooling, not pool=False (where every cell is tested as given)");
+    double min_expected =
+        min_expected_arg.is_none() ? MCSTAT_GOF_DEFAULT_MIN_EXPECTED : get_double(min_expected_arg.ptr(), "min_expected");
     py::array o = as_contiguous_array(observed, "observed"), e = as_contiguous_array(expected, "expected");
     if (o.ndim() != 1 || e.ndim() != 1)
         throw_invalid("observed and expected must be 1-D arrays");
@@ -155,7 +160,7 @@ void register_chisq(py::module_ &mod)
 {
     mod.def("chisq_gof", &chisq_gof, py::arg("observed"), py::arg("expected"), py::kw_only(),
             py::arg("expected_kind") = "auto", py::arg("pool") = true,
-            py::arg("min_expected") = MCSTAT_GOF_DEFAULT_MIN_EXPECTED, py::arg("n_estimated") = 0,
+            py::arg("min_expected") = py::none(), py::arg("n_estimated") = 0,
             py::arg("rescale") = false, py::arg("alpha") = 0.05, CHISQ_DOC);
 }
 
