@@ -32,6 +32,15 @@ std::string unsupported_note(const std::string &method)
 void register_p_adjust(py::module_ &mod)
 {
     mod.def(
+        "_p_adjust_method_name",
+        [](const std::string &method) {
+            int m = 0;
+            if (method.find('\0') != std::string::npos || mcstat_p_adjust_method_parse(method.c_str(), &m))
+                throw_invalid("unknown p_adjust method " + repr(py::str(method).ptr()));
+            return std::string(mcstat_p_adjust_method_name(m));
+        },
+        py::arg("method"), "R's name of a p_adjust method given by any of its accepted names.");
+    mod.def(
         "p_adjust",
         [](py::handle p, const std::string &method) {
             if (p.is_none())
