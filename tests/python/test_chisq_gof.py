@@ -164,3 +164,13 @@ def test_min_expected_without_pooling_raises():
     a = mcstat.chisq_gof([10, 20, 30], [0.2, 0.3, 0.5], min_expected=1.0)
     b = mcstat.chisq_gof([10, 20, 30], [0.2, 0.3, 0.5], pool=False)
     assert a.statistic == pytest.approx(b.statistic)
+
+
+def test_expected_left_out_is_uniform_as_scipy():
+    x = np.array([16.0, 18.0, 16.0, 14.0, 12.0, 12.0])
+    want = stats.chisquare(x)
+    r = mcstat.chisq_gof(x, pool=False)
+    assert r.statistic == pytest.approx(want.statistic, rel=1e-13)
+    assert r.pvalue == pytest.approx(want.pvalue, rel=1e-12)
+    with pytest.raises(mcstat.InvalidArgumentError, match="expected_kind='counts' needs expected counts"):
+        mcstat.chisq_gof(x, expected_kind="counts")

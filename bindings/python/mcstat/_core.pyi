@@ -146,7 +146,7 @@ def ks_test(
 ) -> TestResult: ...
 def chisq_gof(
     observed: npt.ArrayLike,
-    expected: npt.ArrayLike,
+    expected: Optional[npt.ArrayLike] = None,
     *,
     expected_kind: Literal["auto", "probabilities", "counts"] = "auto",
     pool: bool = True,

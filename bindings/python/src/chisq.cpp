@@ -11,7 +11,7 @@ namespace mcs {
 
 namespace {
 
-const char *CHISQ_DOC = R"doc(chisq_gof(observed, expected, *, expected_kind="auto", pool=True, min_expected=None, n_estimated=0, rescale=False, alpha=0.05)
+const char *CHISQ_DOC = R"doc(chisq_gof(observed, expected=None, *, expected_kind="auto", pool=True, min_expected=None, n_estimated=0, rescale=False, alpha=0.05)
 
 Pearson's chi-squared goodness-of-fit test of cell counts.
 
@@ -19,8 +19,9 @@ Parameters
 ----------
 observed : array_like, shape (k,)
     Counts of the k cells (finite, >= 0; need not be integers).
-expected : array_like, shape (k,)
-    Cell probabilities (``expected_kind="probabilities"``, summing to 1,
+expected : array_like, shape (k,), optional
+    None (the default, as SciPy's ``chisquare(f_obs)`` and R's
+    ``chisq.test(x)``): equal probabilities.  Else cell probabilities (``expected_kind="probabilities"``, summing to 1,
     as R's ``chisq.test(x, p = p)``) or expected counts (``"counts"``,
     summing to ``observed.sum()``, as SciPy's ``chisquare(f_obs, f_exp)``),
     both to within sqrt(machine epsilon) relative, unless ``rescale=True``.
@@ -109,7 +110,21 @@ py::object chisq_gof(py::object observed, py::object expected, const std::string
         throw_invalid("min_expected applies to pooling, not pool=False (where every cell is tested as given)");
     double min_expected =
         min_expected_arg.is_none() ? MCSTAT_GOF_DEFAULT_MIN_EXPECTED : get_double(min_expected_arg.ptr(), "min_expected");
-    py::array o = as_contiguous_array(observed, "observed"), e = as_contiguous_array(expected, "expected");
+    py::array o = as_contiguous_array(observed, "observed");
+    if (expected.is_none()) {
+        if (o.ndim() != 1)
+            throw_invalid("observed must be a 1-D array");
+        py::ssize_t k = o.size();
+        py::array_t<double> uniform(k);
+        double *d = uniform.mutable_data();
+        for (py::ssize_t i = 0; i < k; i++)
+            d[i] = 1.0 / static_cast<double>(k);
+        expected = uniform;
+        if (kind == "counts")
+            throw_invalid("expected_kind='counts' needs expected counts; without expected the cells are "
+                          "equally likely");
+    }
+    py::array e = as_contiguous_array(expected, "expected");
     if (o.ndim() != 1 || e.ndim() != 1)
         throw_invalid("observed and expected must be 1-D arrays");
     if (o.size() != e.size())
@@ -158,7 +173,7 @@ py::object chisq_gof(py::object observed, py::object expected, const std::string
 
 void register_chisq(py::module_ &mod)
 {
-    mod.def("chisq_gof", &chisq_gof, py::arg("observed"), py::arg("expected"), py::kw_only(),
+    mod.def("chisq_gof", &chisq_gof, py::arg("observed"), py::arg("expected") = py::none(), py::kw_only(),
             py::arg("expected_kind") = "auto", py::arg("pool") = true,
             py::arg("min_expected") = py::none(), py::arg("n_estimated") = 0,
             py::arg("rescale") = false, py::arg("alpha") = 0.05, CHISQ_DOC);
