@@ -847,7 +847,12 @@ enum mcstat_p_adjust_method {
 };
 
 /* Parses R's names: "none", "bonferroni", "holm", "hochberg", "hommel", "BH"
- * (also "bh", "fdr"), "BY" (also "by").  MCSTAT_EINVAL for anything else. */
+ * (also "fdr"), "BY"; and statsmodels' multipletests names for the same
+ * methods: "b", "bonf"; "h" (Holm); "sh", "simes-hochberg"; "ho";
+ * "fdr_bh", "fdr_i", "fdr_p", "fdri", "fdrp"; "fdr_by", "fdr_n", "fdr_c",
+ * "fdrn", "fdrcorr".  Case is ignored (ASCII).  MCSTAT_EINVAL for anything
+ * else, statsmodels' methods this library lacks included ("sidak",
+ * "holm-sidak", "fdr_tsbh", "fdr_tsbky", "fdr_gbs", ...). */
 MCSTAT_API int mcstat_p_adjust_method_parse(const char *name, int *method);
 /* R's name of a method ("BH", "holm", ...), or NULL for an invalid value. */
 MCSTAT_API const char *mcstat_p_adjust_method_name(int method);
@@ -981,7 +986,11 @@ enum mcstat_power_unknown {
     MCSTAT_POWER_SOLVE_POWER = 0,
     MCSTAT_POWER_SOLVE_N = 1,
     MCSTAT_POWER_SOLVE_EFFECT = 2,
-    MCSTAT_POWER_SOLVE_ALPHA = 3
+    MCSTAT_POWER_SOLVE_ALPHA = 3,
+    /* n as a real number, the root of power(n) = target (R's power.t.test's
+     * n; SOLVE_N gives the smallest integer reaching the target, this
+     * rounded up when it is not one); out->power is left at the target */
+    MCSTAT_POWER_SOLVE_N_EXACT = 4
 };
 
 /* Grows by appending fields (section 1, compatibility): always start
@@ -1199,7 +1208,10 @@ MCSTAT_API int mcstat_diag_batch_size(double skewness, double kurtosis, uint64_t
 /* ------------------------------------------------------------------------ */
 enum mcstat_gof_expected {
     MCSTAT_GOF_PROBABILITIES = 0, /* expected[i] are cell probabilities */
-    MCSTAT_GOF_COUNTS = 1         /* expected[i] are expected counts */
+    MCSTAT_GOF_COUNTS = 1,        /* expected[i] are expected counts */
+    MCSTAT_GOF_AUTO = 2           /* probabilities if they sum to 1, else counts
+                                     (SciPy's chisquare takes counts, R's
+                                     chisq.test probabilities) */
 };
 
 #define MCSTAT_GOF_DEFAULT_MIN_EXPECTED 5.0

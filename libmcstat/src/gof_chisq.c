@@ -71,7 +71,8 @@ int mcstat_gof_chisq_test(const double *observed, const double *expected, size_t
         return MCSTAT_EINVAL;
     if (!out || (k > 0 && (!observed || !expected)) || !valid_alpha(alpha))
         return MCSTAT_EINVAL;
-    if ((o.expected != MCSTAT_GOF_PROBABILITIES && o.expected != MCSTAT_GOF_COUNTS) ||
+    if ((o.expected != MCSTAT_GOF_PROBABILITIES && o.expected != MCSTAT_GOF_COUNTS &&
+         o.expected != MCSTAT_GOF_AUTO) ||
         (o.pool != 0 && o.pool != 1) || (o.rescale != 0 && o.rescale != 1) || o.n_estimated < 0 ||
         !(o.min_expected >= 0.0) || !isfinite(o.min_expected) || o.reserved != 0)
         return MCSTAT_EINVAL;
@@ -96,7 +97,11 @@ int mcstat_gof_chisq_test(const double *observed, const double *expected, size_t
         return MCSTAT_ETOOFEW;
     if (!(esum > 0.0))
         return MCSTAT_EINVAL;
-    const double target = o.expected == MCSTAT_GOF_PROBABILITIES ? 1.0 : n;
+    /* AUTO: probabilities when they sum to 1, else counts (when N = 1 the
+     * two readings give the same expected counts) */
+    const int as_p = o.expected == MCSTAT_GOF_PROBABILITIES ||
+                     (o.expected == MCSTAT_GOF_AUTO && fabs(esum - 1.0) <= SUM_TOL);
+    const double target = as_p ? 1.0 : n;
     if (!o.rescale && fabs(esum - target) > SUM_TOL * target)
         return MCSTAT_EINVAL;
     /* expected count of cell i: expected[i] * scale */

@@ -197,20 +197,61 @@ static void hommel(pa_item *a, size_t n, double *c, double *d, size_t *h, size_t
     }
 }
 
+/* ASCII case-insensitive equality (strcasecmp is POSIX, not C11, and must
+ * not depend on the locale). */
+static int name_eq(const char *a, const char *b)
+{
+    for (;; a++, b++) {
+        int ca = (unsigned char)*a, cb = (unsigned char)*b;
+        if (ca >= 'A' && ca <= 'Z')
+            ca += 'a' - 'A';
+        if (cb >= 'A' && cb <= 'Z')
+            cb += 'a' - 'A';
+        if (ca != cb)
+            return 0;
+        if (!ca)
+            return 1;
+    }
+}
+
 int mcstat_p_adjust_method_parse(const char *name, int *method)
 {
+    /* R's p.adjust names, then statsmodels' multipletests names and their
+     * aliases for the same methods (statsmodels compares lower-cased names;
+     * so does this, which also takes R's "BH" and "BY" as "bh", "by").
+     * statsmodels' "h" is Holm, its "sh" ("simes-hochberg") Hochberg. */
     static const struct {
         const char *name;
         int method;
-    } names[] = {{"none", MCSTAT_P_ADJUST_NONE},     {"bonferroni", MCSTAT_P_ADJUST_BONFERRONI},
-                 {"holm", MCSTAT_P_ADJUST_HOLM},     {"hochberg", MCSTAT_P_ADJUST_HOCHBERG},
-                 {"hommel", MCSTAT_P_ADJUST_HOMMEL}, {"BH", MCSTAT_P_ADJUST_BH},
-                 {"bh", MCSTAT_P_ADJUST_BH},         {"fdr", MCSTAT_P_ADJUST_BH},
-                 {"BY", MCSTAT_P_ADJUST_BY},         {"by", MCSTAT_P_ADJUST_BY}};
+    } names[] = {{"none", MCSTAT_P_ADJUST_NONE},
+                 {"bonferroni", MCSTAT_P_ADJUST_BONFERRONI},
+                 {"holm", MCSTAT_P_ADJUST_HOLM},
+                 {"hochberg", MCSTAT_P_ADJUST_HOCHBERG},
+                 {"hommel", MCSTAT_P_ADJUST_HOMMEL},
+                 {"BH", MCSTAT_P_ADJUST_BH},
+                 {"fdr", MCSTAT_P_ADJUST_BH},
+                 {"BY", MCSTAT_P_ADJUST_BY},
+                 /* statsmodels */
+                 {"b", MCSTAT_P_ADJUST_BONFERRONI},
+                 {"bonf", MCSTAT_P_ADJUST_BONFERRONI},
+                 {"h", MCSTAT_P_ADJUST_HOLM},
+                 {"sh", MCSTAT_P_ADJUST_HOCHBERG},
+                 {"simes-hochberg", MCSTAT_P_ADJUST_HOCHBERG},
+                 {"ho", MCSTAT_P_ADJUST_HOMMEL},
+                 {"fdr_bh", MCSTAT_P_ADJUST_BH},
+                 {"fdr_i", MCSTAT_P_ADJUST_BH},
+                 {"fdr_p", MCSTAT_P_ADJUST_BH},
+                 {"fdri", MCSTAT_P_ADJUST_BH},
+                 {"fdrp", MCSTAT_P_ADJUST_BH},
+                 {"fdr_by", MCSTAT_P_ADJUST_BY},
+                 {"fdr_n", MCSTAT_P_ADJUST_BY},
+                 {"fdr_c", MCSTAT_P_ADJUST_BY},
+                 {"fdrn", MCSTAT_P_ADJUST_BY},
+                 {"fdrcorr", MCSTAT_P_ADJUST_BY}};
     if (!name || !method)
         return MCSTAT_EINVAL;
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
-        if (!strcmp(name, names[i].name)) {
+        if (name_eq(name, names[i].name)) {
             *method = names[i].method;
             return MCSTAT_OK;
         }

@@ -282,6 +282,45 @@ static int solve_n(const mcstat_power_options *o, double *n, double *achieved)
     return MCSTAT_OK;
 }
 
+/* The real n (ny = n_ratio n) at which the power equals the target, as R's
+ * power.t.test reports it: bisection on the continuous n.  The smallest n
+ * allowed (ny >= 2 too) when the power there already reaches the target. */
+static int solve_n_exact(const mcstat_power_options *o, double *n)
+{
+    double lo = 2.0, p;
+    int st;
+    if (two_sizes(o->test) && o->n_ratio < 1.0)
+        lo = 2.0 / o->n_ratio;
+    if ((st = power_at(o, lo, o->effect, o->alpha, &p)))
+        return st;
+    if (p >= o->power) {
+        *n = lo;
+        return MCSTAT_OK;
+    }
+    double hi = lo;
+    for (;;) {
+        lo = hi;
+        hi = 2.0 * hi;
+        if (hi > N_MAX)
+            return MCSTAT_EINVAL;
+        if ((st = power_at(o, hi, o->effect, o->alpha, &p)))
+            return st;
+        if (p >= o->power)
+            break;
+    }
+    for (int i = 0; i < 200 && hi - lo > 4.0 * DBL_EPSILON * hi; i++) {
+        double mid = 0.5 * (lo + hi);
+        if ((st = power_at(o, mid, o->effect, o->alpha, &p)))
+            return st;
+        if (p >= o->power)
+            hi = mid;
+        else
+            lo = mid;
+    }
+    *n = 0.5 * (lo + hi);
+    return MCSTAT_OK;
+}
+
 int mcstat_power_solve(const mcstat_power_options *opt, int unknown, mcstat_power_options *out)
 {
     MCSTAT_IEEE_SCOPE();
@@ -291,9 +330,10 @@ int mcstat_power_solve(const mcstat_power_options *opt, int unknown, mcstat_powe
         return st;
     if (!out)
         return MCSTAT_EINVAL;
-    int need_n = unknown != MCSTAT_POWER_SOLVE_N, need_e = unknown != MCSTAT_POWER_SOLVE_EFFECT;
+    int need_n = unknown != MCSTAT_POWER_SOLVE_N && unknown != MCSTAT_POWER_SOLVE_N_EXACT;
+    int need_e = unknown != MCSTAT_POWER_SOLVE_EFFECT;
     int need_a = unknown != MCSTAT_POWER_SOLVE_ALPHA, need_p = unknown != MCSTAT_POWER_SOLVE_POWER;
-    if (unknown < MCSTAT_POWER_SOLVE_POWER || unknown > MCSTAT_POWER_SOLVE_ALPHA)
+    if (unknown < MCSTAT_POWER_SOLVE_POWER || unknown > MCSTAT_POWER_SOLVE_N_EXACT)
         return MCSTAT_EINVAL;
     if ((need_n && !valid_n(o, o->n)) || (need_e && !valid_effect(o, o->effect)) ||
         (need_a && !valid_alpha(o->alpha)) || (need_p && !(o->power > 0.0 && o->power < 1.0)))
@@ -305,6 +345,9 @@ int mcstat_power_solve(const mcstat_power_options *opt, int unknown, mcstat_powe
         break;
     case MCSTAT_POWER_SOLVE_N:
         st = solve_n(o, &r.n, &r.power);
+        break;
+    case MCSTAT_POWER_SOLVE_N_EXACT:
+        st = solve_n_exact(o, &r.n);
         break;
     case MCSTAT_POWER_SOLVE_EFFECT:
         st = solve_effect(o, &r.effect);

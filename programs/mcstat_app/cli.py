@@ -133,7 +133,9 @@ def _add_image_test(sub) -> None:
                     help="test the luminance, or each channel (default: %(default)s)")
     it.add_argument("--alternative", choices=("two-sided", "less", "greater"), default="two-sided",
                     help="a claim about the candidate (default: %(default)s)")
-    it.add_argument("--seed-axis", type=int, default=0, help="the seeds axis of a .npy stack (default: 0)")
+    it.add_argument("--seed-axis", type=int, default=None,
+                    help="the seeds axis of a .npy stack, -1 for (H, W, seeds) (default: from the shapes; "
+                         "an ambiguous stack is refused)")
     it.add_argument("--nan", choices=("raise", "omit"), default="raise",
                     help="NaN values: an error, or left out of their pixel's sample (default: %(default)s)")
     it.add_argument("--worst", type=int, default=10, help="list this many smallest p-values (default: 10)")

@@ -7,7 +7,9 @@ module reads its inputs from files and writes its outputs.
 Inputs, per side (`load_side`):
 
 - one ``.npy`` array with a seeds axis: ``(seeds, H, W)`` or ``(seeds, H,
-  W, C)`` (``seed_axis`` says where the seeds are);
+  W, C)`` (``seed_axis`` says where the seeds are: ``-1`` for ``(H, W,
+  seeds)``; left out, the shapes must settle it, as ``mcstat.image.compare``
+  says, else the stack is refused as ambiguous);
 - several image files, one per seed: ``.exr`` (the ASWF ``OpenEXR``
   package), ``.pfm`` (read here: Pillow reads only grey PFM), ``.npy``
   holding one ``(H, W[, C])`` image;
@@ -41,6 +43,7 @@ from mcstat.image import (
     Side,
     Summary,
     _channel_names,
+    _seed_axis_of,
     summary_of_moments,
 )
 from mcstat.image import compare as _compare
@@ -115,10 +118,17 @@ def read_image(path: str) -> np.ndarray:
     return _as_hwc(readers[ext](path), path)
 
 
-def _read_stack_npy(path: str, seed_axis: int) -> Samples:
+def _load_stack_npy(path: str) -> np.ndarray:
     a = np.load(path, allow_pickle=False)
     if a.ndim not in (3, 4):
         raise ImageInputError(f"{path}: a stack must be (seeds, H, W) or (seeds, H, W, C), got shape {a.shape}")
+    return a
+
+
+def _read_stack_npy(path: str, seed_axis: Optional[int]) -> Samples:
+    a = _load_stack_npy(path)
+    if seed_axis is None:
+        seed_axis = _seed_axis_of(tuple(a.shape), f"the stack {path}")
     a = np.moveaxis(a, seed_axis, 0)
     if a.ndim == 3:
         a = a[..., None]
@@ -168,7 +178,7 @@ def _read_summary_npz(path: str) -> Summary:
 # Input kinds: a reader per kind, given the side's paths.  A new kind (e.g.
 # serialized per-pixel accumulators) is one function returning Samples or
 # Summary, and one entry here.
-_READERS: Dict[str, Callable[[Sequence[str], int], Side]] = {
+_READERS: Dict[str, Callable[[Sequence[str], Optional[int]], Side]] = {
     "stack": lambda paths, seed_axis: _read_stack_npy(paths[0], seed_axis),
     "summary": lambda paths, seed_axis: _read_summary_npz(paths[0]),
     "images": lambda paths, seed_axis: _stack_images(paths),
@@ -197,7 +207,7 @@ def _kind_of(paths: Sequence[str]) -> str:
     return "images"
 
 
-def load_side(paths: Union[str, Sequence[str]], *, seed_axis: int = 0) -> Side:
+def load_side(paths: Union[str, Sequence[str]], *, seed_axis: Optional[int] = None) -> Side:
     """Reads one side of a comparison (see the module's doc for the inputs)."""
     if isinstance(paths, (str, os.PathLike)):
         paths = [os.fspath(paths)]
@@ -205,7 +215,7 @@ def load_side(paths: Union[str, Sequence[str]], *, seed_axis: int = 0) -> Side:
     return _READERS[_kind_of(paths)](paths, seed_axis)
 
 
-def compare(reference, candidate, *, seed_axis: int = 0, **kw) -> ImageComparison:
+def compare(reference, candidate, *, seed_axis: Optional[int] = None, **kw) -> ImageComparison:
     """``mcstat.image.compare`` whose sides may also be file paths (`load_side`)."""
     t0 = time.perf_counter()
     ref, cand = _load(reference, seed_axis), _load(candidate, seed_axis)
@@ -215,10 +225,15 @@ def compare(reference, candidate, *, seed_axis: int = 0, **kw) -> ImageCompariso
     return res
 
 
-def _load(x, seed_axis: int):
+def _load(x, seed_axis: Optional[int]):
     if isinstance(x, (str, os.PathLike)) or (isinstance(x, (list, tuple)) and
                                              all(isinstance(p, (str, os.PathLike)) for p in x)):
-        return load_side(x, seed_axis=seed_axis)
+        paths = [os.fspath(x)] if isinstance(x, (str, os.PathLike)) else [os.fspath(p) for p in x]
+        if seed_axis is None and _kind_of(paths) == "stack":
+            # the array as it is: the comparison settles its seeds axis
+            # with the other side's shape in view
+            return _load_stack_npy(paths[0])
+        return load_side(paths, seed_axis=seed_axis)
     return x
 
 

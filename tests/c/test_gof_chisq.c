@@ -116,6 +116,22 @@ static void test_bad_input(void)
     o = (mcstat_gof_options)MCSTAT_GOF_OPTIONS_INIT;
     o.min_expected = -1;
     CHECK_INT(mcstat_gof_chisq_test(x, p, 3, &o, 0.05, &r), MCSTAT_EINVAL);
+    /* AUTO: probabilities summing to 1 and counts summing to N give the same
+     * test; a sum that is neither is refused */
+    {
+        const double xa[] = {10, 20, 30}, pa[] = {0.2, 0.3, 0.5}, ca[] = {12, 18, 30}, bad[] = {1, 2, 3};
+        mcstat_result rp, rc;
+        o = (mcstat_gof_options)MCSTAT_GOF_OPTIONS_INIT;
+        o.expected = MCSTAT_GOF_AUTO;
+        CHECK_INT(mcstat_gof_chisq_test(xa, pa, 3, &o, 0.05, &rp), MCSTAT_OK);
+        CHECK_INT(mcstat_gof_chisq_test(xa, ca, 3, &o, 0.05, &rc), MCSTAT_OK);
+        CHECK(fabs(rp.statistic - rc.statistic) < 1e-12 && fabs(rp.statistic - (4.0 / 12 + 4.0 / 18)) < 1e-12);
+        CHECK_INT(mcstat_gof_chisq_test(xa, bad, 3, &o, 0.05, &rc), MCSTAT_EINVAL);
+        o.expected = MCSTAT_GOF_PROBABILITIES;
+        CHECK_INT(mcstat_gof_chisq_test(xa, ca, 3, &o, 0.05, &rc), MCSTAT_EINVAL);
+        o.expected = MCSTAT_GOF_COUNTS;
+        CHECK_INT(mcstat_gof_chisq_test(xa, pa, 3, &o, 0.05, &rc), MCSTAT_EINVAL);
+    }
     o = (mcstat_gof_options)MCSTAT_GOF_OPTIONS_INIT;
     o.expected = 7;
     CHECK_INT(mcstat_gof_chisq_test(x, p, 3, &o, 0.05, &r), MCSTAT_EINVAL);

@@ -202,6 +202,30 @@ static void run_bad_input(void)
     CHECK_INT(mcstat_p_adjust_method_parse(NULL, &m), MCSTAT_EINVAL);
     CHECK_INT(mcstat_p_adjust_method_parse("fdr", &m), MCSTAT_OK);
     CHECK_INT(m, MCSTAT_P_ADJUST_BH);
+    /* statsmodels' multipletests names, and case ignored */
+    static const struct {
+        const char *name;
+        int method;
+    } alias[] = {{"fdr_bh", MCSTAT_P_ADJUST_BH},          {"FDR_BH", MCSTAT_P_ADJUST_BH},
+                 {"fdr_i", MCSTAT_P_ADJUST_BH},           {"fdrp", MCSTAT_P_ADJUST_BH},
+                 {"fdr_by", MCSTAT_P_ADJUST_BY},          {"fdrcorr", MCSTAT_P_ADJUST_BY},
+                 {"fdr_n", MCSTAT_P_ADJUST_BY},           {"b", MCSTAT_P_ADJUST_BONFERRONI},
+                 {"bonf", MCSTAT_P_ADJUST_BONFERRONI},    {"Bonferroni", MCSTAT_P_ADJUST_BONFERRONI},
+                 {"h", MCSTAT_P_ADJUST_HOLM},             {"Holm", MCSTAT_P_ADJUST_HOLM},
+                 {"sh", MCSTAT_P_ADJUST_HOCHBERG},        {"simes-hochberg", MCSTAT_P_ADJUST_HOCHBERG},
+                 {"ho", MCSTAT_P_ADJUST_HOMMEL},          {"bh", MCSTAT_P_ADJUST_BH},
+                 {"by", MCSTAT_P_ADJUST_BY},              {"None", MCSTAT_P_ADJUST_NONE}};
+    for (size_t i = 0; i < sizeof alias / sizeof alias[0]; i++) {
+        m = -1;
+        CHECK_INT(mcstat_p_adjust_method_parse(alias[i].name, &m), MCSTAT_OK);
+        CHECK_MSG(m == alias[i].method, "%s parsed as %d", alias[i].name, m);
+    }
+    /* statsmodels' methods this library does not implement, and near misses */
+    static const char *const refused[] = {"sidak", "s", "holm-sidak", "hs", "fdr_tsbh", "fdr_2sbh",
+                                          "fdr_tsbky", "fdr_twostage", "fdr_gbs", "", "fdr_", "holmx",
+                                          "bonferron"};
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++)
+        CHECK_MSG(mcstat_p_adjust_method_parse(refused[i], &m) == MCSTAT_EINVAL, "%s accepted", refused[i]);
     CHECK(mcstat_p_adjust_method_name(99) == NULL);
     CHECK(!strcmp(mcstat_p_adjust_method_name(MCSTAT_P_ADJUST_BY), "BY"));
     CHECK_INT(mcstat_p_adjust_work_size(4, 99, &bytes), MCSTAT_EINVAL);

@@ -63,6 +63,12 @@ static void check_row(char **f, int nf, void *ctx)
             CHECK_MSG(r.n == want, "%s %s d %s power %s: n %g, R %g", f[1], f[2], f[7], f[9], r.n, want);
         }
         CHECK(r.power >= o.power);
+        mcstat_power_options ex;
+        CHECK_INT(mcstat_power_solve(&o, MCSTAT_POWER_SOLVE_N_EXACT, &ex), MCSTAT_OK);
+        CHECK_MSG(ex.n <= r.n && ex.n > r.n - 1.0, "n exact %.10g, integer %g", ex.n, r.n);
+        if (is_t) /* R's uniroot stops at a tolerance of eps^(1/4) */
+            CHECK_MSG(fabs(ex.n - want) <= 1e-3 * want, "%s %s strict %s d %s power %s: n %.10g, R %.10g",
+                      f[1], f[2], f[3], f[7], f[9], ex.n, want);
         mcstat_power_options prev = r;
         prev.n = r.n - 1.0;
         double pp;
@@ -244,6 +250,15 @@ static void test_statuses(void)
     b = o; b.power = 0.9; b.n = NAN; /* the unknown's field is ignored */
     CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_N, &r), MCSTAT_OK);
     CHECK(r.n == 44.0); /* power.t.test(delta = .5, power = .9, type = "one.sample") n = 43.99 */
+    {
+        mcstat_power_options ex;
+        double pe;
+        CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_N_EXACT, &ex), MCSTAT_OK);
+        CHECK(ex.n > 43.9 && ex.n < 44.0);
+        CHECK_INT(mcstat_power_compute(&ex, &pe), MCSTAT_OK);
+        CHECK(fabs(pe - 0.9) < 1e-12);
+        CHECK_INT(mcstat_power_solve(&b, MCSTAT_POWER_SOLVE_N_EXACT + 1, &ex), MCSTAT_EINVAL);
+    }
     /* format */
     char buf[1024];
     size_t len;

@@ -69,8 +69,8 @@ def test_compare_reading_files_is_deprecated_and_unchanged(tmp_path, rng):
     import pytest
     from mcstat_app import image as app_image
 
-    ref = rng.normal(size=(4, 3, 5))
-    cand = rng.normal(size=(4, 3, 5)) + 0.5
+    ref = rng.normal(size=(4, 6, 5))  # (seeds, H, W): clear from the shape
+    cand = rng.normal(size=(4, 6, 5)) + 0.5
     np_save = __import__("numpy").save
     np_save(tmp_path / "r.npy", ref)
     np_save(tmp_path / "c.npy", cand)

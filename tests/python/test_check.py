@@ -139,6 +139,13 @@ def test_routes_and_energy_selection():
         check(Lobe(20, WI), n=5000, routes=[])
     r = check(Lobe(20, WI), n=5000, energy=False)
     assert r.route("energy").state == "skipped"
+    # a route asked for by its flag but left out of routes is refused, not silently skipped
+    with pytest.raises(mcstat.InvalidArgumentError, match=r"^reciprocal=True asks for the 'reciprocity' route"):
+        check(Lobe(20, WI), n=5000, routes=["cells"], reciprocal=True)
+    with pytest.raises(mcstat.InvalidArgumentError, match=r"^energy=True asks for the 'energy' route"):
+        check(Lobe(20, WI), n=5000, routes=["cells"], energy=True)
+    r = check(Lobe(20, WI), n=5000, routes=["cells", "energy"], energy=True)
+    assert r.route("energy").state == "ran"
 
 
 def test_reciprocity():

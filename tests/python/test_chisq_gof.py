@@ -16,8 +16,9 @@ with open(os.path.join(HERE, "..", "data", "chisq_ref.json")) as f:
 
 @pytest.mark.parametrize("case", CASES, ids=[c["name"] for c in CASES])
 def test_against_r(case):
+    pooling = dict(min_expected=case["min_expected"]) if case["pool"] else {}
     r = mcstat.chisq_gof(case["x"], case["p"], expected_kind="counts" if case["counts"] else "probabilities",
-                         pool=bool(case["pool"]), min_expected=case["min_expected"], n_estimated=case["n_estimated"])
+                         pool=bool(case["pool"]), n_estimated=case["n_estimated"], **pooling)
     assert rel_err(r.statistic, case["statistic"]) < 1e-12
     assert r.df == case["df"]
     assert r.cells == case["cells"]
@@ -124,3 +125,52 @@ def test_rescale_and_counts():
     r3 = mcstat.chisq_gof(x, [12.0, 18.0, 30.0], expected_kind="counts", pool=False)
     assert r1.statistic == pytest.approx(r2.statistic, rel=1e-14)
     assert r3.statistic == pytest.approx(r2.statistic, rel=1e-14)
+
+
+def test_scipy_expected_counts():
+    # SciPy's chisquare(f_obs, f_exp) takes expected counts summing to the
+    # observed total; R's chisq.test(x, p=) probabilities.  Both are accepted.
+    from scipy import stats
+
+    x = np.array([18.0, 22.0, 35.0, 25.0])
+    f_exp = np.array([25.0, 25.0, 25.0, 25.0])
+    want = stats.chisquare(x, f_exp)
+    r = mcstat.chisq_gof(x, f_exp, pool=False)
+    assert r.statistic == pytest.approx(want.statistic, rel=1e-13)
+    assert r.pvalue == pytest.approx(want.pvalue, rel=1e-12)
+    rp = mcstat.chisq_gof(x, f_exp / 100.0, pool=False)
+    assert rp.statistic == pytest.approx(r.statistic, rel=1e-14)
+    # explicit kinds stay strict
+    with pytest.raises(mcstat.InvalidArgumentError, match="expected_kind='counts'"):
+        mcstat.chisq_gof(x, f_exp, expected_kind="probabilities")
+
+
+def test_mismatched_sums_say_what_is_wrong():
+    with pytest.raises(mcstat.InvalidArgumentError,
+                       match=r"^expected sums to 6\.0 and observed to 60\.0: .*rescale=True") as e:
+        mcstat.chisq_gof([10, 20, 30], [1, 2, 3])
+    assert "NULL" not in str(e.value)
+    with pytest.raises(mcstat.InvalidArgumentError, match=r"observed counts must be >= 0, got -1\.0 at index 1"):
+        mcstat.chisq_gof([10, -1, 30], [0.2, 0.3, 0.5])
+    with pytest.raises(mcstat.InvalidArgumentError, match=r"expected is 0 at index 1: without pooling"):
+        mcstat.chisq_gof([10, 1, 30], [0.5, 0.0, 0.5], pool=False)
+    r = mcstat.chisq_gof([10, 20, 30], [1, 2, 3], rescale=True)
+    assert r.statistic == pytest.approx(0.0, abs=1e-12)
+
+
+def test_min_expected_without_pooling_raises():
+    with pytest.raises(mcstat.InvalidArgumentError, match="^min_expected applies to pooling"):
+        mcstat.chisq_gof([10, 20, 30], [0.2, 0.3, 0.5], pool=False, min_expected=1.0)
+    a = mcstat.chisq_gof([10, 20, 30], [0.2, 0.3, 0.5], min_expected=1.0)
+    b = mcstat.chisq_gof([10, 20, 30], [0.2, 0.3, 0.5], pool=False)
+    assert a.statistic == pytest.approx(b.statistic)
+
+
+def test_expected_left_out_is_uniform_as_scipy():
+    x = np.array([16.0, 18.0, 16.0, 14.0, 12.0, 12.0])
+    want = stats.chisquare(x)
+    r = mcstat.chisq_gof(x, pool=False)
+    assert r.statistic == pytest.approx(want.statistic, rel=1e-13)
+    assert r.pvalue == pytest.approx(want.pvalue, rel=1e-12)
+    with pytest.raises(mcstat.InvalidArgumentError, match="expected_kind='counts' needs expected counts"):
+        mcstat.chisq_gof(x, expected_kind="counts")

@@ -207,3 +207,12 @@ def test_recommended_k_lognormal():
     assert abs(less - 0.025) <= 0.005 + 4 * se and abs(greater - 0.025) <= 0.005 + 4 * se
     less1, _ = rates(1)
     assert less1 > 0.025 + 0.02
+
+
+def test_too_few_values_message_says_what_is_needed():
+    x = np.random.default_rng(1).normal(size=20)
+    with pytest.raises(mcstat.TooFewObservationsError, match=r"2 tail_k \+ 2 values of x .*x has 20 values") as e:
+        mcstat.diagnose(x)
+    assert "K-S" not in str(e.value)
+    with pytest.raises(mcstat.InvalidArgumentError, match=r"k \(the batch size\) must be at most the 40 values"):
+        mcstat.diagnose(np.random.default_rng(1).normal(size=40), k=41, normality=False)

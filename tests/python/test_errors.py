@@ -98,3 +98,35 @@ def test_exception_hierarchy_and_text():
     except mcstat.NonFiniteError as e:
         assert str(e) == "the data contain NaN or infinite values"  # mcstat_strerror's sentence
         assert e.status == 3 and e.rows is None
+
+
+# ---- messages in Python's words -------------------------------------------------
+
+C_WORDING = ("NULL pointer", "unknown option", "parameter outside its domain")
+
+
+@pytest.mark.parametrize("call, want", [
+    (lambda: mcstat.t_test([1.0, 2.0, 3.0], alpha=5), r"^alpha must be in \(0, 1\), got 5"),
+    (lambda: mcstat.var_test([1.0, 2.0, 3.0], sigma2=-1), r"^sigma2 must be positive"),
+    (lambda: mcstat.t_test([1.0, 2.0, 3.0], alternative="foo"), r"^alternative must be"),
+    (lambda: mcstat.p_adjust([0.1], method="nope"), r"^method must be one of"),
+    (lambda: mcstat.binom_test(3, 2), r"^x \(successes\) must be at most n \(trials\), got x=3, n=2$"),
+])
+def test_invalid_argument_messages_name_the_argument(call, want):
+    with pytest.raises(mcstat.InvalidArgumentError, match=want) as e:
+        call()
+    assert not any(w in str(e.value) for w in C_WORDING), str(e.value)
+
+
+def test_binom_test_zero_trials_speaks_of_trials():
+    with pytest.raises(mcstat.TooFewObservationsError) as e:
+        mcstat.binom_test(0, 0)
+    msg = str(e.value)
+    assert "n >= 1 trials" in msg and "K-S" not in msg and "chi-squared" not in msg, msg
+
+
+def test_row_errors_do_not_speak_of_other_tests():
+    x = np.ones((3, 1))  # one value per row: too few for the t test
+    with pytest.raises(mcstat.TooFewObservationsError) as e:
+        mcstat.t_test(x, mu=0.0)
+    assert "K-S" not in str(e.value) and "3 of 3 rows failed" in str(e.value)

@@ -333,6 +333,10 @@ def test_bad_inputs():
     for f, exc, msg in cases:
         with pytest.raises(exc, match=msg):
             f()
+    # a message naming the argument comes alone, without the C sentence
+    with pytest.raises(E, match=r"^method must be 'U', 'C', 'A' or 'S'") as e:
+        est.irradiance("X", 10, **sc)
+    assert "NULL pointer" not in str(e.value)
     # a trial cap that the sampler must hit (acceptance ~0.9, 2000 directions)
     with pytest.raises(est.TrialLimitError, match="max_trials=1"):
         est.ward(0.0, 0.6, 0.15, 0.05).plan(WO).sample_exact(2000, max_trials=1)

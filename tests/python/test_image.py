@@ -292,3 +292,71 @@ def test_bad_inputs(tmp_path, rng):
     (tmp_path / "t.pfm").write_bytes(b"PF\n4 4\n-1.0\n" + b"\0" * 20)
     with pytest.raises(mi.ImageInputError, match="PFM data"):
         app_image.read_image(str(tmp_path / "t.pfm"))
+
+
+# ---- the seeds axis ----------------------------------------------------------------
+
+def _hw_seeds(rng, k=16, n=32):
+    """Reference and candidate as (H, W, seeds) arrays (grey), the candidate
+    brighter in a box, and the seeds-first originals."""
+    ref, cand, mask = planted(rng, k=k, h=n, w=n, c=1, bias=3.0)
+    ref, cand = ref[..., 0], cand[..., 0]
+    return np.moveaxis(ref, 0, -1), np.moveaxis(cand, 0, -1), ref, cand, mask
+
+
+def test_seeds_last_stack_is_refused_not_misread(rng):
+    ref_l, cand_l, ref, cand, mask = _hw_seeds(rng)
+    assert ref_l.shape == (32, 32, 16)
+    want = mi.compare(ref, cand)  # seeds first: clear from the shape
+    assert want.summary()["rejections_adjusted"] > 0.8 * mask.sum()
+    # (32, 32, 16) reads as 32 seeds of 32 x 16 too: refused, saying how to say which
+    with pytest.raises(ValueError, match=r"seed_axis=-1 if it is \(H, W, seeds\)"):
+        mi.compare(ref_l, cand_l)
+    got = mi.compare(ref_l, cand_l, seed_axis=-1)
+    np.testing.assert_array_equal(got.pvalue, want.pvalue)
+    assert got.summary()["rejections_adjusted"] == want.summary()["rejections_adjusted"]
+    np.testing.assert_array_equal(mi.compare(ref_l, cand_l, seed_axis=2).pvalue, want.pvalue)
+
+
+def test_seeds_axis_from_the_two_shapes(rng):
+    ref_l, cand_l, ref, cand, _ = _hw_seeds(rng)
+    # different numbers of seeds on the last axis: that axis
+    got = mi.compare(ref_l, cand_l[..., :12])
+    np.testing.assert_array_equal(got.pvalue, mi.compare(ref, cand[:12]).pvalue)
+    # a stack against Samples of the other side: the axis whose removal leaves its image
+    s = mi.Samples(ref[..., None], ["Y"])
+    got = mi.compare(s, cand_l)
+    np.testing.assert_array_equal(got.pvalue, mi.compare(s, cand).pvalue)
+    # clear layouts keep the documented default (seeds first)
+    assert mi._infer_seed_axis(np.zeros((16, 480, 640)), np.zeros((16, 480, 640))) == 0
+    assert mi._infer_seed_axis(np.zeros((1000, 32, 32)), np.zeros((1000, 32, 32))) == 0
+    assert mi._infer_seed_axis(np.zeros((8, 48, 64, 3)), np.zeros((8, 48, 64, 3))) == 0
+    for shape in [(32, 32, 16), (16, 16, 64), (8, 16, 8), (8, 8, 8), (48, 64, 3, 8), (48, 64, 8, 3)]:
+        with pytest.raises(mi.ImageInputError, match="cannot tell which axis"):
+            mi._infer_seed_axis(np.zeros(shape), np.zeros(shape))
+    with pytest.raises(mi.ImageInputError, match="out of range"):
+        mi.compare(ref_l, cand_l, seed_axis=3)
+
+
+def test_cli_seed_axis(rng, tmp_path):
+    ref_l, cand_l, ref, cand, mask = _hw_seeds(rng)
+    np.save(tmp_path / "r.npy", ref_l)
+    np.save(tmp_path / "c.npy", cand_l)
+    code, _, err = run_cli("image-test", "-r", tmp_path / "r.npy", "-c", tmp_path / "c.npy", "--quiet")
+    assert code != 0 and "seed_axis" in err
+    js = tmp_path / "s.json"
+    code, _, err = run_cli("image-test", "-r", tmp_path / "r.npy", "-c", tmp_path / "c.npy", "--seed-axis", "-1",
+                           "--json", js, "--quiet")
+    assert code == 0, err
+    assert json.loads(js.read_text())["rejections_adjusted"] == mi.compare(ref, cand).summary()["rejections_adjusted"]
+    # load_side alone: the shape must settle it
+    with pytest.raises(mi.ImageInputError, match="cannot tell"):
+        app_image.load_side(str(tmp_path / "r.npy"))
+    assert app_image.load_side(str(tmp_path / "r.npy"), seed_axis=-1).data.shape == (16, 32, 32, 1)
+
+
+def test_statsmodels_method_names_in_the_summary(rng):
+    ref, cand, _ = planted(rng, k=5, h=8, w=8, c=1)
+    res = mi.compare(ref, cand, method="fdr_bh")
+    assert res.method == "BH" and res.summary()["controls"] == "false discovery rate"
+    np.testing.assert_array_equal(res.padjusted, mi.compare(ref, cand, method="BH").padjusted)

@@ -137,3 +137,27 @@ def test_bad_method_and_type():
         mcstat.p_adjust(None)
     with pytest.raises((TypeError, ValueError)):
         mcstat.p_adjust(["a", "b"])
+
+
+# statsmodels' multipletests spellings of the methods mcstat implements
+# (its own alias table, case-insensitive as statsmodels compares them).
+SM_ALIASES = ["b", "bonf", "bonferroni", "h", "holm", "sh", "simes-hochberg", "ho", "hommel",
+              "fdr_bh", "fdr_i", "fdr_p", "fdri", "fdrp", "fdr_by", "fdr_n", "fdr_c", "fdrn", "fdrcorr",
+              "FDR_BH", "Holm", "Bonferroni"]
+
+
+@pytest.mark.parametrize("name", SM_ALIASES)
+def test_statsmodels_method_names(name):
+    rng = np.random.default_rng(zlib.crc32(name.encode()))
+    p = rng.uniform(size=200) ** 3
+    want = multipletests(p, method=name.lower())[1]
+    np.testing.assert_allclose(mcstat.p_adjust(p, method=name), want, rtol=1e-12, atol=1e-15)
+
+
+@pytest.mark.parametrize("name", ["sidak", "s", "holm-sidak", "hs", "fdr_tsbh", "fdr_tsbky", "fdr_gbs"])
+def test_statsmodels_methods_not_implemented(name):
+    # a ValueError that lists what is accepted and says this one is missing
+    with pytest.raises(ValueError, match=r"'fdr_bh'.*'BH'|'BH'.*'fdr_bh'") as e:
+        mcstat.p_adjust([0.1, 0.2], method=name)
+    assert "does not implement" in str(e.value)
+    assert repr(name) in str(e.value)

@@ -34,15 +34,21 @@ def test_against_r():
     counts = dict.fromkeys(["power", "n", "effect", "alpha"], 0)
     for solve, test, alt, strict, n, n_ratio, sd_ratio, effect, alpha, pw in ROWS:
         counts[solve] += 1
-        kw = dict(n=n, effect=effect, alpha=alpha, power=pw, alternative=alt, strict=strict, n_ratio=n_ratio)
+        kw = dict(n=n, effect=effect, alpha=alpha, power=pw, alternative=alt)
+        if alt == "two-sided":
+            kw["strict"] = strict
+        if test in ("welch", "f"):
+            kw["n_ratio"] = n_ratio
         kw[solve] = None
         r = mcstat.power(test, **kw)
         assert r.solved_for == solve
         if solve == "power":
             assert abs(r.power - pw) <= 1e-10 + 1e-9 * pw, (test, alt, n, effect, alpha)
         elif solve == "n":
+            assert type(r.n) is int and r.n - 1 < r.n_exact <= r.n
             if test in ("t", "t2"):  # R's n is continuous: ours is the next integer
                 assert r.n == math.ceil(n - 1e-7) or (abs(n - round(n)) < 1e-6 and r.n == round(n) + 1)
+                assert abs(r.n_exact - n) <= 1e-3 * n  # R's uniroot tolerance is eps^(1/4)
             else:
                 assert r.n == n
             assert r.power >= pw
@@ -69,7 +75,8 @@ def test_statsmodels():
                 p = mcstat.power("t2", n=n, effect=dd, alternative=a).power
                 assert abs(p - ind.power(dd, n, 0.05, ratio=1, alternative=alt[a])) < 1e-9
         n_sm = one.solve_power(0.3, power=0.8, alpha=0.05, alternative=alt["greater"])
-        assert mcstat.power("t", effect=0.3, power=0.8, alternative="greater").n == math.ceil(n_sm)
+        r = mcstat.power("t", effect=0.3, power=0.8, alternative="greater")
+        assert r.n == math.ceil(n_sm) and abs(r.n_exact - n_sm) < 1e-6 * n_sm
 
 
 def test_variance_tests_closed_form():
@@ -179,3 +186,29 @@ def test_ks_power():
         mcstat.ks_power(0)
     with pytest.raises(mcstat.InvalidArgumentError):
         mcstat.ks_power(10, scale=-1)
+
+
+def test_solved_n_is_an_int_with_the_exact_root_beside_it():
+    r = mcstat.power("t", effect=0.5, power=0.8)
+    assert type(r.n) is int and r.n == 34
+    assert 33.3 < r.n_exact < 33.4  # R: power.t.test(delta=.5, power=.8, type="one.sample")$n = 33.367
+    assert mcstat.power("t", n=r.n_exact, effect=0.5).power == pytest.approx(0.8, abs=1e-9)
+    given = mcstat.power("t", n=20, effect=0.5)
+    assert given.n == given.n_exact == 20
+
+
+@pytest.mark.parametrize("test, kw, name", [
+    ("t2", dict(n_ratio=1.5), "n_ratio"),
+    ("t", dict(n_ratio=2), "n_ratio"),
+    ("var", dict(n_ratio=2), "n_ratio"),
+    ("t2", dict(sd_ratio=2), "sd_ratio"),
+    ("f", dict(sd_ratio=2), "sd_ratio"),
+    ("t", dict(alternative="greater", strict=False), "strict"),
+])
+def test_arguments_that_do_not_apply_raise(test, kw, name):
+    base = dict(effect=0.5 if test.startswith("t") else 2.0, power=0.8)
+    with pytest.raises(mcstat.InvalidArgumentError, match=rf"^{name} applies to"):
+        mcstat.power(test, **base, **kw)
+    # the defaults, passed explicitly where they apply, change nothing
+    mcstat.power("welch", n_ratio=1.0, sd_ratio=1.0, **base)
+    mcstat.power("t", strict=True, **base)

@@ -54,8 +54,10 @@ def test_fields_shapes(rng):
     assert f.df.shape == (3, 4, 2) and f.estimate.shape == (3, 4)
     assert (f.df[..., 0] == 9).all() and (f.df[..., 1] == 7).all()
     assert b[1, 2]._raw() == mcstat.t_test(X[1, 2], Y[1, 2])._raw()
+    # one index of a 2-D batch: the sub-batch of that row of tests (as NumPy)
+    assert b[1].shape == (4,) and b[1][2]._raw() == b[1, 2]._raw()
     with pytest.raises(IndexError):
-        b[1]
+        b[1, 2, 0]
     assert "Welch Two Sample t-test" in str(b) and "failed" in repr(b)
 
 
@@ -136,3 +138,37 @@ def test_intervals_false_rows(rng):
     a, b = mcstat.t_test(X), mcstat.t_test(X, intervals=False)
     np.testing.assert_array_equal(a.pvalue, b.pvalue)
     assert np.isnan(b.conf_int).all() and np.isnan(b.critical_values).all()
+
+
+def test_batch_iterates_like_an_array():
+    rng = np.random.default_rng(11)
+    x = rng.standard_normal((4, 3, 12)) + 0.2
+    b = mcstat.t_test(x, mu=0.0)
+    assert b.shape == (4, 3) and len(b) == 4
+    subs = list(b)
+    assert len(subs) == len(b) == 4
+    for i, sub in enumerate(subs):
+        assert sub.shape == (3,) and len(list(sub)) == 3
+        np.testing.assert_array_equal(sub.pvalue, b.pvalue[i])
+        for j, r in enumerate(sub):
+            want = mcstat.t_test(x[i, j], mu=0.0)
+            assert r.pvalue == want.pvalue == b[i, j].pvalue
+            assert r.conf_int == b[i, j].conf_int
+    flat = list(b.ravel())
+    assert len(flat) == 12 and b.ravel().shape == (12,)
+    assert [r.statistic for r in flat] == list(b.statistic.ravel())
+    assert b[-1].shape == (3,) and b[-1, -1].pvalue == b.pvalue[3, 2]
+    # 1-D: TestResults, as before
+    one = mcstat.t_test(x.reshape(12, 12), mu=0.0)
+    assert [r.pvalue for r in one] == list(one.pvalue)
+    with pytest.raises(IndexError):
+        b[4]
+    with pytest.raises(IndexError):
+        b[0, 3]
+    with pytest.raises(IndexError):
+        b[0, 0, 0]
+    # pairs (conf_int, two-sample estimate) keep their trailing axis
+    y = rng.standard_normal((4, 3, 9))
+    w = mcstat.t_test(x, y)
+    assert w[1].conf_int.shape == (3, 2) and w.ravel().estimate.shape == (12, 2)
+    assert w[1][2].estimate == w[1, 2].estimate

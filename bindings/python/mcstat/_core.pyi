@@ -154,11 +154,11 @@ def ks_test(
 ) -> TestResult: ...
 def chisq_gof(
     observed: npt.ArrayLike,
-    expected: npt.ArrayLike,
+    expected: Optional[npt.ArrayLike] = None,
     *,
-    expected_kind: Literal["probabilities", "counts"] = "probabilities",
+    expected_kind: Literal["auto", "probabilities", "counts"] = "auto",
     pool: bool = True,
-    min_expected: float = 5.0,
+    min_expected: Optional[float] = None,
     n_estimated: int = 0,
     rescale: bool = False,
     alpha: float = 0.05,
@@ -174,6 +174,8 @@ def p_adjust(
 def set_num_threads(n: int) -> None: ...
 def get_num_threads() -> int: ...
 def strerror(status: int) -> str: ...
+def _status_text(status: int) -> str: ...
+def _p_adjust_method_name(method: str) -> str: ...
 def _t_test_2_summary_rows(
     nx: npt.ArrayLike, mean_x: npt.ArrayLike, m2_x: npt.ArrayLike, ny: npt.ArrayLike, mean_y: npt.ArrayLike,
     m2_y: npt.ArrayLike, alternative: int, alpha: float,

@@ -2,8 +2,10 @@
 """Exceptions of mcstat: one per libmcstat status code.
 
 Every one is a :class:`ValueError` (bad data and bad arguments are value
-problems), carries the C library's sentence for its status in its message,
-and has the C status code as ``status``.  Errors of row-wise tests also
+problems) and has the C status code as ``status``.  The message says what
+was wrong in Python's terms, naming the argument (``"alpha must be in (0,
+1), got 5"``); for bad data it starts with the C library's sentence for the
+status (``"the data contain NaN or infinite values"``).  Errors of row-wise tests also
 carry ``rows``: the indices (into the output's shape) of the rows that
 failed.  Arguments of the wrong type (``None`` for ``x``, a number for
 ``alternative``) raise :class:`TypeError`, as elsewhere in Python.

@@ -168,6 +168,7 @@ _TESTS = {"t": 1, "one.sample": 1, "one-sample": 1, "t2": 2, "two.sample": 2, "t
           "welch": 3, "var": 4, "chisq": 4, "f": 5}
 _TEST_NAMES = {1: "t", 2: "t2", 3: "welch", 4: "var", 5: "f"}
 _UNKNOWN = {"power": 0, "n": 1, "effect": 2, "alpha": 3}
+_N_EXACT = 4  # MCSTAT_POWER_SOLVE_N_EXACT: the real root
 
 
 class PowerResult:
@@ -177,9 +178,15 @@ class PowerResult:
     ----------
     test : str
         ``"t"``, ``"t2"``, ``"welch"``, ``"var"`` or ``"f"``.
-    n : float
-        Sample size (per group for ``"t2"``, of x for ``"welch"``/``"f"``);
-        an integer (the smallest reaching `power`) when solved for.
+    n : int or float
+        Sample size (per group for ``"t2"``, of x for ``"welch"``/``"f"``).
+        When solved for, an ``int``: the smallest n whose power reaches
+        `power` (R users take ``ceiling()`` of power.t.test's n); otherwise
+        the n given.
+    n_exact : float
+        The real n at which the power equals the target exactly (R's
+        ``power.t.test(...)$n``, statsmodels' ``solve_power``), when n was
+        solved for; else the n given.
     n_y : float or None
         ``n_ratio * n`` for ``"welch"`` and ``"f"``.
     effect : float
@@ -193,7 +200,7 @@ class PowerResult:
         ``"n"``, ``"effect"``, ``"alpha"`` or ``"power"``.
     """
 
-    __slots__ = ("test", "n", "n_y", "effect", "alpha", "power", "alternative", "strict",
+    __slots__ = ("test", "n", "n_exact", "n_y", "effect", "alpha", "power", "alternative", "strict",
                  "solved_for", "sd_ratio", "_text")
 
     def __str__(self) -> str:
@@ -207,15 +214,16 @@ class PowerResult:
 
 def power(test: str = "t", *, n: Optional[float] = None, effect: Optional[float] = None,
           alpha: Optional[float] = 0.05, power: Optional[float] = None,
-          alternative: str = "two-sided", strict: bool = True, delta: Optional[float] = None,
-          sd: Optional[float] = None, n_ratio: float = 1.0, sd_ratio: float = 1.0) -> PowerResult:
+          alternative: str = "two-sided", strict: Optional[bool] = None, delta: Optional[float] = None,
+          sd: Optional[float] = None, n_ratio: Optional[float] = None,
+          sd_ratio: Optional[float] = None) -> PowerResult:
     """Power and sample size of the t, chi-squared and F tests.
 
     Give all but one of ``n``, ``effect``, ``alpha`` and ``power``
     (``None`` marks the unknown; ``alpha`` defaults to 0.05, pass
     ``alpha=None`` to solve for it), as R's ``power.t.test`` and
     statsmodels' ``solve_power``.  n comes back as the smallest integer
-    whose power reaches the target.
+    whose power reaches the target (``n_exact``: the real root).
 
     test:
       ``"t"``
@@ -232,8 +240,13 @@ def power(test: str = "t", *, n: Optional[float] = None, effect: Optional[float]
 
     For the t tests, ``delta`` and ``sd`` may be given instead of ``effect``
     (effect = delta / sd, sd defaults to 1).  ``strict`` (two-sided): count
-    rejections in both tails (True, the true rejection probability) or only
-    in the effect's tail (False, R's default).  When solving for the effect
+    rejections in both tails (True, the default: the true rejection
+    probability) or only in the effect's tail (False, R's default).
+    Arguments that do not apply raise `InvalidArgumentError` naming them: ``n_ratio``
+    (default 1) is for ``"welch"`` and ``"f"`` only (``"t2"`` has equal
+    groups: use ``"welch"`` for unequal ones), ``sd_ratio`` (default 1) for
+    ``"welch"``, ``delta`` and ``sd`` for the t tests, ``strict`` for the
+    two-sided alternative.  When solving for the effect
     the solution is on the alternative's side (d > 0 or rho > 1 for
     two-sided).
 
@@ -245,9 +258,23 @@ def power(test: str = "t", *, n: Optional[float] = None, effect: Optional[float]
     if code is None:
         raise InvalidArgumentError(f"test must be one of 't', 't2', 'welch', 'var', 'f', got {test!r}")
     is_t = code <= 3
+    name = _TEST_NAMES[code]
+    if n_ratio is not None and code not in (3, 5):
+        raise InvalidArgumentError(f"n_ratio applies to test='welch' and test='f' only, not test={name!r}"
+                        + (" (whose groups are equal: use test='welch' for unequal ones)" if code == 2 else ""))
+    if sd_ratio is not None and code != 3:
+        raise InvalidArgumentError(f"sd_ratio applies to test='welch' only, not test={name!r}")
+    alt = _alternative(alternative)
+    if strict is not None and alt != 0:
+        raise InvalidArgumentError(f"strict applies to the two-sided alternative only, not "
+                        f"alternative={_ALT_NAMES[alt]!r}")
+    strict = True if strict is None else strict
+    n_ratio = 1.0 if n_ratio is None else n_ratio
+    sd_ratio = 1.0 if sd_ratio is None else sd_ratio
     if delta is not None or sd is not None:
         if not is_t:
-            raise InvalidArgumentError("delta and sd apply to the t tests; give effect (a variance ratio)")
+            raise InvalidArgumentError(f"delta and sd apply to the t tests, not test={name!r}; give effect "
+                            "(a variance ratio)")
         if effect is not None:
             raise InvalidArgumentError("give effect, or delta (and sd), not both")
         if delta is not None:
@@ -263,13 +290,16 @@ def power(test: str = "t", *, n: Optional[float] = None, effect: Optional[float]
             + (", ".join(missing) if missing else "none"))
     unknown = missing[0]
     nums = {k: (math.nan if v is None else _real(v, k)) for k, v in values.items()}
-    alt = _alternative(alternative)
-    d = _core._power(code, alt, bool(strict), nums["n"], _real(n_ratio, "n_ratio"),
-                     _real(sd_ratio, "sd_ratio"), nums["effect"], nums["alpha"], nums["power"],
-                     _UNKNOWN[unknown])
+    args = (code, alt, bool(strict), nums["n"], _real(n_ratio, "n_ratio"), _real(sd_ratio, "sd_ratio"),
+            nums["effect"], nums["alpha"], nums["power"])
+    d = _core._power(*args, _UNKNOWN[unknown])
     r = PowerResult()
-    r.test = _TEST_NAMES[code]
-    r.n = d["n"]
+    r.test = name
+    if unknown == "n":
+        r.n = int(d["n"])  # libmcstat's smallest integer n reaching the power
+        r.n_exact = _core._power(*args, _N_EXACT)["n"]
+    else:
+        r.n = r.n_exact = d["n"]
     r.n_y = d["n"] * d["n_ratio"] if code in (3, 5) else None
     r.effect = d["effect"]
     r.alpha = d["alpha"]

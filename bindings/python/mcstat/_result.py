@@ -2,7 +2,7 @@
 """BatchResult: the fields of row-wise tests as arrays."""
 from __future__ import annotations
 
-from typing import Any, Dict, NamedTuple, Tuple
+from typing import Any, Dict, Iterator, NamedTuple, Tuple
 
 import numpy as np
 
@@ -62,7 +62,13 @@ class BatchResult:
     -----
     ``result[i]`` (or ``result[i, j]`` for higher dimensions) is the
     :class:`TestResult` of one row, whose ``str()`` is the R-style block.
-    ``len(result)`` is the length of the first output dimension.
+    As with NumPy arrays, ``len(result)`` is the length of the first output
+    dimension, iterating goes along it, and fewer indices than dimensions
+    give a `BatchResult` of the rest: for 1-D output ``list(result)`` is
+    the TestResults of the rows; for an image ``(H, W)`` it is H
+    BatchResults of shape ``(W,)``, and ``result.ravel()`` iterates over
+    every pixel in C order.  A failed row raises its error when indexed
+    or reached (with ``on_error="nan"``, select rows with `ok` first).
     """
 
     def __init__(self, kind: str, fields: Dict[str, np.ndarray], alternative: int, alpha: float,
@@ -112,13 +118,42 @@ class BatchResult:
     def __len__(self) -> int:
         return self.shape[0] if self.shape else 1
 
+    def _sub(self, fields: Dict[str, np.ndarray]) -> "BatchResult":
+        out = BatchResult.__new__(BatchResult)
+        out.__dict__.update(self.__dict__)
+        out._f = fields
+        out._decision = None
+        return out
+
+    def ravel(self) -> "BatchResult":
+        """The same rows as a 1-D BatchResult (C order): ``for r in
+        b.ravel()`` visits every row's TestResult."""
+        nd = len(self.shape)
+        return self._sub({k: v.reshape((-1,) + v.shape[nd:]) for k, v in self._f.items()})
+
+    def __iter__(self) -> Iterator[Any]:
+        if not self.shape:
+            yield self[()]
+            return
+        for i in range(self.shape[0]):
+            yield self[i]
+
     def __getitem__(self, index: Any):
         from ._core import _result_from_fields  # the struct is rebuilt in C++
 
         idx = index if isinstance(index, tuple) else (index,)
-        if len(idx) != len(self.shape) or not all(isinstance(i, (int, np.integer)) for i in idx):
-            raise IndexError("index one row with as many integers as the result has dimensions "
+        if not all(isinstance(i, (int, np.integer)) for i in idx) or len(idx) > len(self.shape):
+            raise IndexError("index rows with at most as many integers as the result has dimensions "
                              f"({len(self.shape)}), got {index!r}")
+        if len(idx) < len(self.shape):
+            # a sub-batch, as NumPy's a[i] of an N-D array
+            for ax, i in enumerate(idx):
+                if not -self.shape[ax] <= i < self.shape[ax]:
+                    raise IndexError(f"index {i} is out of bounds for axis {ax} with size {self.shape[ax]}")
+            return self._sub({k: v[idx] for k, v in self._f.items()})
+        for ax, i in enumerate(idx):
+            if not -self.shape[ax] <= i < self.shape[ax]:
+                raise IndexError(f"index {i} is out of bounds for axis {ax} with size {self.shape[ax]}")
         if not self._f["status"][idx] == 0:
             raise _BY_STATUS.get(int(self._f["status"][idx]), McstatError)(
                 f"row {index} failed: status {int(self._f['status'][idx])}")
@@ -161,12 +196,12 @@ def _make_batch(kind: str, fields: Dict[str, np.ndarray], alternative: int, alph
     if not errors_as_nan and status.size and bad.any():
         first = int(status.flat[np.argmax(bad)])
         cls = _BY_STATUS.get(first, McstatError)
-        from ._core import strerror
+        from ._core import _status_text
 
         rows, shown = _describe_rows(bad, status.shape)
         nbad = int(bad.sum())
         others = int((bad & (status != first)).sum())
         extra = f"; {others} of them failed for another reason" if others else ""
-        raise cls(f"{strerror(first)}: {nbad} of {status.size} rows failed (rows {shown}){extra}; "
+        raise cls(f"{_status_text(first)}: {nbad} of {status.size} rows failed (rows {shown}){extra}; "
                   "pass on_error='nan' to get NaN for failed rows instead", rows=rows)
     return BatchResult(kind, fields, alternative, alpha, null_value, intervals)

@@ -10,7 +10,8 @@ flagged, the expected fraction of false discoveries is at most alpha,
 where testing each pixel at alpha would flag alpha of all unchanged pixels.
 
 Inputs, per side, in memory: an array ``(seeds, H, W)`` or ``(seeds, H,
-W, C)`` of per-seed renders (``seed_axis`` says where the seeds are);
+W, C)`` of per-seed renders (``seed_axis`` says where the seeds are; see
+`compare` for when it may be left out);
 `Samples`; `Summary` (per-pixel n, mean and M2); or a
 ``mcstat.MomentsArray`` (a render farm's merged accumulators, see
 `save_moments`).  Files (EXR, PFM, .npy, .npz of summaries or
@@ -31,7 +32,7 @@ import os
 import time
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -126,7 +127,99 @@ def save_moments(path: str, acc: "MomentsArray") -> None:
     np.savez(path, moments=rec)
 
 
-def _as_side(x: Union[Side, np.ndarray, str, Sequence[str]], seed_axis: int) -> Side:
+def _fmt_tuple(t: Tuple[int, ...]) -> str:
+    return "(" + ", ".join(str(v) for v in t) + ("," if len(t) == 1 else "") + ")"
+
+
+def _seeds_first_is_clear(shape: Tuple[int, ...]) -> bool:
+    """Whether a stack of this shape can only sensibly be (seeds, H, W[, C]):
+    the first axis shorter than both image axes, or the image axes equal
+    (a square image) and the first different; with 4 axes also at most 4
+    channels last.  (32, 32, 16) is not: it reads as 32 seeds of 32 x 16
+    as well as 16 seeds of 32 x 32."""
+    if len(shape) not in (3, 4) or (len(shape) == 4 and shape[3] > 4):
+        return False
+    a, b, c = shape[:3]
+    return a < min(b, c) or (b == c != a)
+
+
+def _ambiguous(shape: Tuple[int, ...], what: str) -> ImageInputError:
+    nd = len(shape)
+    last = "(H, W, C, seeds)" if nd == 4 else "(H, W, seeds)"
+    return ImageInputError(
+        f"cannot tell which axis of {what} of shape {_fmt_tuple(shape)} holds the seeds: pass seed_axis=0 "
+        f"if it is (seeds, H, W{', C' if nd == 4 else ''}), seed_axis=-1 if it is {last}, or the axis it is "
+        "(seeds first is assumed only when the first axis is shorter than both image axes, or the image "
+        "is square" + (", with at most 4 channels last" if nd == 4 else "") + ")")
+
+
+def _seed_axis_of(shape: Tuple[int, ...], what: str = "an image stack") -> int:
+    """The seeds axis of one stack of `shape` when ``seed_axis`` was not
+    given: 0 when `_seeds_first_is_clear`, else ImageInputError saying how
+    to pass seed_axis."""
+    if len(shape) not in (3, 4):
+        raise ImageInputError(f"{what} must be (seeds, H, W) or (seeds, H, W, C), got shape {_fmt_tuple(shape)}")
+    if _seeds_first_is_clear(shape):
+        return 0
+    raise _ambiguous(shape, what)
+
+
+def _infer_seed_axis(reference: Any, candidate: Any) -> Optional[int]:
+    """The seeds axis of the array sides of a comparison (one for both)
+    when ``seed_axis`` was not given; None when neither side is an array.
+
+    In order: (1) two stacks of the same rank that differ in the length of
+    only their first, or only their last, axis have their seeds there; (2)
+    a stack and the other side's image (a `Samples`, `Summary`,
+    ``MomentsArray``): the first or the last axis, if only one of them
+    leaves that image when removed; (3) seeds first when that is clear from
+    either stack's shape (`_seeds_first_is_clear`).  Else ImageInputError:
+    the layout is ambiguous."""
+    known = [(_known_shape(reference), "the reference stack"), (_known_shape(candidate), "the candidate stack")]
+    stacks = [(k[1], what) for k, what in known if k is not None and k[0] == "stack"]
+    if not stacks:
+        return None
+    for shape, what in stacks:
+        if len(shape) not in (3, 4):
+            raise ImageInputError(f"an image stack must be (seeds, H, W) or (seeds, H, W, C), "
+                                  f"got shape {_fmt_tuple(shape)} ({what})")
+    ends = lambda nd: (0, nd - 1)  # noqa: E731  (where a seeds axis is ever put)
+    if len(stacks) == 2:
+        (sa, _), (sb, _) = stacks
+        if len(sa) == len(sb) and sa != sb:
+            diff = [k for k in range(len(sa)) if sa[k] != sb[k]]
+            if len(diff) == 1 and diff[0] in ends(len(sa)):
+                return diff[0]
+    else:
+        shape = stacks[0][0]
+        other = next(k[1] for k, _ in known if k is not None and k[0] == "image") \
+            if any(k is not None and k[0] == "image" for k, _ in known) else None
+        if other is not None:
+            img = other if len(shape) == 4 else other[:2] if other[2] == 1 else None
+            if img is not None:
+                fits = [k for k in ends(len(shape)) if shape[:k] + shape[k + 1:] == tuple(img)]
+                if len(fits) == 1:
+                    return fits[0]
+    if any(_seeds_first_is_clear(shape) for shape, _ in stacks):
+        return 0
+    raise _ambiguous(*stacks[0])
+
+
+def _known_shape(x: Any) -> Any:
+    """What `_seed_axis_of` can use of a side: ``("stack", shape)`` of an
+    array, ``("image", (H, W, C))`` of the other inputs, or None."""
+    from ._core import MomentsArray
+
+    if isinstance(x, np.ndarray):
+        return ("stack", tuple(x.shape))
+    if isinstance(x, (Samples, Summary)):
+        return ("image", tuple(x.shape))
+    if isinstance(x, MomentsArray) and x.ndim in (2, 3):
+        return ("image", tuple(x.shape) + ((1,) if x.ndim == 2 else ()))
+    return None
+
+
+def _as_side(x: Union[Side, np.ndarray, str, Sequence[str]], seed_axis: Optional[int]) -> Side:
     from ._core import MomentsArray
 
     if isinstance(x, (Samples, Summary)):
@@ -134,6 +227,12 @@ def _as_side(x: Union[Side, np.ndarray, str, Sequence[str]], seed_axis: int) -> 
     if isinstance(x, MomentsArray):
         return summary_of_moments(x)
     if isinstance(x, np.ndarray):
+        if x.ndim not in (3, 4):
+            raise ImageInputError(f"an image stack must be (seeds, H, W) or (seeds, H, W, C), got shape {x.shape}")
+        if seed_axis is None:
+            seed_axis = _seed_axis_of(tuple(x.shape))
+        elif not -x.ndim <= seed_axis < x.ndim:
+            raise ImageInputError(f"seed_axis {seed_axis} is out of range for a stack of shape {x.shape}")
         a = np.moveaxis(x, seed_axis, 0)
         if a.ndim == 3:
             a = a[..., None]
@@ -313,13 +412,25 @@ def _reference_luminance(side: Side) -> np.ndarray:
 
 
 def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", alternative: str = "two-sided",
-            channels: str = "luminance", seed_axis: int = 0, nan_policy: str = "raise") -> ImageComparison:
+            channels: str = "luminance", seed_axis: Optional[int] = None,
+            nan_policy: str = "raise") -> ImageComparison:
     """Welch's test per pixel (and channel) of candidate against reference,
     p-values adjusted together by `method` (``mcstat.p_adjust``'s names;
     BH controls the false discovery rate at `alpha`).
 
     `reference`, `candidate`: `Samples`, `Summary`, a ``MomentsArray`` or an
-    array ``(seeds, H, W[, C])`` (`seed_axis` says where the seeds are);
+    array ``(seeds, H, W[, C])`` of per-seed renders.  `seed_axis` says
+    which axis of an array holds the seeds (``-1`` for ``(H, W, seeds)``
+    or ``(H, W, C, seeds)``), the same for both sides.  Left out (None),
+    it is taken from the shapes only where they settle it: the first or
+    the last axis when the two sides' stacks differ in the length of that
+    axis alone, or when removing it (and not the other) leaves the other
+    side's image; else seeds first when a stack's first axis is shorter
+    than both image axes or its image is square (and a 4-D stack has at
+    most 4 channels last), as in ``(16, 480, 640)`` or ``(64, 32, 32, 3)``.
+    A stack such as ``(32, 32, 16)``, which reads as 32 seeds of 32 x 16
+    as well as 16 seeds of 32 x 32, raises `ImageInputError` asking for
+    seed_axis.
     ``mcstat_app.image.compare`` also takes file paths.  The alternative is a claim about the candidate
     ("greater": the candidate is brighter).  Pixels where the test is
     undefined (constant in both inputs, non-finite values) are not tested:
@@ -331,6 +442,8 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     `TooFewObservationsError` for fewer than 2 seeds per side.
     """
     t0 = time.perf_counter()
+    if seed_axis is None:
+        seed_axis = _infer_seed_axis(reference, candidate)
     ref = _as_side(reference, seed_axis)
     cand = _as_side(candidate, seed_axis)
     if not (0.0 < alpha < 1.0):
@@ -396,7 +509,8 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
 
 
 def _canonical_method(m: str) -> str:
-    return {"bh": "BH", "fdr": "BH", "by": "BY"}.get(m, m)
+    # R's name of the method, whatever alias was given ("fdr_bh" -> "BH")
+    return _core._p_adjust_method_name(m)
 
 
 def _fmt_shape(s: Tuple[int, int, int]) -> str:

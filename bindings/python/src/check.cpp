@@ -302,6 +302,17 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
         o.routes &= ~(1u << MCSTAT_CHECK_ENERGY);
     o.stochastic = py::bool_(get("stochastic", py::bool_(false))) ? 1 : 0;
     o.reciprocal = py::bool_(get("reciprocal", py::bool_(false))) ? 1 : 0;
+    // A route asked for by its flag but left out of `routes` would silently
+    // not run: refused instead.
+    if (!routes.is_none()) {
+        if (o.reciprocal && !(o.routes & (1u << MCSTAT_CHECK_RECIPROCITY)))
+            throw_invalid(std::string("reciprocal=True asks for the '") +
+                          mcstat_check_route_name(MCSTAT_CHECK_RECIPROCITY) + "' route, which routes leaves out");
+        if (kind == MCSTAT_CHECK_KIND_BSDF && kw.contains("energy") && py::bool_(kw["energy"]) &&
+            !(o.routes & (1u << MCSTAT_CHECK_ENERGY)))
+            throw_invalid(std::string("energy=True asks for the '") + mcstat_check_route_name(MCSTAT_CHECK_ENERGY) +
+                          "' route, which routes leaves out");
+    }
     uint64_t cells = get_count(get("cells", py::int_(0)), "cells");
     if (cells == 1 || cells > (1u << 20))
         throw_invalid("cells must be 0 (automatic) or 2..1048576, got " + std::to_string(cells));
@@ -428,7 +439,9 @@ energy : bool
     Check albedo <= 1 (turn off for BSDFs that scale radiance at
     refraction, e.g. Mitsuba's dielectrics in radiance mode).
 routes : iterable of str, optional
-    The routes to run (default: all that apply).
+    The routes to run (default: all that apply).  ``reciprocal=True`` (or
+    an explicit ``energy=True``) with routes that leave its route out
+    raises.
 cells, n_pilot, n_eval, batch, rtol, tolerated
     Cells of the chi-squared (0: 2 n^0.4), pilot samples (0: 32 per cell),
     eval-only points (0: n), points per callback call, the deterministic

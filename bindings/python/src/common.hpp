@@ -26,9 +26,16 @@ namespace mcs {
 void init_errors();
 // The exception class for a status (McstatError for unknown codes).
 py::handle error_class(int status);
-// Raises the class of `status` with "<mcstat_strerror(status)>: <detail>".
+// The sentence of a status in Python's words: mcstat_strerror's, but
+// "invalid argument" and "too few observations" for MCSTAT_EINVAL and
+// MCSTAT_ETOOFEW, whose C sentences speak of NULL pointers and of other
+// tests' minimum sizes (mcstat._core._status_text).
+const char *status_text(int status);
+// Raises the class of `status` with "<status_text(status)> (<detail>)" (the
+// sentence alone when detail is empty).
 [[noreturn]] void throw_status(int status, const std::string &detail = std::string());
-// Invalid argument with a message of its own (InvalidArgumentError).
+// Invalid argument with a message of its own (InvalidArgumentError): the
+// message alone, e.g. "alpha must be in (0, 1), got 5".
 [[noreturn]] void throw_invalid(const std::string &message);
 
 // ---- argument parsing (tests.cpp) -------------------------------------------

@@ -41,8 +41,21 @@ void register_diagnostics(py::module_ &mod)
             uint64_t xx = count(x, "x"), nn = count(n, "n");
             mcstat_result r;
             int st = mcstat_binom_test(xx, nn, p, parse_alternative(alternative.ptr()), alpha, &r);
+            if (st == MCSTAT_EINVAL) {
+                // in the order of mcstat_binom_test's checks
+                if (!(alpha > 0.0 && alpha < 1.0))
+                    throw_invalid("alpha must be in (0, 1), got " + repr(py::float_(alpha).ptr()));
+                if (!(p >= 0.0 && p <= 1.0))
+                    throw_invalid("p must be in [0, 1], got " + repr(py::float_(p).ptr()));
+                throw_invalid("x (successes) must be at most n (trials), got x=" + std::to_string(xx) +
+                              ", n=" + std::to_string(nn));
+            }
+            if (st == MCSTAT_ETOOFEW)
+                throw_status(st, "binom_test needs n >= 1 trials, got n=0");
+            if (st == MCSTAT_ETOOBIG)
+                throw_status(st, "n=" + std::to_string(nn) + " trials is beyond the exact test's range (2**53)");
             if (st)
-                throw_status(st, "binom_test(x=" + std::to_string(xx) + ", n=" + std::to_string(nn) + ")");
+                throw_status(st);
             return make_result(r);
         },
         py::arg("x"), py::arg("n"), py::arg("p"), py::arg("alternative"), py::arg("alpha"));
@@ -54,8 +67,11 @@ void register_diagnostics(py::module_ &mod)
             mcstat_result r;
             int st = mcstat_battery_test_pvalues(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()),
                                                  level, parse_alternative(alternative.ptr()), alpha, &r);
+            if (st == MCSTAT_EINVAL && !(level > 0.0 && level < 1.0))
+                throw_invalid("battery_test: the tests' level must be in (0, 1), got " +
+                              repr(py::float_(level).ptr()));
             if (st)
-                throw_status(st, "battery_test of p-values");
+                throw_status(st);
             return make_result(r);
         },
         py::arg("pvalues"), py::arg("level"), py::arg("alternative"), py::arg("alpha"));
@@ -80,8 +96,31 @@ void register_diagnostics(py::module_ &mod)
                 py::gil_scoped_release nogil;
                 st = mcstat_diag_compute(static_cast<const double *>(a.data()), static_cast<size_t>(a.size()), &o, &d);
             }
+            if (st == MCSTAT_EINVAL) {
+                // in the order of mcstat_diag_compute's checks
+                if (!(alpha > 0.0 && alpha < 1.0))
+                    throw_invalid("diagnose: alpha must be in (0, 1), got " + repr(py::float_(alpha).ptr()));
+                if (!(tolerance > 0.0 && tolerance < 1.0))
+                    throw_invalid("diagnose: tolerance must be in (0, 1), got " + repr(py::float_(tolerance).ptr()));
+                if (!(tail_threshold > 0.0))
+                    throw_invalid("diagnose: tail_threshold must be > 0, got " +
+                                  repr(py::float_(tail_threshold).ptr()));
+                if (k > static_cast<uint64_t>(a.size()))
+                    throw_invalid("diagnose: k (the batch size) must be at most the " + std::to_string(a.size()) +
+                                  " values of x, got " + std::to_string(k));
+                throw_status(st);
+            }
+            if (st == MCSTAT_ETOOFEW)
+                throw_status(st, "diagnose needs at least 2 tail_k + 2 values of x (22 with the default tail_k, "
+                                 "Hill's order statistics per tail) and m >= 2 batch means; x has " +
+                                     std::to_string(a.size()) + " values" +
+                                     (k ? ", k = " + std::to_string(k) : std::string()) +
+                                     (m ? ", m = " + std::to_string(m) : std::string()) +
+                                     (tail_k ? ", tail_k = " + std::to_string(tail_k) : std::string()));
+            if (st == MCSTAT_EDEGENERATE)
+                throw_status(st, "x is constant");
             if (st)
-                throw_status(st, "diagnose");
+                throw_status(st);
             py::dict out;
             out["n"] = d.n;
             out["mean"] = d.mean;
@@ -111,8 +150,13 @@ void register_diagnostics(py::module_ &mod)
         [](double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha) {
             double s[2];
             int st = mcstat_diag_t_size(skewness, kurtosis, k, m, alpha, s);
+            if (st == MCSTAT_ETOOFEW)
+                throw_status(st, "t_size_edgeworth needs m >= 2 batch means, got m = " + std::to_string(m));
+            if (st == MCSTAT_EINVAL)
+                throw_invalid("t_size_edgeworth: skewness and kurtosis must be finite, kurtosis >= -2, "
+                              "alpha in (0, 1) and k >= 1");
             if (st)
-                throw_status(st, "t_size_edgeworth");
+                throw_status(st);
             return py::make_tuple(s[0], s[1]);
         },
         py::arg("skewness"), py::arg("kurtosis"), py::arg("k"), py::arg("m"), py::arg("alpha"));
@@ -122,8 +166,13 @@ void register_diagnostics(py::module_ &mod)
         [](double skewness, double kurtosis, uint64_t m, double alpha, double tolerance) {
             uint64_t k;
             int st = mcstat_diag_batch_size(skewness, kurtosis, m, alpha, tolerance, &k);
+            if (st == MCSTAT_ETOOFEW)
+                throw_status(st, "batch_size_recommend needs m >= 2 batch means, got m = " + std::to_string(m));
+            if (st == MCSTAT_EINVAL)
+                throw_invalid("batch_size_recommend: skewness and kurtosis must be finite, kurtosis >= -2, "
+                              "alpha and tolerance in (0, 1)");
             if (st)
-                throw_status(st, "batch_size_recommend");
+                throw_status(st);
             return k;
         },
         py::arg("skewness"), py::arg("kurtosis"), py::arg("m"), py::arg("alpha"), py::arg("tolerance"));

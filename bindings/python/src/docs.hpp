@@ -180,7 +180,8 @@ method : {"auto", "exact", "simulate", "asymptotic"}, optional
     values, beyond it asymptotic (weight "none" without ties) or simulate.
 n_sim : int, optional
     Replicates when simulating (default 10000); the p-value's standard
-    error is about sqrt(p (1 - p) / n_sim).
+    error is about sqrt(p (1 - p) / n_sim).  Only with method "simulate"
+    or "auto": with "exact" or "asymptotic" giving it (or `seed`) raises.
 seed : int, optional
     Seed of the simulation, in [0, 2**64).  Results are bit-identical for
     a given seed whatever the number of threads.  None: the cache's seed
@@ -227,7 +228,8 @@ NonFiniteError
 InvalidArgumentError
     alpha outside (0, 1), unknown weight, alternative or method,
     method="asymptotic" with weight="canner", n_sim < 1, threads outside
-    1..64, a negative seed, input that is not 1-D.
+    1..64, a negative seed, n_sim or seed with method "exact" or
+    "asymptotic", input that is not 1-D.
 TooBigError
     method="exact" beyond its size limit, or nx * ny >= 2**62.
 TypeError

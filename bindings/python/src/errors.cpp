@@ -29,9 +29,22 @@ py::handle error_class(int status)
     return g_base;
 }
 
+const char *status_text(int status)
+{
+    // Python's words where libmcstat's sentence speaks of C (NULL pointers)
+    // or of other tests (its too-few sentence lists the K-S and chi-squared
+    // rules): the message's detail then says what was wrong, naming the
+    // argument.  The other sentences are libmcstat's.
+    switch (status) {
+    case MCSTAT_EINVAL: return "invalid argument";
+    case MCSTAT_ETOOFEW: return "too few observations";
+    default: return mcstat_strerror(status);
+    }
+}
+
 void throw_status(int status, const std::string &detail)
 {
-    std::string msg = mcstat_strerror(status);
+    std::string msg = status_text(status);
     if (!detail.empty())
         msg += " (" + detail + ")";
     PyErr_SetString(error_class(status).ptr(), msg.c_str());
@@ -40,8 +53,8 @@ void throw_status(int status, const std::string &detail)
 
 void throw_invalid(const std::string &message)
 {
-    std::string msg = std::string(mcstat_strerror(MCSTAT_EINVAL)) + ": " + message;
-    PyErr_SetString(error_class(MCSTAT_EINVAL).ptr(), msg.c_str());
+    // The message names the argument and its domain; the class says the rest.
+    PyErr_SetString(error_class(MCSTAT_EINVAL).ptr(), message.c_str());
     throw py::error_already_set();
 }
 

@@ -47,16 +47,24 @@ constexpr size_t MIN_PER_THREAD = 8192;
     py::dict by_status = m.attr("_BY_STATUS");
     py::int_ key(status);
     py::object cls = by_status.contains(key) ? py::object(by_status[key]) : py::object(m.attr("EstimatorError"));
-    std::string msg = mcest_strerror(status);
+    // Python's words for a bad argument (the C sentence speaks of NULL
+    // pointers), as mcstat's own errors (errors.cpp)
+    std::string msg = status == MCEST_EINVAL ? "invalid argument" : mcest_strerror(status);
     if (!detail.empty())
         msg += " (" + detail + ")";
     PyErr_SetString(cls.ptr(), msg.c_str());
     throw py::error_already_set();
 }
 
+// A bad argument with a message of its own, naming it: the message alone.
 [[noreturn]] void throw_invalid(const std::string &message)
 {
-    throw_est(MCEST_EINVAL, message);
+    py::module_ m = py::module_::import("mcstat.estimators");
+    py::dict by_status = m.attr("_BY_STATUS");
+    py::int_ key(static_cast<int>(MCEST_EINVAL));
+    py::object cls = by_status.contains(key) ? py::object(by_status[key]) : py::object(m.attr("EstimatorError"));
+    PyErr_SetString(cls.ptr(), message.c_str());
+    throw py::error_already_set();
 }
 
 // ---- arguments -------------------------------------------------------------------

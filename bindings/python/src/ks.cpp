@@ -153,6 +153,18 @@ PyObject *ks_test(PyObject *, PyObject *const *args, Py_ssize_t nargs, PyObject 
         if (o.method == MCSTAT_METHOD_ASYMPTOTIC && o.weight == MCSTAT_KS_WEIGHT_CANNER)
             throw_invalid("method='asymptotic' needs weight='none': Canner's statistic has no usable limit "
                           "(its p-values would be off by factors at any size); use 'exact' or 'simulate'");
+        // Simulation's arguments where nothing is simulated are refused, not
+        // ignored.  (A cache is accepted: a battery shares one across
+        // methods, and exact tests never touch it.)
+        if (o.method == MCSTAT_METHOD_EXACT || o.method == MCSTAT_METHOD_ASYMPTOTIC) {
+            const char *m = o.method == MCSTAT_METHOD_EXACT ? "exact" : "asymptotic";
+            if (p.n_sim && p.n_sim != Py_None)
+                throw_invalid(std::string("n_sim applies to method='simulate' or 'auto' (when it simulates), not "
+                                          "method='") + m + "'");
+            if (p.seed && p.seed != Py_None)
+                throw_invalid(std::string("seed applies to method='simulate' or 'auto' (when it simulates), not "
+                                          "method='") + m + "'");
+        }
         if (p.n_sim && p.n_sim != Py_None) {
             int64_t n = get_i64(p.n_sim, "n_sim");
             if (n < 1)

@@ -41,6 +41,8 @@ of CPUs.  Results do not depend on it.  Raises `InvalidArgumentError` (a
 ValueError) outside 0..1024.)doc");
     mod.def("get_num_threads", &mcs::num_threads, "The number of threads row-wise tests use.");
     mod.def("strerror", &mcstat_strerror, py::arg("status"), "libmcstat's sentence for a status code.");
+    mod.def("_status_text", &mcs::status_text, py::arg("status"),
+            "The sentence of a status as the exceptions word it (see errors.cpp).");
     mod.attr("__libmcstat_version__") = mcstat_version();
 
     // GSL's default error handler aborts the process.  libmcstat never

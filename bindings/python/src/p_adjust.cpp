@@ -10,17 +10,48 @@
 
 namespace mcs {
 
+namespace {
+
+// statsmodels' multipletests methods libmcstat does not implement: said so,
+// rather than only "unknown".
+std::string unsupported_note(const std::string &method)
+{
+    std::string l;
+    for (char c : method)
+        l += (c >= 'A' && c <= 'Z') ? static_cast<char>(c - 'A' + 'a') : c;
+    static const char *const names[] = {"s",        "sidak",     "hs",        "holm-sidak",   "fdr_tsbh",
+                                        "fdr_2sbh", "fdr_tsbky", "fdr_2sbky", "fdr_twostage", "fdr_gbs"};
+    for (const char *n : names)
+        if (l == n)
+            return " (a statsmodels method mcstat does not implement)";
+    return "";
+}
+
+} // namespace
+
 void register_p_adjust(py::module_ &mod)
 {
+    mod.def(
+        "_p_adjust_method_name",
+        [](const std::string &method) {
+            int m = 0;
+            if (method.find('\0') != std::string::npos || mcstat_p_adjust_method_parse(method.c_str(), &m))
+                throw_invalid("unknown p_adjust method " + repr(py::str(method).ptr()));
+            return std::string(mcstat_p_adjust_method_name(m));
+        },
+        py::arg("method"), "R's name of a p_adjust method given by any of its accepted names.");
     mod.def(
         "p_adjust",
         [](py::handle p, const std::string &method) {
             if (p.is_none())
                 throw py::type_error("p_adjust() needs an array of p-values, not None");
             int m = 0;
-            if (mcstat_p_adjust_method_parse(method.c_str(), &m))
+            if (method.find('\0') != std::string::npos || mcstat_p_adjust_method_parse(method.c_str(), &m))
                 throw_invalid("method must be one of 'holm', 'hochberg', 'hommel', 'bonferroni', 'BH' "
-                              "('bh', 'fdr'), 'BY' ('by') or 'none', got '" + method + "'");
+                              "('fdr'), 'BY' or 'none' (R's names), or statsmodels' names for these: "
+                              "'h', 'sh' ('simes-hochberg'), 'ho', 'b' ('bonf'), 'fdr_bh' ('fdr_i', 'fdr_p'), "
+                              "'fdr_by' ('fdr_n', 'fdr_c', 'fdrcorr'); case is ignored; got " +
+                              repr(py::str(method).ptr()) + unsupported_note(method));
             py::array a = as_float_array(p, "p");
             // The output, C-ordered, is also the input: adjusted in place.
             py::array_t<double> out(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
@@ -60,9 +91,16 @@ p : array_like
     a missing value (R's NA): it stays NaN and is not counted.
 method : str, optional
     ``"holm"`` (default), ``"hochberg"``, ``"hommel"``, ``"bonferroni"``
-    (family-wise error rate), ``"BH"`` (also ``"bh"``, ``"fdr"``:
-    Benjamini-Hochberg false discovery rate), ``"BY"`` (also ``"by"``:
-    Benjamini-Yekutieli, FDR under any dependence) or ``"none"``.
+    (family-wise error rate), ``"BH"`` (also ``"fdr"``:
+    Benjamini-Hochberg false discovery rate), ``"BY"`` (Benjamini-Yekutieli,
+    FDR under any dependence) or ``"none"``: R's names.  statsmodels'
+    ``multipletests`` names for the same methods are accepted too:
+    ``"h"`` (Holm), ``"sh"``/``"simes-hochberg"``, ``"ho"`` (Hommel),
+    ``"b"``/``"bonf"``, ``"fdr_bh"`` (``"fdr_i"``, ``"fdr_p"``, ``"fdri"``,
+    ``"fdrp"``), ``"fdr_by"`` (``"fdr_n"``, ``"fdr_c"``, ``"fdrn"``,
+    ``"fdrcorr"``).  Case is ignored.  statsmodels' Sidak and two-stage
+    methods (``"sidak"``, ``"holm-sidak"``, ``"fdr_tsbh"``, ...) are not
+    implemented and raise.
 
 Returns
 -------

@@ -114,9 +114,12 @@ py::dict power(int test, int alternative, bool strict, double n, double n_ratio,
         py::gil_scoped_release nogil;
         st = mcstat_power_solve(&o, unknown, &r);
     }
+    if (st == MCSTAT_EINVAL)
+        throw_invalid("no solution with these arguments: n must be >= 2 in each group, alpha and power in "
+                      "(0, 1), an effect of the alternative's sign (a variance ratio > 0), and the power above "
+                      "what alpha alone gives");
     if (st)
-        throw_status(st, "no solution with these arguments (n >= 2 in each group, alpha and power in (0, 1), "
-                         "a power above what alpha alone gives, an effect of the alternative's sign)");
+        throw_status(st);
     py::dict d;
     d["n"] = r.n;
     d["n_ratio"] = r.n_ratio;
