@@ -44,10 +44,13 @@ build:
 ctest: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
-# The Python package, built by scikit-build-core through the same CMake
-# (build/python/), installed into .venv.
+# The Python package, built by scikit-build-core through the same CMake,
+# installed into .venv.  The CMake build directory is kept in
+# $(BUILD)/python/ (pyproject.toml leaves it to a temporary one) so that a
+# rebuild recompiles only what changed.
+PY_BUILD_DIR := -Cbuild-dir=$(abspath $(BUILD))/python/{wheel_tag}
 python: python-deps
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PY) -m pip install -q --no-build-isolation .
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PY) -m pip install -q --no-build-isolation $(PY_BUILD_DIR) .
 
 pytest: python
 	$(PY) -m pytest -q tests/python
