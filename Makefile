@@ -17,7 +17,7 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 .PHONY: asan-test tsan-test valgrind-test abi-check portability-test
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
-.PHONY: all deps python-deps build test ctest python pytest install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps python-deps build test ctest python pytest wheel-test sdist-test install-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -54,6 +54,13 @@ python: python-deps
 
 pytest: python
 	$(PY) -m pytest -q tests/python
+
+# The binary wheel as another Linux machine gets it: built from the same
+# CMake directory as make python, repaired by auditwheel (GSL and libRmath
+# bundled, a manylinux tag), installed with its extras into a bare venv and
+# run there with LD_LIBRARY_PATH empty (tests/wheel/test_wheel.sh).
+wheel-test: python
+	JOBS=$(JOBS) tests/wheel/test_wheel.sh $(BUILD) $(PY)
 
 # The installed package (cmake --install into $(BUILD)/stage) and what is
 # built against it: CMake and pkg-config consumers, shared and static; then

@@ -7,6 +7,9 @@
 TEST_STEPS := ctest
 # the Python package built into .venv, and its tests (tests/python)
 TEST_STEPS += pytest
+# the binary wheel: repaired by auditwheel (manylinux, GSL and libRmath
+# bundled), installed into a bare venv with its extras and run (tests/wheel)
+TEST_STEPS += wheel-test
 # cmake --install into build/stage, and CMake and pkg-config consumers of it,
 # shared and static (tests/install)
 TEST_STEPS += install-test
