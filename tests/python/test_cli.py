@@ -270,6 +270,35 @@ def test_another_seed_other_numbers(tmp_path):
     assert p1 != p2 and got[0]["seeds"] != got[1]["seeds"]
 
 
+def test_report_figures_legible_in_print(paper, tmp_path, monkeypatch):
+    """Every figure of the report at its printed size: within a page's text
+    width, every text at least 7 pt, a colour bar beside each 2-D histogram
+    (fig6); the check itself finds a small font and a missing colour bar."""
+    import collections
+
+    import matplotlib.pyplot as plt
+    from mcstat_app.reproduce import plots, report
+
+    fig, ax = plt.subplots(figsize=(plots.TEXT_WIDTH + 1, 2))
+    ax.imshow(np.eye(3))
+    ax.set_title("small", fontsize=5)
+    problems = plots.legibility_problems(fig)
+    plt.close(fig)
+    assert len(problems) == 3 and "'small' at 5.0 pt" in " ".join(problems)
+
+    seen = {}
+    real_save = plots._save
+
+    def save(fig, path):
+        seen[os.path.basename(path)] = plots.legibility_problems(fig)
+        real_save(fig, path)
+
+    monkeypatch.setattr(plots, "_save", save)
+    report.write(str(tmp_path), paper["res"], collections.defaultdict(str))
+    assert {"fig4_origin.png", "fig5_origin.png", "fig6_ward.png", "sampler_bugs_ward.png"} <= set(seen)
+    assert {name: p for name, p in seen.items() if p} == {}
+
+
 # -- example scenes ------------------------------------------------------------
 
 def test_no_brdf_scene(no_brdf):
