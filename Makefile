@@ -18,7 +18,7 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
 .PHONY: docs docs-c docs-python docs-rust docs-go
-.PHONY: all deps python-deps build test ctest python pytest install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps python-deps build test ctest python pytest wheel-test sdist-test install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -45,13 +45,31 @@ build:
 ctest: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
-# The Python package, built by scikit-build-core through the same CMake
-# (build/python/), installed into .venv.
+# The Python package, built by scikit-build-core through the same CMake,
+# installed into .venv.  The CMake build directory is kept in
+# $(BUILD)/python/ (pyproject.toml leaves it to a temporary one) so that a
+# rebuild recompiles only what changed.
+PY_BUILD_DIR := -Cbuild-dir=$(abspath $(BUILD))/python/{wheel_tag}
 python: python-deps
-	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PY) -m pip install -q --no-build-isolation .
+	CMAKE_BUILD_PARALLEL_LEVEL=$(JOBS) $(PY) -m pip install -q --no-build-isolation $(PY_BUILD_DIR) .
 
 pytest: python
 	$(PY) -m pytest -q tests/python
+
+# The binary wheel as another Linux machine gets it: built from the same
+# CMake directory as make python, repaired by auditwheel (GSL and libRmath
+# bundled, a manylinux tag), installed with its extras into a bare venv and
+# run there with LD_LIBRARY_PATH empty (tests/wheel/test_wheel.sh).  About
+# 45 s after make pytest on 2 cores (pip's cache warm; no recompilation).
+wheel-test: python
+	JOBS=$(JOBS) tests/wheel/test_wheel.sh $(BUILD) $(PY)
+
+# The sdist builds a wheel as pip builds it on a user's machine (isolated,
+# from a read-only unpacked tree) with the files of the checkout's wheel
+# (tests/wheel/test_sdist.sh): a full build, 3.7 min measured at load ~5 on
+# 2 cores without ccache.
+sdist-test: python-deps
+	JOBS=$(JOBS) tests/wheel/test_sdist.sh $(BUILD) $(PY)
 
 # The installed package (cmake --install into $(BUILD)/stage) and what is
 # built against it: CMake and pkg-config consumers, shared and static; then

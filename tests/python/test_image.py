@@ -275,20 +275,20 @@ def test_bad_inputs(tmp_path, rng):
         mi.compare(ref, cand, alpha=1.5)
     with pytest.raises(mcstat.InvalidArgumentError, match="channels"):
         mi.compare(ref, cand, channels="hsv")
-    # the CLI: a clear message and exit status 2
+    # the CLI: a clear message and exit status 3 (bad input)
     np.save(tmp_path / "r.npy", ref)
     np.save(tmp_path / "c.npy", cand[:, :7])
     code, _, err = run_cli("image-test", "-r", tmp_path / "r.npy", "-c", tmp_path / "c.npy")
-    assert code == 2 and "ImageInputError" in err and "8 x 7 pixels" in err
+    assert code == 3 and "ImageInputError" in err and "8 x 7 pixels" in err
     np.save(tmp_path / "one.npy", cand[:1])
     code, _, err = run_cli("image-test", "-r", tmp_path / "r.npy", "-c", tmp_path / "one.npy")
-    assert code == 2 and "1 seed" in err
+    assert code == 3 and "1 seed" in err
     code, _, err = run_cli("image-test", "-r", tmp_path / "r.npy", "-c", tmp_path / "missing.exr")
-    assert code == 2 and "no such file" in err
+    assert code == 3 and "no such file" in err
     (tmp_path / "x.png").write_bytes(b"")
     code, _, err = run_cli("image-test", "-r", tmp_path / "x.png", tmp_path / "x.png", "-c", tmp_path / "x.png",
                            tmp_path / "x.png")
-    assert code == 2 and "unknown image format" in err
+    assert code == 3 and "unknown image format" in err
     (tmp_path / "t.pfm").write_bytes(b"PF\n4 4\n-1.0\n" + b"\0" * 20)
     with pytest.raises(mi.ImageInputError, match="PFM data"):
         app_image.read_image(str(tmp_path / "t.pfm"))

@@ -16,6 +16,7 @@ from __future__ import annotations
 from typing import Any, Dict, List
 
 import mcstat
+from . import cost
 from .binomial import rate_of_counts, rate_summary
 from .context import Context
 from .irradiance import ReceiverEstimators
@@ -36,7 +37,11 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
             continue
         rec = ReceiverEstimators(ctx, plan, r["index"], "bugs")
         rows = []
-        with ctx.bar(len(budgets) * len(variants), f"3.4 {r['name']}") as bar:
+        def step_cost(budget: int, v: str) -> float:  # runs x budget primary estimates (cost.py)
+            return runs * budget * cost.estimates("A", 1) + (runs * budget * cost.estimates(sc.trusted, 1)
+                                                             if v == variants[0] else 0.0)
+
+        with ctx.bar(sum(step_cost(b, v) for b in budgets for v in variants), f"3.4 {r['name']}") as bar:
             for zi, budget in enumerate(budgets):
                 k = budget // sec
                 first = zi << 40  # disjoint counter ranges per budget
@@ -50,7 +55,7 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
                                               results=batch_columns(bt))
                     if zi == len(budgets) - 1 and v != "none" and bt.ok[0]:
                         row["variants"][v]["example"] = bt[0].format(f"A with {v} (run 0)", sc.trusted)
-                    bar.update()
+                    bar.update(step_cost(budget, v))  # the first variant's step also draws the trusted T
                 rows.append(row)
         summary = {}
         for v in variants:

@@ -24,10 +24,10 @@ from .studies import BY_KEY
 
 
 class _NoBar:
-    def __init__(self, total: int = 0, desc: str = "") -> None:
-        self.n = 0
+    def __init__(self, total: float = 0, desc: str = "") -> None:
+        self.n: float = 0
 
-    def update(self, n: int = 1) -> None:
+    def update(self, n: float = 1) -> None:
         self.n += n
 
     def set_postfix_str(self, s: str) -> None:
@@ -71,13 +71,19 @@ class Context:
         self.seeds[name] = value
         return value
 
-    def bar(self, total: int, desc: str):
-        """A tqdm bar on stderr (shown when stderr is a terminal, or with --progress)."""
+    def bar(self, total: float, desc: str):
+        """A tqdm bar on stderr (shown when stderr is a terminal, or with --progress).
+
+        `total` is the estimated work of the study (seconds of `cost`'s
+        model) and each ``update(w)`` adds a step's estimate, so that the
+        percentage and the time left follow the work rather than the count
+        of steps (a K-S null simulated at the largest size can take most of
+        a study).  The bar shows no counts: they would be model seconds."""
         if self._tqdm is None:
             return _NoBar(total, desc)
         disable = None if self._progress is None else not self._progress
-        return self._tqdm(total=total, desc=desc, unit="step", leave=False, disable=disable, file=sys.stderr,
-                          dynamic_ncols=True)
+        return self._tqdm(total=total, desc=desc, leave=False, disable=disable, file=sys.stderr,
+                          dynamic_ncols=True, bar_format="{desc}: {percentage:3.0f}%|{bar}| [{elapsed}<{remaining}]")
 
     def block(self, text: str) -> None:
         """An R-style block (which ends with its own blank line)."""

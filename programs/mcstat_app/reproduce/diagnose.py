@@ -56,6 +56,9 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
     out: Dict[str, Any] = dict(section="diagnostics", n=n, tolerance=tol, receivers=[], brdfs=[])
     irr = plan.params["irradiance"]
     k_irr, m_irr = irr["primary"] // irr["secondary"], irr["secondary"]
+    # mcstat.diagnose's normality tests import scipy.stats on first use (1-2 s,
+    # more than the rest of the study): before the bars, not inside their first step
+    import scipy.stats  # noqa: F401
     for r in plan.receivers:
         if not plan.runs("diagnostics", r["name"]):
             continue

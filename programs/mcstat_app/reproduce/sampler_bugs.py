@@ -34,6 +34,7 @@ import numpy as np
 
 import mcstat
 from mcstat import estimators as est
+from . import cost
 from .binomial import rate_summary
 from .context import Context
 from .plan import Plan
@@ -71,15 +72,22 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
                   f"K-S (Canner) of Morton keys against the correct sampler; alpha = {alpha:g}, {runs} runs per size")
         cells_by_depth: Dict[int, Any] = {}
         rows = []
-        with ctx.bar(len(sizes) * runs * len(variants), f"3.2+ {name}") as bar:
+        def step_cost(n: int, first: bool) -> float:  # a run: two samples, chi-squared, K-S (cost.py)
+            return n * (2 * cost.DIRECTION + cost.GOF) + cost.ks(n, n, n_sim, simulate_null=first, critical=False)
+
+        depths = {p["depth"] or est.default_depth(n) for n in sizes}  # the cells of each depth, built once
+        with ctx.bar(len(depths) * cost.CELLS + sum(step_cost(n, j == r == 0) for n in sizes
+                                                    for j in range(len(variants)) for r in range(runs)),
+                     f"3.2+ {name}") as bar:
             for zi, n in enumerate(sizes):
                 depth = p["depth"] or est.default_depth(n)
                 if depth not in cells_by_depth:
                     cells_by_depth[depth] = est.direction_cells(bp, depth)
+                    bar.update(cost.CELLS)
                 cells = cells_by_depth[depth]
                 row: Dict[str, Any] = dict(n=n, depth=depth, variants={})
                 examples = {}
-                for v in variants:
+                for j, v in enumerate(variants):
                     rej = {r: 0 for r in ROUTES}
                     pv: Dict[str, List[float]] = {r: [] for r in ROUTES}
                     for r in range(runs):
@@ -95,7 +103,7 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
                             pv[route].append(float(t.pvalue))
                         if r == 0 and zi == len(sizes) - 1:
                             examples[v] = (c, k)
-                        bar.update()
+                        bar.update(step_cost(n, j == r == 0))  # the K-S null is simulated once per size
                     row["variants"][v] = {route: dict(**rate_summary(rej[route], runs, alpha),
                                                       median_pvalue=float(np.median(pv[route])))
                                           for route in ROUTES}

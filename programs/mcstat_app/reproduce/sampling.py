@@ -29,6 +29,7 @@ import numpy as np
 
 import mcstat
 from mcstat import estimators as est
+from . import cost
 from .binomial import clopper_pearson, rate_summary
 from .context import Context
 from .plan import Plan
@@ -105,6 +106,16 @@ def _describe(b: Dict[str, Any]) -> str:
     return f"{p}; outgoing direction theta {th:.4g}, phi {ph:.4g} degrees"
 
 
+def _run_cost(n: int, n_sim: int, first: bool) -> float:
+    """Estimated seconds of one run at size n (cost.py): both samples, and a
+    K-S test that simulates the null only in the first run at that size."""
+    return n * cost.DIRECTION_PAIR + cost.ks(n, n, n_sim, simulate_null=first)
+
+
+def _histogram_cost(hs: int) -> float:
+    return hs * (cost.DIRECTION_PAIR + 2 * cost.DIRECTION)
+
+
 def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
     sc, p = plan.scene, plan.params["sampling"]
     alpha, sizes, runs, n_sim = p["alpha"], p["sizes"], p["runs"], p["n_sim"]
@@ -125,7 +136,9 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
         ctx.print(f"two-sample K-S tests with Canner's weight on Morton keys, sampler (x) against exact rejection "
                   f"sampling (y), two-sided, alpha = {alpha:g}, {runs} runs per size")
         rows = []
-        with ctx.bar(len(sizes) * runs, f"3.2 {name}") as bar:
+        hs = p["histogram_size"]
+        with ctx.bar(sum(_run_cost(n, n_sim, r == 0) for n in sizes for r in range(runs)) + _histogram_cost(hs),
+                     f"3.2 {name}") as bar:
             for zi, n in enumerate(sizes):
                 tests = []
                 for r in range(runs):
@@ -136,7 +149,7 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
                     t = mcstat.ks_test(keys_a, x.keys.astype(float), weight="canner", alpha=alpha, n_sim=n_sim,
                                        seed=k_seed, cache=cache, threads=ctx.threads)
                     tests.append(t)
-                    bar.update()
+                    bar.update(_run_cost(n, n_sim, r == 0))  # the first run at a size simulates the K-S null
                 c = decision_counts(t.decision for t in tests)
                 rejections = sum(t.reject for t in tests)
                 pv = np.array([t.pvalue for t in tests])
@@ -148,14 +161,14 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
                                  results=columns(tests)))
                 if zi in (0, len(sizes) - 1):
                     ctx.block(tests[0].format(f"sampler keys (n = {n}, run 0)", "rejection keys"))
-        # the fraction below the horizon, and figure 6, from a further index range
-        hfirst = (len(sizes) * runs) << 32
-        hs = p["histogram_size"]
-        raw = bp.sample(hs, seed=s_seed, first_index=hfirst, threads=ctx.threads)
-        below = int((raw.directions[:, 2] <= 0).sum())
-        w, _, _ = sampler_directions(bp, hs, s_seed, hfirst, keep, ctx.threads)
-        xw = bp.sample_exact(hs, seed=x_seed, first_index=hfirst, threads=ctx.threads)
-        win = histogram_window(w, xw.directions)
+            # the fraction below the horizon, and figure 6, from a further index range
+            hfirst = (len(sizes) * runs) << 32
+            raw = bp.sample(hs, seed=s_seed, first_index=hfirst, threads=ctx.threads)
+            below = int((raw.directions[:, 2] <= 0).sum())
+            w, _, _ = sampler_directions(bp, hs, s_seed, hfirst, keep, ctx.threads)
+            xw = bp.sample_exact(hs, seed=x_seed, first_index=hfirst, threads=ctx.threads)
+            win = histogram_window(w, xw.directions)
+            bar.update(_histogram_cost(hs))
         res = dict(name=name, model=b["model"], params=list(b["params"]), wo=b["wo"], description=_describe(b),
                    seeds=dict(sampler=s_seed, exact=x_seed, ks=k_seed),
                    below_horizon=dict(count=below, of=hs, fraction=below / hs, ci95=list(clopper_pearson(below, hs))),

@@ -30,6 +30,7 @@ from typing import Any, Dict, List
 import numpy as np
 
 import mcstat
+from . import cost
 from .context import Context
 from .irradiance import ReceiverEstimators
 from .plan import Plan
@@ -57,7 +58,7 @@ def _irradiance(ctx: Context, plan: Plan, p: Dict[str, Any]) -> Dict[str, Any]:
     ctx.print(f"\n== Error against run time at {r['name']!r}: {reps} estimates per budget, "
               f"{'RMSE against Lambert' if E is not None else 'no analytic value: estimated standard error'}; "
               f"{out_threads(ctx)} thread(s); wall times on a shared machine are noisy")
-    with ctx.bar(len(sc.estimators) * len(budgets) * reps, "timing") as bar:
+    with ctx.bar(sum(cost.estimates(m, n) * reps for m in sc.estimators for n in budgets), "timing") as bar:
         for m in sc.estimators:
             rec.primaries(m, 1000, first_index=(len(budgets) + 1) << 40)  # warm-up (page faults, caches)
             rows, var_last = [], []
@@ -71,7 +72,7 @@ def _irradiance(ctx: Context, plan: Plan, p: Dict[str, Any]) -> Dict[str, Any]:
                     vals.append(v)
                     if bi == len(budgets) - 1:
                         var_last.append(float(prim.var(ddof=1)))
-                    bar.update()
+                    bar.update(cost.estimates(m, n))
                 vals_a = np.array(vals)
                 rmse = float(np.sqrt(np.mean((vals_a - E) ** 2))) if E is not None else None
                 rows.append(dict(n=n, estimates=vals, rmse=rmse, wall_times=times,
@@ -115,7 +116,10 @@ def _ks(ctx: Context, plan: Plan, p: Dict[str, Any]) -> Dict[str, Any]:
             break
     _, j, x, y, pe = best
     res: Dict[str, Any] = dict(brdf=name, size=n, pair=j, exact_pvalue=pe, rows=[])
-    with ctx.bar(len(p["ks_n_sim"]) * p["ks_reps"], "timing K-S") as bar:
+    def ks_cost(ns: int) -> float:  # no cache here: every test simulates its null (cost.py)
+        return cost.ks(len(x), len(y), ns, method="simulate")
+
+    with ctx.bar(sum(ks_cost(ns) for ns in p["ks_n_sim"]) * p["ks_reps"], "timing K-S") as bar:
         for si, ns in enumerate(p["ks_n_sim"]):
             errs, ses, times, seeds, tests = [], [], [], [], []
             for rep in range(p["ks_reps"]):
@@ -128,7 +132,7 @@ def _ks(ctx: Context, plan: Plan, p: Dict[str, Any]) -> Dict[str, Any]:
                 ses.append(r.pvalue_se)
                 seeds.append(s)
                 tests.append(r)
-                bar.update()
+                bar.update(ks_cost(ns))
             res["rows"].append(dict(n_sim=ns, errors=errs, rms_error=float(np.sqrt(np.mean(np.square(errs)))),
                                     mean_reported_se=float(np.mean(ses)),
                                     predicted_se=math.sqrt(pe * (1 - pe) / ns), wall_times=times,
