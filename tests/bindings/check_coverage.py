@@ -20,7 +20,10 @@ tests/bindings/coverage_exempt.txt with the reason; an exemption that names
 a function the binding does call, or one the library does not export, fails
 too, so the list cannot go stale.
 
-usage: check_coverage.py LIBMCSTAT_SO [--root DIR]
+usage: check_coverage.py LIBMCSTAT_SO [--root DIR] [--lang LANG]...
+
+--lang (repeatable) checks only those bindings (default: all four); the
+exemption file is still read whole, so a malformed line fails any run.
 """
 import argparse
 import os
@@ -89,13 +92,16 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("lib")
     ap.add_argument("--root", default=os.path.normpath(os.path.join(os.path.dirname(__file__), "../..")))
+    ap.add_argument("--lang", action="append", choices=LANGS,
+                    help="check only this binding (repeatable; default: all)")
     args = ap.parse_args()
+    langs = [lang for lang in LANGS if lang in args.lang] if args.lang else list(LANGS)
     lib = exported(args.lib)
     macros, deprecated = header_facts(args.root)
     got = reached(args.root, macros)
     ex, problems = exemptions(os.path.join(args.root, "tests/bindings/coverage_exempt.txt"))
     print(f"libmcstat exports {len(lib)} functions, {len(lib & deprecated)} of them deprecated")
-    for lang in LANGS:
+    for lang in langs:
         want = lib if lang == "rust-sys" else lib - deprecated
         missing = sorted(want - got[lang] - set(ex[lang]))
         for name in missing:
