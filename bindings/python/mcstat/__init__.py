@@ -31,7 +31,8 @@ package never imports.
 Beyond the paper: `binom_test` (R's exact binomial test),
 `battery_test` (is a battery's rejection count consistent with its level?)
 and `diagnose` (skewness, kurtosis, heavy tails, the batch size the t test
-needs) in `mcstat.diagnostics`.
+needs) in `mcstat.diagnostics`; the t, chi-squared and F distributions the
+tests use (cdf, log cdf, quantile, over arrays) in `mcstat.distributions`.
 
 One-sided alternatives are claims about the first sample in every test:
 ``ks_test(x, y, alternative="less")`` means x tends to be smaller, which
@@ -88,6 +89,8 @@ from ._power import (  # noqa: E402
 from ._core import CheckReport, CheckRoute, check_bsdf, check_emitter, check_warp  # noqa: E402
 # the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
+# the t, chi-squared and F distributions (cdf, log cdf, quantile)
+from . import distributions  # noqa: E402
 
 # The distribution's version, which the build reads from mcstat.h (the same
 # header the linked libmcstat reports as __libmcstat_version__).
@@ -121,6 +124,7 @@ __all__ = [
     "check_warp",
     "CheckReport",
     "CheckRoute",
+    "distributions",
     *_errors.__all__,
     # equivalence, power and sample size
     "equivalence_test",

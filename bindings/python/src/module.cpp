@@ -19,6 +19,7 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_p_adjust(mod);
     mcs::register_summary_rows(mod);
     mcs::register_check(mod); // renderer checks: BSDFs, emitters, warps
+    mcs::register_distributions(mod); // t, chi-squared and F cdf and quantiles
 
     mod.def(
         "set_num_threads",
