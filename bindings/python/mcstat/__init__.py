@@ -61,6 +61,7 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
     Moments,
     TestResult,
     __libmcstat_version__,
+    __libmcstat_version_number__,
     batch_means,
     get_num_threads,
     gsl_handler_was_default,
@@ -75,6 +76,8 @@ from ._result import BatchResult
 
 # Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
 from ._core import MomentsArray  # noqa: E402
+# A renderer thread's buffered accumulator with its mean and variance checks.
+from ._core import Stream  # noqa: E402
 # Equivalence (TOST), power and sample size (mcstat._power).
 from ._power import (  # noqa: E402
     EquivalenceResult,
@@ -113,6 +116,7 @@ __all__ = [
     "TestResult",
     "BatchResult",
     "MomentsArray",
+    "Stream",
     "set_num_threads",
     "get_num_threads",
     "binom_test",

@@ -20,6 +20,7 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_summary_rows(mod);
     mcs::register_check(mod); // renderer checks: BSDFs, emitters, warps
     mcs::register_distributions(mod); // t, chi-squared and F cdf and quantiles
+    mcs::register_stream(mod); // mcstat.Stream, after Moments (it returns one)
 
     mod.def(
         "set_num_threads",
@@ -43,6 +44,8 @@ ValueError) outside 0..1024.)doc");
     mod.def("get_num_threads", &mcs::num_threads, "The number of threads row-wise tests use.");
     mod.def("strerror", &mcstat_strerror, py::arg("status"), "libmcstat's sentence for a status code.");
     mod.attr("__libmcstat_version__") = mcstat_version();
+    // MAJOR * 10000 + MINOR * 100 + PATCH of the linked libmcstat
+    mod.attr("__libmcstat_version_number__") = mcstat_version_number();
 
     // GSL's default error handler aborts the process.  libmcstat never
     // reaches it (arguments are validated before GSL is called), but other
