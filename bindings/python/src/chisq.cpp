@@ -104,7 +104,7 @@ void register_chisq(py::module_ &mod)
 {
     mod.def("chisq_gof", &chisq_gof, py::arg("observed"), py::arg("expected"), py::kw_only(),
             py::arg("expected_kind") = "probabilities", py::arg("pool") = true,
-            py::arg("min_expected") = MCSTAT_GOF_DEFAULT_MIN_EXPECTED, py::arg("n_estimated") = 0,
+            py::arg("min_expected") = mcstat_gof_default_min_expected(), py::arg("n_estimated") = 0,
             py::arg("rescale") = false, py::arg("alpha") = 0.05, CHISQ_DOC);
 }
 

@@ -18,9 +18,13 @@ void register_p_adjust(py::module_ &mod)
             if (p.is_none())
                 throw py::type_error("p_adjust() needs an array of p-values, not None");
             int m = 0;
-            if (mcstat_p_adjust_method_parse(method.c_str(), &m))
-                throw_invalid("method must be one of 'holm', 'hochberg', 'hommel', 'bonferroni', 'BH' "
-                              "('bh', 'fdr'), 'BY' ('by') or 'none', got '" + method + "'");
+            if (mcstat_p_adjust_method_parse(method.c_str(), &m)) {
+                std::string names; // R's names, as libmcstat has them
+                for (int i = 0; const char *name = mcstat_p_adjust_method_name(i); i++)
+                    names += (i ? ", '" : "'") + std::string(name) + "'";
+                throw_invalid("method must be one of " + names + " (also 'bh', 'fdr' for 'BH' and 'by' for 'BY'), "
+                              "got '" + method + "'");
+            }
             py::array a = as_float_array(p, "p");
             // The output, C-ordered, is also the input: adjusted in place.
             py::array_t<double> out(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
