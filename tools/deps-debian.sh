@@ -11,7 +11,8 @@
 #   build       the C libraries and their tests (make build, make ctest):
 #               compiler, CMake, pkg-config, GSL, libRmath (r-mathlib: the
 #               noncentral t of mcstat_power_*, linked into libmcstat)
-#   python      build + what pip needs to build the Python package into .venv
+#   python      build + what pip needs to build the Python package into .venv,
+#               and nodejs (pyright, of tests/python/test_typing.py)
 #               (make python, make pytest)
 #   demo        python (make demo: mcstat reproduce needs nothing more)
 #   valgrind    valgrind (make valgrind-test)
@@ -51,7 +52,7 @@ add() { pkgs+=("$@"); }
 need() {
   case "$1" in
     build)      add build-essential cmake pkg-config libgsl-dev r-mathlib ;;
-    python)     need build; add python3-venv python3-dev ;;
+    python)     need build; add python3-venv python3-dev nodejs ;;
     demo)       need python ;;
     valgrind)   add valgrind ;;
     fuzz)       # the runtimes of the installed clang, else of Debian's default clang

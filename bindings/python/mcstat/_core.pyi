@@ -1,5 +1,5 @@
 # Type stubs for the compiled module mcstat._core (see the docstrings there).
-from typing import Any, Callable, Dict, List, Literal, Optional, Tuple, Union, overload
+from typing import Any, Callable, Dict, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -9,7 +9,7 @@ from ._result import BatchResult
 _Alternative = Literal["two-sided", "less", "greater"]
 _NanPolicy = Literal["raise", "omit"]
 _OnError = Literal["raise", "nan"]
-_Sample = Union[npt.ArrayLike, "Moments"]
+_Sample = Union[npt.ArrayLike, "Moments", "MomentsArray"]
 _Weight = Literal["none", "canner"]
 _KSMethod = Literal["auto", "exact", "simulate", "asymptotic"]
 
@@ -93,6 +93,54 @@ class Moments:
     @staticmethod
     def from_bytes(data: bytes) -> "Moments": ...
 
+# t_test and var_test: the result's kind follows the input.  Accumulators
+# and lists of numbers are known statically; for NumPy arrays it depends
+# on the number of dimensions, which NumPy's types do not carry: 1-D gives
+# a TestResult, N-D (one test per row along `axis`) a BatchResult, so
+# those overloads return Any (annotate the variable, or isinstance()).
+_Seq = Sequence[float]
+_One = Union[Moments, _Seq]
+
+@overload
+def t_test(
+    x: "MomentsArray",
+    y: Optional[Union["MomentsArray", Moments]] = None,
+    *,
+    mu: float = 0.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _NanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> BatchResult: ...
+@overload
+def t_test(
+    x: Moments,
+    y: "MomentsArray",
+    *,
+    mu: float = 0.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _NanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> BatchResult: ...
+@overload
+def t_test(
+    x: _One,
+    y: Optional[_One] = None,
+    *,
+    mu: float = 0.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _NanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> TestResult: ...
+@overload
 def t_test(
     x: _Sample,
     y: Optional[_Sample] = None,
@@ -104,7 +152,50 @@ def t_test(
     nan_policy: _NanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
-) -> Union[TestResult, BatchResult]: ...
+) -> Any: ...
+@overload
+def var_test(
+    x: "MomentsArray",
+    y: Optional[Union["MomentsArray", Moments]] = None,
+    *,
+    sigma2: Optional[float] = None,
+    ratio: float = 1.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _NanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> BatchResult: ...
+@overload
+def var_test(
+    x: Moments,
+    y: "MomentsArray",
+    *,
+    sigma2: Optional[float] = None,
+    ratio: float = 1.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _NanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> BatchResult: ...
+@overload
+def var_test(
+    x: _One,
+    y: Optional[_One] = None,
+    *,
+    sigma2: Optional[float] = None,
+    ratio: float = 1.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _NanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> TestResult: ...
+@overload
 def var_test(
     x: _Sample,
     y: Optional[_Sample] = None,
@@ -117,7 +208,7 @@ def var_test(
     nan_policy: _NanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
-) -> Union[TestResult, BatchResult]: ...
+) -> Any: ...
 class KSCache:
     def __init__(self, max_bytes: Optional[int] = None, seed: Optional[int] = None) -> None: ...
     @property
