@@ -1,6 +1,7 @@
 """README.md's Python examples type-check (mypy --strict, pyright in its
 default basic mode) against the installed package, and the self-contained
-ones run.
+ones run; typing_prelude/check_overloads.py pins the result types of the
+overloaded calls (assert_type) under both checkers.
 
 Each ```python block becomes a module that starts by importing, from
 typing_prelude/readme_names.pyi, the names it uses without assigning them
@@ -34,6 +35,8 @@ def test_readme_has_python_examples():
 def examples(tmp_path_factory):
     d = tmp_path_factory.mktemp("readme_examples")
     shutil.copy(os.path.join(HERE, "typing_prelude", "readme_names.pyi"), d / "readme_names.pyi")
+    # and the overloads' promises (assert_type): checked, never run
+    shutil.copy(os.path.join(HERE, "typing_prelude", "check_overloads.py"), d / "readme_example_overloads.py")
     prelude = ast.parse((d / "readme_names.pyi").read_text())
     given = {t.target.id for t in prelude.body if isinstance(t, ast.AnnAssign) and isinstance(t.target, ast.Name)}
     given.add("mcstat")

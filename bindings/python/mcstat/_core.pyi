@@ -95,9 +95,11 @@ class Moments:
 
 # t_test and var_test: the result's kind follows the input.  Accumulators
 # and lists of numbers are known statically; for NumPy arrays it depends
-# on the number of dimensions, which NumPy's types do not carry: 1-D gives
-# a TestResult, N-D (one test per row along `axis`) a BatchResult, so
-# those overloads return Any (annotate the variable, or isinstance()).
+# on the number of dimensions: 1-D gives a TestResult, N-D (one test per
+# row along `axis`) a BatchResult.  NDArray's shape is tuple[Any, ...],
+# which mypy and pyright match with any shape-typed overload (tuple[int]
+# and tuple[int, int] alike), so arrays get Any: annotate the variable
+# (r: mcstat.TestResult = mcstat.t_test(x)) or use isinstance().
 _Seq = Sequence[float]
 _One = Union[Moments, _Seq]
 
