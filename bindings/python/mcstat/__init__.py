@@ -33,7 +33,8 @@ package never imports.
 Beyond the paper: `binom_test` (R's exact binomial test),
 `battery_test` (is a battery's rejection count consistent with its level?)
 and `diagnose` (skewness, kurtosis, heavy tails, the batch size the t test
-needs) in `mcstat.diagnostics`.
+needs) in `mcstat.diagnostics`; the t, chi-squared and F distributions the
+tests use (cdf, log cdf, quantile, over arrays) in `mcstat.distributions`.
 
 One-sided alternatives are claims about the first sample in every test:
 ``ks_test(x, y, alternative="less")`` means x tends to be smaller, which
@@ -62,6 +63,7 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
     Moments,
     TestResult,
     __libmcstat_version__,
+    __libmcstat_version_number__,
     batch_means,
     get_num_threads,
     gsl_handler_was_default,
@@ -76,6 +78,8 @@ from ._result import BatchResult
 
 # Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
 from ._core import MomentsArray  # noqa: E402
+# A renderer thread's buffered accumulator with its mean and variance checks.
+from ._core import Stream  # noqa: E402
 # Equivalence (TOST), power and sample size (mcstat._power).
 from ._power import (  # noqa: E402
     EquivalenceResult,
@@ -90,6 +94,8 @@ from ._power import (  # noqa: E402
 from ._core import CheckReport, CheckRoute, check_bsdf, check_emitter, check_warp  # noqa: E402
 # the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
+# the t, chi-squared and F distributions (cdf, log cdf, quantile)
+from . import distributions  # noqa: E402
 
 # The distribution's version, which the build reads from mcstat.h (the same
 # header the linked libmcstat reports as __libmcstat_version__).
@@ -112,6 +118,7 @@ __all__ = [
     "TestResult",
     "BatchResult",
     "MomentsArray",
+    "Stream",
     "set_num_threads",
     "get_num_threads",
     "binom_test",
@@ -123,6 +130,7 @@ __all__ = [
     "check_warp",
     "CheckReport",
     "CheckRoute",
+    "distributions",
     *_errors.__all__,
     # equivalence, power and sample size
     "equivalence_test",

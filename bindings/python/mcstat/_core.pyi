@@ -1,5 +1,5 @@
 # Type stubs for the compiled module mcstat._core (see the docstrings there).
-from typing import Any, Callable, Dict, Iterator, List, Literal, Optional, Tuple, Union, overload
+from typing import Any, Callable, Dict, Iterator, List, Literal, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -10,11 +10,12 @@ _Alternative = Literal["two-sided", "less", "greater"]
 _NanPolicy = Literal["raise", "omit"]
 _TestNanPolicy = Literal["raise", "omit", "propagate"]
 _OnError = Literal["raise", "nan"]
-_Sample = Union[npt.ArrayLike, "Moments"]
+_Sample = Union[npt.ArrayLike, "Moments", "MomentsArray"]
 _Weight = Literal["none", "canner"]
 _KSMethod = Literal["auto", "exact", "simulate", "asymptotic"]
 
 __libmcstat_version__: str
+__libmcstat_version_number__: int
 gsl_handler_was_default: bool
 
 class TestResult:
@@ -97,6 +98,62 @@ class Moments:
     @staticmethod
     def from_bytes(data: bytes) -> "Moments": ...
 
+# t_test and var_test: the result's kind follows the input.  Accumulators
+# and lists of numbers are known statically; for NumPy arrays it depends
+# on the number of dimensions: 1-D gives a TestResult, N-D (one test per
+# row along `axis`) a BatchResult.  NDArray's shape is tuple[Any, ...],
+# which mypy and pyright match with any shape-typed overload (tuple[int]
+# and tuple[int, int] alike), so arrays get Any: annotate the variable
+# (r: mcstat.TestResult = mcstat.t_test(x)) or use isinstance().
+_Seq = Sequence[float]
+_One = Union[Moments, _Seq]
+
+@overload
+def t_test(
+    x: "MomentsArray",
+    y: Optional[Union["MomentsArray", Moments]] = None,
+    *,
+    mu: float = 0.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _TestNanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+    equal_var: bool = False,
+    paired: bool = False,
+) -> BatchResult: ...
+@overload
+def t_test(
+    x: Moments,
+    y: "MomentsArray",
+    *,
+    mu: float = 0.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _TestNanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+    equal_var: bool = False,
+    paired: bool = False,
+) -> BatchResult: ...
+@overload
+def t_test(
+    x: _One,
+    y: Optional[_One] = None,
+    *,
+    mu: float = 0.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _TestNanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+    equal_var: bool = False,
+    paired: bool = False,
+) -> TestResult: ...
+@overload
 def t_test(
     x: _Sample,
     y: Optional[_Sample] = None,
@@ -110,7 +167,50 @@ def t_test(
     on_error: _OnError = "raise",
     equal_var: bool = False,
     paired: bool = False,
-) -> Union[TestResult, BatchResult]: ...
+) -> Any: ...
+@overload
+def var_test(
+    x: "MomentsArray",
+    y: Optional[Union["MomentsArray", Moments]] = None,
+    *,
+    sigma2: Optional[float] = None,
+    ratio: float = 1.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _TestNanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> BatchResult: ...
+@overload
+def var_test(
+    x: Moments,
+    y: "MomentsArray",
+    *,
+    sigma2: Optional[float] = None,
+    ratio: float = 1.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _TestNanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> BatchResult: ...
+@overload
+def var_test(
+    x: _One,
+    y: Optional[_One] = None,
+    *,
+    sigma2: Optional[float] = None,
+    ratio: float = 1.0,
+    alternative: _Alternative = "two-sided",
+    alpha: float = 0.05,
+    axis: int = -1,
+    nan_policy: _TestNanPolicy = "raise",
+    intervals: bool = True,
+    on_error: _OnError = "raise",
+) -> TestResult: ...
+@overload
 def var_test(
     x: _Sample,
     y: Optional[_Sample] = None,
@@ -123,7 +223,7 @@ def var_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
-) -> Union[TestResult, BatchResult]: ...
+) -> Any: ...
 class KSCache:
     def __init__(self, max_bytes: Optional[int] = None, seed: Optional[int] = None) -> None: ...
     @property
@@ -169,9 +269,13 @@ def batch_means(
 def p_adjust(
     p: npt.ArrayLike,
     *,
-    method: Literal["holm", "hochberg", "hommel", "bonferroni", "BH", "bh", "fdr", "BY", "by", "none"] = "holm",
+    # R's names (case ignored), then statsmodels' multipletests names for them
+    method: str = "holm",
 ) -> npt.NDArray[np.float64]: ...
 def set_num_threads(n: int) -> None: ...
+def _alternative_code(alternative: str) -> int: ...
+def _real_array(obj: Any, name: str) -> npt.NDArray[Any]: ...
+def _float_array(obj: Any, name: str) -> npt.NDArray[np.float64]: ...
 def get_num_threads() -> int: ...
 def strerror(status: int) -> str: ...
 def _status_text(status: int) -> str: ...
@@ -182,6 +286,22 @@ def _t_test_2_summary_rows(
 ) -> Dict[str, npt.NDArray[Any]]: ...
 def _result_from_bytes(raw: bytes, seed: Optional[int] = None) -> TestResult: ...
 def _result_from_fields(kind: str, alternative: str, alpha: float, null_value: float, f: Any) -> TestResult: ...
+
+# ---- a renderer thread's accumulator and its checks (stream.cpp) ----
+class Stream:
+    def __init__(self) -> None: ...
+    def push(self, values: Union[float, npt.ArrayLike]) -> "Stream": ...
+    def flush(self) -> "Stream": ...
+    def merge(self, other: "Stream") -> "Stream": ...
+    def moments(self) -> Moments: ...
+    @property
+    def n(self) -> int: ...
+    @property
+    def n_nonfinite(self) -> int: ...
+    @property
+    def n_overflow(self) -> int: ...
+    def check_mean(self, reference: float, *, tolerance: float = 0.0, alpha: float = 0.05) -> TestResult: ...
+    def check_var(self, bound: float, *, alpha: float = 0.05) -> TestResult: ...
 
 # ---- per-pixel accumulators (moments_array.cpp) ----
 class MomentsArray:
@@ -224,6 +344,8 @@ def _power(
 ) -> Dict[str, Any]: ...
 # the binomial meta-test and estimator diagnostics (wrapped by mcstat.diagnostics)
 def _binom_test(x: int, n: int, p: float, alternative: str, alpha: float) -> TestResult: ...
+def _battery_test(rejections: int, k: int, level: float, alternative: str, alpha: float) -> TestResult: ...
+def _tail_index(x: Any, tail_k: int) -> Tuple[float, float]: ...
 def _battery_test_pvalues(pvalues: Any, level: float, alternative: str, alpha: float) -> TestResult: ...
 def _diagnose(x: Any, k: int, m: int, alpha: float, tolerance: float, tail_k: int,
               tail_threshold: float) -> Dict[str, Any]: ...
@@ -320,3 +442,5 @@ def check_bsdf(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callab
 def check_emitter(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any],
                   **kwargs: Any) -> CheckReport: ...
 def check_warp(sample: Callable[..., Any], pdf: Callable[..., Any], **kwargs: Any) -> CheckReport: ...
+# t, chi-squared and F distributions over arrays (distributions.cpp), wrapped by mcstat.distributions
+def _distribution(name: str, a: Any, b: Any, c: Any, upper: bool) -> Any: ...

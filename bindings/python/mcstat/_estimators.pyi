@@ -1,6 +1,6 @@
 # Type stubs for the compiled module mcstat._estimators (use mcstat.estimators;
 # the docstrings are there).
-from typing import Any, Dict, Literal, Optional, Union
+from typing import Any, Dict, Literal, Optional, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -59,7 +59,14 @@ def irradiance(
     threads: Optional[int] = None,
 ) -> npt.NDArray[np.float64]: ...
 def irradiance_exact(*, triangle: _Vec, point: _Vec, normal: _Vec, radiance: float = 1.0) -> float: ...
-def paper_scene() -> Dict[str, Union[npt.NDArray[np.float64], float]]: ...
+class _Scene(TypedDict):
+    # keyword arguments of irradiance, irradiance_exact and IrradiancePlan
+    triangle: npt.NDArray[np.float64]
+    point: npt.NDArray[np.float64]
+    normal: npt.NDArray[np.float64]
+    radiance: float
+
+def paper_scene() -> _Scene: ...
 
 class BRDF:
     @property

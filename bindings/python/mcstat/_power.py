@@ -82,6 +82,24 @@ class EquivalenceResult:
     __slots__ = ("statistic", "df", "pvalue", "statistics", "pvalues", "bounds", "conf_int",
                  "estimate", "null_value", "alpha", "reject", "decision_code", "critical_values",
                  "std_error", "nobs", "_text", "two_sample", "margin")
+    statistic: float
+    df: float
+    pvalue: float
+    statistics: Tuple[float, float]
+    pvalues: Tuple[float, float]
+    bounds: Tuple[float, float]
+    conf_int: Tuple[float, float]
+    estimate: Union[float, Tuple[float, float]]
+    null_value: float
+    alpha: float
+    reject: bool
+    decision_code: int
+    critical_values: Tuple[float, float]
+    std_error: float
+    nobs: Union[int, Tuple[int, int]]
+    _text: str
+    two_sample: bool
+    margin: Tuple[float, float]
 
     def __init__(self, d: Dict[str, Any], margin: Tuple[float, float]) -> None:
         for k in ("statistic", "df", "pvalue", "statistics", "pvalues", "bounds", "conf_int",
@@ -202,6 +220,17 @@ class PowerResult:
 
     __slots__ = ("test", "n", "n_exact", "n_y", "effect", "alpha", "power", "alternative", "strict",
                  "solved_for", "sd_ratio", "_text")
+    test: str
+    n: float
+    n_y: Optional[float]
+    effect: float
+    alpha: float
+    power: float
+    alternative: str
+    strict: bool
+    solved_for: str
+    sd_ratio: float
+    _text: str
 
     def __str__(self) -> str:
         return self._text
@@ -327,6 +356,14 @@ class KSPowerResult:
     """
 
     __slots__ = ("power", "se", "n", "n_y", "n_rep", "alpha", "weight", "alternative")
+    power: float
+    se: float
+    n: int
+    n_y: int
+    n_rep: int
+    alpha: float
+    weight: str
+    alternative: str
 
     def __str__(self) -> str:
         return (f"\n     Two-sample Kolmogorov-Smirnov test power (simulated, weight {self.weight})\n\n"

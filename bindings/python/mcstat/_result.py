@@ -2,9 +2,10 @@
 """BatchResult: the fields of row-wise tests as arrays."""
 from __future__ import annotations
 
-from typing import Any, Dict, Iterator, NamedTuple, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Iterator, NamedTuple, Optional, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from ._errors import _BY_STATUS, McstatError
 
@@ -15,6 +16,8 @@ class ConfidenceInterval(NamedTuple):
     low: float
     high: float
 
+if TYPE_CHECKING:
+    from ._core import TestResult
 
 _METHODS = {
     "t_1": "One Sample t-test",
@@ -80,31 +83,63 @@ class BatchResult:
         self.null_value: float = null_value
         self.method: str = _METHODS[kind]
         self.intervals: bool = intervals
-        self._decision = None
+        self._decision: Optional[npt.NDArray[np.str_]] = None
 
-    # fields
-    statistic = property(lambda self: self._f["statistic"])
-    df = property(lambda self: self._f["df"])
-    pvalue = property(lambda self: self._f["pvalue"])
-    conf_int = property(lambda self: self._f["conf_int"])
-    estimate = property(lambda self: self._f["estimate"])
-    critical_values = property(lambda self: self._f["critical_values"])
-    std_error = property(lambda self: self._f["std_error"])
-    reject = property(lambda self: self._f["reject"])
-    decision_code = property(lambda self: self._f["decision_code"])
-    status = property(lambda self: self._f["status"])
-    nobs = property(lambda self: self._f["nobs"])
+    # fields (arrays over the rows; see the class docstring for the shapes)
+    @property
+    def statistic(self) -> "npt.NDArray[np.float64]":
+        return self._f["statistic"]
 
     @property
-    def ok(self) -> np.ndarray:
+    def df(self) -> "npt.NDArray[np.float64]":
+        return self._f["df"]
+
+    @property
+    def pvalue(self) -> "npt.NDArray[np.float64]":
+        return self._f["pvalue"]
+
+    @property
+    def conf_int(self) -> "npt.NDArray[np.float64]":
+        return self._f["conf_int"]
+
+    @property
+    def estimate(self) -> "npt.NDArray[np.float64]":
+        return self._f["estimate"]
+
+    @property
+    def critical_values(self) -> "npt.NDArray[np.float64]":
+        return self._f["critical_values"]
+
+    @property
+    def std_error(self) -> "npt.NDArray[np.float64]":
+        return self._f["std_error"]
+
+    @property
+    def reject(self) -> "npt.NDArray[np.bool_]":
+        return self._f["reject"]
+
+    @property
+    def decision_code(self) -> "npt.NDArray[np.int8]":
+        return self._f["decision_code"]
+
+    @property
+    def status(self) -> "npt.NDArray[np.int8]":
+        return self._f["status"]
+
+    @property
+    def nobs(self) -> "npt.NDArray[np.int64]":
+        return self._f["nobs"]
+
+    @property
+    def ok(self) -> "npt.NDArray[np.bool_]":
         return self._f["status"] == 0
 
     @property
-    def pvalue_se(self) -> np.ndarray:
+    def pvalue_se(self) -> "npt.NDArray[np.float64]":
         return np.zeros(self.shape)
 
     @property
-    def decision(self) -> np.ndarray:
+    def decision(self) -> "npt.NDArray[np.str_]":
         if self._decision is None:
             d = _DECISIONS[self._f["decision_code"].astype(np.intp) + 1]
             d[~self.ok] = ""
@@ -138,7 +173,8 @@ class BatchResult:
         for i in range(self.shape[0]):
             yield self[i]
 
-    def __getitem__(self, index: Any):
+    # a TestResult for a full index, a sub-batch for a partial one (as NumPy)
+    def __getitem__(self, index: Union[int, Tuple[int, ...]]) -> Any:
         from ._core import _result_from_fields  # the struct is rebuilt in C++
 
         idx = index if isinstance(index, tuple) else (index,)

@@ -18,12 +18,15 @@ import numpy as np
 
 from . import _core
 from ._errors import InvalidArgumentError
+from ._core import TestResult
 from ._power import _real
 
-__all__ = ["binom_test", "battery_test", "diagnose", "Diagnostics", "t_size_edgeworth", "batch_size_recommend"]
+__all__ = ["binom_test", "battery_test", "diagnose", "Diagnostics", "t_size_edgeworth", "batch_size_recommend",
+           "tail_index"]
 
 
-def binom_test(x: int, n: int, p: float = 0.5, *, alternative: str = "two-sided", alpha: float = 0.05):
+def binom_test(x: int, n: int, p: float = 0.5, *, alternative: str = "two-sided",
+               alpha: float = 0.05) -> TestResult:
     """Exact binomial test of H0: P(success) = p, as R's ``binom.test``.
 
     Parameters
@@ -52,7 +55,7 @@ def binom_test(x: int, n: int, p: float = 0.5, *, alternative: str = "two-sided"
 
 
 def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, alternative: str = "two-sided",
-                 meta_alpha: float = 0.05):
+                 meta_alpha: float = 0.05) -> TestResult:
     """The meta-test of a battery: is its number of rejections consistent
     with the level `alpha` of its tests?
 
@@ -86,7 +89,7 @@ def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, al
             raise TypeError("battery_test: n (the number of tests) is required with a count of rejections")
         if not (0.0 < alpha < 1.0):
             raise InvalidArgumentError(f"battery_test: alpha must be in (0, 1), got {alpha!r}")
-        return binom_test(int(tests), n, alpha, alternative=alternative, alpha=meta_alpha)
+        return _core._battery_test(operator.index(tests), operator.index(n), alpha, alternative, meta_alpha)
     if n is not None:
         raise TypeError("battery_test: n is only for a count of rejections")
     a = _core._real_array(tests, "tests")
@@ -94,11 +97,28 @@ def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, al
         flags = a.ravel()
         if not (0.0 < alpha < 1.0):
             raise InvalidArgumentError(f"battery_test: alpha must be in (0, 1), got {alpha!r}")
-        return binom_test(int(flags.sum()), flags.size, alpha, alternative=alternative, alpha=meta_alpha)
+        return _core._battery_test(int(flags.sum()), flags.size, alpha, alternative, meta_alpha)
     if a.dtype.kind in "iu":
         # 0/1 integers are ambiguous: flags (1 = rejected) or p-values (0 = rejected)?
         raise TypeError("battery_test: pass reject flags as bool and p-values as float, not integers")
     return _core._battery_test_pvalues(a.ravel(), alpha, alternative, meta_alpha)
+
+
+def tail_index(x: Any, tail_k: Optional[int] = None) -> Tuple[float, float]:
+    """Hill's tail index of each tail of `x` (1-D): ``(lower, upper)``.
+
+    Each from the `tail_k` most extreme values on its side of the median
+    (default max(10, min(4 sqrt(n), n // 25)); fewer when fewer values lie
+    beyond the median).  inf means no Pareto tail; below about 2 the
+    variance is infinite ("fireflies": sample variances, t and F tests are
+    unreliable).  The same estimate `diagnose` reports, without the rest.
+    Raises `TooFewObservationsError` for n < 2 tail_k + 2 and
+    `NonFiniteError` for NaN or infinite values.
+    """
+    if tail_k is not None and operator.index(tail_k) < 1:
+        raise InvalidArgumentError(f"tail_index: tail_k must be >= 1, got {tail_k!r}")
+    lo, up = _core._tail_index(_core._float_array(x, "x"), 0 if tail_k is None else operator.index(tail_k))
+    return float(lo), float(up)
 
 
 def t_size_edgeworth(skewness: float, kurtosis: float, k: int, m: int, alpha: float = 0.05) -> Tuple[float, float]:

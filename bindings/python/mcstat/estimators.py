@@ -50,9 +50,13 @@ Example
 """
 from __future__ import annotations
 
-from typing import NamedTuple, Optional
+from typing import TYPE_CHECKING, NamedTuple, Optional
 
 import numpy as np
+import numpy.typing as npt
+
+if TYPE_CHECKING:
+    from ._core import TestResult
 
 __all__ = [
     "irradiance",
@@ -237,7 +241,7 @@ def default_depth(n: int, min_expected: float = 5.0) -> int:
     return int(min(12, max(2, round(np.log2(max(k, 1.0))))))
 
 
-def direction_cells(plan, depth: int, *, rel_tol: float = 1e-8, strict: bool = True) -> DirectionCells:
+def direction_cells(plan: BRDFPlan, depth: int, *, rel_tol: float = 1e-8, strict: bool = True) -> DirectionCells:
     """Cells of (nearly) equal probability under ``plan``'s sampler density.
 
     The sphere, mapped to the equal-area square of the Morton keys, is cut
@@ -256,8 +260,9 @@ def direction_cells(plan, depth: int, *, rel_tol: float = 1e-8, strict: bool = T
     return DirectionCells(int(depth), split, prob, float(err))
 
 
-def direction_gof(directions, plan=None, *, cells: Optional[DirectionCells] = None, depth: Optional[int] = None,
-                  alpha: float = 0.05, min_expected: float = 5.0):
+def direction_gof(directions: npt.ArrayLike, plan: Optional[BRDFPlan] = None, *,
+                  cells: Optional[DirectionCells] = None, depth: Optional[int] = None, alpha: float = 0.05,
+                  min_expected: float = 5.0) -> TestResult:
     """Chi-squared goodness of fit of directions to a BRDF sampler's density.
 
     Parameters

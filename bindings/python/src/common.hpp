@@ -117,6 +117,10 @@ void register_diagnostics(py::module_ &mod);
 void register_chisq(py::module_ &mod);
 // check.cpp: check_bsdf, check_emitter, check_warp
 void register_check(py::module_ &mod);
+// ---- t, chi-squared and F distributions over arrays (distributions.cpp) ----
+void register_distributions(py::module_ &mod);
+// ---- the renderer's buffered accumulator and its checks (stream.cpp) ----
+void register_stream(py::module_ &mod);
 
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);

@@ -61,6 +61,38 @@ void register_diagnostics(py::module_ &mod)
         py::arg("x"), py::arg("n"), py::arg("p"), py::arg("alternative"), py::arg("alpha"));
 
     mod.def(
+        "_battery_test",
+        [](py::object rejections, py::object k, double level, py::handle alternative, double alpha) {
+            uint64_t r = count(rejections, "rejections"), kk = count(k, "n");
+            mcstat_result res;
+            int st = mcstat_battery_test(r, kk, level, parse_alternative(alternative.ptr()), alpha, &res);
+            if (st)
+                throw_status(st, "battery_test(" + std::to_string(r) + " rejections, n=" + std::to_string(kk) + ")");
+            return make_result(res);
+        },
+        py::arg("rejections"), py::arg("k"), py::arg("level"), py::arg("alternative"), py::arg("alpha"));
+
+    mod.def(
+        "_tail_index",
+        [](py::object x, py::object tail_k) {
+            py::array_t<double, py::array::c_style | py::array::forcecast> a = as_contiguous_array(x, "x");
+            if (a.ndim() != 1)
+                throw_invalid("tail_index: x must be one-dimensional, got " + std::to_string(a.ndim()) + " dimensions");
+            uint64_t tk = count(tail_k, "tail_k");
+            double index[2];
+            int st;
+            {
+                py::gil_scoped_release nogil;
+                st = mcstat_diag_tail_index(a.data(), static_cast<size_t>(a.size()), static_cast<size_t>(tk), index);
+            }
+            if (st)
+                throw_status(st, "tail_index of " + std::to_string(a.size()) + " values" +
+                                     (tk ? " with tail_k=" + std::to_string(tk) : std::string()));
+            return py::make_tuple(index[0], index[1]);
+        },
+        py::arg("x"), py::arg("tail_k"));
+
+    mod.def(
         "_battery_test_pvalues",
         [](py::object pv, double level, py::handle alternative, double alpha) {
             py::array a = as_contiguous_array(pv, "tests");
@@ -83,7 +115,8 @@ void register_diagnostics(py::module_ &mod)
             py::array a = as_contiguous_array(x, "x");
             if (a.ndim() != 1)
                 throw_invalid("diagnose: x must be one-dimensional, got " + std::to_string(a.ndim()) + " dimensions");
-            mcstat_diag_options o = MCSTAT_DIAG_OPTIONS_INIT;
+            mcstat_diag_options o;
+            mcstat_diag_options_init(&o);
             o.k = k;
             o.m = m;
             o.alpha = alpha;

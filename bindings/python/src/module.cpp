@@ -19,6 +19,8 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_p_adjust(mod);
     mcs::register_summary_rows(mod);
     mcs::register_check(mod); // renderer checks: BSDFs, emitters, warps
+    mcs::register_distributions(mod); // t, chi-squared and F cdf and quantiles
+    mcs::register_stream(mod); // mcstat.Stream, after Moments (it returns one)
 
     mod.def(
         "set_num_threads",
@@ -44,6 +46,8 @@ ValueError) outside 0..1024.)doc");
     mod.def("_status_text", &mcs::status_text, py::arg("status"),
             "The sentence of a status as the exceptions word it (see errors.cpp).");
     mod.attr("__libmcstat_version__") = mcstat_version();
+    // MAJOR * 10000 + MINOR * 100 + PATCH of the linked libmcstat
+    mod.attr("__libmcstat_version_number__") = mcstat_version_number();
 
     // GSL's default error handler aborts the process.  libmcstat never
     // reaches it (arguments are validated before GSL is called), but other

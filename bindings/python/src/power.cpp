@@ -16,17 +16,24 @@ namespace {
 
 using carray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// An mcstat.Moments as it is, or the moments of a 1-D array-like.
-mcstat_moments to_moments(py::handle obj, bool omit, const char *name)
+// A 1-D array-like as a contiguous float64 array.
+carray array_1d(py::handle obj, const char *name)
 {
     if (obj.is_none())
         throw py::type_error(std::string(name) + " must be array-like or an mcstat.Moments, not None");
-    if (const mcstat_moments *m = as_moments(obj))
-        return *m;
     carray a = as_contiguous_array(obj, name);
     if (a.ndim() != 1)
         throw_invalid(std::string("equivalence_test: ") + name + " must be 1-D, got " + std::to_string(a.ndim()) +
                       "-D");
+    return a;
+}
+
+// An mcstat.Moments as it is, or the moments of a 1-D array-like.
+mcstat_moments to_moments(py::handle obj, bool omit, const char *name)
+{
+    if (const mcstat_moments *m = as_moments(obj))
+        return *m;
+    carray a = array_1d(obj, name);
     mcstat_moments m;
     mcstat_moments_init(&m);
     size_t n = static_cast<size_t>(a.size());
@@ -63,16 +70,32 @@ py::dict equivalence(py::object x, py::object y, double mu0, double lower, doubl
     if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper))
         throw_invalid("the margin's bounds must be finite with lower < upper, got (" + std::to_string(lower) + ", " +
                       std::to_string(upper) + ")");
-    mcstat_moments mx = to_moments(x, omit, "x"), my;
     bool two = !y.is_none();
-    if (two)
-        my = to_moments(y, omit, "y");
     mcstat_result r;
-    int st = two ? mcstat_equivalence_test_2_moments(&mx, &my, lower, upper, alpha, &r)
+    int st;
+    uint64_t nx, ny = 0;
+    if (!omit && !as_moments(x) && !(two && as_moments(y))) {
+        // arrays: libmcstat's array functions (the same moments as to_moments)
+        carray ax = array_1d(x, "x"), ay;
+        if (two)
+            ay = array_1d(y, "y");
+        nx = static_cast<uint64_t>(ax.size());
+        ny = two ? static_cast<uint64_t>(ay.size()) : 0;
+        py::gil_scoped_release nogil;
+        st = two ? mcstat_equivalence_test_2(ax.data(), ax.size(), ay.data(), ay.size(), lower, upper, alpha, &r)
+                 : mcstat_equivalence_test_1(ax.data(), ax.size(), mu0, lower, upper, alpha, &r);
+    } else {
+        mcstat_moments mx = to_moments(x, omit, "x"), my;
+        if (two)
+            my = to_moments(y, omit, "y");
+        nx = mx.n;
+        ny = two ? my.n : 0;
+        st = two ? mcstat_equivalence_test_2_moments(&mx, &my, lower, upper, alpha, &r)
                  : mcstat_equivalence_test_1_moments(&mx, mu0, lower, upper, alpha, &r);
+    }
     if (st)
-        throw_status(st, two ? "x has " + std::to_string(mx.n) + " values, y has " + std::to_string(my.n)
-                             : "x has " + std::to_string(mx.n) + " values");
+        throw_status(st, two ? "x has " + std::to_string(nx) + " values, y has " + std::to_string(ny)
+                             : "x has " + std::to_string(nx) + " values");
     py::dict d;
     d["two_sample"] = two;
     d["statistic"] = r.statistic;
@@ -108,9 +131,11 @@ py::dict power(int test, int alternative, bool strict, double n, double n_ratio,
     o.effect = effect;
     o.alpha = alpha;
     o.power = power;
-    mcstat_power_options r;
+    mcstat_power_options r = o;
     int st;
-    {
+    if (unknown == MCSTAT_POWER_SOLVE_POWER) { // nothing to solve: the power at n, effect, alpha
+        st = mcstat_power_compute(&o, &r.power);
+    } else {
         py::gil_scoped_release nogil;
         st = mcstat_power_solve(&o, unknown, &r);
     }

@@ -170,6 +170,14 @@ int call_paired(const TestArgs &a, const double *x, const double *y, size_t n, m
 int call_arrays(const TestArgs &a, const double *x, size_t nx, const double *y, size_t ny, mcstat_result *r)
 {
     unsigned flags = (a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (a.omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
+    if (!flags) // the plain array functions; a one-row matrix gives the same bits (rows.c)
+        switch (a.kind) {
+        case Kind::T1: return mcstat_t_test_1(x, nx, a.null_value, a.alternative, a.alpha, r);
+        case Kind::T2: return mcstat_t_test_2(x, nx, y, ny, a.null_value, a.alternative, a.alpha, r);
+        case Kind::V1: return mcstat_var_test_1(x, nx, a.null_value, a.alternative, a.alpha, r);
+        default: return mcstat_var_test_2(x, nx, y, ny, a.null_value, a.alternative, a.alpha, r);
+        }
+    // skipped intervals or NaN left out: only the matrix functions have the flags
     switch (a.kind) {
     case Kind::T1: return mcstat_t_test_1_matrix(x, nx, 0, 1, a.null_value, a.alternative, a.alpha, flags, r, nullptr);
     case Kind::T2:

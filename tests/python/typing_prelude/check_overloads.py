@@ -1,0 +1,30 @@
+# What the stubs promise, checked by mypy and pyright (test_typing.py):
+# the result kind of t_test and var_test follows the input.
+from typing import Any, Tuple, assert_type
+
+import numpy as np
+
+import mcstat
+from mcstat import distributions
+
+one: np.ndarray[Tuple[int], np.dtype[np.float64]] = np.zeros(3)
+two: np.ndarray[Tuple[int, int], np.dtype[np.float64]] = np.zeros((3, 4))
+unknown = np.zeros(3)  # NDArray: the shape is not in the type
+
+assert_type(mcstat.t_test([1.0, 2.0, 3.0], mu=1.0), mcstat.TestResult)
+assert_type(mcstat.t_test(one, [1.0, 2.0]), Any)  # an array: its ndim decides at run time
+assert_type(mcstat.t_test(mcstat.Moments(one)), mcstat.TestResult)
+assert_type(mcstat.t_test(two), Any)  # NDArray: its ndim decides at run time
+assert_type(mcstat.t_test(mcstat.MomentsArray(3)), mcstat.BatchResult)
+assert_type(mcstat.t_test(mcstat.Moments(one), mcstat.MomentsArray(3)), mcstat.BatchResult)
+assert_type(mcstat.t_test(unknown), Any)
+assert_type(mcstat.var_test([1.0, 2.0, 4.0], sigma2=1.0), mcstat.TestResult)
+assert_type(mcstat.var_test(mcstat.Moments(one), mcstat.Moments(one)), mcstat.TestResult)
+assert_type(mcstat.var_test(mcstat.MomentsArray(3), mcstat.Moments(one)), mcstat.BatchResult)
+assert_type(mcstat.t_test(mcstat.MomentsArray((2, 3)))[0, 1], mcstat.TestResult)
+assert_type(mcstat.t_test(mcstat.MomentsArray(3)).pvalue, np.ndarray[Tuple[Any, ...], np.dtype[np.float64]])
+assert_type(distributions.t_cdf(1.0, 3), float)
+assert_type(mcstat.Stream().push(one).check_mean(0.0, tolerance=0.1), mcstat.TestResult)
+assert_type(mcstat.power("t", n=20, effect=0.5).power, float)
+assert_type(mcstat.equivalence_test(one, margin=0.1).pvalues, Tuple[float, float])
+assert_type(mcstat.diagnostics.tail_index(one), Tuple[float, float])
