@@ -138,7 +138,10 @@ def _reason(e: BaseException) -> str:
 
 
 def _load_stack_npy(path: str) -> np.ndarray:
-    a = np.load(path, allow_pickle=False)
+    try:
+        a = np.load(path, allow_pickle=False)
+    except _READ_ERRORS as e:  # a corrupt, truncated or unreadable .npy
+        raise ImageInputError(f"{path}: cannot read: {_reason(e)}") from e
     if a.ndim not in (3, 4):
         raise ImageInputError(f"{path}: a stack must be (seeds, H, W) or (seeds, H, W, C), got shape {a.shape}")
     return a

@@ -43,8 +43,8 @@ def samples(tmp_path):
 @pytest.fixture
 def stacks(tmp_path):
     rng = np.random.default_rng(5)
-    np.save(tmp_path / "ref.npy", rng.normal(1.0, 0.1, (6, 5, 4)))
-    np.save(tmp_path / "cand.npy", rng.normal(1.0, 0.1, (6, 5, 4)))
+    np.save(tmp_path / "ref.npy", rng.normal(1.0, 0.1, (4, 6, 5)))
+    np.save(tmp_path / "cand.npy", rng.normal(1.0, 0.1, (4, 6, 5)))
     return tmp_path
 
 

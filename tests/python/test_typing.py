@@ -90,6 +90,7 @@ def test_readme_examples_run(examples):
     rng = np.random.default_rng(7)
     data = {
         "new": rng.normal(0.0, 1.0, 200), "trusted": rng.normal(0.0, 1.0, 200), "x": rng.normal(0.0, 0.5, 100),
+        "before": rng.normal(1.0, 0.2, 50), "after": rng.normal(1.05, 0.2, 50),
         "batch": rng.normal(size=64), "primary": rng.exponential(size=4000),
         "pairs": [(rng.normal(size=40), rng.normal(size=40)) for _ in range(3)],
         "pvalues": rng.uniform(size=1000), "rejections": 61,

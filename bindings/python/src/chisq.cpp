@@ -109,7 +109,7 @@ py::object chisq_gof(py::object observed, py::object expected, const std::string
     if (!min_expected_arg.is_none() && !pool)
         throw_invalid("min_expected applies to pooling, not pool=False (where every cell is tested as given)");
     double min_expected =
-        min_expected_arg.is_none() ? MCSTAT_GOF_DEFAULT_MIN_EXPECTED : get_double(min_expected_arg.ptr(), "min_expected");
+        min_expected_arg.is_none() ? mcstat_gof_default_min_expected() : get_double(min_expected_arg.ptr(), "min_expected");
     py::array o = as_contiguous_array(observed, "observed");
     if (expected.is_none()) {
         if (o.ndim() != 1)

@@ -175,7 +175,8 @@ int call_arrays(const TestArgs &a, const double *x, size_t nx, const double *y, 
         case Kind::T1: return mcstat_t_test_1(x, nx, a.null_value, a.alternative, a.alpha, r);
         case Kind::T2: return mcstat_t_test_2(x, nx, y, ny, a.null_value, a.alternative, a.alpha, r);
         case Kind::V1: return mcstat_var_test_1(x, nx, a.null_value, a.alternative, a.alpha, r);
-        default: return mcstat_var_test_2(x, nx, y, ny, a.null_value, a.alternative, a.alpha, r);
+        case Kind::V2: return mcstat_var_test_2(x, nx, y, ny, a.null_value, a.alternative, a.alpha, r);
+        default: break; // pooled and paired: below
         }
     // skipped intervals or NaN left out: only the matrix functions have the flags
     switch (a.kind) {

@@ -12,6 +12,8 @@ _A = npt.NDArray[np.float64]
 
 new: _A
 trusted: _A
+before: _A
+after: _A
 x: _A
 img: _A
 reference_img: _A
