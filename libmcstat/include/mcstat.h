@@ -1654,8 +1654,11 @@ MCSTAT_API const char *mcstat_check_route_blind_spot(int route);
 /*   quantiles                             3e-13          3e-13             */
 /*   p-values of the t, Welch, chi^2 tests 1e-13          4e-13             */
 /*   p-values of the F test                1e-13          3e-12             */
-/*   log cdf: 8e-16 (t), 5e-15 (chi^2), 8e-15 (F) relative error of log p,  */
-/*   or of p where |log p| < 1.  chi^2 beyond df 1e9: cdf 4e-13, log 2e-13. */
+/*   log cdf where p < 1e-30: 8e-16 (t), 5e-15 (chi^2), 8e-15 (F) relative  */
+/*   error of log p.  Where p >= 1e-30 the log cdf carries the cdf's error: */
+/*   an absolute error of log p within the cdf's bound above (the relative  */
+/*   error of p; |log p| times less relative to log p).                     */
+/*   chi^2 beyond df 1e9: cdf 4e-13, log 2e-13.                             */
 /* Small p lose more because p = exp(log p) inherits |log p| times the      */
 /* rounding of log p.  The range promised: df in [1e-3, 1e15] (F: both),    */
 /* x anywhere (F with one df in [1e-4, 1e-3) too: ACCURACY.md's rows).      */
