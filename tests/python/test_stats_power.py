@@ -173,9 +173,11 @@ def test_ks_power(n1, n2, weight):
             assert np.allclose(null.values[np.minimum(kk, len(null.values) - 1)], d, rtol=1e-10, atol=1e-14)
             tails = np.array([null.tail(k) for k in kk])
             for method in methods:
+                sim = {"n_sim": N_SIM} if method == "simulate" else {}  # n_sim, seed: simulation only
                 rej = np.array([bool(mcstat.ks_test(X[i], Y[i], weight=weight, alternative=alt, alpha=ALPHA,
-                                                    method=method, n_sim=N_SIM, seed=i, threads=1,
-                                                    critical=False).reject) for i in range(KS_ROWS)])
+                                                    method=method, threads=1, critical=False,
+                                                    **sim, **({"seed": i} if sim else {})).reject)
+                                for i in range(KS_ROWS)])
                 what = f"ks {weight} {method} {n1}+{n2} shift={s} {alt}"
                 if method == "exact":
                     np.testing.assert_array_equal(rej, kk >= crit[alt], err_msg=what)
