@@ -567,3 +567,12 @@ int mcstat__moments_check(const mcstat_moments *m)
         return MCSTAT_EDEGENERATE;
     return MCSTAT_OK;
 }
+
+int mcstat__moments_of_two(const double *x, size_t nx, const double *y, size_t ny, mcstat_moments *mx,
+                           mcstat_moments *my)
+{
+    mcstat_moments_init(mx);
+    mcstat_moments_init(my);
+    int st = mcstat_moments_add_array(mx, x, nx);
+    return st ? st : mcstat_moments_add_array(my, y, ny);
+}

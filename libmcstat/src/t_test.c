@@ -235,11 +235,7 @@ int mcstat_t_test_2(const double *x, size_t nx, const double *y, size_t ny, doub
     if (!x || !y || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
     mcstat_moments mx, my;
-    mcstat_moments_init(&mx);
-    mcstat_moments_init(&my);
-    int st = mcstat_moments_add_array(&mx, x, nx);
-    if (!st)
-        st = mcstat_moments_add_array(&my, y, ny);
+    int st = mcstat__moments_of_two(x, nx, y, ny, &mx, &my);
     return st ? st : mcstat_t_test_2_moments(&mx, &my, mu0, alternative, alpha, out);
 }
 
@@ -259,11 +255,7 @@ int mcstat_t_test_2_pooled(const double *x, size_t nx, const double *y, size_t n
     if (!x || !y || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
     mcstat_moments mx, my;
-    mcstat_moments_init(&mx);
-    mcstat_moments_init(&my);
-    int st = mcstat_moments_add_array(&mx, x, nx);
-    if (!st)
-        st = mcstat_moments_add_array(&my, y, ny);
+    int st = mcstat__moments_of_two(x, nx, y, ny, &mx, &my);
     return st ? st : mcstat_t_test_2_pooled_moments(&mx, &my, mu0, alternative, alpha, out);
 }
 

@@ -17,6 +17,10 @@ MCSTAT_HIDDEN void mcstat__moments_var_scaled(const mcstat_moments *m, double *v
 MCSTAT_HIDDEN mcstat_dd mcstat__moments_mean_dd(const mcstat_moments *m);
 /* MCSTAT_ETOOFEW / MCSTAT_EDEGENERATE / MCSTAT_EINVAL checks of a sample. */
 MCSTAT_HIDDEN int mcstat__moments_check(const mcstat_moments *m);
+/* The moments of two samples, for the two-sample tests on arrays: mx and my
+ * initialised and filled; the first failing status otherwise. */
+MCSTAT_HIDDEN int mcstat__moments_of_two(const double *x, size_t nx, const double *y, size_t ny, mcstat_moments *mx,
+                                         mcstat_moments *my);
 
 /* ---- results (result.c) -------------------------------------------------- */
 /* Fills p_value, critical[], reject, decision from the statistic's tails.

@@ -207,10 +207,6 @@ int mcstat_var_test_2(const double *x, size_t nx, const double *y, size_t ny, do
     if (!x || !y || !out)
         return MCSTAT_EINVAL;
     mcstat_moments mx, my;
-    mcstat_moments_init(&mx);
-    mcstat_moments_init(&my);
-    int st = mcstat_moments_add_array(&mx, x, nx);
-    if (!st)
-        st = mcstat_moments_add_array(&my, y, ny);
+    int st = mcstat__moments_of_two(x, nx, y, ny, &mx, &my);
     return st ? st : mcstat_var_test_2_moments(&mx, &my, ratio, alternative, alpha, out);
 }
