@@ -130,3 +130,14 @@ def test_row_errors_do_not_speak_of_other_tests():
     with pytest.raises(mcstat.TooFewObservationsError) as e:
         mcstat.t_test(x, mu=0.0)
     assert "K-S" not in str(e.value) and "3 of 3 rows failed" in str(e.value)
+
+
+def test_errors_carry_the_c_status_text():
+    # the message is in Python's words; the C sentence stays on the exception
+    with pytest.raises(mcstat.InvalidArgumentError) as e:
+        mcstat.t_test([1.0, 2.0, 3.0], alpha=5)
+    assert str(e.value) == "alpha must be in (0, 1), got 5"
+    assert e.value.status_text == mcstat._core.strerror(1) and e.value.status_text.startswith("invalid argument")
+    with pytest.raises(mcstat.DegenerateDataError) as e:
+        mcstat.t_test([2.0, 2.0, 2.0])
+    assert e.value.status_text == mcstat._core.strerror(e.value.status)

@@ -42,6 +42,9 @@ class McstatError(ValueError):
         For row-wise tests: indices of the failed rows, shape ``(k, ndim)``
         for k failed rows of an output with ``ndim`` dimensions (``(k,)``
         when the output is 1-D).  None otherwise.
+    status_text : str
+        libmcstat's sentence for `status` (``mcstat_strerror``); the message
+        itself says what was wrong in Python's words.
     """
 
     status = -1
@@ -49,6 +52,12 @@ class McstatError(ValueError):
     def __init__(self, *args: object, rows: Optional[np.ndarray] = None) -> None:
         super().__init__(*args)
         self.rows = rows
+
+    @property
+    def status_text(self) -> str:
+        from ._core import strerror
+
+        return strerror(self.status)
 
 
 class InvalidArgumentError(McstatError):
