@@ -146,7 +146,7 @@ Not picklable; ship ``s.moments().to_bytes()`` instead.)doc")
             R"doc(Is the mean of the values `reference` (to within `tolerance`)?
 
 tolerance 0: the two-sided one-sample t test of mean == reference.
-tolerance > 0: H0 |mean - reference| <= tolerance, as two one-sided t tests
+tolerance > 0: H0 ``|mean - reference| <= tolerance``, as two one-sided t tests
 at alpha/2 each; the result is the one with the smaller p-value (its
 ``alpha`` is alpha/2).  ``reject`` True means the check failed.  Raises
 `NonFiniteError` if the stream has seen NaN or infinity,
