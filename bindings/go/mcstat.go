@@ -153,15 +153,15 @@ func (d Decision) String() string { return C.GoString(C.mcstat_decision_name(C.i
 type Test int
 
 const (
-	TestT1       Test = C.MCSTAT_TEST_T_1       // one-sample t
-	TestT2       Test = C.MCSTAT_TEST_T_2       // Welch's two-sample t
-	TestVar1     Test = C.MCSTAT_TEST_VAR_1     // one-sample chi-squared test of the variance
-	TestVar2     Test = C.MCSTAT_TEST_VAR_2     // F test of the ratio of variances
-	TestKS2      Test = C.MCSTAT_TEST_KS_2      // two-sample Kolmogorov-Smirnov
-	TestEquiv1   Test = C.MCSTAT_TEST_EQUIV_1   // one-sample equivalence (TOST)
-	TestEquiv2   Test = C.MCSTAT_TEST_EQUIV_2   // Welch two-sample equivalence (TOST)
-	TestBinom    Test = C.MCSTAT_TEST_BINOM     // exact binomial test (also the battery meta-test)
-	TestChisqGOF Test = C.MCSTAT_TEST_CHISQ_GOF // Pearson's chi-squared goodness of fit
+	TestT1       Test = C.MCSTAT_TEST_T_1        // one-sample t
+	TestT2       Test = C.MCSTAT_TEST_T_2        // Welch's two-sample t
+	TestVar1     Test = C.MCSTAT_TEST_VAR_1      // one-sample chi-squared test of the variance
+	TestVar2     Test = C.MCSTAT_TEST_VAR_2      // F test of the ratio of variances
+	TestKS2      Test = C.MCSTAT_TEST_KS_2       // two-sample Kolmogorov-Smirnov
+	TestEquiv1   Test = C.MCSTAT_TEST_EQUIV_1    // one-sample equivalence (TOST)
+	TestEquiv2   Test = C.MCSTAT_TEST_EQUIV_2    // Welch two-sample equivalence (TOST)
+	TestBinom    Test = C.MCSTAT_TEST_BINOM      // exact binomial test (also the battery meta-test)
+	TestChisqGOF Test = C.MCSTAT_TEST_CHISQ_GOF  // Pearson's chi-squared goodness of fit
 	TestT2Pooled Test = C.MCSTAT_TEST_T_2_POOLED // Student's pooled-variance two-sample t
 	TestTPaired  Test = C.MCSTAT_TEST_T_PAIRED   // paired t (the differences' one-sample t)
 )
