@@ -1,6 +1,7 @@
 /*
- * fuzz_tests.c - the four analytic tests on arrays and on accumulators, and
- * the stream checks built on them.
+ * fuzz_tests.c - the analytic tests on arrays and on accumulators (the four,
+ * Student's pooled and the paired t), a result's log p-value and interval at
+ * another level, and the stream checks built on them.
  *
  * Input: a selector byte, x and y (fz_doubles, up to 64 values each), the
  * null value, the alternative, alpha, a flags byte.  Beyond the invariants of
@@ -35,6 +36,56 @@ static int moments_test(int which, const mcstat_moments *x, const mcstat_moments
     case 2: return mcstat_var_test_1_moments(x, v, alt, alpha, r);
     default: return mcstat_var_test_2_moments(x, y, v, alt, alpha, r);
     }
+}
+
+/* A successful result's log p-value and its interval at another level
+ * (mcstat_result_log_p_value, mcstat_result_conf_int). */
+static void result_accessors(const mcstat_result *r, double level)
+{
+    double lp = NAN, ci[2] = {NAN, NAN};
+    int st = mcstat_result_log_p_value(r, &lp);
+    FZ_ASSERT(st == MCSTAT_OK, "log p-value: status %d", st);
+    FZ_ASSERT(!isnan(lp) && lp <= 0.0, "log p %.17g", lp);
+    if (r->p_value >= 1e-300) /* where p is a normal double, log p is its log (both to ~1e-13) */
+        FZ_ASSERT(fabs(lp - log(r->p_value)) <= 1e-9 * fmax(1.0, fabs(lp)), "log p %.17g, p %.17g", lp,
+                  r->p_value);
+    st = mcstat_result_conf_int(r, level, ci);
+    fz_check_status(st);
+    if (!(level > 0.0 && level < 1.0))
+        FZ_ASSERT(st == MCSTAT_EINVAL, "level %.17g: status %d", level, st);
+    /* ordered up to the quantiles' accuracy: at a level near 0 both ends use
+     * the median, solved to ~1e-15 each, so they may cross by a few ulps */
+    if (st == MCSTAT_OK)
+        FZ_ASSERT(!isnan(ci[0]) && !isnan(ci[1]) && fz_le(ci[0], ci[1], 1e-13), "interval %.17g %.17g at %.17g",
+                  ci[0], ci[1], level);
+}
+
+/* Student's pooled test (arrays and accumulators, the same bits) and the
+ * paired test on the first min(nx, ny) pairs. */
+static void pooled_and_paired(const double *x, size_t nx, const double *y, size_t ny, double v, int alt,
+                              double alpha, double level)
+{
+    mcstat_result r, rm;
+    int st = mcstat_t_test_2_pooled(x, nx, y, ny, v, alt, alpha, &r);
+    fz_check_result(st, &r, MCSTAT_TEST_T_2_POOLED, alt, alpha, 0);
+    fz_check_not_enumeric(st, (double)(nx + ny), "pooled t");
+    mcstat_moments mx, my;
+    mcstat_moments_init(&mx);
+    mcstat_moments_init(&my);
+    if (!mcstat_moments_add_array(&mx, x, nx) && !mcstat_moments_add_array(&my, y, ny)) {
+        int sm = mcstat_t_test_2_pooled_moments(&mx, &my, v, alt, alpha, &rm);
+        FZ_ASSERT(sm == st, "pooled: array status %d, accumulator status %d", st, sm);
+        if (st == MCSTAT_OK)
+            FZ_ASSERT(memcmp(&r, &rm, sizeof r) == 0, "pooled: array and accumulator results differ");
+    }
+    if (st == MCSTAT_OK)
+        result_accessors(&r, level);
+    size_t n = nx < ny ? nx : ny;
+    st = mcstat_t_test_paired(x, y, n, v, alt, alpha, &r);
+    fz_check_result(st, &r, MCSTAT_TEST_T_PAIRED, alt, alpha, 0);
+    fz_check_not_enumeric(st, (double)n, "paired t");
+    if (st == MCSTAT_OK)
+        result_accessors(&r, level);
 }
 
 static const int TEST_KIND[4] = {MCSTAT_TEST_T_1, MCSTAT_TEST_T_2, MCSTAT_TEST_VAR_1, MCSTAT_TEST_VAR_2};
@@ -106,6 +157,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     fz_check_not_enumeric(st, (double)(nx + (two ? ny : 0)), "array test");
     if (st != MCSTAT_OK)
         FZ_ASSERT(memcmp(&r, &keep, sizeof r) == 0, "status %d but *out written", st);
+    /* a second confidence level from the bytes already read (no new input,
+     * so the committed corpus keeps its meaning) */
+    double level = (flags & 2) ? 1.0 - alpha * alpha : alpha;
+    if (st == MCSTAT_OK)
+        result_accessors(&r, level);
+    if (which == 1)
+        pooled_and_paired(x, nx, y, ny, v, alt, alpha, level);
 
     /* The same test through accumulators. */
     mcstat_moments mx, my;
