@@ -51,6 +51,11 @@ int mcstat__finish(mcstat_result *r, const mcstat_tails *t, mcstat_quantile_fn q
     }
     if (!quantile)
         c0 = c1 = NAN;
+    /* c0 <= c1 for alpha < 1; at alpha within a few ulps of 1 both two-sided
+     * values are the median, solved separately, and may cross by rounding
+     * (F with df (3e8, 1): by 10 ulps).  Ordered, they meet in the middle. */
+    if (c0 > c1)
+        c0 = c1 = c0 + 0.5 * (c1 - c0);
     r->critical[0] = c0;
     r->critical[1] = c1;
     r->reject = r->p_value <= alpha;
