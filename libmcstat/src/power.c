@@ -239,33 +239,36 @@ static int solve_alpha(const mcstat_power_options *o, double *alpha)
     return MCSTAT_OK;
 }
 
-/* The smallest n (an integer; ny = n_ratio n) whose power reaches the target. */
-static int solve_n(const mcstat_power_options *o, double *n, double *achieved)
+/* The doubling search both solvers start from: from the smallest n allowed,
+ * lo, to [*lo_out, *hi_out] with power(lo) < target <= power(hi) = *p_hi;
+ * *hi_out == *lo_out when the smallest n already reaches the target. */
+static int bracket_n(const mcstat_power_options *o, double lo, double *lo_out, double *hi_out, double *p_hi)
 {
-    double lo = 2.0, p;
-    int st;
-    if (two_sizes(o->test) && o->n_ratio < 1.0)
-        lo = ceil(2.0 / o->n_ratio);
-    if ((st = power_at(o, lo, o->effect, o->alpha, &p)))
+    double p, hi = lo;
+    int st = power_at(o, lo, o->effect, o->alpha, &p);
+    if (st)
         return st;
-    if (p >= o->power) {
-        *n = lo;
-        *achieved = p;
-        return MCSTAT_OK;
-    }
-    /* power(lo) < target <= power(hi) */
-    double hi = lo;
-    for (;;) {
+    while (p < o->power) {
         lo = hi;
         hi = 2.0 * hi;
         if (hi > N_MAX)
             return MCSTAT_EINVAL; /* effect too small (or zero) for any n */
         if ((st = power_at(o, hi, o->effect, o->alpha, &p)))
             return st;
-        if (p >= o->power)
-            break;
     }
-    double phi = p;
+    *lo_out = lo;
+    *hi_out = hi;
+    *p_hi = p;
+    return MCSTAT_OK;
+}
+
+/* The smallest n (an integer; ny = n_ratio n) whose power reaches the target. */
+static int solve_n(const mcstat_power_options *o, double *n, double *achieved)
+{
+    double lo, hi, phi, p;
+    int st = bracket_n(o, two_sizes(o->test) && o->n_ratio < 1.0 ? ceil(2.0 / o->n_ratio) : 2.0, &lo, &hi, &phi);
+    if (st)
+        return st;
     while (hi - lo > 1.0) {
         double mid = floor(0.5 * (lo + hi));
         if ((st = power_at(o, mid, o->effect, o->alpha, &p)))
@@ -287,27 +290,10 @@ static int solve_n(const mcstat_power_options *o, double *n, double *achieved)
  * allowed (ny >= 2 too) when the power there already reaches the target. */
 static int solve_n_exact(const mcstat_power_options *o, double *n)
 {
-    double lo = 2.0, p;
-    int st;
-    if (two_sizes(o->test) && o->n_ratio < 1.0)
-        lo = 2.0 / o->n_ratio;
-    if ((st = power_at(o, lo, o->effect, o->alpha, &p)))
+    double lo, hi, p;
+    int st = bracket_n(o, two_sizes(o->test) && o->n_ratio < 1.0 ? 2.0 / o->n_ratio : 2.0, &lo, &hi, &p);
+    if (st)
         return st;
-    if (p >= o->power) {
-        *n = lo;
-        return MCSTAT_OK;
-    }
-    double hi = lo;
-    for (;;) {
-        lo = hi;
-        hi = 2.0 * hi;
-        if (hi > N_MAX)
-            return MCSTAT_EINVAL;
-        if ((st = power_at(o, hi, o->effect, o->alpha, &p)))
-            return st;
-        if (p >= o->power)
-            break;
-    }
     for (int i = 0; i < 200 && hi - lo > 4.0 * DBL_EPSILON * hi; i++) {
         double mid = 0.5 * (lo + hi);
         if ((st = power_at(o, mid, o->effect, o->alpha, &p)))
