@@ -239,6 +239,89 @@ static void format_equiv(const mcstat_result *r, const char *x_name, const char 
     sb_printf(s, "decision at alpha = %s: %s\n\n", a, r->reject ? "equivalent" : "not equivalent");
 }
 
+/* ---- sequential tests -------------------------------------------------------
+ * No R function prints one; print.htest's layout with the looks on the
+ * data line, the e-value beside the statistic, a confidence sequence in
+ * place of the interval, and the decision ("continue" and why, or the
+ * decision and the n at which it came). */
+static int is_seq(int test) { return test >= MCSTAT_TEST_SEQ_MEAN_1 && test <= MCSTAT_TEST_SEQ_VAR_2; }
+
+static void format_seq(const mcstat_result *r, const char *x_name, const char *y_name, sbuf *s)
+{
+    static const char *what[] = {"the mean", "the difference in means", "the variance", "the ratio of variances"};
+    static const char *param[] = {"mean", "difference in means", "variance", "ratio of variances"};
+    static const char *alt_text[] = {"not equal to", "less than", "greater than"};
+    int k = r->test - MCSTAT_TEST_SEQ_MEAN_1, two = k == 1 || k == 3;
+    char a[64], b[64], line[512];
+    sb_printf(s, "\n\tAnytime-valid sequential test of %s (asymptotic, Gaussian mixture)\n\n", what[k]);
+    size_t ll = two ? (size_t)snprintf(line, sizeof line, "data:  %s and %s", x_name, y_name)
+                    : (size_t)snprintf(line, sizeof line, "data:  %s", x_name);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", n = %llu", (unsigned long long)r->n[0]);
+    if (two)
+        ll += (size_t)snprintf(line + ll, sizeof line - ll, " and %llu", (unsigned long long)r->n[1]);
+    snprintf(line + ll, sizeof line - ll, " after %.0f look%s\n", r->seq_looks, r->seq_looks == 1.0 ? "" : "s");
+    sb_puts(s, line);
+    ll = 0;
+    if (isnan(r->statistic)) {
+        ll += (size_t)snprintf(line, sizeof line, "z = NA");
+    } else {
+        mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
+        mcstat__rformat1(r->seq_log_e, R_DIGITS - 2, b, sizeof b);
+        ll += (size_t)snprintf(line, sizeof line, "z = %s, log e-value = %s", a, b);
+    }
+    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
+    snprintf(line + ll, sizeof line - ll, ", anytime p-value %s%s", a[0] == '<' ? "" : "= ", a);
+    sb_wrapped(s, line);
+    mcstat__rformat1(r->null_value, R_DIGITS, a, sizeof a);
+    sb_printf(s, "alternative hypothesis: true %s is %s %s\n", param[k], alt_text[r->alternative], a);
+    mcstat__rformat1(100.0 * (1.0 - r->alpha), R_DIGITS, a, sizeof a);
+    sb_printf(s, "%s percent confidence sequence:\n", a);
+    mcstat_rlayout lay;
+    mcstat__rformat_layout(r->conf_int, 2, R_DIGITS, &lay);
+    mcstat__rformat_encode(r->conf_int[0], &lay, 0, a, sizeof a);
+    mcstat__rformat_encode(r->conf_int[1], &lay, 0, b, sizeof b);
+    sb_printf(s, " %s %s\n", a, b);
+    sb_puts(s, "sample estimates:\n");
+    static const char *names[4][2] = {{"mean of x", NULL}, {"mean of x", "mean of y"},
+                                      {"variance of x", NULL}, {"ratio of variances", NULL}};
+    int ne = names[k][1] ? 2 : 1;
+    mcstat__rformat_layout(r->estimate, ne, R_DIGITS, &lay);
+    int colw[2];
+    for (int i = 0; i < ne; i++) {
+        int nl = (int)strlen(names[k][i]);
+        colw[i] = nl > lay.w ? nl : lay.w;
+        sb_printf(s, "%*s ", colw[i], names[k][i]);
+    }
+    sb_puts(s, "\n");
+    for (int i = 0; i < ne; i++) {
+        mcstat__rformat_encode(r->estimate[i], &lay, colw[i], a, sizeof a);
+        sb_printf(s, "%s ", a);
+    }
+    sb_puts(s, "\n");
+    if (r->seq_eps > 0.0) {
+        mcstat__rformat1(r->seq_eps, R_DIGITS, a, sizeof a);
+        sb_printf(s, "equivalence margin: %s\n", a);
+    }
+    mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
+    if (r->seq_state == MCSTAT_SEQ_DECIDED) {
+        sb_printf(s, "decision at alpha = %s: %s (at n = %.0f)\n\n", a, mcstat_decision_name(r->decision),
+                  r->seq_n_decided);
+        return;
+    }
+    ll = (size_t)snprintf(line, sizeof line, "decision at alpha = %s: continue", a);
+    if (r->seq_hold & MCSTAT_SEQ_HOLD_DEGENERATE)
+        ll += (size_t)snprintf(line + ll, sizeof line - ll, " (held: no spread yet)");
+    else if (r->seq_hold & MCSTAT_SEQ_HOLD_KURTOSIS) {
+        mcstat__rformat1(r->seq_n_gate, 4, b, sizeof b);
+        ll += (size_t)snprintf(line + ll, sizeof line - ll, " (held: heavy tails, the kurtosis asks for n >= %s)", b);
+    } else if (r->seq_hold & MCSTAT_SEQ_HOLD_FEW)
+        ll += (size_t)snprintf(line + ll, sizeof line - ll, " (held: too few values)");
+    else
+        ll += (size_t)snprintf(line + ll, sizeof line - ll, " (no decision yet)");
+    sb_wrapped(s, line);
+    sb_puts(s, "\n");
+}
+
 int mcstat_result_format(const mcstat_result *r, const char *x_name, const char *y_name, char *buf,
                          size_t size, size_t *length)
 {
@@ -262,6 +345,17 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
         if (size > 0)
             buf[0] = '\0';
         format_equiv(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
+        if (length)
+            *length = s.len;
+        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+    }
+    if (r && is_seq(r->test)) {
+        if ((!buf && size > 0) || !valid_alternative(r->alternative))
+            return MCSTAT_EINVAL;
+        sbuf s = {buf, size, 0};
+        if (size > 0)
+            buf[0] = '\0';
+        format_seq(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
         if (length)
             *length = s.len;
         return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;

@@ -130,6 +130,15 @@ int mcstat_result_log_p_value(const mcstat_result *r, double *log_p)
     case MCSTAT_TEST_BINOM:
         lp = r->binom_log_p_value;
         break;
+    case MCSTAT_TEST_SEQ_MEAN_1:
+    case MCSTAT_TEST_SEQ_MEAN_2:
+    case MCSTAT_TEST_SEQ_VAR_1:
+    case MCSTAT_TEST_SEQ_VAR_2:
+        /* the anytime p-value is 1 / (the running maximum of the e-value) */
+        if (isnan(r->seq_log_e_max))
+            return MCSTAT_EINVAL;
+        lp = fmin(0.0, -r->seq_log_e_max);
+        break;
     case MCSTAT_TEST_KS_2:
         if (isnan(r->statistic) || !(r->p_value >= 0.0 && r->p_value <= 1.0))
             return MCSTAT_EINVAL;
@@ -282,7 +291,8 @@ int mcstat_result_conf_int(const mcstat_result *r, double confidence_level, doub
         if ((st = mcstat__binom_conf_int(r->statistic, (double)r->n[0], alt, a, ci)))
             return st;
         break;
-    default: /* K-S and chi-squared goodness of fit estimate no parameter */
+    default: /* K-S and chi-squared goodness of fit estimate no parameter; a
+              * confidence sequence exists only at the level it was run at */
         return MCSTAT_EINVAL;
     }
     if (isnan(ci[0]) || isnan(ci[1]))

@@ -22,6 +22,7 @@ const char *mcstat_strerror(int status)
     case MCSTAT_ECORRUPT: return "serialized data are truncated, corrupt or of an unknown version";
     case MCSTAT_ETOOBIG: return "the sizes are too large for the requested method (e.g. an exact K-S p-value): choose another; or an observation count would pass 2^64 - 1";
     case MCSTAT_ECALLBACK: return "a callback failed or returned invalid values (the check's report says which, where and what)";
+    case MCSTAT_EHEAVYTAIL: return "the data's tails are too heavy for a decision within the samples seen (the kurtosis gate never opened)";
     default: return "unknown status code";
     }
 }
