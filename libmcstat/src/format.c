@@ -318,8 +318,8 @@ static void format_seq(const mcstat_result *r, const char *x_name, const char *y
         ll += (size_t)snprintf(line + ll, sizeof line - ll, " (held: too few values)");
     else
         ll += (size_t)snprintf(line + ll, sizeof line - ll, " (no decision yet)");
-    sb_wrapped(s, line);
-    sb_puts(s, "\n");
+    sb_puts(s, line);
+    sb_puts(s, "\n\n");
 }
 
 int mcstat_result_format(const mcstat_result *r, const char *x_name, const char *y_name, char *buf,

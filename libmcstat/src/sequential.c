@@ -232,20 +232,23 @@ static look compute_look(const mcstat_seq *s)
         break;
     }
     case MCSTAT_SEQ_VAR_1: {
-        double lv = log(x->m2 / (a.n - 1.0)) + 2.0 * M_LN2 * x->scale;
+        /* log(s^2 / sigma0^2) as the log of a quotient formed in the
+         * accumulator's units: the logs themselves may be ~700 apart from
+         * their difference */
+        double v_s = x->m2 / (a.n - 1.0);
+        L.theta_hat = log(v_s) + 2.0 * M_LN2 * x->scale;
         L.se = sqrt(a.w_logv / a.n);
-        L.theta_hat = lv;
-        L.z = (lv - log(s->null_value)) / L.se;
+        L.z = log(v_s / scale2(s->null_value, -2 * x->scale)) / L.se;
         L.t_eff = a.n;
         break;
     }
     default: { /* MCSTAT_SEQ_VAR_2 */
-        double lvx = log(x->m2 / (a.n - 1.0)) + 2.0 * M_LN2 * x->scale;
-        double lvy = log(y->m2 / (b.n - 1.0)) + 2.0 * M_LN2 * y->scale;
+        double q = (x->m2 / (a.n - 1.0)) / (y->m2 / (b.n - 1.0)); /* the ratio in units of 2^(2 (ex - ey)) */
+        int de = 2 * (x->scale - y->scale);
         double se2 = a.w_logv / a.n + b.w_logv / b.n;
         L.se = sqrt(se2);
-        L.theta_hat = lvx - lvy;
-        L.z = (L.theta_hat - log(s->null_value)) / L.se;
+        L.theta_hat = log(q) + M_LN2 * de;
+        L.z = log(q / scale2(s->null_value, -de)) / L.se;
         L.t_eff = (a.w_logv + b.w_logv) / se2;
         break;
     }
@@ -367,13 +370,9 @@ int mcstat_seq_push_stream(mcstat_seq *s, const mcstat_stream *frame)
     if (!seq_valid(s) || two_sample(s->kind) || !frame)
         return MCSTAT_EINVAL;
     mcstat_moments b;
-    int st = mcstat_stream_moments(frame, &b);
+    int st = mcstat__stream_moments_checked(frame, &b);
     if (st != MCSTAT_OK)
         return st;
-    if (frame->n_nonfinite > 0)
-        return MCSTAT_ENONFINITE;
-    if (frame->n_overflow > 0)
-        return MCSTAT_ETOOBIG;
     return push(s, &b, NULL);
 }
 

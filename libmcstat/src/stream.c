@@ -114,7 +114,7 @@ int mcstat_stream_moments(const mcstat_stream *s, mcstat_moments *out)
     return st;
 }
 
-static int stream_moments_checked(const mcstat_stream *s, mcstat_moments *m)
+int mcstat__stream_moments_checked(const mcstat_stream *s, mcstat_moments *m)
 {
     int st = mcstat_stream_moments(s, m);
     if (st != MCSTAT_OK)
@@ -136,7 +136,7 @@ int mcstat_stream_check_mean(const mcstat_stream *s, double reference, double to
     if (!out || !isfinite(reference) || !isfinite(tolerance) || !(tolerance >= 0.0))
         return MCSTAT_EINVAL;
     mcstat_moments m;
-    int st = stream_moments_checked(s, &m);
+    int st = mcstat__stream_moments_checked(s, &m);
     if (st != MCSTAT_OK)
         return st;
     if (tolerance == 0.0)
@@ -161,7 +161,7 @@ int mcstat_stream_check_var(const mcstat_stream *s, double bound, double alpha, 
     if (!out)
         return MCSTAT_EINVAL;
     mcstat_moments m;
-    int st = stream_moments_checked(s, &m);
+    int st = mcstat__stream_moments_checked(s, &m);
     if (st != MCSTAT_OK)
         return st;
     return mcstat_var_test_1_moments(&m, bound, MCSTAT_GREATER, alpha, out);

@@ -22,6 +22,10 @@ MCSTAT_HIDDEN int mcstat__moments_check(const mcstat_moments *m);
 MCSTAT_HIDDEN int mcstat__moments_of_two(const double *x, size_t nx, const double *y, size_t ny, mcstat_moments *mx,
                                          mcstat_moments *my);
 
+/* *m <- every value of the stream; MCSTAT_ETOOBIG or MCSTAT_ENONFINITE when
+ * it has left values out or holds NaN or +-Inf (stream.c). */
+MCSTAT_HIDDEN int mcstat__stream_moments_checked(const mcstat_stream *s, mcstat_moments *m);
+
 /* ---- results (result.c) -------------------------------------------------- */
 /* Fills p_value, critical[], reject, decision from the statistic's tails.
  * `quantile(p, upper, ctx, &x)` inverts the null distribution. */

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define TSV_MAX_FIELDS 24
+#define TSV_MAX_FIELDS 32
 
 /* Calls row(fields, nfields, ctx) for each data row; returns rows read, -1
  * if the file cannot be opened. */
