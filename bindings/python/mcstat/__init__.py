@@ -49,6 +49,7 @@ from ._errors import (
     BufferSizeError,
     CallbackError,
     CorruptDataError,
+    HeavyTailError,
     DegenerateDataError,
     InvalidArgumentError,
     McstatError,
@@ -80,6 +81,9 @@ from ._result import BatchResult
 from ._core import MomentsArray  # noqa: E402
 # A renderer thread's buffered accumulator with its mean and variance checks.
 from ._core import Stream  # noqa: E402
+# Anytime-valid sequential tests and their driver: render until decided.
+from ._core import SequentialTest  # noqa: E402
+from ._sequential import run_until_decided  # noqa: E402
 # Equivalence (TOST), power and sample size (mcstat._power).
 from ._power import (  # noqa: E402
     EquivalenceResult,
@@ -119,6 +123,8 @@ __all__ = [
     "BatchResult",
     "MomentsArray",
     "Stream",
+    "SequentialTest",
+    "run_until_decided",
     "set_num_threads",
     "get_num_threads",
     "binom_test",

@@ -28,6 +28,7 @@ __all__ = [
     "CorruptDataError",
     "TooBigError",
     "CallbackError",
+    "HeavyTailError",
 ]
 
 
@@ -138,6 +139,15 @@ class CallbackError(McstatError):
     status = 10
 
 
+class HeavyTailError(McstatError):
+    """The data's tails were too heavy for a decision within the samples
+    seen (MCSTAT_EHEAVYTAIL): :meth:`SequentialTest.finish` when the
+    kurtosis gate never opened (infinite variance, or far more samples
+    needed).  The message gives the n the kurtosis asks for."""
+
+    status = 11
+
+
 _BY_STATUS = {
     cls.status: cls
     for cls in (
@@ -151,5 +161,6 @@ _BY_STATUS = {
         CorruptDataError,
         TooBigError,
         CallbackError,
+        HeavyTailError,
     )
 }

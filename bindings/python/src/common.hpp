@@ -121,6 +121,8 @@ void register_check(py::module_ &mod);
 void register_distributions(py::module_ &mod);
 // ---- the renderer's buffered accumulator and its checks (stream.cpp) ----
 void register_stream(py::module_ &mod);
+// mcstat.SequentialTest (sequential.cpp)
+void register_sequential(py::module_ &mod);
 
 // ---- the tests (tests.cpp, rows.cpp) ----------------------------------------------
 void register_tests(py::module_ &mod);

@@ -6,7 +6,7 @@
 namespace mcs {
 
 namespace {
-constexpr int N_STATUS = 11; // MCSTAT_OK .. MCSTAT_ECALLBACK
+constexpr int N_STATUS = 12; // MCSTAT_OK .. MCSTAT_EHEAVYTAIL
 py::handle g_classes[N_STATUS];
 py::handle g_base;
 } // namespace

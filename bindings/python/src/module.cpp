@@ -21,6 +21,7 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_check(mod); // renderer checks: BSDFs, emitters, warps
     mcs::register_distributions(mod); // t, chi-squared and F cdf and quantiles
     mcs::register_stream(mod); // mcstat.Stream, after Moments (it returns one)
+    mcs::register_sequential(mod); // mcstat.SequentialTest
 
     mod.def(
         "set_num_threads",

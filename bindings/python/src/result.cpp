@@ -29,13 +29,17 @@ std::string method_name(const mcstat_result &r)
     case MCSTAT_TEST_VAR_1: return "One Sample Chi-squared test on variance";
     case MCSTAT_TEST_VAR_2: return "F test to compare two variances";
     case MCSTAT_TEST_CHISQ_GOF: return "Chi-squared test for given probabilities";
-    case MCSTAT_TEST_KS_2: {
+    case MCSTAT_TEST_KS_2:
+    case MCSTAT_TEST_SEQ_MEAN_1:
+    case MCSTAT_TEST_SEQ_MEAN_2:
+    case MCSTAT_TEST_SEQ_VAR_1:
+    case MCSTAT_TEST_SEQ_VAR_2: {
         // libmcstat's formatter owns the wording: take its title line
         char buf[256];
         size_t len = 0;
         int st = mcstat_result_format(&r, "x", "y", buf, sizeof buf, &len);
         if (st != MCSTAT_OK && st != MCSTAT_EBUFSIZE)
-            return "two-sample Kolmogorov-Smirnov test";
+            return is_ks(r) ? "two-sample Kolmogorov-Smirnov test" : "sequential test";
         std::string t(buf);
         size_t a = t.find('\t'), b = t.find('\n', a == std::string::npos ? 0 : a);
         return a == std::string::npos ? t : t.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
@@ -56,13 +60,17 @@ const char *pvalue_method_name(int method)
     }
 }
 
-bool two_estimates(const mcstat_result &r) { return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_T_2_POOLED; }
+bool two_estimates(const mcstat_result &r)
+{
+    return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_T_2_POOLED || r.test == MCSTAT_TEST_SEQ_MEAN_2;
+}
+bool is_seq(const mcstat_result &r) { return r.test >= MCSTAT_TEST_SEQ_MEAN_1 && r.test <= MCSTAT_TEST_SEQ_VAR_2; }
 bool two_df(const mcstat_result &r) { return r.test == MCSTAT_TEST_VAR_2; }
 // (the paired test counts pairs: one number)
 bool two_samples(const mcstat_result &r)
 {
     return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_T_2_POOLED || r.test == MCSTAT_TEST_VAR_2 ||
-           r.test == MCSTAT_TEST_KS_2;
+           r.test == MCSTAT_TEST_KS_2 || r.test == MCSTAT_TEST_SEQ_MEAN_2 || r.test == MCSTAT_TEST_SEQ_VAR_2;
 }
 
 // nan_policy="propagate" on data with NaN: every field NaN (tests.cpp).
@@ -260,6 +268,9 @@ y_name)`` names them.
         .def_property_readonly("alpha", [](const Result &s) { return s.r.alpha; })
         .def_property_readonly("reject", [](const Result &s) { return s.r.reject != 0; })
         .def_property_readonly("decision", [](const Result &s) {
+            // a sequential test that has not decided yet is neither "equal" nor anything else
+            if (is_seq(s.r) && s.r.seq_state != MCSTAT_SEQ_DECIDED)
+                return py::str("continue");
             return py::str(is_nan_result(s.r) ? "" : mcstat_decision_name(s.r.decision));
         })
         .def_property_readonly("critical_values",
