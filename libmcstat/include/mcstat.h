@@ -1697,7 +1697,8 @@ MCSTAT_API const char *mcstat_check_route_blind_spot(int route);
 /* variance and would "prove" any mean wrong.  So a test holds (continues   */
 /* without deciding, its p-value 1 and its sequence unbounded) until        */
 /*   n >= min_n, M2 > 0, and n >= kurtosis_gate * b2 for every sample       */
-/* (about ten non-zero values when they are rare).  Measured (tests/python/ */
+/* (about ten non-zero values when they are rare; kurtosis_gate * b2^2 for  */
+/* VAR_*, whose standard error rests on b2 itself).  Measured (tests/python/*/
 /* test_sequential_calibration.py, bench/RESULTS_sequential.md): the rate   */
 /* of ever rejecting a true H0, looked at every 100 values up to 1e5-1e6,   */
 /* stays below alpha for normal, exponential, uniform, lognormal (sigma     */
@@ -1731,7 +1732,7 @@ enum mcstat_seq_kind {
 /* Bits of mcstat_seq.hold: why no decision is allowed at the last look. */
 #define MCSTAT_SEQ_HOLD_FEW 1u        /* n < min_n (a sample) */
 #define MCSTAT_SEQ_HOLD_DEGENERATE 2u /* a sample has no spread yet (M2 == 0) */
-#define MCSTAT_SEQ_HOLD_KURTOSIS 4u   /* n < kurtosis_gate * b2 (a sample) */
+#define MCSTAT_SEQ_HOLD_KURTOSIS 4u   /* n < kurtosis_gate * b2 (b2^2 for VAR_*) (a sample) */
 
 /* Grows by appending fields (section 1, compatibility). */
 typedef struct mcstat_seq_options {

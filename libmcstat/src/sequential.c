@@ -134,7 +134,10 @@ static sample_look look_at(const mcstat_seq *s, const mcstat_moments *m)
     double q = m2 / n;
     double b2 = n * (m4 / m2) / m2; /* sample kurtosis; divided in two steps against underflow */
     if (s->kurtosis_gate > 0.0) {
-        r.n_gate = s->kurtosis_gate * b2;
+        /* A variance's standard error rests on b2, itself a noisy estimate
+         * whose spread grows with the tails (it needs the eighth moment):
+         * the gate asks for b2 times more values there. */
+        r.n_gate = s->kurtosis_gate * b2 * (on_variance(s->kind) ? b2 : 1.0);
         if (!(n >= r.n_gate))
             r.hold |= MCSTAT_SEQ_HOLD_KURTOSIS;
     }

@@ -19,7 +19,7 @@ import mcstat
 # ---- the oracle ---------------------------------------------------------------
 
 
-def _sample(x, gate, z_ucb, min_n):
+def _sample(x, gate, z_ucb, min_n, on_var):
     """hold bits, n, variance UCB, n var(log s^2), n_gate from raw values."""
     n = x.size
     hold = 1 if n < min_n else 0
@@ -31,7 +31,7 @@ def _sample(x, gate, z_ucb, min_n):
     if m2 == 0 or math.sqrt(var) < 10 * np.finfo(float).eps * abs(x.mean()):
         return hold | 2, n, None, None
     b2 = n * m4 / m2 ** 2
-    if gate > 0 and n < gate * b2:
+    if gate > 0 and n < gate * b2 * (b2 if on_var else 1):
         hold |= 4
     v = var + z_ucb * math.sqrt(max(m4 / n - (m2 / n) ** 2, 0.0) / n)
     return hold, n, v, b2 - (n - 3) / (n - 1)
@@ -65,9 +65,10 @@ class Oracle:
         self.x = np.concatenate([self.x, x])
         if y is not None:
             self.y = np.concatenate([self.y, y])
-        hx, nx, vx, wx = _sample(self.x, self.gate, self.z_ucb, self.min_n)
+        on_var = self.kind in ("var", "var2")
+        hx, nx, vx, wx = _sample(self.x, self.gate, self.z_ucb, self.min_n, on_var)
         two = self.kind in ("mean2", "var2")
-        hy, ny, vy, wy = _sample(self.y, self.gate, self.z_ucb, self.min_n) if two else (0, 0, 0, 0)
+        hy, ny, vy, wy = _sample(self.y, self.gate, self.z_ucb, self.min_n, on_var) if two else (0, 0, 0, 0)
         self.hold = hx | hy
         if self.hold:
             self.z = math.nan

@@ -72,7 +72,7 @@ def moments(xs):
     return n, m, m2, m4
 
 
-def sample(xs, gate, ucb_z, min_n):
+def sample(xs, gate, ucb_z, min_n, on_var=False):
     """hold bits, n, v (variance UCB), w (n var of log s^2), n_gate."""
     n, mean, m2, m4 = moments(xs)
     hold = 1 if n < min_n else 0
@@ -82,7 +82,7 @@ def sample(xs, gate, ucb_z, min_n):
     if m2 == 0 or mp.sqrt(var) < 10 * mp.mpf(2) ** -52 * abs(mean):
         return hold | 2, n, None, None, 0
     b2 = n * m4 / m2 ** 2
-    n_gate = gate * b2 if gate > 0 else 0
+    n_gate = gate * b2 * (b2 if on_var else 1) if gate > 0 else 0
     if gate > 0 and n < n_gate:
         hold |= 4
     spread = m4 / n - (m2 / n) ** 2
@@ -127,8 +127,8 @@ def run(sc):
         xs += [mp.mpf(value(genx, i, shx)) for i in range(len(xs), len(xs) + batch)]
         if two:
             ys += [mp.mpf(value(geny, i + 500000, shy)) for i in range(len(ys), len(ys) + ny_batch)]
-        hx, nx, vx, wx, gx = sample(xs, gate, ucb_z, min_n)
-        hy, ny, vy, wy, gy = sample(ys, gate, ucb_z, min_n) if two else (0, 0, 0, 0, 0)
+        hx, nx, vx, wx, gx = sample(xs, gate, ucb_z, min_n, kind > 2)
+        hy, ny, vy, wy, gy = sample(ys, gate, ucb_z, min_n, kind > 2) if two else (0, 0, 0, 0, 0)
         hold = hx | hy
         row = dict(name=name, look=look, nx=nx, ny=ny, hold=hold)
         if not (hold & 2):
