@@ -195,7 +195,7 @@ impl SeqOptions {
             format!("var_ucb_z = {} is not finite and >= 0", self.var_ucb_z)
         } else if self.min_n < 2 {
             format!("min_n = {} is below 2", self.min_n)
-        } else if !null_value.is_finite() || (var && !(null_value > 0.0)) {
+        } else if !null_value.is_finite() || (var && null_value <= 0.0) {
             format!("null_value = {null_value} is not finite{}", if var { " and > 0" } else { "" })
         } else {
             "invalid sequential test options".to_string()

@@ -29,7 +29,10 @@ impl Rng {
     }
 }
 
-fn sequential(d: &Details) -> (SeqOutcome, SeqHold, u64, Option<u64>, Option<f64>, Option<f64>, Option<f64>) {
+/// outcome, hold, looks, n_decided, z, log_e, n_gate
+type SeqFields = (SeqOutcome, SeqHold, u64, Option<u64>, Option<f64>, Option<f64>, Option<f64>);
+
+fn sequential(d: &Details) -> SeqFields {
     match *d {
         Details::Sequential { outcome, hold, looks, n_decided, z, log_e, n_gate, .. } => {
             (outcome, hold, looks, n_decided, z, log_e, n_gate)
