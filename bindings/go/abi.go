@@ -35,6 +35,8 @@ func CheckABI() error {
 		{"mcstat_check_model", uintptr(C.mcstat_sizeof_check_model()), unsafe.Sizeof(C.struct_mcstat_check_model{})},
 		{"mcstat_check_report", uintptr(C.mcstat_sizeof_check_report()),
 			unsafe.Sizeof(C.struct_mcstat_check_report{})},
+		{"mcstat_seq_options", uintptr(C.mcstat_sizeof_seq_options()), unsafe.Sizeof(C.struct_mcstat_seq_options{})},
+		{"mcstat_seq", uintptr(C.mcstat_sizeof_seq()), unsafe.Sizeof(C.struct_mcstat_seq{})},
 	}
 	for _, s := range sizes {
 		if s.lib != s.header {

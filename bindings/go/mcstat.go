@@ -31,6 +31,8 @@
 //   - CheckBSDF, CheckEmitter, CheckWarp: a Model's Go functions called
 //     back from libmcstat (an error or panic in one ends the check with an
 //     error matching ErrCallback);
+//   - Sequential: anytime-valid tests looked at after every batch
+//     (NewSequential, Push, PushStream, Result, Finish);
 //   - the t, chi-squared and F distributions (TCDF, ...);
 //   - Version, VersionNumber, CheckABI, GSLHandlerOff.
 //
@@ -96,6 +98,9 @@ var (
 	ErrCorrupt         = newError(C.MCSTAT_ECORRUPT)
 	ErrTooBig          = newError(C.MCSTAT_ETOOBIG)
 	ErrCallback        = newError(C.MCSTAT_ECALLBACK) // a renderer check's callback failed (mcstat.h section 10)
+	// ErrHeavyTail: a sequential test ended with its kurtosis gate closed
+	// (Sequential.Finish returns it as a *HeavyTailError).
+	ErrHeavyTail = newError(C.MCSTAT_EHEAVYTAIL)
 )
 
 func check(status C.int) error {
@@ -164,11 +169,16 @@ const (
 	TestChisqGOF Test = C.MCSTAT_TEST_CHISQ_GOF  // Pearson's chi-squared goodness of fit
 	TestT2Pooled Test = C.MCSTAT_TEST_T_2_POOLED // Student's pooled-variance two-sample t
 	TestTPaired  Test = C.MCSTAT_TEST_T_PAIRED   // paired t (the differences' one-sample t)
+	TestSeqMean1 Test = C.MCSTAT_TEST_SEQ_MEAN_1 // sequential (anytime-valid) test of a mean (Sequential)
+	TestSeqMean2 Test = C.MCSTAT_TEST_SEQ_MEAN_2 // sequential test of a difference of means
+	TestSeqVar1  Test = C.MCSTAT_TEST_SEQ_VAR_1  // sequential test of a variance
+	TestSeqVar2  Test = C.MCSTAT_TEST_SEQ_VAR_2  // sequential test of a ratio of variances
 )
 
 var testNames = map[Test]string{TestT1: "t_1", TestT2: "t_2", TestVar1: "var_1", TestVar2: "var_2",
 	TestKS2: "ks_2", TestEquiv1: "equiv_1", TestEquiv2: "equiv_2", TestBinom: "binom", TestChisqGOF: "chisq_gof",
-	TestT2Pooled: "t_2_pooled", TestTPaired: "t_paired"}
+	TestT2Pooled: "t_2_pooled", TestTPaired: "t_paired", TestSeqMean1: "seq_mean_1", TestSeqMean2: "seq_mean_2",
+	TestSeqVar1: "seq_var_1", TestSeqVar2: "seq_var_2"}
 
 func (t Test) String() string {
 	if s, ok := testNames[t]; ok {
@@ -179,7 +189,8 @@ func (t Test) String() string {
 
 // oneSample reports whether the test has a single sample (N has one entry).
 func (t Test) oneSample() bool {
-	return t == TestT1 || t == TestVar1 || t == TestEquiv1 || t == TestBinom || t == TestChisqGOF
+	return t == TestT1 || t == TestVar1 || t == TestEquiv1 || t == TestBinom || t == TestChisqGOF ||
+		t == TestSeqMean1 || t == TestSeqVar1
 }
 
 // Method says how a p-value was obtained (Auto only as a K-S option).
@@ -234,6 +245,7 @@ type Result struct {
 	TOST  *TOSTDetails  // equivalence tests only
 	Binom *BinomDetails // binomial and battery tests only
 	GOF   *GOFDetails   // chi-squared goodness of fit only
+	Seq   *SeqDetails   // sequential tests only (Statistic is NaN while one holds: read Seq.Z)
 
 	raw C.struct_mcstat_result
 }
@@ -332,6 +344,8 @@ func fromC(r *C.struct_mcstat_result) *Result {
 		C.gomcstat_gof(r, &d[0], &i[0])
 		res.GOF = &GOFDetails{Cells: int(i[0]), NEstimated: int(i[1]), CellsGiven: int(d[0]),
 			MinExpected: float64(d[1]), PoolBelow: float64(d[2])}
+	case TestSeqMean1, TestSeqMean2, TestSeqVar1, TestSeqVar2:
+		res.Seq = seqDetails(r)
 	}
 	return res
 }

@@ -45,3 +45,35 @@ int render_frame(struct worker *w, int nworkers, int n)
     MCSTAT_CHECK_VAR_BELOW(frame, bound, alpha);
     return failed;
 }
+
+#ifndef MCSTAT_NO_EXPERIMENTAL
+/* The sequential mode: a test kept across frames, pushed each frame. */
+int render_frames(struct worker *w, int nworkers, int n, int frames);
+int render_frames(struct worker *w, int nworkers, int n, int frames)
+{
+    MCSTAT_CHECK_ONLY(mcstat_seq bias; mcstat_seq close; mcstat_stream frame;)
+    const double reference = 0.5, eps = 0.01, alpha = 0.001; /* read only by the checks */
+    MCSTAT_CHECK_SEQ_MEAN_INIT(bias, reference, alpha);
+    MCSTAT_CHECK_SEQ_MEAN_INIT_EPS(close, reference, eps, alpha);
+    int failed = 0;
+    for (int f = 0; f < frames; f++) {
+        MCSTAT_CHECK_INIT(frame);
+        for (int t = 0; t < nworkers; t++) {
+            MCSTAT_CHECK_INIT(w[t].acc);
+            for (int i = 0; i < n; i++) {
+                double estimate = sample(i + f);
+                MCSTAT_CHECK_ADD(w[t].acc, estimate);
+                w[t].sum += sample(i + f);
+            }
+            MCSTAT_CHECK_MERGE(frame, w[t].acc);
+        }
+        if (MCSTAT_CHECK_SEQ_PUSH(bias, frame))
+            failed++;
+        MCSTAT_CHECK_SEQ_PUSH(close, frame); /* value ignored */
+    }
+    if (MCSTAT_CHECK_SEQ_FINISH(bias))
+        failed++;
+    MCSTAT_CHECK_SEQ_FINISH(close);
+    return failed;
+}
+#endif

@@ -3,7 +3,8 @@
 # compiled with MCSTAT_CHECKS=0 and =1, as C (C99, C11) and C++ (C++11,
 # C++17; -Wold-style-cast, -Wzero-as-null-pointer-constant), under -Wall
 # -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion -Wundef
-# -Wcast-qual, by the build's compilers and by clang/clang++ when installed.
+# -Wcast-qual, by the build's compilers and by clang/clang++ when installed;
+# and as C11 with MCSTAT_NO_EXPERIMENTAL (the sequential mode then absent).
 # Any diagnostic fails.  usage: check_macros_warnings.sh CC CXX INCLUDE_DIR
 # (CXX empty: no C++ compiler).
 set -eu
@@ -42,5 +43,9 @@ for checks in 0 1; do
                 -Wzero-as-null-pointer-constant -DMCSTAT_CHECKS=$checks "$src"
         done
     done
+    # without the experimental sections the rest of the header still compiles
+    # shellcheck disable=SC2086
+    compile "$cc -std=c11 MCSTAT_CHECKS=$checks MCSTAT_NO_EXPERIMENTAL" "$cc" -std=c11 $warn \
+        -DMCSTAT_CHECKS=$checks -DMCSTAT_NO_EXPERIMENTAL "$src"
 done
 echo "mcstat_check.h: no diagnostic in $n compilations (C: $ccs; C++: ${cxxs:-none}; checks on and off)"

@@ -20,7 +20,7 @@ MCSTAT_CHECK_ONLY(static mcstat_stream not_declared;)
 
 struct per_thread {
     double sum;
-    MCSTAT_CHECK_ONLY(mcstat_stream acc;)
+    MCSTAT_CHECK_ONLY(mcstat_stream acc; mcstat_seq seq;)
 };
 
 int main(void)
@@ -35,6 +35,12 @@ int main(void)
     MCSTAT_CHECK_MERGE(t.acc, t.acc);
     CHECK_INT(MCSTAT_CHECK_MEAN(t.acc, touch(1.0), touch(0.0), 0.01), 0);
     CHECK_INT(MCSTAT_CHECK_VAR_BELOW(t.acc, touch(1.0), 0.01), 0);
+    /* the sequential mode: the test and the frame exist only with checks on */
+    MCSTAT_CHECK_SEQ_MEAN_INIT(t.seq, touch(1.0), touch(0.01));
+    MCSTAT_CHECK_SEQ_MEAN_INIT_EPS(t.seq, touch(1.0), touch(0.1), touch(0.01));
+    CHECK_INT(MCSTAT_CHECK_SEQ_PUSH(t.seq, t.acc), 0);
+    CHECK_INT(MCSTAT_CHECK_SEQ_FINISH(t.seq), 0);
+    MCSTAT_CHECK_SEQ_PUSH(t.seq, t.acc); /* value ignored */
     MCSTAT_CHECK_ONLY(evaluated += 1000;)
     CHECK_INT(evaluated, 0);
     CHECK(t.sum == 4950.0);

@@ -31,6 +31,8 @@ pub const MCSTAT_EBUFSIZE: c_int = 7;
 pub const MCSTAT_ECORRUPT: c_int = 8;
 pub const MCSTAT_ETOOBIG: c_int = 9;
 pub const MCSTAT_ECALLBACK: c_int = 10;
+/// A sequential test's kurtosis gate was still closed at its end (section 10b).
+pub const MCSTAT_EHEAVYTAIL: c_int = 11;
 
 pub const MCSTAT_TWO_SIDED: c_int = 0;
 pub const MCSTAT_LESS: c_int = 1;
@@ -135,6 +137,11 @@ pub const MCSTAT_TEST_BINOM: i32 = 8;
 pub const MCSTAT_TEST_CHISQ_GOF: i32 = 9;
 pub const MCSTAT_TEST_T_2_POOLED: i32 = 10;
 pub const MCSTAT_TEST_T_PAIRED: i32 = 11;
+// 12 is reserved
+pub const MCSTAT_TEST_SEQ_MEAN_1: i32 = 13;
+pub const MCSTAT_TEST_SEQ_MEAN_2: i32 = 14;
+pub const MCSTAT_TEST_SEQ_VAR_1: i32 = 15;
+pub const MCSTAT_TEST_SEQ_VAR_2: i32 = 16;
 
 pub const MCSTAT_METHOD_ANALYTIC: i32 = 0;
 pub const MCSTAT_METHOD_AUTO: i32 = 1;
@@ -158,12 +165,24 @@ pub struct mcstat_result_ints_named {
     pub chisq_n_estimated: i32,
 }
 
+/// The sequential tests' integer outputs (SEQ_*, section 10b).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_ints_seq {
+    /// `MCSTAT_SEQ_CONTINUE` or `MCSTAT_SEQ_DECIDED`.
+    pub seq_state: i32,
+    /// Why no decision is allowed yet (`MCSTAT_SEQ_HOLD_*` bits).
+    pub seq_hold: i32,
+    pub seq_unused_: i32,
+}
+
 /// `mcstat_result`'s first anonymous union (`reserved_i` is 0.1.0's name).
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub union mcstat_result_ints {
     pub reserved_i: [i32; 3],
     pub s: mcstat_result_ints_named,
+    pub seq: mcstat_result_ints_seq,
 }
 
 /// KS_2's per-test outputs.
@@ -204,6 +223,26 @@ pub struct mcstat_result_chisq {
     pub chisq_pool_below: f64,
 }
 
+/// The sequential tests' per-test outputs (SEQ_*, section 10b).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_seq {
+    /// Pushes so far.
+    pub seq_looks: f64,
+    /// n (of x) at the look that decided; 0 while continuing.
+    pub seq_n_decided: f64,
+    /// Log of the e-value at the last look (-Inf while held).
+    pub seq_log_e: f64,
+    /// Its running maximum: p_value = min(1, exp(-seq_log_e_max)).
+    pub seq_log_e_max: f64,
+    /// Equivalence margin (0: none).
+    pub seq_eps: f64,
+    /// The n where the confidence sequence is tightest.
+    pub seq_t_opt: f64,
+    /// The n the kurtosis gate asks for (0 when open).
+    pub seq_n_gate: f64,
+}
+
 /// `mcstat_result`'s second anonymous union (`reserved` is 0.1.0's name).
 #[repr(C)]
 #[derive(Clone, Copy)]
@@ -213,6 +252,7 @@ pub union mcstat_result_per_test {
     pub tost: mcstat_result_tost,
     pub binom: mcstat_result_binom,
     pub chisq: mcstat_result_chisq,
+    pub seq: mcstat_result_seq,
 }
 
 /// `mcstat_result`: what every test fills.  The header's anonymous unions
@@ -259,6 +299,12 @@ impl mcstat_result {
     }
     pub fn chisq(&self) -> mcstat_result_chisq {
         unsafe { self.per_test.chisq }
+    }
+    pub fn ints_seq(&self) -> mcstat_result_ints_seq {
+        unsafe { self.ints.seq }
+    }
+    pub fn seq(&self) -> mcstat_result_seq {
+        unsafe { self.per_test.seq }
     }
 }
 
@@ -596,6 +642,70 @@ impl std::fmt::Debug for mcstat_check_report {
 }
 
 // ============================================================================
+// 10b. Sequential, anytime-valid tests (experimental).
+// ============================================================================
+
+pub const MCSTAT_SEQ_MEAN_1: c_int = 1;
+pub const MCSTAT_SEQ_MEAN_2: c_int = 2;
+pub const MCSTAT_SEQ_VAR_1: c_int = 3;
+pub const MCSTAT_SEQ_VAR_2: c_int = 4;
+
+pub const MCSTAT_SEQ_CONTINUE: i32 = 0;
+pub const MCSTAT_SEQ_DECIDED: i32 = 1;
+
+pub const MCSTAT_SEQ_HOLD_FEW: u32 = 1;
+pub const MCSTAT_SEQ_HOLD_DEGENERATE: u32 = 2;
+pub const MCSTAT_SEQ_HOLD_KURTOSIS: u32 = 4;
+
+/// `mcstat_seq_options`; start from `mcstat_seq_options_init_size(&mut o,
+/// size_of::<mcstat_seq_options>())`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_seq_options {
+    pub size: u32,
+    pub alternative: i32,
+    pub alpha: f64,
+    pub eps: f64,
+    pub t_opt: f64,
+    pub kurtosis_gate: f64,
+    pub var_ucb_z: f64,
+    pub min_n: u64,
+}
+
+/// sizeof(mcstat_seq_options) in each release that changed it.
+pub const MCSTAT_SEQ_OPTIONS_SIZE_0_2: usize = 56;
+
+pub const MCSTAT_SEQ_VERSION: u32 = 1;
+
+/// `mcstat_seq`: one sequential test's state, 448 bytes of plain data the
+/// caller owns (no pointers), written only by the `mcstat_seq_*` functions.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_seq {
+    pub version: u32,
+    pub kind: i32,
+    pub alternative: i32,
+    pub state: i32,
+    pub decision: i32,
+    pub hold: u32,
+    pub x: mcstat_moments,
+    pub y: mcstat_moments,
+    pub null_value: f64,
+    pub alpha: f64,
+    pub eps: f64,
+    pub t_opt: f64,
+    pub kurtosis_gate: f64,
+    pub var_ucb_z: f64,
+    pub min_n: u64,
+    pub looks: u64,
+    pub n_decided: u64,
+    pub log_e: f64,
+    pub log_e_max: f64,
+    pub cs: [f64; 2],
+    pub reserved: [f64; 8],
+}
+
+// ============================================================================
 // 12. Versions.
 // ============================================================================
 
@@ -634,6 +744,8 @@ const _: () = {
     assert!(size_of::<mcstat_diag_options>() == MCSTAT_DIAG_OPTIONS_SIZE_0_1);
     assert!(size_of::<mcstat_gof_options>() == MCSTAT_GOF_OPTIONS_SIZE_0_1);
     assert!(size_of::<mcstat_check_options>() == MCSTAT_CHECK_OPTIONS_SIZE_0_2);
+    assert!(size_of::<mcstat_seq_options>() == MCSTAT_SEQ_OPTIONS_SIZE_0_2);
+    assert!(size_of::<mcstat_seq>() == 448);
 };
 
 extern "C" {
@@ -1074,6 +1186,20 @@ extern "C" {
     pub fn mcstat_check_format(r: *const mcstat_check_report, buf: *mut c_char, size: usize, length: *mut usize) -> c_int;
     pub fn mcstat_check_route_meaning(route: c_int) -> *const c_char;
     pub fn mcstat_check_route_blind_spot(route: c_int) -> *const c_char;
+
+    // ---- 10b. sequential tests (experimental) ---------------------------------
+    pub fn mcstat_seq_options_init_size(opt: *mut mcstat_seq_options, size: usize) -> c_int;
+    pub fn mcstat_sizeof_seq_options() -> usize;
+    pub fn mcstat_seq_init(s: *mut mcstat_seq, kind: c_int, null_value: f64, opt: *const mcstat_seq_options) -> c_int;
+    pub fn mcstat_seq_push_moments(s: *mut mcstat_seq, batch: *const mcstat_moments) -> c_int;
+    pub fn mcstat_seq_push_array(s: *mut mcstat_seq, x: *const f64, n: usize) -> c_int;
+    pub fn mcstat_seq_push_stream(s: *mut mcstat_seq, frame: *const mcstat_stream) -> c_int;
+    pub fn mcstat_seq_push_moments_2(s: *mut mcstat_seq, bx: *const mcstat_moments, by: *const mcstat_moments) -> c_int;
+    pub fn mcstat_seq_push_array_2(s: *mut mcstat_seq, x: *const f64, nx: usize, y: *const f64, ny: usize) -> c_int;
+    pub fn mcstat_seq_result(s: *const mcstat_seq, out: *mut mcstat_result) -> c_int;
+    pub fn mcstat_seq_finish(s: *const mcstat_seq, out: *mut mcstat_result) -> c_int;
+    pub fn mcstat_seq_kind_name(kind: c_int) -> *const c_char;
+    pub fn mcstat_sizeof_seq() -> usize;
 
     // ---- 11. distributions ---------------------------------------------------
     pub fn mcstat_t_cdf(x: f64, df: f64, upper: c_int, p: *mut f64) -> c_int;

@@ -25,6 +25,8 @@ fn sizes_match_the_library() {
         assert_eq!(size_of::<mcstat_check_options>(), mcstat_sizeof_check_options());
         assert_eq!(size_of::<mcstat_check_model>(), mcstat_sizeof_check_model());
         assert_eq!(size_of::<mcstat_check_report>(), mcstat_sizeof_check_report());
+        assert_eq!(size_of::<mcstat_seq_options>(), mcstat_sizeof_seq_options());
+        assert_eq!(size_of::<mcstat_seq>(), mcstat_sizeof_seq());
         assert_eq!(mcstat_sizeof_moments_bytes(), MCSTAT_MOMENTS_BYTES);
         #[allow(deprecated)]
         {
@@ -94,6 +96,19 @@ fn offsets_match_the_c_compiler() {
     assert_eq!(offset!(mcstat_check_report, reserved), 192);
     assert_eq!(offset!(mcstat_check_report, route), 256);
     assert_eq!(offset!(mcstat_check_report, message), 1624);
+    assert_eq!(offset!(mcstat_result, ints.seq.seq_hold), 24);
+    assert_eq!(offset!(mcstat_result, per_test.seq.seq_looks), 160);
+    assert_eq!(offset!(mcstat_result, per_test.seq.seq_n_gate), 208);
+    assert_eq!(offset!(mcstat_seq_options, alpha), 8);
+    assert_eq!(offset!(mcstat_seq_options, min_n), 48);
+    assert_eq!(size_of::<mcstat_seq>(), 448);
+    assert_eq!(offset!(mcstat_seq, x), 24);
+    assert_eq!(offset!(mcstat_seq, y), 152);
+    assert_eq!(offset!(mcstat_seq, null_value), 280);
+    assert_eq!(offset!(mcstat_seq, min_n), 328);
+    assert_eq!(offset!(mcstat_seq, log_e), 352);
+    assert_eq!(offset!(mcstat_seq, cs), 368);
+    assert_eq!(offset!(mcstat_seq, reserved), 384);
 }
 
 /// MAJOR.MINOR.PATCH of the repository's mcstat.h, the one source of
@@ -270,5 +285,54 @@ fn stream_add_is_add_array() {
         assert_eq!(via_stream.n, direct.n);
         assert_eq!(mcstat_moments_mean(&via_stream).to_bits(), mcstat_moments_mean(&direct).to_bits());
         assert_eq!(mcstat_moments_var(&via_stream).to_bits(), mcstat_moments_var(&direct).to_bits());
+    }
+}
+
+/// The sequential test's defaults are the header's MCSTAT_SEQ_OPTIONS_INIT,
+/// and pushing an array, its accumulator or a stream of it is the same look.
+#[test]
+fn seq_defaults_and_pushes() {
+    unsafe {
+        let mut o = MaybeUninit::<mcstat_seq_options>::zeroed().assume_init();
+        assert_eq!(mcstat_seq_options_init_size(&mut o, size_of::<mcstat_seq_options>()), MCSTAT_OK);
+        assert_eq!((o.size as usize, o.alternative, o.alpha, o.eps), (MCSTAT_SEQ_OPTIONS_SIZE_0_2, MCSTAT_TWO_SIDED, 0.05, 0.0));
+        assert_eq!((o.t_opt, o.kurtosis_gate, o.var_ucb_z, o.min_n), (1e4, 10.0, 3.0, 100));
+        assert_eq!(mcstat_seq_options_init_size(&mut o, size_of::<mcstat_seq_options>() + 8), MCSTAT_EINVAL);
+        let x = data(700, 5);
+        let mut a = MaybeUninit::<mcstat_seq>::zeroed().assume_init();
+        assert_eq!(mcstat_seq_init(&mut a, MCSTAT_SEQ_MEAN_1, 0.5, std::ptr::null()), MCSTAT_OK);
+        let (mut b, mut c) = (a, a);
+        assert_eq!(mcstat_seq_push_array(&mut a, x.as_ptr(), x.len()), MCSTAT_OK);
+        let mut m = MaybeUninit::<mcstat_moments>::zeroed().assume_init();
+        mcstat_moments_init(&mut m);
+        mcstat_moments_add_array(&mut m, x.as_ptr(), x.len());
+        assert_eq!(mcstat_seq_push_moments(&mut b, &m), MCSTAT_OK);
+        let mut s: Box<mcstat_stream> = Box::new(MaybeUninit::zeroed().assume_init());
+        mcstat_stream_init(&mut *s);
+        for &v in &x {
+            mcstat_stream_add(&mut *s, v);
+        }
+        assert_eq!(mcstat_seq_push_stream(&mut c, &*s), MCSTAT_OK);
+        let (mut ra, mut rb, mut rc) = (result(), result(), result());
+        assert_eq!(mcstat_seq_result(&a, &mut ra), MCSTAT_OK);
+        assert_eq!(mcstat_seq_result(&b, &mut rb), MCSTAT_OK);
+        assert_eq!(mcstat_seq_finish(&c, &mut rc), MCSTAT_OK);
+        assert_eq!(ra.test, MCSTAT_TEST_SEQ_MEAN_1);
+        assert_eq!((ra.n[0], ra.seq().seq_looks, ra.ints_seq().seq_state), (700, 1.0, MCSTAT_SEQ_CONTINUE));
+        assert_eq!(ra.statistic.to_bits(), rb.statistic.to_bits());
+        assert_eq!(ra.seq().seq_log_e.to_bits(), rb.seq().seq_log_e.to_bits());
+        // the stream sums in blocks of its capacity: the same to rounding
+        assert!((ra.statistic - rc.statistic).abs() <= 1e-12 * ra.statistic.abs());
+        assert_eq!((rc.n[0], rc.seq().seq_looks), (700, 1.0));
+        // the wrong kind for the call, and a two-sample push
+        assert_eq!(mcstat_seq_push_array_2(&mut a, x.as_ptr(), 1, x.as_ptr(), 1), MCSTAT_EINVAL);
+        let mut t = MaybeUninit::<mcstat_seq>::zeroed().assume_init();
+        assert_eq!(mcstat_seq_init(&mut t, MCSTAT_SEQ_VAR_2, 1.0, &o), MCSTAT_OK);
+        assert_eq!(mcstat_seq_push_moments_2(&mut t, &m, &m), MCSTAT_OK);
+        assert_eq!(mcstat_seq_push_moments(&mut t, &m), MCSTAT_EINVAL);
+        assert_eq!(mcstat_seq_init(&mut t, 9, 1.0, &o), MCSTAT_EINVAL);
+        let name = std::ffi::CStr::from_ptr(mcstat_seq_kind_name(MCSTAT_SEQ_VAR_2));
+        assert_eq!(name.to_str().unwrap(), "var2");
+        assert!(mcstat_seq_kind_name(0).is_null());
     }
 }

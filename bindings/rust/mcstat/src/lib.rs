@@ -23,7 +23,8 @@
 //! accumulator arrays and the per-thread [`Stream`], Kolmogorov-Smirnov
 //! ([`ks_test_2`]), equivalence (TOST), multiple testing ([`p_adjust()`]),
 //! power ([`power`]), estimator diagnostics ([`diag`]), goodness of fit and
-//! the binomial battery test ([`gof`]), renderer checks ([`check`]) and the
+//! the binomial battery test ([`gof`]), renderer checks ([`check`]),
+//! sequential anytime-valid tests ([`SequentialTest`]) and the
 //! distributions ([`dist`]).
 use std::ffi::{CStr, CString};
 use std::fmt;
@@ -41,6 +42,7 @@ mod moments;
 pub mod p_adjust;
 pub mod power;
 pub mod rows;
+mod seq;
 
 pub use check::{check_bsdf, check_emitter, check_warp, CheckModel, CheckOptions, CheckReport, Domain, Route};
 pub use diag::{diagnose, DiagOptions, Diagnostics};
@@ -50,6 +52,7 @@ pub use moments::{t_test_1_moments, t_test_2_moments, t_test_2_pooled_moments, v
 pub use p_adjust::{p_adjust, PAdjustMethod};
 pub use power::{Power, PowerSolution, PowerTest};
 pub use rows::{Matrix, RowFlags, RowResults, Statuses};
+pub use seq::{SeqHold, SeqKind, SeqOptions, SeqOutcome, SequentialTest};
 
 // ---- errors --------------------------------------------------------------------
 
@@ -79,6 +82,10 @@ pub enum Error {
     /// MCSTAT_ECALLBACK: a renderer check's callback failed, panicked or
     /// returned invalid values; the message says which and where.
     Callback(String),
+    /// MCSTAT_EHEAVYTAIL: a sequential test ended with its kurtosis gate
+    /// closed: the tails never allowed a decision in this budget
+    /// ([`SequentialTest::finish`]).
+    HeavyTail(String),
     /// A status this crate does not know (a newer library).
     Other { status: i32, message: String },
 }
@@ -96,6 +103,7 @@ pub enum ErrorKind {
     Corrupt,
     TooBig,
     Callback,
+    HeavyTail,
     Other(i32),
 }
 
@@ -122,6 +130,7 @@ impl Error {
             sys::MCSTAT_ECORRUPT => Error::Corrupt(m),
             sys::MCSTAT_ETOOBIG => Error::TooBig(m),
             sys::MCSTAT_ECALLBACK => Error::Callback(m),
+            sys::MCSTAT_EHEAVYTAIL => Error::HeavyTail(m),
             status => Error::Other { status, message: m },
         }
     }
@@ -143,6 +152,7 @@ impl Error {
             Error::Corrupt(_) => sys::MCSTAT_ECORRUPT,
             Error::TooBig(_) => sys::MCSTAT_ETOOBIG,
             Error::Callback(_) => sys::MCSTAT_ECALLBACK,
+            Error::HeavyTail(_) => sys::MCSTAT_EHEAVYTAIL,
             Error::Other { status, .. } => *status,
         }
     }
@@ -158,6 +168,7 @@ impl Error {
             Error::Corrupt(_) => ErrorKind::Corrupt,
             Error::TooBig(_) => ErrorKind::TooBig,
             Error::Callback(_) => ErrorKind::Callback,
+            Error::HeavyTail(_) => ErrorKind::HeavyTail,
             Error::Other { status, .. } => ErrorKind::Other(*status),
         }
     }
@@ -173,7 +184,8 @@ impl Error {
             | Error::BufferSize(m)
             | Error::Corrupt(m)
             | Error::TooBig(m)
-            | Error::Callback(m) => m,
+            | Error::Callback(m)
+            | Error::HeavyTail(m) => m,
             Error::Other { message, .. } => message,
         }
     }
@@ -253,7 +265,7 @@ pub fn gsl_handler_off_if_default() -> bool {
 /// `InvalidArgument` names the first struct that differs.
 pub fn check_layout() -> Result<()> {
     use std::mem::size_of;
-    let sizes: [(&str, usize, usize); 12] = unsafe {
+    let sizes: [(&str, usize, usize); 14] = unsafe {
         [
             ("mcstat_moments", size_of::<sys::mcstat_moments>(), sys::mcstat_sizeof_moments()),
             ("mcstat_result", size_of::<sys::mcstat_result>(), sys::mcstat_sizeof_result()),
@@ -266,6 +278,8 @@ pub fn check_layout() -> Result<()> {
             ("mcstat_check_options", size_of::<sys::mcstat_check_options>(), sys::mcstat_sizeof_check_options()),
             ("mcstat_check_model", size_of::<sys::mcstat_check_model>(), sys::mcstat_sizeof_check_model()),
             ("mcstat_check_report", size_of::<sys::mcstat_check_report>(), sys::mcstat_sizeof_check_report()),
+            ("mcstat_seq_options", size_of::<sys::mcstat_seq_options>(), sys::mcstat_sizeof_seq_options()),
+            ("mcstat_seq", size_of::<sys::mcstat_seq>(), sys::mcstat_sizeof_seq()),
             ("serialized mcstat_moments", sys::MCSTAT_MOMENTS_BYTES, sys::mcstat_sizeof_moments_bytes()),
         ]
     };
@@ -378,6 +392,14 @@ pub enum Test {
     T2Pooled,
     /// The paired t (one-sample t on the differences).
     TPaired,
+    /// Sequential (anytime-valid) test of a mean ([`SequentialTest`]).
+    SeqMean1,
+    /// Sequential test of a difference of means.
+    SeqMean2,
+    /// Sequential test of a variance.
+    SeqVar1,
+    /// Sequential test of a ratio of variances.
+    SeqVar2,
     /// A test this crate does not know (a newer library).
     Other(i32),
 }
@@ -396,6 +418,10 @@ impl Test {
             sys::MCSTAT_TEST_CHISQ_GOF => Test::ChisqGof,
             sys::MCSTAT_TEST_T_2_POOLED => Test::T2Pooled,
             sys::MCSTAT_TEST_T_PAIRED => Test::TPaired,
+            sys::MCSTAT_TEST_SEQ_MEAN_1 => Test::SeqMean1,
+            sys::MCSTAT_TEST_SEQ_MEAN_2 => Test::SeqMean2,
+            sys::MCSTAT_TEST_SEQ_VAR_1 => Test::SeqVar1,
+            sys::MCSTAT_TEST_SEQ_VAR_2 => Test::SeqVar2,
             v => Test::Other(v),
         }
     }
@@ -483,6 +509,30 @@ pub enum Details {
         /// The pooling threshold, `None` when pooling was off.
         pool_below: Option<f64>,
     },
+    /// A sequential test at its last look ([`SequentialTest`]).
+    Sequential {
+        /// Continuing, or the first (final) decision.
+        outcome: SeqOutcome,
+        /// Why no decision is allowed at the last look (empty when none).
+        hold: SeqHold,
+        /// Pushes so far.
+        looks: u64,
+        /// n (of x) at the look that decided; `None` while continuing.
+        n_decided: Option<u64>,
+        /// The z of the last look; `None` while held (`statistic()` is then NaN).
+        z: Option<f64>,
+        /// Log of the e-value at the last look; `None` while held.
+        log_e: Option<f64>,
+        /// Its running maximum over the looks (p-value = min(1,
+        /// exp(-log_e_max))); `None` before the first look that was not held.
+        log_e_max: Option<f64>,
+        /// The equivalence margin; `None` when none.
+        eps: Option<f64>,
+        /// The n where the confidence sequence is tightest.
+        t_opt: f64,
+        /// The n the kurtosis gate asks for; `None` when it is open.
+        n_gate: Option<f64>,
+    },
 }
 
 /// A test's result: a copy of libmcstat's `mcstat_result`.  Fields that do
@@ -534,7 +584,8 @@ impl TestResult {
         Alternative::from_raw(self.raw.alternative)
     }
     /// t, X-squared, F, the K-S statistic (D or Canner's D2), the count of
-    /// a binomial test.
+    /// a binomial test, the z of a sequential test's last look (NaN while
+    /// the test holds: read [`Details::Sequential`]'s `z` instead).
     pub fn statistic(&self) -> f64 {
         self.raw.statistic
     }
@@ -592,7 +643,7 @@ impl TestResult {
             _ => Decision::Greater,
         }
     }
-    /// The per-test outputs of K-S, TOST, binomial and GOF results.
+    /// The per-test outputs of K-S, TOST, binomial, GOF and sequential results.
     pub fn details(&self) -> Details {
         let r = &self.raw;
         match self.test() {
@@ -621,6 +672,22 @@ impl TestResult {
                     cells_given: c.chisq_cells_given as u64,
                     min_expected: c.chisq_min_expected,
                     pool_below: if c.chisq_pool_below > 0.0 { Some(c.chisq_pool_below) } else { None },
+                }
+            }
+            Test::SeqMean1 | Test::SeqMean2 | Test::SeqVar1 | Test::SeqVar2 => {
+                let (i, q) = (r.ints_seq(), r.seq());
+                let finite = |v: f64| if v.is_finite() { Some(v) } else { None };
+                Details::Sequential {
+                    outcome: SeqOutcome::from_raw(i.seq_state, r.decision),
+                    hold: SeqHold(i.seq_hold as u32),
+                    looks: q.seq_looks as u64,
+                    n_decided: if i.seq_state == sys::MCSTAT_SEQ_DECIDED { Some(q.seq_n_decided as u64) } else { None },
+                    z: some(r.statistic),
+                    log_e: finite(q.seq_log_e),
+                    log_e_max: finite(q.seq_log_e_max),
+                    eps: if q.seq_eps > 0.0 { Some(q.seq_eps) } else { None },
+                    t_opt: q.seq_t_opt,
+                    n_gate: if q.seq_n_gate > 0.0 { Some(q.seq_n_gate) } else { None },
                 }
             }
             _ => Details::None,
