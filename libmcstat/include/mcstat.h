@@ -1716,8 +1716,8 @@ MCSTAT_API const char *mcstat_check_route_blind_spot(int route);
 /* batches or their merge gives the same accumulators, bit for bit; the     */
 /* looks differ).  The first decision is final (state DECIDED, at           */
 /* seq_n_decided); later pushes still narrow the sequence and update the    */
-/* p-value.  Cost per look: O(1), no allocation (a root-find of ~60 steps   */
-/* for one-sided tests).  The struct is the caller's, fixed size, no        */
+/* p-value.  Cost per look: O(1), no allocation (a Newton root-find of a    */
+/* few steps for one-sided tests).  The struct is the caller's, fixed size, no        */
 /* pointers: copy it to keep a state, one per thread of control.            */
 /* ------------------------------------------------------------------------ */
 enum mcstat_seq_kind {

@@ -168,22 +168,35 @@ static double log_e_value(double z, double a, int alternative)
 }
 
 /* The z at which E reaches 1/alpha: closed form two-sided; one-sided the
- * root of an increasing function in [0, the two-sided bound], which it
- * brackets because 2 Phi >= 1 there. */
+ * root of log E(z) + log alpha, increasing in z, bracketed by [0, the
+ * two-sided bound] (2 Phi >= 1 there): Newton's method, falling back to
+ * bisection whenever a step leaves the bracket (5-6 evaluations where
+ * bisection took 50). */
 static double boundary(double a, double alpha, int alternative)
 {
     double two = sqrt((1.0 + a) / a * (-2.0 * log(alpha) + log1p(a)));
     if (alternative == MCSTAT_TWO_SIDED)
         return two;
-    double lo = 0.0, hi = two, target = -log(alpha);
-    for (int i = 0; i < 200 && hi - lo > 4.0 * DBL_EPSILON * hi; i++) {
-        double mid = 0.5 * (lo + hi);
-        if (log_e_value(mid, a, MCSTAT_GREATER) < target)
-            lo = mid;
+    double k = sqrt(a / (1.0 + a)), target = -log(alpha);
+    double lo = 0.0, hi = two, z = two;
+    for (int i = 0; i < 100; i++) {
+        double f = log_e_value(z, a, MCSTAT_GREATER) - target;
+        if (f == 0.0)
+            return z;
+        if (f < 0.0)
+            lo = z;
         else
-            hi = mid;
+            hi = z;
+        /* d log E / dz = z a/(1+a) + k phi(kz)/Phi(kz) */
+        double d = z * k * k + k * exp(dnorm(k * z, 0.0, 1.0, 1) - pnorm(k * z, 0.0, 1.0, 1, 1));
+        double next = z - f / d;
+        if (!(next > lo && next < hi))
+            next = 0.5 * (lo + hi);
+        if (fabs(next - z) <= 2.0 * DBL_EPSILON * z || hi - lo <= 2.0 * DBL_EPSILON * hi)
+            return next;
+        z = next;
     }
-    return hi;
+    return z;
 }
 
 /* ---- a look ----------------------------------------------------------------
