@@ -121,7 +121,7 @@ def stopping_chunk(args):
 
 
 def fixed_n(d, power):
-    return mcstat.power("t1", effect=d, alpha=ALPHA, power=power).n
+    return mcstat.power("t", effect=d, alpha=ALPHA, power=power).n
 
 
 def main():
@@ -185,7 +185,7 @@ def main():
               "A mean shifted by d standard deviations, tested against the unshifted mean. Sequential: the n at "
               "which it decided (an undecided run counts as infinite), its median, 80th percentile (the n at which "
               "it has 80% power) and 90th; fixed-n: the one-sample t test's n for 80% and 90% power at that d "
-              "(`mcstat.power(\"t1\", ...)`), which the fixed test always spends.", "",
+              "(`mcstat.power(\"t\", ...)`), which the fixed test always spends.", "",
               "| law | d (sd) | runs | decided right | median n | p80 | p90 | fixed n, 80% power | fixed n, 90% | median / fixed n (90%) |",
               "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for law, d, runs, right, med, p80, p90, n80, n90 in stops:

@@ -97,7 +97,7 @@ def unregistered(known_py, known_c):
 
 C_BENCHES = ("bench_moments", "bench_check", "check_cost", "ks_bench", "bench_estimators")
 PY_BENCHES = ("bench_python.py", "bench_ks_python.py", "bench_estimators_numpy.py", "ks_numpy.py",
-              "bench_image.py", "bench_check_calibration.py")
+              "bench_image.py", "bench_check_calibration.py", "bench_sequential.py")
 
 
 def main():
@@ -150,6 +150,11 @@ def main():
     # ---- renderer checks: false rejections of correct BSDFs at full size ----------
     run([py, "bench/bench_check_calibration.py", "--write"] + (["--runs", "50", "--n", "20000"] if args.quick else []))
     parts.append(section(os.path.join(HERE, "RESULTS_check_calibration.md")))
+
+    # ---- sequential tests: calibration to 10^6 and stopping times ----------------
+    run([py, "bench/bench_sequential.py", "--write"] +
+        (["--runs", "200", "--n-max", "20000", "--stop-runs", "100"] if args.quick else []))
+    parts.append(section(os.path.join(HERE, "RESULTS_sequential.md")))
 
     # ---- Python against SciPy / NumPy ---------------------------------------------
     run([py, "bench/bench_python.py", *quick] + (["--no-image"] if args.quick else []))

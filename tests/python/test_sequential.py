@@ -203,6 +203,18 @@ def test_moments_and_arrays_agree():
     assert a.n == b.n == 2000 and a.looks == b.looks == 4
     assert a.statistic == pytest.approx(b.statistic, rel=1e-13)
     assert a.pvalue == pytest.approx(b.pvalue, rel=1e-12)
+    st = mcstat.SequentialTest("mean", mu=1.0)
+    frame = mcstat.Stream()
+    for x in xs:
+        frame.push(x)
+    st.push(frame)  # a renderer's frame: its merged per-thread streams
+    assert st.n == 2000 and st.looks == 1
+    one = mcstat.SequentialTest("mean", mu=1.0).push(np.concatenate(xs))
+    assert st.statistic == pytest.approx(one.statistic, rel=1e-13)
+    frame.push(np.nan)
+    with pytest.raises(mcstat.NonFiniteError, match="the stream x has seen NaN"):
+        st.push(frame)
+    assert st.n == 2000
     c = copy.copy(a)
     c.push(xs[0])
     assert c.n == 2500 and a.n == 2000

@@ -121,6 +121,8 @@ void register_check(py::module_ &mod);
 void register_distributions(py::module_ &mod);
 // ---- the renderer's buffered accumulator and its checks (stream.cpp) ----
 void register_stream(py::module_ &mod);
+// The stream inside a Python Stream, or nullptr if obj is not one.
+const mcstat_stream *as_stream(py::handle obj);
 // mcstat.SequentialTest (sequential.cpp)
 void register_sequential(py::module_ &mod);
 

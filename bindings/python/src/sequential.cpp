@@ -64,6 +64,15 @@ double null_value(int kind, py::handle mu, py::handle sigma2, py::handle ratio)
 
 bool two_sample(const Sequential &q) { return q.s.kind == MCSTAT_SEQ_MEAN_2 || q.s.kind == MCSTAT_SEQ_VAR_2; }
 
+bool batch_has_nonfinite(const py::array &a)
+{
+    const double *v = static_cast<const double *>(a.data());
+    for (py::ssize_t i = 0; i < a.size(); i++)
+        if (!std::isfinite(v[i]))
+            return true;
+    return false;
+}
+
 // A batch as an accumulator: a Moments as it is, anything else as float64 values.
 mcstat_moments batch_of(py::handle obj, const char *name)
 {
@@ -80,22 +89,44 @@ mcstat_moments batch_of(py::handle obj, const char *name)
     return m;
 }
 
+// Arrays go to libmcstat as they are (mcstat_seq_push_array[_2]); a Moments
+// or a Stream (a renderer's frame) as its accumulator.
 void push(Sequential &q, py::handle x, py::handle y)
 {
     int st;
+    std::string what = "push";
     if (two_sample(q)) {
         if (y.is_none())
             throw_invalid(std::string("kind \"") + mcstat_seq_kind_name(q.s.kind) + "\" pushes two batches: push(x, y)");
-        mcstat_moments bx = batch_of(x, "x"), by = batch_of(y, "y");
-        st = mcstat_seq_push_moments_2(&q.s, &bx, &by);
+        if (as_moments(x) || as_moments(y)) {
+            mcstat_moments bx = batch_of(x, "x"), by = batch_of(y, "y");
+            st = mcstat_seq_push_moments_2(&q.s, &bx, &by);
+        } else {
+            py::array ax = as_contiguous_array(x, "x"), ay = as_contiguous_array(y, "y");
+            st = mcstat_seq_push_array_2(&q.s, static_cast<const double *>(ax.data()), static_cast<size_t>(ax.size()),
+                                         static_cast<const double *>(ay.data()), static_cast<size_t>(ay.size()));
+            if (st == MCSTAT_ENONFINITE)
+                what = batch_has_nonfinite(ax) ? "x contains NaN or infinite values" : "y contains NaN or infinite values";
+        }
     } else {
         if (!y.is_none())
             throw_invalid(std::string("kind \"") + mcstat_seq_kind_name(q.s.kind) + "\" takes one batch: push(x)");
-        mcstat_moments bx = batch_of(x, "x");
-        st = mcstat_seq_push_moments(&q.s, &bx);
+        if (const mcstat_stream *frame = as_stream(x)) {
+            st = mcstat_seq_push_stream(&q.s, frame);
+            if (st == MCSTAT_ENONFINITE)
+                what = "the stream x has seen NaN or infinite values";
+        } else if (as_moments(x)) {
+            mcstat_moments bx = batch_of(x, "x");
+            st = mcstat_seq_push_moments(&q.s, &bx);
+        } else {
+            py::array ax = as_contiguous_array(x, "x");
+            st = mcstat_seq_push_array(&q.s, static_cast<const double *>(ax.data()), static_cast<size_t>(ax.size()));
+            if (st == MCSTAT_ENONFINITE)
+                what = "x contains NaN or infinite values";
+        }
     }
     if (st)
-        throw_status(st, st == MCSTAT_ETOOBIG ? "the count would pass 2**64 - 1" : "push");
+        throw_status(st, st == MCSTAT_ETOOBIG ? "the count would pass 2**64 - 1" : what);
 }
 
 mcstat_result result_of(const Sequential &q)
@@ -239,7 +270,7 @@ min_n : int
                 return q;
             },
             py::arg("x"), py::arg("y") = py::none(), py::return_value_policy::reference_internal,
-            R"doc(Adds a batch (an array of values or a `Moments`) and looks; returns self.
+            R"doc(Adds a batch (an array of values, a `Moments` or a `Stream`) and looks; returns self.
 
 Two-sample kinds take ``push(x, y)`` (either batch may be empty).  Raises
 `NonFiniteError` (the batch is then not added) for NaN or infinities.)doc")

@@ -69,6 +69,14 @@ py::object moments_of(const Stream &st)
 
 } // namespace
 
+const mcstat_stream *as_stream(py::handle obj)
+{
+    static py::handle type = py::type::of<Stream>();
+    if (!PyObject_TypeCheck(obj.ptr(), reinterpret_cast<PyTypeObject *>(type.ptr())))
+        return nullptr;
+    return &obj.cast<const Stream &>().s;
+}
+
 void register_stream(py::module_ &mod)
 {
     py::class_<Stream>(mod, "Stream", R"doc(
