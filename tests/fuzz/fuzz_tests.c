@@ -8,6 +8,8 @@
  * fz_check_result: the array call is bit for bit the accumulator call on
  * mcstat_moments_add_array of the same data (they are documented as the same
  * test), a failed call leaves *out untouched, and NULL data are refused.
+ * Flags bit 2: the same data through the sequential test of the same kind
+ * (section 10b), pushed 8 values at a time.
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
@@ -90,6 +92,66 @@ static void pooled_and_paired(const double *x, size_t nx, const double *y, size_
 
 static const int TEST_KIND[4] = {MCSTAT_TEST_T_1, MCSTAT_TEST_T_2, MCSTAT_TEST_VAR_1, MCSTAT_TEST_VAR_2};
 
+/* The sequential test of kind which + 1 on x (and y), 8 values per look:
+ * a refused push leaves the state as it was, a decision is final, and
+ * every result is whole (p in [0, 1], an ordered sequence, a log p and a
+ * block). */
+static void sequential(int which, const double *x, size_t nx, const double *y, size_t ny, double v, int alt,
+                       double alpha, uint8_t flags)
+{
+    mcstat_seq_options o;
+    FZ_ASSERT(mcstat_seq_options_init(&o) == MCSTAT_OK, "seq options");
+    o.alternative = alt;
+    o.alpha = alpha;
+    o.min_n = 2;
+    o.kurtosis_gate = (flags & 8) ? 0.0 : 10.0;
+    o.var_ucb_z = (flags & 16) ? 0.0 : 3.0;
+    o.t_opt = (flags & 32) ? 50.0 : 1e4;
+    o.eps = (flags & 64) && which < 2 ? fabs(v) * 0.5 + 1e-3 : 0.0;
+    mcstat_seq s;
+    int st = mcstat_seq_init(&s, which + 1, v, &o);
+    fz_check_status(st);
+    if (st != MCSTAT_OK) {
+        FZ_ASSERT(st == MCSTAT_EINVAL, "seq init: status %d", st);
+        return;
+    }
+    int two = which == 1 || which == 3, decided = 0, decision = 0;
+    for (size_t i = 0; i < (nx > ny ? nx : ny); i += 8) {
+        size_t kx = i < nx ? (nx - i < 8 ? nx - i : 8) : 0, ky = i < ny ? (ny - i < 8 ? ny - i : 8) : 0;
+        mcstat_seq before = s;
+        st = two ? mcstat_seq_push_array_2(&s, x + (i < nx ? i : 0), kx, y + (i < ny ? i : 0), ky)
+                 : mcstat_seq_push_array(&s, x + (i < nx ? i : 0), kx);
+        fz_check_status(st);
+        if (st != MCSTAT_OK) {
+            FZ_ASSERT(memcmp(&s, &before, sizeof s) == 0, "seq push: status %d but the state changed", st);
+            continue;
+        }
+        mcstat_result r;
+        FZ_ASSERT(mcstat_seq_result(&s, &r) == MCSTAT_OK, "seq result");
+        FZ_ASSERT(r.p_value >= 0.0 && r.p_value <= 1.0, "seq p %.17g", r.p_value);
+        FZ_ASSERT(!isnan(r.conf_int[0]) && !isnan(r.conf_int[1]) && r.conf_int[0] <= r.conf_int[1],
+                  "seq sequence %.17g %.17g", r.conf_int[0], r.conf_int[1]);
+        if (decided)
+            FZ_ASSERT(r.seq_state == MCSTAT_SEQ_DECIDED && r.decision == decision, "seq decision changed");
+        if (r.seq_state == MCSTAT_SEQ_DECIDED) {
+            decided = 1;
+            decision = r.decision;
+            FZ_ASSERT(r.decision >= -1 && r.decision <= 1, "seq decision %d", r.decision);
+            if (r.reject)
+                FZ_ASSERT(r.p_value <= alpha, "seq rejected with p %.17g > alpha %.17g", r.p_value, alpha);
+        } else {
+            FZ_ASSERT(!r.reject, "seq rejects while continuing");
+        }
+        double lp;
+        FZ_ASSERT(mcstat_result_log_p_value(&r, &lp) == MCSTAT_OK && lp <= 0.0, "seq log p %.17g", lp);
+        char buf[1024];
+        st = mcstat_result_format(&r, "x", "y", buf, sizeof buf, NULL);
+        FZ_ASSERT(st == MCSTAT_OK, "seq format: status %d", st);
+        st = mcstat_seq_finish(&s, &r);
+        FZ_ASSERT(st == MCSTAT_OK || st == MCSTAT_EHEAVYTAIL, "seq finish: status %d", st);
+    }
+}
+
 static void stream_checks(const double *x, size_t nx, double reference, double tolerance, double alpha)
 {
     if (fz_verbose())
@@ -164,6 +226,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         result_accessors(&r, level);
     if (which == 1)
         pooled_and_paired(x, nx, y, ny, v, alt, alpha, level);
+    if (flags & 4)
+        sequential(which, x, nx, y, ny, v, alt, alpha, flags);
 
     /* The same test through accumulators. */
     mcstat_moments mx, my;
