@@ -46,7 +46,7 @@ pub use check::{check_bsdf, check_emitter, check_warp, CheckModel, CheckOptions,
 pub use diag::{diagnose, DiagOptions, Diagnostics};
 pub use gof::{battery_test, battery_test_p_values, binom_test, gof_chisq_test, GofOptions};
 pub use ks::{ks_test_2, KsCache, KsOptions};
-pub use moments::{t_test_1_moments, t_test_2_moments, t_test_2_pooled_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
+pub use moments::{efficiency_test, t_test_1_moments, t_test_2_moments, t_test_2_pooled_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
 pub use p_adjust::{p_adjust, PAdjustMethod};
 pub use power::{Power, PowerSolution, PowerTest};
 pub use rows::{Matrix, RowFlags, RowResults, Statuses};
@@ -378,6 +378,8 @@ pub enum Test {
     T2Pooled,
     /// The paired t (one-sample t on the differences).
     TPaired,
+    /// The ratio of two estimators' efficiencies, 1 / (variance x time).
+    Efficiency,
     /// A test this crate does not know (a newer library).
     Other(i32),
 }
@@ -396,6 +398,7 @@ impl Test {
             sys::MCSTAT_TEST_CHISQ_GOF => Test::ChisqGof,
             sys::MCSTAT_TEST_T_2_POOLED => Test::T2Pooled,
             sys::MCSTAT_TEST_T_PAIRED => Test::TPaired,
+            sys::MCSTAT_TEST_EFFICIENCY => Test::Efficiency,
             v => Test::Other(v),
         }
     }
@@ -482,6 +485,20 @@ pub enum Details {
         min_expected: f64,
         /// The pooling threshold, `None` when pooling was off.
         pool_below: Option<f64>,
+    },
+    Efficiency {
+        /// s_y^2 / s_x^2: x's advantage in variance.
+        var_ratio: f64,
+        /// Mean time per sample of y / of x: x's advantage in time.
+        time_ratio: f64,
+        /// Delta-method standard errors of log s_x^2, log s_y^2, log tau_x, log tau_y.
+        se_log_var_x: f64,
+        se_log_var_y: f64,
+        se_log_time_x: f64,
+        se_log_time_y: f64,
+        /// Timed batches of x and of y.
+        batches_x: u32,
+        batches_y: u32,
     },
 }
 
@@ -621,6 +638,20 @@ impl TestResult {
                     cells_given: c.chisq_cells_given as u64,
                     min_expected: c.chisq_min_expected,
                     pool_below: if c.chisq_pool_below > 0.0 { Some(c.chisq_pool_below) } else { None },
+                }
+            }
+            Test::Efficiency => {
+                let e = r.eff();
+                let k = r.eff_ints();
+                Details::Efficiency {
+                    var_ratio: e.eff_var_ratio,
+                    time_ratio: e.eff_time_ratio,
+                    se_log_var_x: e.eff_se_log_var_x,
+                    se_log_var_y: e.eff_se_log_var_y,
+                    se_log_time_x: e.eff_se_log_time_x,
+                    se_log_time_y: e.eff_se_log_time_y,
+                    batches_x: k.eff_batches_x as u32,
+                    batches_y: k.eff_batches_y as u32,
                 }
             }
             _ => Details::None,
