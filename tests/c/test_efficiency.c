@@ -197,6 +197,7 @@ static int rejections(int kind, size_t n, size_t k, double noise, double var_rat
 
 static void test_calibration(void)
 {
+    rng_state = 20261203; /* the rates mcstat.h quotes, whatever ran before */
     const int reps = (int)h_scaled(2000, 200);
     /* 2000 tests at alpha = 0.05: mean 100, sd 9.7; 3.5 sd either side */
     const double mean = 0.05 * reps, sd = sqrt(reps * 0.05 * 0.95);
@@ -358,8 +359,86 @@ static void test_extremes(void)
     CHECK(isfinite(r.eff_se_log_time_x) && isfinite(r.eff_se_log_time_y));
 }
 
+/* ---- random extremes: never NaN with status OK --------------------------------
+ * Accumulators of random summaries and data across the doubles' range, times
+ * with zeros and negatives among them: every status is one of those
+ * documented, and every OK result is whole (no NaN, p in [0, 1], ordered
+ * interval and critical values, reject == p <= alpha, the interval's ends on
+ * the right side of the null value, the block and the log p-value). */
+static double any_magnitude(void)
+{
+    return ldexp(0.5 + unif(), (int)(unif() * 1960.0) - 980);
+}
+
+static void random_moments(mcstat_moments *m, int positive)
+{
+    double v[8];
+    if (unif() < 1.0 / 3.0) { /* a summary at any n, mean and spread */
+        uint64_t n = unif() < 0.2 ? UINT64_MAX - (uint64_t)(unif() * 1000.0) : 2 + (uint64_t)(unif() * 1e6);
+        if (mcstat_moments_from_summary(n, (unif() < 0.5 ? -1 : 1) * any_magnitude(),
+                                        unif() < 0.1 ? 0.0 : any_magnitude(), m) == MCSTAT_OK)
+            return;
+    }
+    /* a few values at one magnitude, some of them zeros (also where the
+     * summary overflowed) */
+    double scale = any_magnitude();
+    size_t k = 1 + (size_t)(unif() * 8.0);
+    for (size_t i = 0; i < k; i++)
+        v[i] = unif() < 0.3 ? 0.0 : (positive || unif() < 0.8 ? 1.0 : -1.0) * scale * unif();
+    mcstat_moments_init(m);
+    mcstat_moments_add_array(m, v, k);
+}
+
+static void test_random_extremes(void)
+{
+    const int cases = (int)h_scaled(100000, 2000);
+    int ok = 0, bad = 0;
+    for (int i = 0; i < cases; i++) {
+        mcstat_moments m[4];
+        for (int k = 0; k < 4; k++)
+            random_moments(&m[k], k >= 2 && unif() < 0.8); /* times: mostly >= 0 */
+        static const double alphas[] = {0.05, 1e-300, 0.5, 0.999999, 1e-12};
+        double alpha = alphas[i % 5], ratio = unif() < 0.5 ? 1.0 : any_magnitude();
+        int alt = i % 3;
+        mcstat_result r;
+        int st = mcstat_efficiency_test(&m[0], &m[1], &m[2], &m[3], ratio, alt, alpha, &r);
+        if (st != MCSTAT_OK) {
+            bad += !(st == MCSTAT_EINVAL || st == MCSTAT_ETOOFEW || st == MCSTAT_EDEGENERATE);
+            CHECK_MSG(st == MCSTAT_EINVAL || st == MCSTAT_ETOOFEW || st == MCSTAT_EDEGENERATE, "case %d: status %d",
+                      i, st);
+            continue;
+        }
+        ok++;
+        int whole = !isnan(r.statistic) && r.df[0] > 0 && r.df[0] <= 1e15 && r.p_value >= 0 && r.p_value <= 1 &&
+                    !isnan(r.conf_int[0]) && !isnan(r.conf_int[1]) && r.conf_int[0] <= r.conf_int[1] &&
+                    r.conf_int[0] >= 0 && !isnan(r.estimate[0]) && !isnan(r.estimate[1]) && r.std_error > 0 &&
+                    isfinite(r.std_error) && !isnan(r.critical[0]) && !isnan(r.critical[1]) &&
+                    r.critical[0] <= r.critical[1] && r.reject == (r.p_value <= alpha) &&
+                    !isnan(r.eff_var_ratio) && !isnan(r.eff_time_ratio) && !isnan(r.eff_se_log_var_x) &&
+                    !isnan(r.eff_se_log_var_y) && !isnan(r.eff_se_log_time_x) && !isnan(r.eff_se_log_time_y);
+        CHECK_MSG(whole, "case %d: t %g df %g p %g ci [%g, %g] est %g se %g", i, r.statistic, r.df[0], r.p_value,
+                  r.conf_int[0], r.conf_int[1], r.estimate[0], r.std_error);
+        /* the interval holds the estimate (where both are doubles, and at
+         * levels 1 - alpha >= 1/2: at alpha near 1 it need not) */
+        if (r.estimate[0] > 0 && isfinite(r.estimate[0]) && alpha <= 0.5)
+            CHECK_MSG(r.conf_int[0] <= r.estimate[0] * (1 + 1e-12) && r.estimate[0] <= r.conf_int[1] * (1 + 1e-12),
+                      "case %d: estimate %g outside [%g, %g]", i, r.estimate[0], r.conf_int[0], r.conf_int[1]);
+        double lp, ci[2];
+        CHECK_INT(mcstat_result_log_p_value(&r, &lp), MCSTAT_OK);
+        CHECK(!isnan(lp) && lp <= 0);
+        CHECK_INT(mcstat_result_conf_int(&r, 0.9, ci), MCSTAT_OK);
+        CHECK(!isnan(ci[0]) && !isnan(ci[1]) && ci[0] <= ci[1]);
+        char buf[1024];
+        CHECK_INT(mcstat_result_format(&r, NULL, NULL, buf, sizeof buf, NULL), MCSTAT_OK);
+        CHECK(strstr(buf, "nan") == NULL && strstr(buf, "NaN") == NULL);
+    }
+    printf("random extremes: %d of %d cases OK, %d unexpected statuses\n", ok, cases, bad);
+    CHECK_MSG(ok > cases / 20, "only %d OK results", ok);
+}
+
 int main(void)
 {
+    test_random_extremes();
     test_reference();
     test_block();
     test_bad_input();
