@@ -159,8 +159,11 @@ def test_compare_efficiency_times_interleaved_batches():
         calls.append("y")
         return rng.normal(0, 2, m)
 
-    r = mcstat.compare_efficiency(draw_x, draw_y, n=1000, batches=10)
+    r = mcstat.compare_efficiency(draw_x, draw_y, n=1000, batches=10, warmup=False)
     assert calls == ["x", "y", "y", "x"] * 5  # alternating, each first half the time
+    calls.clear()
+    mcstat.compare_efficiency(draw_x, draw_y, n=1000, batches=10)
+    assert calls == ["x", "y"] + ["x", "y", "y", "x"] * 5  # a warm-up call each, untimed
     assert r.nobs == (1000, 1000)
     assert (r.efficiency["batches_x"], r.efficiency["batches_y"]) == (10, 10)
     # the variance factor does not depend on the clock: s_y^2 / s_x^2 near 4

@@ -47,6 +47,7 @@ def compare_efficiency(
     ratio: float = 1.0,
     alternative: Literal["two-sided", "less", "greater"] = "two-sided",
     alpha: float = 0.05,
+    warmup: bool = True,
 ) -> TestResult:
     """Time two estimators and test the ratio of their efficiencies.
 
@@ -60,12 +61,13 @@ def compare_efficiency(
     times_y, ratio=..., alternative=..., alpha=...)``: rho = eff(x) /
     eff(y), "greater" means x is more efficient.
 
-    Wall times are noisy (other processes, frequency scaling, caches, the
-    first call's warm-up): the test takes their batch-to-batch spread into
-    account, but not a bias common to all batches of one estimator, so
-    time on a quiet machine, with batches long enough (milliseconds) for
-    the clock's resolution, and discard a first warm-up call yourself if
-    it matters.
+    Wall times are noisy (other processes, frequency scaling, caches): the
+    test takes their batch-to-batch spread into account (a batch during
+    which the process was preempted widens the interval), but not a bias
+    common to all batches of one estimator.  Time on a quiet machine, with
+    batches long enough (milliseconds) for the clock's resolution.  With
+    ``warmup=True`` each callable is first called once, untimed and its
+    values discarded (first-call costs: imports, allocations, caches).
 
     Parameters
     ----------
@@ -77,6 +79,8 @@ def compare_efficiency(
         Timed batches per estimator (>= 2; 10-30 is typical).
     ratio, alternative, alpha
         As for `efficiency_test`.
+    warmup : bool
+        Call each callable once before timing (values discarded).
 
     Returns
     -------
@@ -96,6 +100,9 @@ def compare_efficiency(
     k = _count(batches, "batches", 2)
     total = _count(n, "n", 2 * k)
     size = total // k
+    if warmup:
+        _batch(draw_x, size, "draw_x")
+        _batch(draw_y, size, "draw_y")
     mx, my = Moments(), Moments()
     tx = np.empty(k)
     ty = np.empty(k)
