@@ -20,7 +20,8 @@
  *      its serialized bytes, arrays of accumulators (one per pixel), and
  *      mcstat_stream (a per-thread buffer for checks inside a renderer).
  *   3. The tests and their result: mcstat_result, then t, chi-squared, F
- *      (each on arrays and on accumulators) and Kolmogorov-Smirnov.
+ *      (each on arrays and on accumulators), the efficiency ratio of two
+ *      estimators and Kolmogorov-Smirnov.
  *   4. Per-pixel rows: the same tests once per row of a matrix or of an
  *      array of accumulators.
  *   5. Multiple testing: adjusted p-values (R's p.adjust) for the millions
@@ -647,40 +648,41 @@ MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_m
 /* Efficiency ratio of two estimators.                                       */
 /* "B converges 2x faster than A" is a claim about efficiency, 1 / (variance */
 /* per sample x time per sample) (Kalos & Whitlock), both factors measured   */
-/* with error.  The parameter is rho = eff(x) / eff(y) = (var_y tau_y) /     */
-/* (var_x tau_x); MCSTAT_GREATER means x is the more efficient.  x and y     */
+/* with error. The parameter is rho = eff(x) / eff(y) = (var_y tau_y) /      */
+/* (var_x tau_x); MCSTAT_GREATER means x is the more efficient. x and y      */
 /* accumulate the estimators' samples; time_x and time_y the time per sample */
 /* of k >= 2 timed batches each (a batch's wall time / its size), timed      */
-/* interleaved so that machine load affects both.  log rho_hat = log s_y^2 - */
+/* interleaved so that machine load affects both. log rho_hat = log s_y^2 -  */
 /* log s_x^2 + log tau_y - log tau_x; its standard error adds the delta      */
 /* method's (beta2 - (n-3)/(n-1))/n for each log s^2 (beta2 = n M4/M2^2, the */
-/* exact variance of s^2 without assuming normal data) and s_tau^2/(k       */
-/* tau^2) for each log mean time; the statistic (log rho_hat - log ratio) /  */
-/* se is referred to a t on Satterthwaite's df (k - 1 per time part, 2/Var  */
-/* per variance part).  Assumptions: independent samples and batches,       */
-/* finite fourth moments; asymptotic in the samples and the batches.         */
-/* Rejection rates under H0 measured at alpha = 0.05, two-sided, 2000     */
-/* replications each (tests/c/test_efficiency.c; two seeds): exponential    */
-/* data, n = 1000, 10 batches at 10% noise 0.063 and 0.061, 5 batches at    */
-/* 30% 0.051 and 0.053; 99%-zero data with ~500 non-zero values per sample  */
-/* 0.064 and 0.068; with ~20 non-zero 0.088 and 0.10 (the sample kurtosis   */
-/* then underestimates the tail): a claim needs hundreds of non-zero        */
-/* samples, and a p-value near alpha is weaker evidence than it reads.      */
+/* exact variance of s^2 without assuming normal data) and s_tau^2/(k tau^2) */
+/* for each log mean time; the statistic (log rho_hat - log ratio) / se is   */
+/* referred to a t on Satterthwaite's df (k - 1 per time part, 2/Var per     */
+/* variance part). Assumptions: independent samples and batches, finite      */
+/* fourth moments; asymptotic in the samples and the batches.                */
+/* Rejection rates under H0 measured at alpha = 0.05, two-sided, 2000        */
+/* replications each (tests/c/test_efficiency.c; two seeds): exponential     */
+/* data, n = 1000, 10 batches at 10% noise 0.063 and 0.061, 5 batches at 30% */
+/* 0.051 and 0.053; 99%-zero data with ~500 non-zero values per sample 0.064 */
+/* and 0.068; with ~20 non-zero 0.088 and 0.10 (the sample kurtosis then     */
+/* underestimates the tail): a claim needs hundreds of non-zero samples, and */
+/* a p-value near alpha is weaker evidence than it reads.                    */
 /* Result: test MCSTAT_TEST_EFFICIENCY, method MCSTAT_METHOD_ASYMPTOTIC;     */
-/* statistic and critical values on the t scale, df[0]; conf_int the        */
-/* interval for rho (exp of the log interval; 0 and +Inf the open ends);    */
+/* statistic and critical values on the t scale, df[0]; conf_int the         */
+/* interval for rho (exp of the log interval; 0 and +Inf the open ends);     */
 /* estimate[0] rho_hat, estimate[1] s_y^2 / s_x^2; null_value ratio;         */
-/* std_error the standard error of log rho_hat; decision the sign of log   */
-/* rho_hat - log ratio when rejected; n[] the sample sizes; per-test fields */
-/* eff_var_ratio, eff_time_ratio, the four standard errors eff_se_log_*,    */
-/* eff_batches_x/_y.  An estimate or bound beyond the doubles is +Inf or 0;  */
-/* statistic and p-value, formed in logs, stay exact.                       */
-/* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0, 1), ratio <= 0 or not   */
-/* finite, a bad alternative, an uninitialised accumulator, a negative      */
-/* time), MCSTAT_ETOOFEW (n < 2 in x or y, fewer than 2 timed batches),     */
-/* MCSTAT_EDEGENERATE (x or y constant, or every batch timed as 0: a timer  */
-/* too coarse).  Equal batch times are accepted: an exact cost (operation   */
-/* counts) contributes no error.                                            */
+/* std_error the standard error of log rho_hat; decision the sign of log     */
+/* rho_hat - log ratio when rejected; n[] the sample sizes; per-test fields  */
+/* eff_var_ratio, eff_time_ratio, the four standard errors eff_se_log_*,     */
+/* eff_batches_x/_y. An estimate or bound beyond the doubles is +Inf or 0;   */
+/* statistic and p-value, formed in logs, stay exact.                        */
+/* Statuses: MCSTAT_EINVAL (NULL, alpha outside (0, 1), ratio <= 0 or not    */
+/* finite, a bad alternative, an uninitialised accumulator, a negative       */
+/* time), MCSTAT_ETOOFEW (n < 2 in x or y, fewer than 2 timed batches),      */
+/* MCSTAT_EDEGENERATE (x or y constant, or every batch timed as 0: a timer   */
+/* too coarse), MCSTAT_ENUMERIC (not expected: a guard against NaN). Equal   */
+/* batch times are accepted: an exact cost (operation counts) contributes no */
+/* error.                                                                    */
 /* ------------------------------------------------------------------------ */
 MCSTAT_API int mcstat_efficiency_test(const mcstat_moments *x, const mcstat_moments *y,
                                       const mcstat_moments *time_x, const mcstat_moments *time_y,
