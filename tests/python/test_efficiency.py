@@ -145,6 +145,21 @@ def test_errors_name_their_argument():
         mcstat.efficiency_test(x, y, None, ty)
     with pytest.raises(TypeError, match="ratio"):
         mcstat.efficiency_test(x, y, tx, ty, ratio="one")
+    with pytest.raises(TypeError, match="not an mcstat.MomentsArray"):
+        mcstat.efficiency_test(mcstat.MomentsArray(3), y, tx, ty)
+
+
+def test_pickle_and_one_sided_intervals():
+    import pickle
+
+    x, y, tx, ty = data(13)
+    r = mcstat.efficiency_test(x, y, tx, ty, alternative="less", alpha=0.2)
+    assert pickle.loads(pickle.dumps(r))._raw() == r._raw()
+    assert r.conf_int[0] == 0.0 and r.confidence_interval(0.8) == pytest.approx(r.conf_int, rel=1e-12)
+    lo, hi = r.confidence_interval(0.95)
+    assert lo == 0.0 and hi > r.conf_int[1]
+    r = mcstat.efficiency_test(x, y, tx, ty, alternative="greater")
+    assert r.conf_int[1] == math.inf and 0 < r.conf_int[0] < r.estimate
 
 
 def test_compare_efficiency_times_interleaved_batches():

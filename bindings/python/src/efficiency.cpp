@@ -70,6 +70,10 @@ const mcstat_moments *moments_arg(py::handle obj, const char *name, mcstat_momen
                              " must be array-like or an mcstat.Moments, not None");
     if (const mcstat_moments *m = as_moments(obj))
         return m;
+    if (as_moments_array(obj))
+        throw py::type_error(std::string("efficiency_test(): ") + name +
+                             " must be a 1-D array or an mcstat.Moments, not an mcstat.MomentsArray (one test "
+                             "compares two estimators: pass one pixel's accumulator, a[i])");
     py::array a = as_contiguous_array(obj, name);
     if (a.ndim() != 1)
         throw_invalid(std::string(name) + " must be 1-D (or an mcstat.Moments), got " + std::to_string(a.ndim()) +
