@@ -58,6 +58,11 @@ package mcstat
 //     d[0] = r->chisq_cells_given; d[1] = r->chisq_min_expected; d[2] = r->chisq_pool_below;
 //     i[0] = r->chisq_cells; i[1] = r->chisq_n_estimated;
 // }
+// static void gomcstat_eff(const mcstat_result *r, double d[6], int i[2]) {
+//     d[0] = r->eff_var_ratio; d[1] = r->eff_time_ratio; d[2] = r->eff_se_log_var_x;
+//     d[3] = r->eff_se_log_var_y; d[4] = r->eff_se_log_time_x; d[5] = r->eff_se_log_time_y;
+//     i[0] = r->eff_batches_x; i[1] = r->eff_batches_y;
+// }
 import "C"
 
 import (
@@ -173,12 +178,14 @@ const (
 	TestSeqMean2 Test = C.MCSTAT_TEST_SEQ_MEAN_2 // sequential test of a difference of means
 	TestSeqVar1  Test = C.MCSTAT_TEST_SEQ_VAR_1  // sequential test of a variance
 	TestSeqVar2  Test = C.MCSTAT_TEST_SEQ_VAR_2  // sequential test of a ratio of variances
+	// TestEfficiency is the ratio of two estimators' efficiencies, 1 / (variance x time).
+	TestEfficiency Test = C.MCSTAT_TEST_EFFICIENCY
 )
 
 var testNames = map[Test]string{TestT1: "t_1", TestT2: "t_2", TestVar1: "var_1", TestVar2: "var_2",
 	TestKS2: "ks_2", TestEquiv1: "equiv_1", TestEquiv2: "equiv_2", TestBinom: "binom", TestChisqGOF: "chisq_gof",
-	TestT2Pooled: "t_2_pooled", TestTPaired: "t_paired", TestSeqMean1: "seq_mean_1", TestSeqMean2: "seq_mean_2",
-	TestSeqVar1: "seq_var_1", TestSeqVar2: "seq_var_2"}
+	TestT2Pooled: "t_2_pooled", TestTPaired: "t_paired", TestEfficiency: "efficiency", TestSeqMean1: "seq_mean_1",
+	TestSeqMean2: "seq_mean_2", TestSeqVar1: "seq_var_1", TestSeqVar2: "seq_var_2"}
 
 func (t Test) String() string {
 	if s, ok := testNames[t]; ok {
@@ -246,6 +253,7 @@ type Result struct {
 	Binom *BinomDetails // binomial and battery tests only
 	GOF   *GOFDetails   // chi-squared goodness of fit only
 	Seq   *SeqDetails   // sequential tests only (Statistic is NaN while one holds: read Seq.Z)
+	Eff   *EffDetails   // efficiency-ratio test only
 
 	raw C.struct_mcstat_result
 }
@@ -276,6 +284,16 @@ type GOFDetails struct {
 	CellsGiven  int     // cells given (k)
 	MinExpected float64 // smallest expected count after pooling
 	PoolBelow   float64 // the pooling threshold; 0 when pooling was off
+}
+
+// EffDetails are the efficiency-ratio test's own outputs: the factors of
+// the ratio (y over x: above 1 is x's advantage) and the delta-method
+// standard errors of the four logs.
+type EffDetails struct {
+	VarRatio, TimeRatio    float64 // s_y^2 / s_x^2, mean time y / mean time x
+	SELogVarX, SELogVarY   float64
+	SELogTimeX, SELogTimeY float64
+	BatchesX, BatchesY     int // timed batches
 }
 
 // present returns v without its trailing NaN entries (nil when none is left).
@@ -346,6 +364,13 @@ func fromC(r *C.struct_mcstat_result) *Result {
 			MinExpected: float64(d[1]), PoolBelow: float64(d[2])}
 	case TestSeqMean1, TestSeqMean2, TestSeqVar1, TestSeqVar2:
 		res.Seq = seqDetails(r)
+	case TestEfficiency:
+		var d [6]C.double
+		var i [2]C.int
+		C.gomcstat_eff(r, &d[0], &i[0])
+		res.Eff = &EffDetails{VarRatio: float64(d[0]), TimeRatio: float64(d[1]), SELogVarX: float64(d[2]),
+			SELogVarY: float64(d[3]), SELogTimeX: float64(d[4]), SELogTimeY: float64(d[5]),
+			BatchesX: int(i[0]), BatchesY: int(i[1])}
 	}
 	return res
 }
@@ -592,6 +617,19 @@ func TTest1Moments(x *Moments, mu0 float64, alt Alternative, alpha float64) (*Re
 func TTest2Moments(x, y *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
 	return run(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_2_moments(x.c(), y.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
+	})
+}
+
+// EfficiencyTest tests rho = eff(x) / eff(y) = (var_y tau_y) / (var_x
+// tau_x) against ratio: x and y accumulate the estimators' samples, timeX
+// and timeY the time per sample of k >= 2 timed batches each.  The
+// standard error of log rho is the delta method's without assuming normal
+// data, the statistic a t on Satterthwaite's df; Greater means x is the
+// more efficient (mcstat.h, "Efficiency ratio of two estimators").
+func EfficiencyTest(x, y, timeX, timeY *Moments, ratio float64, alt Alternative, alpha float64) (*Result, error) {
+	return run(func(o *C.struct_mcstat_result) C.int {
+		return C.mcstat_efficiency_test(x.c(), y.c(), timeX.c(), timeY.c(), C.double(ratio), C.int(alt),
+			C.double(alpha), o)
 	})
 }
 

@@ -50,15 +50,25 @@ class _ResultChisq(ctypes.Structure):
                 ("chisq_min_expected", ctypes.c_double), ("chisq_pool_below", ctypes.c_double)]
 
 
+class _ResultIntsEff(ctypes.Structure):
+    _fields_ = [("eff_batches_x", ctypes.c_int32), ("eff_batches_y", ctypes.c_int32)]
+
+
+class _ResultEff(ctypes.Structure):
+    _fields_ = [("eff_var_ratio", ctypes.c_double), ("eff_time_ratio", ctypes.c_double),
+                ("eff_se_log_var_x", ctypes.c_double), ("eff_se_log_var_y", ctypes.c_double),
+                ("eff_se_log_time_x", ctypes.c_double), ("eff_se_log_time_y", ctypes.c_double)]
+
+
 class _ResultIntUnion(ctypes.Union):
-    _anonymous_ = ("_s",)
-    _fields_ = [("reserved_i", ctypes.c_int32 * 3), ("_s", _ResultInts)]
+    _anonymous_ = ("_s", "_eff_i")
+    _fields_ = [("reserved_i", ctypes.c_int32 * 3), ("_s", _ResultInts), ("_eff_i", _ResultIntsEff)]
 
 
 class _ResultUnion(ctypes.Union):
-    _anonymous_ = ("_ks", "_tost", "_binom", "_chisq")
+    _anonymous_ = ("_ks", "_tost", "_binom", "_chisq", "_eff")
     _fields_ = [("reserved", ctypes.c_double * 7), ("_ks", _ResultKs), ("_tost", _ResultTost),
-                ("_binom", _ResultBinom), ("_chisq", _ResultChisq)]
+                ("_binom", _ResultBinom), ("_chisq", _ResultChisq), ("_eff", _ResultEff)]
 
 
 class Result(ctypes.Structure):
@@ -133,6 +143,7 @@ def load(path=None):
         "mcstat_var_test_2": (I, [P, S, P, S, D, I, D, R]),
         "mcstat_t_test_1_moments": (I, [M, D, I, D, R]),
         "mcstat_t_test_2_moments": (I, [M, M, D, I, D, R]),
+        "mcstat_efficiency_test": (I, [M, M, M, M, D, I, D, R]),
         "mcstat_var_test_1_moments": (I, [M, D, I, D, R]),
         "mcstat_var_test_2_moments": (I, [M, M, D, I, D, R]),
         # FFI callers initialise options for their struct's size (the header's

@@ -183,6 +183,19 @@ def main():
     expect(r.ks_n_sim == 4000 and r.reserved[1] == 4000 and r.ks_weight == mc.KS_WEIGHT_CANNER,
            "K-S per-test fields")
     expect(r.decision in (mc.DECISION_LESS, mc.DECISION_EQUAL, mc.DECISION_GREATER), "decision value")
+    # the efficiency test: its factors by name, in the same storage
+    acc = []
+    for v in ([1.0, 2.0, 3.0, 4.0, 6.0], [0.0, 0.0, 5.0, 9.0, 1.0, 2.0], [1.0, 1.1, 0.9], [2.0, 2.0]):
+        m = mc.Moments()
+        mc.check(lib, lib.mcstat_moments_init(ctypes.byref(m)))
+        a, n = mc._array(v)
+        mc.check(lib, lib.mcstat_moments_add_array(ctypes.byref(m), a, n))
+        acc.append(m)
+    r = mc.Result()
+    mc.check(lib, lib.mcstat_efficiency_test(*[ctypes.byref(m) for m in acc], 1.0, mc.ALTERNATIVES["two-sided"],
+                                             0.05, ctypes.byref(r)))
+    expect(rel_err(r.estimate[0], 2.0 * (377.0 / 30.0) / 3.7) < 1e-14 and r.eff_time_ratio == 2.0 and
+           r.eff_batches_x == 3 and r.eff_batches_y == 2 and r.reserved[1] == 2.0, "efficiency per-test fields")
     # options: the sized initialiser, and 0.1.0's entry point still exported
     o, o_old = mc.KsOptions(), mc.KsOptions()
     mc.check(lib, lib.mcstat_ks_options_init_size(ctypes.byref(o), ctypes.sizeof(o)))

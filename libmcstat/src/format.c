@@ -239,6 +239,56 @@ static void format_equiv(const mcstat_result *r, const char *x_name, const char 
     sb_printf(s, "decision at alpha = %s: %s\n\n", a, r->reject ? "equivalent" : "not equivalent");
 }
 
+/* ---- efficiency ratio -----------------------------------------------------
+ * print.htest's layout; the estimates are the ratio of efficiencies and its
+ * two factors (y over x: above 1 is x's advantage), and a line gives the
+ * timed batches behind the time factor. */
+static void format_eff(const mcstat_result *r, const char *x_name, const char *y_name, sbuf *s)
+{
+    char a[64], b[64], line[512];
+    sb_puts(s, "\n\tEfficiency ratio test (delta method)\n\n");
+    sb_printf(s, "data:  %s and %s\n", x_name, y_name);
+    size_t ll = 0;
+    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, "t = %s", a);
+    mcstat__rformat1(r->df[0], R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", df = %s", a);
+    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
+    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
+    sb_wrapped(s, line);
+    snprintf(line, sizeof line, "timed batches: %ld of %s, %ld of %s", (long)r->eff_batches_x, x_name,
+             (long)r->eff_batches_y, y_name);
+    sb_wrapped(s, line);
+    static const char *alt_text[] = {"not equal to", "less than", "greater than"};
+    mcstat__rformat1(r->null_value, R_DIGITS, a, sizeof a);
+    sb_printf(s, "alternative hypothesis: true ratio of efficiencies is %s %s\n", alt_text[r->alternative], a);
+    mcstat__rformat1(100.0 * (1.0 - r->alpha), R_DIGITS, a, sizeof a);
+    sb_printf(s, "%s percent confidence interval:\n", a);
+    mcstat_rlayout lay;
+    mcstat__rformat_layout(r->conf_int, 2, R_DIGITS, &lay);
+    mcstat__rformat_encode(r->conf_int[0], &lay, 0, a, sizeof a);
+    mcstat__rformat_encode(r->conf_int[1], &lay, 0, b, sizeof b);
+    sb_printf(s, " %s %s\n", a, b);
+    sb_puts(s, "sample estimates:\n");
+    static const char *names[] = {"ratio of efficiencies", "ratio of variances", "ratio of times"};
+    double est[3] = {r->estimate[0], r->eff_var_ratio, r->eff_time_ratio};
+    mcstat__rformat_layout(est, 3, R_DIGITS, &lay);
+    int colw[3];
+    for (int k = 0; k < 3; k++) {
+        int nl = (int)strlen(names[k]);
+        colw[k] = nl > lay.w ? nl : lay.w;
+        sb_printf(s, "%*s ", colw[k], names[k]);
+    }
+    sb_puts(s, "\n");
+    for (int k = 0; k < 3; k++) {
+        mcstat__rformat_encode(est[k], &lay, colw[k], a, sizeof a);
+        sb_printf(s, "%s ", a);
+    }
+    sb_puts(s, "\n");
+    mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
+    sb_printf(s, "decision at alpha = %s: %s\n\n", a, mcstat_decision_name(r->decision));
+}
+
 /* ---- sequential tests -------------------------------------------------------
  * No R function prints one; print.htest's layout with the looks on the
  * data line, the e-value beside the statistic, a confidence sequence in
@@ -345,6 +395,17 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
         if (size > 0)
             buf[0] = '\0';
         format_equiv(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
+        if (length)
+            *length = s.len;
+        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
+    }
+    if (r && r->test == MCSTAT_TEST_EFFICIENCY) {
+        if ((!buf && size > 0) || !valid_alternative(r->alternative))
+            return MCSTAT_EINVAL;
+        sbuf s = {buf, size, 0};
+        if (size > 0)
+            buf[0] = '\0';
+        format_eff(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
         if (length)
             *length = s.len;
         return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;

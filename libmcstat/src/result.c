@@ -116,6 +116,13 @@ int mcstat_result_log_p_value(const mcstat_result *r, double *log_p)
             return st;
         lp = log_p_of(&t, r->alternative);
         break;
+    case MCSTAT_TEST_EFFICIENCY: /* a t on Satterthwaite's df, like Welch's */
+        if (isnan(r->statistic) || !valid_df(r->df[0]))
+            return MCSTAT_EINVAL;
+        if ((st = mcstat__t_tails(r->statistic, r->df[0], &t)))
+            return st;
+        lp = log_p_of(&t, r->alternative);
+        break;
     case MCSTAT_TEST_EQUIV_1:
     case MCSTAT_TEST_EQUIV_2:
         /* the larger of the one-sided p's: "> lower" is the upper tail at
@@ -283,6 +290,18 @@ int mcstat_result_conf_int(const mcstat_result *r, double confidence_level, doub
             return st;
         if (alt != MCSTAT_GREATER && (st = var_bound(r, p, 0, &ci[1])))
             return st;
+        break;
+    }
+    case MCSTAT_TEST_EFFICIENCY: {
+        /* exp(log rho_hat -+ c se); log rho_hat = log ratio + t se */
+        if (!isfinite(r->statistic) || !(r->null_value > 0.0 && r->null_value <= DBL_MAX) ||
+            !(r->std_error > 0.0 && r->std_error <= DBL_MAX) || !valid_df(r->df[0]))
+            return MCSTAT_EINVAL;
+        if ((st = mcstat_t_quantile(alt == MCSTAT_TWO_SIDED ? 0.5 * a : a, r->df[0], 1, &c)))
+            return st;
+        double lrho = log(r->null_value) + r->statistic * r->std_error;
+        ci[0] = alt == MCSTAT_LESS ? 0.0 : exp(lrho - c * r->std_error);
+        ci[1] = alt == MCSTAT_GREATER ? INFINITY : exp(lrho + c * r->std_error);
         break;
     }
     case MCSTAT_TEST_BINOM:

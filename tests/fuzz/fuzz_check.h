@@ -117,11 +117,12 @@ static inline void fz_check_result(int st, const mcstat_result *r, int test, int
         return;
     }
 
-    FZ_ASSERT(r->method == MCSTAT_METHOD_ANALYTIC, "method %d", r->method);
+    FZ_ASSERT(r->method == (test == MCSTAT_TEST_EFFICIENCY ? MCSTAT_METHOD_ASYMPTOTIC : MCSTAT_METHOD_ANALYTIC),
+              "method %d", r->method);
     FZ_ASSERT(r->p_value_se == 0.0, "p_value_se %.17g", r->p_value_se);
     FZ_ASSERT(r->n[0] >= 2, "n %llu", (unsigned long long)r->n[0]);
     int two = test == MCSTAT_TEST_T_2 || test == MCSTAT_TEST_VAR_2 || test == MCSTAT_TEST_T_2_POOLED ||
-              test == MCSTAT_TEST_T_PAIRED;
+              test == MCSTAT_TEST_T_PAIRED || test == MCSTAT_TEST_EFFICIENCY;
     FZ_ASSERT(two ? r->n[1] >= 2 : r->n[1] == 0, "n[1] %llu", (unsigned long long)r->n[1]);
     if (test == MCSTAT_TEST_T_PAIRED) /* the pairs */
         FZ_ASSERT(r->n[0] == r->n[1], "paired n %llu %llu", (unsigned long long)r->n[0], (unsigned long long)r->n[1]);
@@ -135,8 +136,11 @@ static inline void fz_check_result(int st, const mcstat_result *r, int test, int
         FZ_ASSERT(fz_le(lo, r->df[0], 1e-12) && fz_le(r->df[0], hi, 1e-12), "Welch df %.17g outside [%g, %g]",
                   r->df[0], lo, hi);
     }
-    if (test == MCSTAT_TEST_T_1 || test == MCSTAT_TEST_T_2 || test == MCSTAT_TEST_T_2_POOLED ||
-        test == MCSTAT_TEST_T_PAIRED)
+    if (test == MCSTAT_TEST_EFFICIENCY) /* a ratio, its log's standard error, a t */
+        FZ_ASSERT(r->estimate[0] >= 0.0 && r->std_error > 0.0 && r->df[0] <= 1e15, "estimate %.17g, se %.17g, "
+                  "df %.17g", r->estimate[0], r->std_error, r->df[0]);
+    else if (test == MCSTAT_TEST_T_1 || test == MCSTAT_TEST_T_2 || test == MCSTAT_TEST_T_2_POOLED ||
+             test == MCSTAT_TEST_T_PAIRED)
         FZ_ASSERT(r->std_error >= 0.0, "std_error %.17g", r->std_error);
     else
         FZ_ASSERT(r->estimate[0] >= 0.0 && r->statistic >= 0.0, "estimate %.17g, statistic %.17g", r->estimate[0],

@@ -1,7 +1,8 @@
 /*
  * fuzz_tests.c - the analytic tests on arrays and on accumulators (the four,
- * Student's pooled and the paired t), a result's log p-value and interval at
- * another level, and the stream checks built on them.
+ * Student's pooled and the paired t), the efficiency-ratio test, a result's
+ * log p-value and interval at another level, and the stream checks built on
+ * them.
  *
  * Input: a selector byte, x and y (fz_doubles, up to 64 values each), the
  * null value, the alternative, alpha, a flags byte.  Beyond the invariants of
@@ -88,6 +89,37 @@ static void pooled_and_paired(const double *x, size_t nx, const double *y, size_
     fz_check_not_enumeric(st, (double)n, "paired t");
     if (st == MCSTAT_OK)
         result_accessors(&r, level);
+}
+
+/* The efficiency test with x and y as the samples, |y| and x as the two
+ * timings (so negative times, zeros and single batches all occur); a
+ * failure leaves *out untouched. */
+static void efficiency(const double *x, size_t nx, const double *y, size_t ny, double v, int alt, double alpha,
+                       double level)
+{
+    double ay[MAXN];
+    for (size_t i = 0; i < ny; i++)
+        ay[i] = fabs(y[i]);
+    mcstat_moments m[4];
+    const double *d[4] = {x, y, ay, x};
+    size_t n[4] = {nx, ny, ny, nx};
+    for (int k = 0; k < 4; k++) {
+        mcstat_moments_init(&m[k]);
+        if (mcstat_moments_add_array(&m[k], d[k], n[k]))
+            return; /* NaN or Inf: no accumulator to test */
+    }
+    mcstat_result r, keep;
+    memset(&r, 0x5a, sizeof r);
+    keep = r;
+    int st = mcstat_efficiency_test(&m[0], &m[1], &m[2], &m[3], v, alt, alpha, &r);
+    fz_check_result(st, &r, MCSTAT_TEST_EFFICIENCY, alt, alpha, 0);
+    fz_check_not_enumeric(st, (double)(nx + ny), "efficiency");
+    if (!(v > 0.0) || !isfinite(v))
+        FZ_ASSERT(st == MCSTAT_EINVAL, "efficiency: ratio %.17g, status %d", v, st);
+    if (st == MCSTAT_OK)
+        result_accessors(&r, level);
+    else
+        FZ_ASSERT(memcmp(&r, &keep, sizeof r) == 0, "efficiency: status %d but *out written", st);
 }
 
 static const int TEST_KIND[4] = {MCSTAT_TEST_T_1, MCSTAT_TEST_T_2, MCSTAT_TEST_VAR_1, MCSTAT_TEST_VAR_2};
@@ -224,8 +256,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     double level = (flags & 2) ? 1.0 - alpha * alpha : alpha;
     if (st == MCSTAT_OK)
         result_accessors(&r, level);
-    if (which == 1)
+    if (which == 1) {
         pooled_and_paired(x, nx, y, ny, v, alt, alpha, level);
+        efficiency(x, nx, y, ny, v, alt, alpha, level);
+    }
     if (flags & 4)
         sequential(which, x, nx, y, ny, v, alt, alpha, flags);
 

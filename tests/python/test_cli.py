@@ -231,6 +231,15 @@ def test_paper_outputs(paper):
     assert all(isinstance(v, int) and 0 <= v < 2 ** 64 for v in res["seeds"].values()) and len(res["seeds"]) > 10
     assert res["command"] == "mcstat reproduce --seed 1 --quick" and res["quick"] is True
     assert "timing" in res and res["timing"]["irradiance"]["estimators"]["S"]["efficiency"] > 0
+    # S against every other estimator with mcstat.efficiency_test, in the summary, JSON and report
+    comp = res["timing"]["irradiance"]["comparisons"]
+    assert comp["reference"] == "S" and [t["y"] for t in comp["tests"]] == ["U", "C", "A"]
+    for t in comp["tests"]:
+        lo, hi = t["conf_int"]
+        assert 0 < lo <= t["ratio"] <= hi and t["result"]["method"] == "Efficiency ratio test (delta method)"
+        assert t["result"]["nobs"] == [comp["batches"] * comp["batch_size"]] * 2
+        assert f"S is {t['ratio']:.3g}x as efficient as {t['y']}, 95% CI [{lo:.3g}, {hi:.3g}]" in out
+    assert "| S / A |" in report and "Is the difference in efficiency real?" in report
 
 
 def test_same_seed_same_results(paper, tmp_path):
@@ -325,6 +334,7 @@ def test_two_triangle_scene(two_triangles):
     assert set(rec["against_trusted"]) == {"C", "A"}
     assert all(s["binom_pvalue"] >= 0.001 for s in rec["against_trusted"].values())
     assert set(res["timing"]["irradiance"]["estimators"]) == {"C", "A", "S"}
+    assert [(t["x"], t["y"]) for t in res["timing"]["irradiance"]["comparisons"]["tests"]] == [("S", "C"), ("S", "A")]
     assert res["timing"]["irradiance"]["lambert"] is None
     reasons = " ".join(s["reason"] for s in res["plan"]["left_out"])
     assert "2 emitter triangles" in reasons and "studies.radiance.enabled = false" in reasons

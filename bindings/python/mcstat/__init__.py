@@ -4,9 +4,9 @@
 The tests of Subr & Arvo, "Statistical Hypothesis Testing for Assessing
 Monte Carlo Estimators", over libmcstat (C):
 
-=================  ==========================================  ======================
+=================  ==========================================  ==================================
 question           test                                        call
-=================  ==========================================  ======================
+=================  ==========================================  ==================================
 unbiased?          one-sample t, mean vs mu                    ``t_test(x, mu=...)``
 variance below?    one-sample chi-squared on the variance      ``var_test(x, sigma2=...)``
 two agree?         Welch two-sample t                          ``t_test(x, y)``
@@ -15,7 +15,8 @@ agree, paired?     paired t                                    ``t_test(x, y, pa
 which varies less  two-sample F                                ``var_test(x, y)``
 same distribution  two-sample Kolmogorov-Smirnov (Canner)      ``ks_test(x, y)``
 counts fit?        Pearson's chi-squared goodness of fit       ``chisq_gof(x, p)``
-=================  ==========================================  ======================
+more efficient?    ratio of efficiencies, 1/(variance x time)  ``efficiency_test(x, y, tx, ty)``
+=================  ==========================================  ==================================
 
 Each returns a `TestResult` (``str()`` prints R's layout plus the paper's
 less / equal / greater decision), or a `BatchResult` of arrays for N-D
@@ -35,6 +36,8 @@ Beyond the paper: `binom_test` (R's exact binomial test),
 and `diagnose` (skewness, kurtosis, heavy tails, the batch size the t test
 needs) in `mcstat.diagnostics`; the t, chi-squared and F distributions the
 tests use (cdf, log cdf, quantile, over arrays) in `mcstat.distributions`.
+`compare_efficiency` times two estimators itself (interleaved batches)
+and runs `efficiency_test` on their samples and times.
 
 One-sided alternatives are claims about the first sample in every test:
 ``ks_test(x, y, alternative="less")`` means x tends to be smaller, which
@@ -75,6 +78,9 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
     var_test,
 )
 from ._core import chisq_gof  # noqa: E402  (chi-squared goodness of fit)
+# is one estimator more efficient (1 / (variance x time)) than another?
+from ._core import efficiency_test  # noqa: E402
+from ._efficiency import compare_efficiency  # noqa: E402
 from ._result import BatchResult
 
 # Per-pixel accumulators (render farms): one Moments per pixel, mergeable and picklable.
@@ -115,6 +121,8 @@ __all__ = [
     "var_test",
     "ks_test",
     "chisq_gof",
+    "efficiency_test",
+    "compare_efficiency",
     "KSCache",
     "Moments",
     "batch_means",

@@ -115,6 +115,8 @@ void register_power(py::module_ &mod);
 void register_diagnostics(py::module_ &mod);
 // ---- chi-squared goodness of fit (chisq.cpp) ------------------------------------
 void register_chisq(py::module_ &mod);
+// ---- the efficiency-ratio test of two estimators (efficiency.cpp) ----------------
+void register_efficiency(py::module_ &mod);
 // check.cpp: check_bsdf, check_emitter, check_warp
 void register_check(py::module_ &mod);
 // ---- t, chi-squared and F distributions over arrays (distributions.cpp) ----

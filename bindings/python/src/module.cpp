@@ -16,6 +16,7 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_power(mod); // equivalence (TOST), power and sample size
     mcs::register_diagnostics(mod);
     mcs::register_chisq(mod); // chi-squared goodness of fit
+    mcs::register_efficiency(mod); // the ratio of two estimators' efficiencies
     mcs::register_p_adjust(mod);
     mcs::register_summary_rows(mod);
     mcs::register_check(mod); // renderer checks: BSDFs, emitters, warps

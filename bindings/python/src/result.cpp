@@ -45,6 +45,7 @@ std::string method_name(const mcstat_result &r)
         return a == std::string::npos ? t : t.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
     }
     case MCSTAT_TEST_BINOM: return "Exact binomial test";
+    case MCSTAT_TEST_EFFICIENCY: return "Efficiency ratio test (delta method)";
     default: return "unknown";
     }
 }
@@ -70,7 +71,8 @@ bool two_df(const mcstat_result &r) { return r.test == MCSTAT_TEST_VAR_2; }
 bool two_samples(const mcstat_result &r)
 {
     return r.test == MCSTAT_TEST_T_2 || r.test == MCSTAT_TEST_T_2_POOLED || r.test == MCSTAT_TEST_VAR_2 ||
-           r.test == MCSTAT_TEST_KS_2 || r.test == MCSTAT_TEST_SEQ_MEAN_2 || r.test == MCSTAT_TEST_SEQ_VAR_2;
+           r.test == MCSTAT_TEST_KS_2 || r.test == MCSTAT_TEST_SEQ_MEAN_2 || r.test == MCSTAT_TEST_SEQ_VAR_2 ||
+           r.test == MCSTAT_TEST_EFFICIENCY;
 }
 
 // nan_policy="propagate" on data with NaN: every field NaN (tests.cpp).
@@ -217,7 +219,14 @@ cells : int or None
     `chisq_gof`: the number of cells after pooling; None for the other
     tests.
 std_error : float
-    Standard error of the estimate (t tests; NaN otherwise).
+    Standard error of the estimate (t tests; `efficiency_test`: of the
+    log of the ratio; NaN otherwise).
+efficiency : dict or None
+    `efficiency_test`: the factors of the ratio and their errors,
+    ``var_ratio`` (s_y^2 / s_x^2), ``time_ratio`` (mean time of y / of
+    x), ``se_log_var_x``, ``se_log_var_y``, ``se_log_time_x``,
+    ``se_log_time_y`` (delta-method standard errors of the four logs),
+    ``batches_x``, ``batches_y`` (timed batches); None for the other tests.
 nobs : int or tuple of int
     Sample size(s) used (after NaNs were omitted).
 
@@ -264,6 +273,20 @@ y_name)`` names them.
             if (s.r.test != MCSTAT_TEST_CHISQ_GOF)
                 return py::none();
             return py::int_(s.r.chisq_cells);
+        })
+        .def_property_readonly("efficiency", [](const Result &s) -> py::object {
+            if (s.r.test != MCSTAT_TEST_EFFICIENCY)
+                return py::none();
+            py::dict d;
+            d["var_ratio"] = s.r.eff_var_ratio;
+            d["time_ratio"] = s.r.eff_time_ratio;
+            d["se_log_var_x"] = s.r.eff_se_log_var_x;
+            d["se_log_var_y"] = s.r.eff_se_log_var_y;
+            d["se_log_time_x"] = s.r.eff_se_log_time_x;
+            d["se_log_time_y"] = s.r.eff_se_log_time_y;
+            d["batches_x"] = s.r.eff_batches_x;
+            d["batches_y"] = s.r.eff_batches_y;
+            return std::move(d);
         })
         .def_property_readonly("alpha", [](const Result &s) { return s.r.alpha; })
         .def_property_readonly("reject", [](const Result &s) { return s.r.reject != 0; })

@@ -48,6 +48,8 @@ QUICK = [
     ("timing", "reps", 6),
     ("timing", "ks_n_sim", 9999),
     ("timing", "ks_reps", 5),
+    ("timing", "eff_batches", 12),
+    ("timing", "eff_batch_size", 50000),
     ("diagnostics", "n", 20000),
     ("sampler_bugs", "sizes", 3000),
     ("sampler_bugs", "runs", 20),

@@ -352,6 +352,24 @@ def timing(res: Dict[str, Any], fig, transcript: str) -> List[str]:
             L += [f"| {m} | {e['sigma_primary']:.4g} | {e['wall_per_primary'] * 1e9:.3g} | "
                   f"{_g(e['efficiency'])} | {_g(err)} |"]
         L += [""]
+        comp = irr.get("comparisons")
+        if comp and comp["tests"]:
+            L += ["Is the difference in efficiency real? `mcstat.efficiency_test` on "
+                  f"{comp['batches']} timed batches of {comp['batch_size']} primary estimates per estimator, "
+                  "interleaved so that the machine's load affects all of them: the ratio of efficiencies "
+                  f"eff({comp['reference']}) / eff(other) with its 95% confidence interval (delta method on the "
+                  "variances, without assuming normal data, and on the batches' times; a t on Satterthwaite's "
+                  "degrees of freedom). A ratio above 1 favours "
+                  f"{comp['reference']}.", "",
+                  "| comparison | ratio of efficiencies | 95% CI | variance ratio | time ratio | p-value | decision |",
+                  "|---|---|---|---|---|---|---|"]
+            for t in comp["tests"]:
+                if "error" in t:
+                    L += [f"| {t['x']} / {t['y']} | no test: {t['error']} | | | | | |"]
+                    continue
+                L += [f"| {t['x']} / {t['y']} | {t['ratio']:.3g} | [{t['conf_int'][0]:.3g}, {t['conf_int'][1]:.3g}] | "
+                      f"{t['var_ratio']:.3g} | {t['time_ratio']:.3g} | {_p(t['pvalue'])} | {t['decision']} |"]
+            L += [""]
     ks = res.get("ks")
     if ks:
         L += ["### Simulated K-S p-values", "",

@@ -10,7 +10,13 @@ against the median wall time per estimate; an unbiased estimator follows
 RMSE = sigma sqrt(t1 / T), slope -1/2 on log-log axes, t1 the time per
 primary estimate.  The efficiency 1 / (sigma^2 t1) compares estimators at
 equal cost (Kalos and Whitlock): the one with the larger value reaches a
-given error sooner.
+given error sooner.  Whether one is *significantly* more efficient than
+another is `mcstat.efficiency_test`'s question: every estimator is timed
+over ``eff_batches`` batches of ``eff_batch_size`` primary estimates,
+interleaved (the order rotates each round, so machine load affects all
+alike), and S (else the first listed) is compared with each other one:
+"S is X times more efficient than A, 95% CI [lo, hi]" from the variances
+of the primaries and the batches' times per primary.
 
 K-S simulation: two samples of exact-sampler directions from the first
 BRDF of section 3.2 (H0 true), picked so that the exact p-value lies in
@@ -34,7 +40,7 @@ from . import cost
 from .context import Context
 from .irradiance import ReceiverEstimators
 from .plan import Plan
-from .results import columns
+from .results import columns, test_fields
 
 
 def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
@@ -83,6 +89,7 @@ def _irradiance(ctx: Context, plan: Plan, p: Dict[str, Any]) -> Dict[str, Any]:
                 row["se_estimated"] = sigma / math.sqrt(row["n"])
             res["estimators"][m] = dict(rows=rows, sigma_primary=sigma, wall_per_primary=t1,
                                         efficiency=1.0 / (sigma * sigma * t1) if sigma > 0 else None)
+    res["comparisons"] = _compare(ctx, rec, sc.estimators, p, first_index=(len(budgets) + 2) << 40)
     ctx.print(f"{'':3}{'sigma per primary':>18}{'ns per primary':>16}{'efficiency 1/(s^2 t)':>22}"
               f"{'RMSE at largest n' if E is not None else 'std. error at largest n':>26}")
     for m, e in res["estimators"].items():
@@ -90,7 +97,61 @@ def _irradiance(ctx: Context, plan: Plan, p: Dict[str, Any]) -> Dict[str, Any]:
         err = last["rmse"] if E is not None else last["se_estimated"]
         ctx.print(f"{m:3}{e['sigma_primary']:>18.4g}{e['wall_per_primary'] * 1e9:>16.3g}"
                   f"{e['efficiency'] or float('nan'):>22.4g}{err:>26.3g}")
+    _print_comparisons(ctx, res["comparisons"])
     return res
+
+
+def _compare(ctx: Context, rec: ReceiverEstimators, methods: List[str], p: Dict[str, Any],
+             first_index: int) -> Dict[str, Any]:
+    """Interleaved timed batches of every estimator, then the efficiency
+    test of the reference (S, else the first) against each other one."""
+    k, size = p["eff_batches"], p["eff_batch_size"]
+    ref = "S" if "S" in methods else methods[0]
+    acc = {m: mcstat.Moments() for m in methods}
+    times: Dict[str, List[float]] = {m: [] for m in methods}
+    with ctx.bar(sum(cost.estimates(m, size) for m in methods) * k, "timing efficiency") as bar:
+        for b in range(k):
+            # rotate the order each round: no estimator always runs first
+            for m in methods[b % len(methods):] + methods[:b % len(methods)]:
+                t0 = time.perf_counter()
+                prim = rec.primaries(m, size, first_index=first_index + b * size)
+                times[m].append((time.perf_counter() - t0) / size)
+                acc[m].push(prim)
+                bar.update(cost.estimates(m, size))
+    out: Dict[str, Any] = dict(batches=k, batch_size=size, reference=ref, alpha=0.05, tests=[])
+    for m in methods:
+        if m == ref:
+            continue
+        try:
+            r = mcstat.efficiency_test(acc[ref], acc[m], times[ref], times[m])
+        except mcstat.McstatError as e:  # e.g. an estimator with zero variance here
+            out["tests"].append(dict(x=ref, y=m, error=str(e)))
+            continue
+        e = r.efficiency or {}
+        out["tests"].append(dict(x=ref, y=m, ratio=r.estimate, conf_int=list(r.conf_int), pvalue=r.pvalue,
+                                 df=r.df, decision=r.decision, var_ratio=e.get("var_ratio"),
+                                 time_ratio=e.get("time_ratio"), result=test_fields(r),
+                                 block=r.format(ref, m)))
+    return out
+
+
+def _print_comparisons(ctx: Context, c: Dict[str, Any]) -> None:
+    ctx.print(f"\nEfficiency ratios (mcstat.efficiency_test): {c['batches']} interleaved batches of "
+              f"{c['batch_size']} primary estimates per estimator; 95% confidence intervals")
+    for t in c["tests"]:
+        ctx.print("  " + comparison_sentence(t))
+
+
+def comparison_sentence(t: Dict[str, Any]) -> str:
+    """"S is 3.1x more efficient than A, 95% CI [2.4, 4.0] (p = ...)"."""
+    if "error" in t:
+        return f"{t['x']} against {t['y']}: no test ({t['error']})"
+    lo, hi = t["conf_int"]
+    verdict = {"greater": "significantly more efficient", "less": "significantly less efficient",
+               "equal": "not significantly different"}.get(t["decision"], t["decision"])
+    return (f"{t['x']} is {t['ratio']:.3g}x as efficient as {t['y']}, 95% CI [{lo:.3g}, {hi:.3g}] "
+            f"(variance ratio {t['var_ratio']:.3g}, time ratio {t['time_ratio']:.3g}; p = {t['pvalue']:.2g}: "
+            f"{verdict})")
 
 
 def out_threads(ctx: Context) -> int:
@@ -154,4 +215,6 @@ def findings(res: Dict[str, Any]) -> List[str]:
         out.append("Timing: efficiency 1/(sigma^2 t) per primary estimate, best first: "
                    + ", ".join(f"{m} {eff[m]:.3g}/s" for m in order)
                    + " (wall-clock: machine-dependent and noisy on a shared machine).")
+        for t in irr.get("comparisons", {}).get("tests", []):
+            out.append("Timing: " + comparison_sentence(t) + ".")
     return out

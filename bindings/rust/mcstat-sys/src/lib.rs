@@ -137,11 +137,11 @@ pub const MCSTAT_TEST_BINOM: i32 = 8;
 pub const MCSTAT_TEST_CHISQ_GOF: i32 = 9;
 pub const MCSTAT_TEST_T_2_POOLED: i32 = 10;
 pub const MCSTAT_TEST_T_PAIRED: i32 = 11;
-// 12 is reserved
 pub const MCSTAT_TEST_SEQ_MEAN_1: i32 = 13;
 pub const MCSTAT_TEST_SEQ_MEAN_2: i32 = 14;
 pub const MCSTAT_TEST_SEQ_VAR_1: i32 = 15;
 pub const MCSTAT_TEST_SEQ_VAR_2: i32 = 16;
+pub const MCSTAT_TEST_EFFICIENCY: i32 = 12;
 
 pub const MCSTAT_METHOD_ANALYTIC: i32 = 0;
 pub const MCSTAT_METHOD_AUTO: i32 = 1;
@@ -176,6 +176,15 @@ pub struct mcstat_result_ints_seq {
     pub seq_unused_: i32,
 }
 
+/// EFFICIENCY's integer outputs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_ints_eff {
+    /// Timed batches of x and of y (saturating at i32::MAX).
+    pub eff_batches_x: i32,
+    pub eff_batches_y: i32,
+}
+
 /// `mcstat_result`'s first anonymous union (`reserved_i` is 0.1.0's name).
 #[repr(C)]
 #[derive(Clone, Copy)]
@@ -183,6 +192,7 @@ pub union mcstat_result_ints {
     pub reserved_i: [i32; 3],
     pub s: mcstat_result_ints_named,
     pub seq: mcstat_result_ints_seq,
+    pub eff: mcstat_result_ints_eff,
 }
 
 /// KS_2's per-test outputs.
@@ -243,6 +253,20 @@ pub struct mcstat_result_seq {
     pub seq_n_gate: f64,
 }
 
+/// EFFICIENCY's per-test outputs.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_result_eff {
+    /// s_y^2 / s_x^2 and mean time y / mean time x.
+    pub eff_var_ratio: f64,
+    pub eff_time_ratio: f64,
+    /// Delta-method standard errors of log s_x^2, log s_y^2 and the log mean times.
+    pub eff_se_log_var_x: f64,
+    pub eff_se_log_var_y: f64,
+    pub eff_se_log_time_x: f64,
+    pub eff_se_log_time_y: f64,
+}
+
 /// `mcstat_result`'s second anonymous union (`reserved` is 0.1.0's name).
 #[repr(C)]
 #[derive(Clone, Copy)]
@@ -253,6 +277,7 @@ pub union mcstat_result_per_test {
     pub binom: mcstat_result_binom,
     pub chisq: mcstat_result_chisq,
     pub seq: mcstat_result_seq,
+    pub eff: mcstat_result_eff,
 }
 
 /// `mcstat_result`: what every test fills.  The header's anonymous unions
@@ -305,6 +330,12 @@ impl mcstat_result {
     }
     pub fn seq(&self) -> mcstat_result_seq {
         unsafe { self.per_test.seq }
+    }
+    pub fn eff(&self) -> mcstat_result_eff {
+        unsafe { self.per_test.eff }
+    }
+    pub fn eff_ints(&self) -> mcstat_result_ints_eff {
+        unsafe { self.ints.eff }
     }
 }
 
@@ -835,6 +866,16 @@ extern "C" {
         x: *const mcstat_moments,
         y: *const mcstat_moments,
         mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        out: *mut mcstat_result,
+    ) -> c_int;
+    pub fn mcstat_efficiency_test(
+        x: *const mcstat_moments,
+        y: *const mcstat_moments,
+        time_x: *const mcstat_moments,
+        time_y: *const mcstat_moments,
+        ratio: f64,
         alternative: c_int,
         alpha: f64,
         out: *mut mcstat_result,

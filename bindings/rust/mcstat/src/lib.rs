@@ -48,7 +48,7 @@ pub use check::{check_bsdf, check_emitter, check_warp, CheckModel, CheckOptions,
 pub use diag::{diagnose, DiagOptions, Diagnostics};
 pub use gof::{battery_test, battery_test_p_values, binom_test, gof_chisq_test, GofOptions};
 pub use ks::{ks_test_2, KsCache, KsOptions};
-pub use moments::{t_test_1_moments, t_test_2_moments, t_test_2_pooled_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
+pub use moments::{efficiency_test, t_test_1_moments, t_test_2_moments, t_test_2_pooled_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
 pub use p_adjust::{p_adjust, PAdjustMethod};
 pub use power::{Power, PowerSolution, PowerTest};
 pub use rows::{Matrix, RowFlags, RowResults, Statuses};
@@ -400,6 +400,8 @@ pub enum Test {
     SeqVar1,
     /// Sequential test of a ratio of variances.
     SeqVar2,
+    /// The ratio of two estimators' efficiencies, 1 / (variance x time).
+    Efficiency,
     /// A test this crate does not know (a newer library).
     Other(i32),
 }
@@ -422,6 +424,7 @@ impl Test {
             sys::MCSTAT_TEST_SEQ_MEAN_2 => Test::SeqMean2,
             sys::MCSTAT_TEST_SEQ_VAR_1 => Test::SeqVar1,
             sys::MCSTAT_TEST_SEQ_VAR_2 => Test::SeqVar2,
+            sys::MCSTAT_TEST_EFFICIENCY => Test::Efficiency,
             v => Test::Other(v),
         }
     }
@@ -532,6 +535,21 @@ pub enum Details {
         t_opt: f64,
         /// The n the kurtosis gate asks for; `None` when it is open.
         n_gate: Option<f64>,
+    },
+    /// The ratio of two estimators' efficiencies (`efficiency_test`).
+    Efficiency {
+        /// s_y^2 / s_x^2: x's advantage in variance.
+        var_ratio: f64,
+        /// Mean time per sample of y / of x: x's advantage in time.
+        time_ratio: f64,
+        /// Delta-method standard errors of log s_x^2, log s_y^2, log tau_x, log tau_y.
+        se_log_var_x: f64,
+        se_log_var_y: f64,
+        se_log_time_x: f64,
+        se_log_time_y: f64,
+        /// Timed batches of x and of y.
+        batches_x: u32,
+        batches_y: u32,
     },
 }
 
@@ -688,6 +706,20 @@ impl TestResult {
                     eps: if q.seq_eps > 0.0 { Some(q.seq_eps) } else { None },
                     t_opt: q.seq_t_opt,
                     n_gate: if q.seq_n_gate > 0.0 { Some(q.seq_n_gate) } else { None },
+                }
+            }
+            Test::Efficiency => {
+                let e = r.eff();
+                let k = r.eff_ints();
+                Details::Efficiency {
+                    var_ratio: e.eff_var_ratio,
+                    time_ratio: e.eff_time_ratio,
+                    se_log_var_x: e.eff_se_log_var_x,
+                    se_log_var_y: e.eff_se_log_var_y,
+                    se_log_time_x: e.eff_se_log_time_x,
+                    se_log_time_y: e.eff_se_log_time_y,
+                    batches_x: k.eff_batches_x as u32,
+                    batches_y: k.eff_batches_y as u32,
                 }
             }
             _ => Details::None,

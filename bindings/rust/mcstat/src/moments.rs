@@ -116,6 +116,25 @@ pub fn t_test_2_moments(x: &Moments, y: &Moments, mu0: f64, alternative: Alterna
     run(|out| unsafe { sys::mcstat_t_test_2_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })
 }
 
+/// The efficiency-ratio test: rho = eff(x) / eff(y) = (var_y tau_y) /
+/// (var_x tau_x) against `ratio`, from the estimators' samples `x`, `y` and
+/// the time per sample of k >= 2 timed batches each (`time_x`, `time_y`);
+/// delta-method standard error of log rho without assuming normal data, a
+/// t on Satterthwaite's df.  `Greater` means x is the more efficient.
+pub fn efficiency_test(
+    x: &Moments,
+    y: &Moments,
+    time_x: &Moments,
+    time_y: &Moments,
+    ratio: f64,
+    alternative: Alternative,
+    alpha: f64,
+) -> Result<TestResult> {
+    run(|out| unsafe {
+        sys::mcstat_efficiency_test(&x.raw, &y.raw, &time_x.raw, &time_y.raw, ratio, alternative.raw(), alpha, out)
+    })
+}
+
 /// Student's pooled-variance t test on accumulators.
 pub fn t_test_2_pooled_moments(x: &Moments, y: &Moments, mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
     run(|out| unsafe { sys::mcstat_t_test_2_pooled_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })

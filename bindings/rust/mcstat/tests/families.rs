@@ -1007,3 +1007,47 @@ fn paired_lengths_and_levels_are_checked() {
     let k = ks_test_2(&x, &[0.5, 1.0, 1.25], Alternative::TwoSided, 0.05, &KsOptions::default()).unwrap();
     assert_eq!(k.conf_int_at(0.9).unwrap_err().kind(), ErrorKind::InvalidArgument);
 }
+
+// ---- the efficiency-ratio test ---------------------------------------------------
+
+#[test]
+fn efficiency_against_the_mpmath_oracle() {
+    let text = read("efficiency_ref.tsv");
+    let mut rows = 0;
+    for line in text.lines().filter(|l| !l.starts_with('#') && !l.is_empty()) {
+        let f: Vec<&str> = line.split('\t').collect();
+        let num = |s: &str| if s == "Inf" { f64::INFINITY } else { hex_float(s) };
+        let acc = |s: &str| {
+            let v: Vec<f64> = s.split(',').map(num).collect();
+            let mut m = Moments::new();
+            m.add_slice(&v).unwrap();
+            m
+        };
+        let alt = [Alternative::TwoSided, Alternative::Less, Alternative::Greater][f[1].parse::<usize>().unwrap()];
+        let r = efficiency_test(&acc(f[4]), &acc(f[5]), &acc(f[6]), &acc(f[7]), num(f[2]), alt, num(f[3])).unwrap();
+        assert_eq!(r.test(), Test::Efficiency);
+        assert!(rel_err(r.statistic(), num(f[8])) < 1e-12, "{}", f[0]);
+        assert!(rel_err(r.df()[0], num(f[9])) < 1e-12, "{}", f[0]);
+        assert!(rel_err(r.log_p_value().unwrap(), num(f[11])) < 1e-12, "{}", f[0]);
+        assert!(rel_err(r.std_error().unwrap(), num(f[17])) < 1e-12, "{}", f[0]);
+        match r.details() {
+            Details::Efficiency { time_ratio, batches_x, .. } => {
+                assert!(rel_err(time_ratio, num(f[16])) < 1e-12, "{}", f[0]);
+                assert_eq!(batches_x as usize, f[6].split(',').count());
+            }
+            d => panic!("{d:?}"),
+        }
+        rows += 1;
+    }
+    assert!(rows >= 6);
+    // bad input: an error, never a panic
+    let m = |v: &[f64]| {
+        let mut a = Moments::new();
+        a.add_slice(v).unwrap();
+        a
+    };
+    let (x, t, one) = (m(&[1.0, 2.0, 4.0]), m(&[1.0, 1.1]), m(&[1.0]));
+    assert_eq!(efficiency_test(&x, &x, &t, &one, 1.0, Alternative::TwoSided, 0.05).unwrap_err().kind(), ErrorKind::TooFewObservations);
+    assert_eq!(efficiency_test(&x, &x, &t, &t, 0.0, Alternative::TwoSided, 0.05).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    assert_eq!(efficiency_test(&m(&[3.0, 3.0]), &x, &t, &t, 1.0, Alternative::TwoSided, 0.05).unwrap_err().kind(), ErrorKind::DegenerateData);
+}
