@@ -419,7 +419,7 @@ def _draw(res: Dict[str, Any], path: str) -> None:
     a1.set_xlabel("primary estimates per sample n")
     a1.set_ylabel(f"fraction of runs decided ({res['runs']} runs)")
     a1.set_title("Stopping times of the sequential test")
-    a1.legend(loc="center right")
+    a1.legend(loc="lower right")
     h = res["h0"]
     n = np.array(h["n"])
     for name, label, style in (("naive", "fixed-n Welch, peeked", "-"), ("sequential", "sequential", "-")):
