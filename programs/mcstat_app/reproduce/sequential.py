@@ -42,6 +42,7 @@ PILOT_FIRST = 1 << 42       # counter range of the pilot samples
 CHECK_FIRST = 2 << 42       # and of the simulated fixed-n tests
 CHECK_MAX_VALUES = 50_000_000  # the fixed-n check is skipped beyond this many values per estimator
 _CHUNK = 2_000_000          # primary estimates per estimator drawn at once (bounded memory)
+CHECK_N_GUESS = 100         # the progress bar's guess at a fixed n
 MIN_N = 100                 # the test holds below this many values per sample (SequentialTest's default)
 
 
@@ -83,7 +84,7 @@ def _pilot(ctx: Context, rec: ReceiverEstimators, p: Dict[str, Any], trusted: st
 
 
 def _fixed_n(ctx: Context, rec: ReceiverEstimators, p: Dict[str, Any], trusted: str, bug: str,
-             pil: Dict[str, Any], bar: Any) -> Dict[str, Any]:
+             pil: Dict[str, Any]) -> Dict[str, Any]:
     """n of the fixed-n Welch test with power `power` at the pilot's effect, and its simulated power there."""
     out: Dict[str, Any] = dict(power_target=p["power"], n=None, power_planned=None, check=None)
     d, ratio = abs(pil["effect"]), pil["sd_ratio"]
@@ -108,7 +109,6 @@ def _fixed_n(ctx: Context, rec: ReceiverEstimators, p: Dict[str, Any], trusted: 
         for k in decided:
             decided[k] += int(np.sum(b.decision == k))
     correct = decided[pil["direction"]]
-    bar.update(R * n * (cost.estimates("A", 1) + cost.estimates(trusted, 1)))
     out["check"] = dict(rate_summary(correct, R, p["alpha"]), runs=R, decided=decided)
     return out
 
@@ -125,10 +125,11 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
                                h0_runs=h0_runs, batch=B, max_n=nmax, looks=looks, t_opt=p["t_opt"],
                                power=p["power"], bugs=list(p["bugs"]), min_n=MIN_N)
     per_value = cost.estimates("A", 1) + cost.estimates(tr, 1)
+    check = h0_runs * CHECK_N_GUESS * per_value  # the fixed-n check's n is known only after the pilot
     total = (p["pilot"] * (len(p["bugs"]) * cost.ESTIMATE["A"] + cost.estimates(tr, 1))
              + len(p["bugs"]) * runs * (nmax * per_value + looks * cost.SEQ_LOOK)
              + h0_runs * (nmax * per_value + looks * (cost.SEQ_LOOK + cost.NAIVE_LOOK))
-             + len(p["bugs"]) * h0_runs * 300 * per_value)
+             + len(p["bugs"]) * check)
     with ctx.bar(total, f"3.4+ {r['name']}") as bar:
         pilot = _pilot(ctx, rec, p, tr)
         bar.update(p["pilot"] * (len(p["bugs"]) * cost.ESTIMATE["A"] + cost.estimates(tr, 1)))
@@ -147,7 +148,8 @@ def run(ctx: Context, plan: Plan) -> Dict[str, Any]:
                     if a + i == 0:
                         example = str(s)
                 bar.update(X.shape[0] * (nmax * per_value + looks * cost.SEQ_LOOK))
-            fixed = _fixed_n(ctx, rec, p, tr, v, pilot["bugs"][v], bar)
+            fixed = _fixed_n(ctx, rec, p, tr, v, pilot["bugs"][v])
+            bar.update(check)
             out["per_bug"][v] = _summary(stops, decisions, pilot["bugs"][v]["direction"], fixed, nmax, example)
         out["planned_for_smallest"] = _smallest(out)
         out["h0"] = _h0(rec, p, tr, nmax, B, bar, per_value)
