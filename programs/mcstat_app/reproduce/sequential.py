@@ -33,7 +33,7 @@ import numpy as np
 
 import mcstat
 from . import cost
-from .binomial import rate_summary
+from .binomial import clopper_pearson, rate_summary
 from .context import Context
 from .irradiance import ReceiverEstimators
 from .plan import Plan
@@ -109,7 +109,8 @@ def _fixed_n(ctx: Context, rec: ReceiverEstimators, p: Dict[str, Any], trusted: 
         for k in decided:
             decided[k] += int(np.sum(b.decision == k))
     correct = decided[pil["direction"]]
-    out["check"] = dict(rate_summary(correct, R, p["alpha"]), runs=R, decided=decided)
+    lo, hi = clopper_pearson(correct, R)
+    out["check"] = dict(rejections=correct, tests=R, rate=correct / R, ci95=[lo, hi], decided=decided)
     return out
 
 
