@@ -307,7 +307,8 @@ def findings(res: Dict[str, Any]) -> List[str]:
     text = (f"{where}: under H0 (the correct A, {res['h0_runs']} runs, a look every {res['batch']} up to {nmax}) the "
             f"sequential test ever rejected in {sq['rejections']}/{sq['tests']} runs = {sq['rate']:.4f} "
             f"[{sq['ci95'][0]:.4f}, {sq['ci95'][1]:.4f}]"
-            + (" (within alpha)" if sq["ci95"][0] <= res["alpha"] else f" (ABOVE alpha = {res['alpha']:g})")
+            + (" (its whole 95% interval below alpha)" if sq["ci95"][1] <= res["alpha"] else
+               " (consistent with alpha)" if sq["ci95"][0] <= res["alpha"] else f" (ABOVE alpha = {res['alpha']:g})")
             + f"; the fixed-n Welch test peeked at every look rejected in {nv['rejections']}/{nv['tests']} = "
               f"{nv['rate']:.4f} [{nv['ci95'][0]:.4f}, {nv['ci95'][1]:.4f}]"
             + (f", {nv['rate'] / res['alpha']:.1f} times alpha = {res['alpha']:g}" if nv["ci95"][0] > res["alpha"]
