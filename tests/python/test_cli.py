@@ -255,7 +255,8 @@ def test_same_seed_same_results(paper, tmp_path):
 
 def test_another_seed_other_numbers(tmp_path):
     scene = copy.deepcopy(PAPER_SCENE)
-    scene["studies"] = {s: {"enabled": False} for s in ("sampling", "radiance", "bugs", "timing", "sampler_bugs")}
+    scene["studies"] = {s: {"enabled": False} for s in ("sampling", "radiance", "bugs", "timing", "sampler_bugs",
+                                                            "sequential")}
     scene["studies"]["irradiance"] = {"runs": 5}
     path = tmp_path / "small.json"
     path.write_text(json.dumps(scene))
@@ -312,7 +313,7 @@ def test_report_figures_legible_in_print(paper, tmp_path, monkeypatch):
 
 def test_no_brdf_scene(no_brdf):
     res, out = no_brdf["res"], no_brdf["out"]
-    assert set(res["studies"]) == {"irradiance", "bugs", "diagnostics"} and "ks" not in res["timing"]
+    assert set(res["studies"]) == {"irradiance", "bugs", "sequential", "diagnostics"} and "ks" not in res["timing"]
     left = {(s["study"], s["reason"]) for s in res["plan"]["left_out"]}
     assert ("sampling", "the scene has no BRDFs") in left and ("radiance", "the scene has no BRDFs") in left
     assert ("diagnostics", "the scene has no BRDFs") in left and res["studies"]["diagnostics"]["brdfs"] == []
@@ -435,7 +436,8 @@ def test_degenerate_samples_do_not_stop_the_run(tmp_path):
              "receivers": [{"point": [0, 0, 0], "normal": [0, 0, 1]},
                            {"name": "blind", "point": [0, 0, 0], "normal": [0, 0, -1]}],
              "studies": {"irradiance": {"runs": 20, "primary": 200, "secondary": 10},
-                         "bugs": {"runs": 5, "budgets": [20, 200]}, "timing": {"enabled": False}}}
+                         "bugs": {"runs": 5, "budgets": [20, 200]}, "timing": {"enabled": False},
+                         "sequential": {"runs": 5, "h0_runs": 20, "max_n": 2000, "pilot": 10000}}}
     path = tmp_path / "tiny.json"
     path.write_text(json.dumps(scene))
     code, out, err = run_cli("reproduce", "--scene", str(path), "--out", str(tmp_path / "o"), "--no-progress")

@@ -45,6 +45,7 @@ def bars(tmp_path_factory):
                                                         "sampler_bugs", "renderer_check")}
     scene["studies"]["sampling"] = {"sizes": [30, 3000], "runs": 3, "n_sim": 2000, "histogram_size": 2000}
     scene["studies"]["bugs"] = {"budgets": [20, 2000], "runs": 5}
+    scene["studies"]["sequential"] = {"runs": 3, "h0_runs": 20, "max_n": 1000, "pilot": 10000}
     path = d / "scene.json"
     path.write_text(json.dumps(scene))
     Recorder.bars = []
@@ -60,7 +61,7 @@ def bars(tmp_path_factory):
 
 
 def test_every_bar_ends_at_its_total(bars):
-    assert {"3.2 ward", "3.4 origin"} <= set(bars)
+    assert {"3.2 ward", "3.4 origin", "3.4+ origin"} <= set(bars)
     for b in bars.values():
         assert sum(b.steps) == pytest.approx(b.total, rel=1e-12), b.desc
 

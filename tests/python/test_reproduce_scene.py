@@ -167,7 +167,7 @@ def test_plan_of_the_paper_scene():
     p = Plan(load_scene(None))
     assert [s["study"] for s in p.steps] == ["irradiance", "irradiance", "irradiance", "sampling", "sampling",
                                              "radiance", "bugs", "sampler_bugs", "sampler_bugs", "renderer_check",
-                                             "renderer_check", "timing", "timing",
+                                             "renderer_check", "sequential", "timing", "timing",
                                              "diagnostics", "diagnostics"]
     # diagnostics: the receiver's irradiance estimators and the BRDF 3.3 tests
     assert [s["target"] for s in steps(p, "diagnostics")] == ["origin", "ward"]

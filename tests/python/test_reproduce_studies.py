@@ -40,7 +40,8 @@ def test_plan_and_streams_follow_the_table():
     ctx = Context(1, progress=False)
     assert ctx.stream("irradiance", 0) == ctx.stream("irradiance", 0)
     assert {k: BY_KEY[k].stream for k in BY_KEY} == {"irradiance": 1, "sampling": 2, "radiance": 3, "bugs": 4,
-                                                     "timing": 5, "diagnostics": 6, "sampler_bugs": 7, "renderer_check": 8}
+                                                     "timing": 5, "diagnostics": 6, "sampler_bugs": 7, "renderer_check": 8,
+                                                     "sequential": 9}
 
 
 def test_report_parts_resolve():

@@ -15,6 +15,7 @@ irradiance     3.1: U, C, A, S against Lambert and each other (figures 4, 5)
 sampling       3.2: BRDF samplers against rejection sampling (K-S, figure 6)
 radiance       3.3: reflected radiance, Welch per direction, binomial test
 bugs           3.4: the three planted bugs against the trusted estimator
+sequential     3.4+: anytime-valid sequential tests on those bugs, fixed n, H0
 timing         error against run time; K-S p-value error against run time
 binomial       battery meta-test (libmcstat's exact binomial test), intervals
 diagnose       estimator diagnostics: shape, tails, batch size

@@ -32,6 +32,11 @@ CELLS = 0.07
 # What every step costs besides its samples: Python calls, small arrays.
 STEP = 1e-4
 
+# One look of a sequential test (SequentialTest.push of 100 + 100 values), and
+# one look of the peeked fixed-n test per run (MomentsArray pushes, batch Welch).
+SEQ_LOOK = 2.2e-6
+NAIVE_LOOK = 1.6e-6
+
 # K-S (Canner): the p-value method `method="auto"` picks, MCSTAT_KS_AUTO_EXACT_WORK
 # in mcstat.h: exact when (min(nx, ny) + 1)(nx + ny + 1) is at most this.
 KS_AUTO_EXACT_WORK = 1.6e7

@@ -17,6 +17,8 @@ Rules (the issue's, in code):
 - The timing study times the listed estimators at the first receiver that
   sees an emitter (RMSE against Lambert with one triangle, else the
   estimated standard error), and the K-S simulation when 3.2 runs.
+- The sequential tests (3.4+, beyond the paper) need what 3.4 needs and run
+  at the first receiver that sees an emitter.
 - ``enabled = false`` leaves a study out.
 
 ``--quick`` caps the expensive budgets (see :data:`QUICK`); the plan says
@@ -55,6 +57,9 @@ QUICK = [
     ("sampler_bugs", "runs", 20),
     ("renderer_check", "n", 20000),
     ("renderer_check", "runs", 5),
+    ("sequential", "runs", 40),
+    ("sequential", "h0_runs", 500),
+    ("sequential", "pilot", 200000),
 ]
 
 
@@ -91,6 +96,7 @@ class Plan:
                                          "(Canner) of Morton keys against the correct sampler: power curves")
         self._brdf_study("renderer_check", "mcstat.check_bsdf on each BRDF with one planted bug of each class "
                                            "(sampler, pdf, eval, weight) and without: rejection rates and routes")
+        self._sequential()
         self._timing()
         self._diagnostics()
 
@@ -195,6 +201,28 @@ class Plan:
             self._add("bugs", r["name"],
                       f"A with {', '.join(p['bugs'])} (and without, as a control) against {sc.trusted}: "
                       f"Welch tests at budgets {p['budgets'][0]}..{p['budgets'][-1]}, {p['runs']} runs each")
+
+    def _sequential(self) -> None:
+        if self._disabled("sequential"):
+            return
+        sc, title = self.scene, BY_KEY["sequential"].title
+        if "A" not in sc.estimators or sc.trusted == "A":
+            self._leave("sequential", "all", title,
+                        "the scene does not list estimator A, in which the bugs are planted" if "A" not in sc.estimators
+                        else "the trusted estimator is A itself; list another estimator as `trusted`")
+            return
+        vis = self.visible_receivers()
+        if not vis:
+            self._leave("sequential", "all", title, "no receiver sees an emitter")
+            return
+        p = self.params["sequential"]
+        B = p["batch"]
+        nmax = max(1, p["max_n"] // B) * B
+        self._add("sequential", vis[0]["name"],
+                  f"A with {', '.join(p['bugs'])} against {sc.trusted}: anytime-valid sequential tests at alpha = "
+                  f"{p['alpha']:g}, a look every {B} primary estimates up to {nmax}, {p['runs']} runs each; the "
+                  f"fixed-n Welch test at power {p['power']:g}; under H0 (the correct A) {p['h0_runs']} runs against "
+                  "a fixed-n test peeked at every look")
 
     def _brdf_study(self, study: str, what: str) -> None:
         if self._disabled(study):

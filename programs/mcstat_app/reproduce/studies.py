@@ -51,6 +51,9 @@ STUDIES: List[Study] = [
     # beyond the paper: the renderer's test kit (mcstat.check_bsdf) on the scene's BRDFs with planted bugs
     Study("renderer_check", 8, "kit", "The renderer's test kit on planted bugs", "renderer_check",
           "report:renderer_check", "renderer_check_study"),
+    # beyond the paper: anytime-valid sequential tests on the planted bugs of 3.4 ("render until decided")
+    Study("sequential", 9, "3.4+", "Sequential tests on the planted bugs (3.4+)", "sequential",
+          "sequential:report", "sequential_study"),
     Study("timing", 5, "time", "Error against run time", "timing", "report:timing", "timing_study",
           wall_clock=True),
 ]
