@@ -372,62 +372,45 @@ static void format_seq(const mcstat_result *r, const char *x_name, const char *y
     sb_puts(s, "\n\n");
 }
 
+/* ---- the tests with a block of their own ----------------------------------
+ * Every test but the t, chi-squared, F and binomial ones (print.htest's
+ * generic block below): its formatter, and whether its block reads the
+ * alternative (the goodness-of-fit and TOST blocks print none). */
+typedef void (*block_fn)(const mcstat_result *r, const char *x_name, const char *y_name, sbuf *s);
+
+static void format_chisq_xy(const mcstat_result *r, const char *x_name, const char *y_name, sbuf *s)
+{
+    (void)y_name;
+    format_chisq(r, x_name, s);
+}
+
+static block_fn own_block(const mcstat_result *r, int *reads_alternative)
+{
+    *reads_alternative = 1;
+    switch (r->test) {
+    case MCSTAT_TEST_CHISQ_GOF: *reads_alternative = 0; return format_chisq_xy;
+    case MCSTAT_TEST_EQUIV_1:
+    case MCSTAT_TEST_EQUIV_2: *reads_alternative = 0; return format_equiv;
+    case MCSTAT_TEST_EFFICIENCY: return format_eff;
+    case MCSTAT_TEST_KS_2: return format_ks;
+    default: return is_seq(r->test) ? format_seq : NULL;
+    }
+}
+
 int mcstat_result_format(const mcstat_result *r, const char *x_name, const char *y_name, char *buf,
                          size_t size, size_t *length)
 {
     MCSTAT_IEEE_SCOPE();
     test_text tt;
-    if (r && r->test == MCSTAT_TEST_CHISQ_GOF) {
-        if (!buf && size > 0)
+    int reads_alternative = 0;
+    block_fn own = r ? own_block(r, &reads_alternative) : NULL;
+    if (own) {
+        if ((!buf && size > 0) || (reads_alternative && !valid_alternative(r->alternative)))
             return MCSTAT_EINVAL;
         sbuf s = {buf, size, 0};
         if (size > 0)
             buf[0] = '\0';
-        format_chisq(r, x_name ? x_name : "x", &s);
-        if (length)
-            *length = s.len;
-        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
-    }
-    if (r && (r->test == MCSTAT_TEST_EQUIV_1 || r->test == MCSTAT_TEST_EQUIV_2)) {
-        if (!buf && size > 0)
-            return MCSTAT_EINVAL;
-        sbuf s = {buf, size, 0};
-        if (size > 0)
-            buf[0] = '\0';
-        format_equiv(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
-        if (length)
-            *length = s.len;
-        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
-    }
-    if (r && r->test == MCSTAT_TEST_EFFICIENCY) {
-        if ((!buf && size > 0) || !valid_alternative(r->alternative))
-            return MCSTAT_EINVAL;
-        sbuf s = {buf, size, 0};
-        if (size > 0)
-            buf[0] = '\0';
-        format_eff(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
-        if (length)
-            *length = s.len;
-        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
-    }
-    if (r && is_seq(r->test)) {
-        if ((!buf && size > 0) || !valid_alternative(r->alternative))
-            return MCSTAT_EINVAL;
-        sbuf s = {buf, size, 0};
-        if (size > 0)
-            buf[0] = '\0';
-        format_seq(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
-        if (length)
-            *length = s.len;
-        return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
-    }
-    if (r && r->test == MCSTAT_TEST_KS_2) {
-        if ((!buf && size > 0) || !valid_alternative(r->alternative))
-            return MCSTAT_EINVAL;
-        sbuf s = {buf, size, 0};
-        if (size > 0)
-            buf[0] = '\0';
-        format_ks(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
+        own(r, x_name ? x_name : "x", y_name ? y_name : "y", &s);
         if (length)
             *length = s.len;
         return s.len < size ? MCSTAT_OK : MCSTAT_EBUFSIZE;
