@@ -77,6 +77,26 @@ static void sb_wrapped(sbuf *s, const char *line)
     sb_puts(s, "\n");
 }
 
+/* print() of a named vector: each column right-justified to the wider of
+ * its name and the values' common width (R's format), one space after. */
+static void sb_named(sbuf *s, const char *const *names, const double *v, int n)
+{
+    mcstat_rlayout lay;
+    mcstat__rformat_layout(v, n, R_DIGITS, &lay);
+    char a[64];
+    for (int k = 0; k < n; k++) {
+        int nl = (int)strlen(names[k]);
+        sb_printf(s, "%*s ", nl > lay.w ? nl : lay.w, names[k]);
+    }
+    sb_puts(s, "\n");
+    for (int k = 0; k < n; k++) {
+        int nl = (int)strlen(names[k]);
+        mcstat__rformat_encode(v[k], &lay, nl > lay.w ? nl : lay.w, a, sizeof a);
+        sb_printf(s, "%s ", a);
+    }
+    sb_puts(s, "\n");
+}
+
 typedef struct {
     const char *method, *stat_name, *param_name[2], *null_name, *est_name[2];
     int two_sample;
@@ -222,19 +242,7 @@ static void format_equiv(const mcstat_result *r, const char *x_name, const char 
     sb_puts(s, "sample estimates:\n");
     static const char *names[] = {"mean of x", "mean of y"};
     int ne = two ? 2 : 1;
-    mcstat__rformat_layout(r->estimate, ne, R_DIGITS, &lay);
-    int colw[2];
-    for (int k = 0; k < ne; k++) {
-        int nl = (int)strlen(names[k]);
-        colw[k] = nl > lay.w ? nl : lay.w;
-        sb_printf(s, "%*s ", colw[k], names[k]);
-    }
-    sb_puts(s, "\n");
-    for (int k = 0; k < ne; k++) {
-        mcstat__rformat_encode(r->estimate[k], &lay, colw[k], a, sizeof a);
-        sb_printf(s, "%s ", a);
-    }
-    sb_puts(s, "\n");
+    sb_named(s, names, r->estimate, ne);
     mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
     sb_printf(s, "decision at alpha = %s: %s\n\n", a, r->reject ? "equivalent" : "not equivalent");
 }
@@ -272,19 +280,7 @@ static void format_eff(const mcstat_result *r, const char *x_name, const char *y
     sb_puts(s, "sample estimates:\n");
     static const char *names[] = {"ratio of efficiencies", "ratio of variances", "ratio of times"};
     double est[3] = {r->estimate[0], r->eff_var_ratio, r->eff_time_ratio};
-    mcstat__rformat_layout(est, 3, R_DIGITS, &lay);
-    int colw[3];
-    for (int k = 0; k < 3; k++) {
-        int nl = (int)strlen(names[k]);
-        colw[k] = nl > lay.w ? nl : lay.w;
-        sb_printf(s, "%*s ", colw[k], names[k]);
-    }
-    sb_puts(s, "\n");
-    for (int k = 0; k < 3; k++) {
-        mcstat__rformat_encode(est[k], &lay, colw[k], a, sizeof a);
-        sb_printf(s, "%s ", a);
-    }
-    sb_puts(s, "\n");
+    sb_named(s, names, est, 3);
     mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
     sb_printf(s, "decision at alpha = %s: %s\n\n", a, mcstat_decision_name(r->decision));
 }
@@ -335,19 +331,7 @@ static void format_seq(const mcstat_result *r, const char *x_name, const char *y
     static const char *names[4][2] = {{"mean of x", NULL}, {"mean of x", "mean of y"},
                                       {"variance of x", NULL}, {"ratio of variances", NULL}};
     int ne = names[k][1] ? 2 : 1;
-    mcstat__rformat_layout(r->estimate, ne, R_DIGITS, &lay);
-    int colw[2];
-    for (int i = 0; i < ne; i++) {
-        int nl = (int)strlen(names[k][i]);
-        colw[i] = nl > lay.w ? nl : lay.w;
-        sb_printf(s, "%*s ", colw[i], names[k][i]);
-    }
-    sb_puts(s, "\n");
-    for (int i = 0; i < ne; i++) {
-        mcstat__rformat_encode(r->estimate[i], &lay, colw[i], a, sizeof a);
-        sb_printf(s, "%s ", a);
-    }
-    sb_puts(s, "\n");
+    sb_named(s, names[k], r->estimate, ne);
     if (r->seq_eps > 0.0) {
         mcstat__rformat1(r->seq_eps, R_DIGITS, a, sizeof a);
         sb_printf(s, "equivalence margin: %s\n", a);
@@ -462,19 +446,7 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
      * its name and the common width of the values, followed by one space. */
     sb_puts(&s, "sample estimates:\n");
     int ne = tt.est_name[1] ? 2 : 1;
-    mcstat__rformat_layout(r->estimate, ne, R_DIGITS, &lay);
-    int colw[2];
-    for (int k = 0; k < ne; k++) {
-        int nl = (int)strlen(tt.est_name[k]);
-        colw[k] = nl > lay.w ? nl : lay.w;
-        sb_printf(&s, "%*s ", colw[k], tt.est_name[k]);
-    }
-    sb_puts(&s, "\n");
-    for (int k = 0; k < ne; k++) {
-        mcstat__rformat_encode(r->estimate[k], &lay, colw[k], a, sizeof a);
-        sb_printf(&s, "%s ", a);
-    }
-    sb_puts(&s, "\n");
+    sb_named(&s, tt.est_name, r->estimate, ne);
 
     mcstat__rformat1(r->alpha, R_DIGITS, a, sizeof a);
     sb_printf(&s, "decision at alpha = %s: %s\n\n", a, mcstat_decision_name(r->decision));
