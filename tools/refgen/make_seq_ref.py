@@ -10,7 +10,7 @@ every look.  The data are integer formulas that C and Python evaluate to
 the same doubles (one correctly rounded division each, exact scalings by
 powers of two), so the test regenerates them instead of reading them.
 
-  python3 tools/refgen/make_seq_ref.py > tests/data/seq_ref.tsv
+  python3 tools/refgen/make_seq_ref.py      (from the repository root; 20 s)
 """
 from __future__ import annotations
 
@@ -180,8 +180,16 @@ def fmt(v):
     return {"-inf": "-Inf", "+inf": "Inf", "inf": "Inf"}.get(s, s)
 
 
+OUT = "tests/data/seq_ref.tsv"
+
+
 def main() -> None:
-    out = sys.stdout
+    with open(OUT, "w") as out:
+        write(out)
+    print(f"wrote {OUT}", file=sys.stderr)
+
+
+def write(out) -> None:
     out.write("# made by tools/refgen/make_seq_ref.py (mpmath, 50 digits); one row per look\n")
     out.write("# scenario\tkind\talt\talpha\teps\tt_opt\tgate\tucb_z\tmin_n\tnull\tgenx\tshiftx\tgeny\tshifty\tbatch\tbatchy"
               "\tlook\tnx\tny\thold\tz\tlog_e\tcrit\tp\tcs0\tcs1\tstate\tdecision\tn_decided\n")

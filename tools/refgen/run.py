@@ -60,6 +60,8 @@ GENERATORS = {
           "R's t.test (pooled, paired, Welch, one-sample), var.test, pt(log.p) and qt: log p-values, other levels"),
     "power": ("R", [G + "make_power_ref.R"], [], [D + "power_ref.tsv", D + "equivalence_ref.tsv"],
               "R's power.t.test, closed forms, TOST"),
+    "sequential": ("python", [G + "make_seq_ref.py"], [], [D + "seq_ref.tsv"],
+                   "every look of the sequential tests: e-value, boundary, sequence, decision (mpmath, 50 digits)"),
     "efficiency": ("python", [G + "make_efficiency_ref.py"], [], [D + "efficiency_ref.tsv"],
                    "the efficiency-ratio test's delta method, df, t p-value and interval (mpmath, 50 digits)"),
     "ffi": ("python", [G + "make_ffi_ref.py"],
