@@ -300,14 +300,19 @@ static void format_seq(const mcstat_result *r, const char *x_name, const char *y
     int k = r->test - MCSTAT_TEST_SEQ_MEAN_1, two = k == 1 || k == 3;
     char a[64], b[64], line[512];
     sb_printf(s, "\n\tAnytime-valid sequential test of %s (asymptotic, Gaussian mixture)\n\n", what[k]);
-    size_t ll = two ? (size_t)snprintf(line, sizeof line, "data:  %s and %s", x_name, y_name)
-                    : (size_t)snprintf(line, sizeof line, "data:  %s", x_name);
-    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", n = %llu", (unsigned long long)r->n[0]);
+    /* the names go straight to the builder: any length (a fixed line
+     * buffer would be overrun by the offsets of a truncated name) */
+    sb_printf(s, "data:  ");
+    sb_puts(s, x_name);
+    if (two) {
+        sb_puts(s, " and ");
+        sb_puts(s, y_name);
+    }
+    sb_printf(s, ", n = %llu", (unsigned long long)r->n[0]);
     if (two)
-        ll += (size_t)snprintf(line + ll, sizeof line - ll, " and %llu", (unsigned long long)r->n[1]);
-    snprintf(line + ll, sizeof line - ll, " after %.0f look%s\n", r->seq_looks, r->seq_looks == 1.0 ? "" : "s");
-    sb_puts(s, line);
-    ll = 0;
+        sb_printf(s, " and %llu", (unsigned long long)r->n[1]);
+    sb_printf(s, " after %.0f look%s\n", r->seq_looks, r->seq_looks == 1.0 ? "" : "s");
+    size_t ll = 0;
     if (isnan(r->statistic)) {
         ll += (size_t)snprintf(line, sizeof line, "z = NA");
     } else {
