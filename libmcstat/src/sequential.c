@@ -181,7 +181,7 @@ static double boundary(double a, double alpha, int alternative)
     double lo = 0.0, hi = two, z = two;
     for (int i = 0; i < 100; i++) {
         double f = log_e_value(z, a, MCSTAT_GREATER) - target;
-        if (f == 0.0)
+        if (fabs(f) <= 4.0 * DBL_EPSILON * target) /* at rounding level: Newton would only oscillate */
             return z;
         if (f < 0.0)
             lo = z;
