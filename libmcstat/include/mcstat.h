@@ -914,8 +914,9 @@ MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcs
 /* p-values compared with alpha control the family-wise error rate          */
 /* (Bonferroni, Holm, Hochberg, Hommel) or the false discovery rate (BH:     */
 /* Benjamini & Hochberg; BY: Benjamini & Yekutieli, valid under any          */
-/* dependence).  The values are R's p.adjust's, to rounding: NaN entries are */
-/* R's NA (they stay NaN, and n, the number of tests, counts the others);    */
+/* dependence; e-BH, mcstat_e_bh below, too).  The values are R's          */
+/* p.adjust's, to rounding (R has no e-BH): NaN entries are R's NA (they     */
+/* stay NaN, and n, the number of tests, counts the others);                 */
 /* with n <= 1 the p-values come back unchanged.  O(n log n) (Hommel too).   */
 /* Values match across versions; FFI callers may use the integers.          */
 /* ------------------------------------------------------------------------ */
@@ -969,6 +970,8 @@ MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work
  * than BY on the same p-values (the k-th rejection needs p_(k) <= (k alpha
  * / (10 n))^(10/9), BY's p_(k) <= k alpha / (n H_n), H_n = 1 + ... + 1/n;
  * about 5 times smaller for a first rejection among 2304 tests at 0.05).
+ * Up to n = 12366 (H_n <= 10: H_n p <= 10 p^(9/10) term by term) BY's
+ * adjusted values are never larger.
  * On p-values BY is the more powerful of the two; mcstat_e_bh is for
  * e-values proper (likelihood ratios, sequential tests' betting wealth). */
 MCSTAT_API int mcstat_e_bh(const double *e, size_t n, void *work, size_t work_bytes, double *adjusted);
