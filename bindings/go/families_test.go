@@ -568,3 +568,48 @@ func TestABIAndVersion(t *testing.T) {
 	}
 	GSLHandlerOff()
 }
+
+func TestEBH(t *testing.T) {
+	// descending 20, 10, 1, 0.5 with m = 4: 4/(k e_(k)) = 0.2, 0.2, 4/3, 2,
+	// the minimum from each rank on, capped at 1
+	got, err := EBH([]float64{20, 10, 1, 0.5})
+	want := []float64{0.2, 0.2, 1, 1}
+	if err != nil {
+		t.Fatal(err)
+	}
+	for i := range want {
+		if math.Abs(got[i]-want[i]) > 1e-15 {
+			t.Errorf("[%d] %v, want %v", i, got[i], want[i])
+		}
+	}
+	// m = 3 (NaN not counted), descending inf, 4, 0: 3/(2*4) = 0.375 for the 4
+	got, err = EBH([]float64{math.NaN(), 4, math.Inf(1), 0})
+	if err != nil || !math.IsNaN(got[0]) || math.Abs(got[1]-0.375) > 1e-15 || got[2] != 0 || got[3] != 1 {
+		t.Errorf("NaN/inf/0: %v %v", got, err)
+	}
+	if _, err := EBH([]float64{1, -1}); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("negative e-value: %v", err)
+	}
+	m, err := ParsePAdjustMethod("e-BH")
+	if err != nil || m != PAdjustEBH || m.String() != "e-BH" {
+		t.Errorf("parse e-BH: %v %v", m, err)
+	}
+	p := []float64{0.001, 0.02, 0.3, 0}
+	e := make([]float64, len(p))
+	for i, v := range p {
+		e[i] = math.Inf(1)
+		if v > 0 {
+			e[i] = 0.1 * math.Pow(v, -0.9)
+		}
+	}
+	viaE, err1 := EBH(e)
+	adj, err2 := PAdjust(p, PAdjustEBH)
+	if err1 != nil || err2 != nil {
+		t.Fatal(err1, err2)
+	}
+	for i := range p {
+		if math.Abs(adj[i]-viaE[i]) > 1e-12*math.Abs(viaE[i]) {
+			t.Errorf("[%d] PAdjust e-BH %v, EBH on calibrated %v", i, adj[i], viaE[i])
+		}
+	}
+}

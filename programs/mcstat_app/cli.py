@@ -131,8 +131,10 @@ def _add_image_test(sub) -> None:
     it.add_argument("--json", metavar="FILE", default=None, help="write the summary here (JSON)")
     it.add_argument("--alpha", type=float, default=0.05, help="level of the FDR (or FWER) (default: %(default)s)")
     it.add_argument("--adjust", default="BH",
-                    choices=("BH", "BY", "holm", "hochberg", "hommel", "bonferroni", "none"),
-                    help="p-value adjustment (default: %(default)s, the false discovery rate)")
+                    choices=("BH", "BY", "e-BH", "holm", "hochberg", "hommel", "bonferroni", "none"),
+                    help="p-value adjustment (default: %(default)s, the false discovery rate for independent or "
+                         "positively dependent pixels; BY and e-BH: under any dependence, e.g. a reconstruction "
+                         "filter's or denoiser's, at a cost in power)")
     it.add_argument("--channels", choices=("luminance", "rgb"), default="luminance",
                     help="test the luminance, or each channel (default: %(default)s)")
     it.add_argument("--alternative", choices=("two-sided", "less", "greater"), default="two-sided",

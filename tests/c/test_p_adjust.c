@@ -2,7 +2,9 @@
  * test_p_adjust.c - mcstat_p_adjust against R's p.adjust (the records of
  * tests/data/p_adjust_ref.txt, made by tools/refgen/make_p_adjust_ref.R),
  * Hommel against R's O(n^2) loop transcribed here on random inputs with
- * ties, and the statuses of bad input.
+ * ties, e-BH (mcstat_e_bh and the method "e-BH") against a direct
+ * implementation of Wang & Ramdas' k* rule and hand-computed cases, and the
+ * statuses of bad input.
  * Usage: test_p_adjust PATH/TO/p_adjust_ref.txt
  */
 #include "harness.h"
@@ -193,6 +195,222 @@ static void run_hommel_random(void)
     }
 }
 
+
+/* e-BH oracles on e-values, NaN ones skipped.  ebh_reject: the rule itself,
+ * reject[i] <- whether e[i] is among the k* largest, k* = max{k : k e_(k) /
+ * m >= 1/alpha}; ebh_adjusted: min over k >= rank of m / (k e_(k)), capped
+ * at 1, by the O(m^2) definition (rank among ties: the last one). */
+static int cmp_desc(const void *a, const void *b)
+{
+    return cmp_double(b, a);
+}
+
+static size_t ebh_sorted(const double *e, size_t n, double *s)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (!isnan(e[i]))
+            s[m++] = e[i];
+    qsort(s, m, sizeof *s, cmp_desc);
+    return m;
+}
+
+static void ebh_reject(const double *e, size_t n, double alpha, int *reject)
+{
+    double *s = malloc((n ? n : 1) * sizeof *s);
+    size_t m = ebh_sorted(e, n, s), kstar = 0;
+    for (size_t k = 1; k <= m; k++)
+        if ((double)k * s[k - 1] / (double)m >= 1.0 / alpha)
+            kstar = k;
+    for (size_t i = 0; i < n; i++)
+        reject[i] = !isnan(e[i]) && kstar > 0 && e[i] >= s[kstar - 1];
+    free(s);
+}
+
+static void ebh_adjusted(const double *e, size_t n, double *adj)
+{
+    double *s = malloc((n ? n : 1) * sizeof *s);
+    size_t m = ebh_sorted(e, n, s);
+    for (size_t i = 0; i < n; i++) {
+        if (isnan(e[i])) {
+            adj[i] = e[i];
+            continue;
+        }
+        size_t r = 0; /* 1-based rank of e[i]: the last of its ties */
+        while (r < m && s[r] >= e[i])
+            r++;
+        double q = 1.0;
+        for (size_t k = r; k <= m; k++)
+            q = fmin(q, (double)m / ((double)k * s[k - 1]));
+        adj[i] = q;
+    }
+    free(s);
+}
+
+static void run_e_bh(void)
+{
+    /* by hand: m = 4, descending 20, 10, 1, 0.5: 4/(k e_(k)) = 0.2, 0.2,
+     * 4/3, 2; the minimum from each rank on, capped at 1 */
+    {
+        const double e[] = {20, 10, 1, 0.5}, want[] = {0.2, 0.2, 1, 1};
+        double got[4];
+        CHECK_INT(mcstat_e_bh(e, 4, NULL, 0, got), MCSTAT_OK);
+        for (int i = 0; i < 4; i++)
+            CHECK_REL(got[i], want[i], 1e-15, "hand 1 [%d]", i);
+    }
+    /* NaN not counted (m = 5), e = inf (0), e = 0 (1), tied 5s (5/(4*5)
+     * = 0.25 for both; 5/(3*5) = 1/3 is not the minimum from rank 3 on) */
+    {
+        const double e[] = {40, 5, 5, NAN, 0, INFINITY, -0.0};
+        const double want[] = {5.0 / 80, 0.25, 0.25, NAN, 1, 0, 1};
+        double got[7];
+        /* m = 6 with -0: redo the hand values: descending inf, 40, 5, 5, 0, 0
+         * -> 6/(2*40) = 0.075, 6/(4*5) = 0.3 */
+        const double want6[] = {0.075, 0.3, 0.3, NAN, 1, 0, 1};
+        CHECK_INT(mcstat_e_bh(e, 6, NULL, 0, got), MCSTAT_OK);
+        for (int i = 0; i < 6; i++)
+            CHECK_MSG(isnan(want[i]) ? isnan(got[i]) : fabs(got[i] - want[i]) <= 1e-15, "hand 2 [%d] %g", i, got[i]);
+        CHECK_INT(mcstat_e_bh(e, 7, NULL, 0, got), MCSTAT_OK);
+        for (int i = 0; i < 7; i++)
+            CHECK_MSG(isnan(want6[i]) ? isnan(got[i]) : fabs(got[i] - want6[i]) <= 1e-15, "hand 3 [%d] %g", i,
+                      got[i]);
+    }
+    /* m = 1: the single e-value test, min(1, 1/e); in place */
+    {
+        double e[] = {NAN, 4, NAN};
+        CHECK_INT(mcstat_e_bh(e, 3, NULL, 0, e), MCSTAT_OK);
+        CHECK(isnan(e[0]) && e[1] == 0.25 && isnan(e[2]));
+        double f[] = {0.5};
+        CHECK_INT(mcstat_e_bh(f, 1, NULL, 0, f), MCSTAT_OK);
+        CHECK(f[0] == 1.0);
+        CHECK_INT(mcstat_e_bh(NULL, 0, NULL, 0, NULL), MCSTAT_OK);
+    }
+    /* random inputs against the O(m^2) definition and the k* rule */
+    for (int rep = 0; rep < 200; rep++) {
+        size_t n = 1 + (size_t)(unif() * (rep < 150 ? 40 : 600));
+        double *e = malloc(n * sizeof *e), *want = malloc(n * sizeof *want), *got = malloc(n * sizeof *got);
+        int *rej = malloc(n * sizeof *rej);
+        int kind = rep % 4;
+        for (size_t i = 0; i < n; i++) {
+            double u = unif();
+            e[i] = 1.0 / u - 1.0; /* heavy tail, many near 0 */
+            if (kind == 1)
+                e[i] = floor(e[i] * 2) / 2; /* ties, zeros */
+            else if (kind == 2 && i % 5 == 0)
+                e[i] = i % 10 == 0 ? NAN : INFINITY;
+            else if (kind == 3)
+                e[i] *= 1e3;
+        }
+        ebh_adjusted(e, n, want);
+        CHECK_INT(mcstat_e_bh(e, n, NULL, 0, got), MCSTAT_OK);
+        for (size_t i = 0; i < n; i++) {
+            if (isnan(e[i]))
+                CHECK(isnan(got[i]));
+            else
+                CHECK_REL(got[i], want[i], 1e-13, "rep %d n %zu [%zu]", rep, n, i);
+        }
+        const double alphas[] = {0.01, 0.05, 0.1, 0.2, 0.5};
+        for (int a = 0; a < 5; a++) {
+            ebh_reject(e, n, alphas[a], rej);
+            for (size_t i = 0; i < n; i++)
+                CHECK_MSG(rej[i] == (got[i] <= alphas[a]), "rep %d alpha %g [%zu]: rule %d, adjusted %g", rep,
+                          alphas[a], i, rej[i], got[i]);
+        }
+        free(e);
+        free(want);
+        free(got);
+        free(rej);
+    }
+    /* huge m (2^21 + 3): the k* rule at several alphas, with a workspace */
+    {
+        size_t n = (1u << 21) + 3, bytes = 0;
+        double *e = malloc(n * sizeof *e), *got = malloc(n * sizeof *got);
+        int *rej = malloc(n * sizeof *rej);
+        for (size_t i = 0; i < n; i++)
+            e[i] = i % 97 == 0 ? 1e8 * unif() : 1.0 / unif() - 1.0;
+        CHECK_INT(mcstat_p_adjust_work_size(n, MCSTAT_P_ADJUST_E_BH, &bytes), MCSTAT_OK);
+        double *work = malloc(bytes);
+        CHECK_INT(mcstat_e_bh(e, n, work, bytes - 8, got), MCSTAT_EBUFSIZE);
+        CHECK_INT(mcstat_e_bh(e, n, work, bytes, got), MCSTAT_OK);
+        const double alphas[] = {0.01, 0.05, 0.3};
+        for (int a = 0; a < 3; a++) {
+            ebh_reject(e, n, alphas[a], rej);
+            size_t bad = 0, nrej = 0;
+            for (size_t i = 0; i < n; i++) {
+                bad += rej[i] != (got[i] <= alphas[a]);
+                nrej += rej[i];
+            }
+            CHECK_MSG(bad == 0, "huge m, alpha %g: %zu disagree", alphas[a], bad);
+            CHECK_MSG(nrej > 0 && nrej < n, "huge m, alpha %g: %zu rejections", alphas[a], nrej);
+        }
+        free(work);
+        free(e);
+        free(got);
+        free(rej);
+    }
+    /* the method "e-BH": e-BH on e = p^(-9/10) / 10; p = 0 -> e = inf; one
+     * p-value comes back unchanged, as in every method */
+    for (int rep = 0; rep < 50; rep++) {
+        size_t n = 2 + (size_t)(unif() * 300);
+        double *p = malloc(n * sizeof *p), *e = malloc(n * sizeof *e), *want = malloc(n * sizeof *want),
+               *got = malloc(n * sizeof *got), *by = malloc(n * sizeof *by);
+        for (size_t i = 0; i < n; i++) {
+            double u = unif();
+            p[i] = rep % 2 ? u * u * u * u * u * u : u;
+            if (i % 17 == 3)
+                p[i] = 0.0;
+            if (i % 23 == 4)
+                p[i] = 1.0;
+            if (i % 29 == 5)
+                p[i] = NAN;
+            e[i] = isnan(p[i]) ? p[i] : p[i] == 0 ? INFINITY : 0.1 * pow(p[i], -0.9);
+        }
+        ebh_adjusted(e, n, want);
+        CHECK_INT(mcstat_p_adjust(p, n, MCSTAT_P_ADJUST_E_BH, NULL, 0, got), MCSTAT_OK);
+        CHECK_INT(mcstat_p_adjust(p, n, MCSTAT_P_ADJUST_BY, NULL, 0, by), MCSTAT_OK);
+        for (size_t i = 0; i < n; i++) {
+            if (isnan(p[i])) {
+                CHECK(isnan(got[i]));
+                continue;
+            }
+            CHECK_REL(got[i], want[i], 1e-12, "p rep %d n %zu [%zu]", rep, n, i);
+            CHECK_MSG(got[i] >= p[i] && got[i] <= 1.0, "p rep %d [%zu]: %g from %g", rep, i, got[i], p[i]);
+        }
+        free(p);
+        free(e);
+        free(want);
+        free(got);
+        free(by);
+    }
+    {
+        double p[] = {NAN, 0.003};
+        double out[2];
+        CHECK_INT(mcstat_p_adjust(p, 2, MCSTAT_P_ADJUST_E_BH, NULL, 0, out), MCSTAT_OK);
+        CHECK(isnan(out[0]) && out[1] == 0.003);
+    }
+    /* names */
+    int m = -1;
+    const char *names[] = {"e-BH", "E-BH", "ebh", "e_bh", "EBH"};
+    for (int i = 0; i < 5; i++) {
+        m = -1;
+        CHECK_INT(mcstat_p_adjust_method_parse(names[i], &m), MCSTAT_OK);
+        CHECK_MSG(m == MCSTAT_P_ADJUST_E_BH, "%s parsed as %d", names[i], m);
+    }
+    CHECK(mcstat_p_adjust_method_parse("e-B", &m) == MCSTAT_EINVAL);
+    CHECK(!strcmp(mcstat_p_adjust_method_name(MCSTAT_P_ADJUST_E_BH), "e-BH"));
+    /* bad e-values: nothing written */
+    const double bad[] = {-1.0, -INFINITY, -1e-300};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        double e[3] = {1.0, bad[i], 2.0}, out[3] = {-1, -1, -1};
+        CHECK_INT(mcstat_e_bh(e, 3, NULL, 0, out), MCSTAT_EINVAL);
+        CHECK(out[0] == -1 && out[1] == -1 && out[2] == -1);
+    }
+    double e2[2] = {1.0, 2.0}, o2[2], w[8];
+    CHECK_INT(mcstat_e_bh(NULL, 2, NULL, 0, o2), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_e_bh(e2, 2, NULL, 0, NULL), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_e_bh(e2, 2, (char *)w + 1, 60, o2), MCSTAT_EINVAL);
+}
+
 static void run_bad_input(void)
 {
     double p[4] = {0.1, 0.2, 0.3, 0.4}, out[4] = {-1, -1, -1, -1};
@@ -243,7 +461,7 @@ static void run_bad_input(void)
     const double bad[] = {1.5, -0.1, INFINITY, -INFINITY, 1.0000000000000002};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         double q[4] = {0.1, 0.2, bad[i], 0.4};
-        for (int meth = 0; meth <= 6; meth++) {
+        for (int meth = 0; meth <= MCSTAT_P_ADJUST_E_BH; meth++) {
             CHECK_INT(mcstat_p_adjust(q, 4, meth, NULL, 0, out), MCSTAT_EINVAL);
             CHECK(out[0] == -1); /* nothing written */
         }
@@ -266,6 +484,7 @@ int main(int argc, char **argv)
     (void)normal; /* test_rng.h's, unused here */
     run_reference(argv[1]);
     run_hommel_random();
+    run_e_bh();
     run_bad_input();
     return h_report("test_p_adjust");
 }

@@ -53,6 +53,21 @@ __all__ = [
 # Rec. 709 / sRGB primaries, linear light.
 LUMINANCE_WEIGHTS = (0.2126, 0.7152, 0.0722)
 
+# What each adjustment's guarantee assumes of the dependence among the
+# pixels' tests.  Reconstruction filters and denoisers correlate neighbouring
+# pixels: BH's positive-dependence condition (PRDS) is plausible there but
+# not guaranteed; BY and e-BH hold whatever the dependence.
+_ASSUMES = {
+    "BH": "independent or positively dependent (PRDS) tests",
+    "BY": "nothing about the dependence (any dependence)",
+    "e-BH": "nothing about the dependence (any dependence)",
+    "holm": "nothing about the dependence (any dependence)",
+    "bonferroni": "nothing about the dependence (any dependence)",
+    "hochberg": "independent or positively dependent (PRDS) tests",
+    "hommel": "independent or positively dependent (PRDS) tests",
+    "none": "nothing (no family-wise statement)",
+}
+
 COLOR_KEY = {
     "greater": (230, 40, 40),
     "less": (40, 90, 230),
@@ -318,7 +333,7 @@ class ImageComparison:
         p = self.pvalue
         raw = int(np.count_nonzero(p <= self.alpha))
         adj = int(np.count_nonzero(self.padjusted <= self.alpha))
-        fdr = self.method in ("BH", "BY")
+        fdr = self.method in ("BH", "BY", "e-BH")
         pd = self.pixel_decision()
         h, w, c = self.shape
         out = {
@@ -328,6 +343,7 @@ class ImageComparison:
             "adjustment": self.method,
             "controls": "false discovery rate" if fdr else (
                 "family-wise error rate" if self.method != "none" else "nothing (per-test level)"),
+            "assumes": _ASSUMES.get(self.method, "valid p-values"),
             "pixels": h * w,
             "tests": h * w * c,
             "tested": m,
@@ -383,7 +399,7 @@ class ImageComparison:
             f"image:  {w} x {h}, channels {', '.join(s['image']['channels'])}: {s['tests']} tests, "
             f"{s['tested']} tested, {s['not_tested']} not tested",
             f"alternative: {s['alternative']}, alpha = {s['alpha']:g}, adjustment: {s['adjustment']} "
-            f"(controls the {s['controls']})",
+            f"(controls the {s['controls']}; assumes {s['assumes']})",
             f"rejections at alpha without adjustment: {s['rejections_unadjusted']} "
             f"(about {s['expected_false_rejections_unadjusted_if_all_null']:.0f} expected if no pixel differed)",
             f"rejections after adjustment: {s['rejections_adjusted']} "
@@ -416,7 +432,11 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
             nan_policy: str = "raise") -> ImageComparison:
     """Welch's test per pixel (and channel) of candidate against reference,
     p-values adjusted together by `method` (``mcstat.p_adjust``'s names;
-    BH controls the false discovery rate at `alpha`).
+    BH controls the false discovery rate at `alpha` for independent or
+    positively dependent tests; BY and ``"e-BH"`` under any dependence,
+    such as the correlation a reconstruction filter or denoiser puts
+    between neighbouring pixels, at a cost in power: BY is the more
+    powerful of the two).
 
     `reference`, `candidate`: `Samples`, `Summary`, a ``MomentsArray`` or an
     array ``(seeds, H, W[, C])`` of per-seed renders.  `seed_axis` says

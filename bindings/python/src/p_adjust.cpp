@@ -48,7 +48,8 @@ void register_p_adjust(py::module_ &mod)
             int m = 0;
             if (method.find('\0') != std::string::npos || mcstat_p_adjust_method_parse(method.c_str(), &m))
                 throw_invalid("method must be one of 'holm', 'hochberg', 'hommel', 'bonferroni', 'BH' "
-                              "('fdr'), 'BY' or 'none' (R's names), or statsmodels' names for these: "
+                              "('fdr'), 'BY' or 'none' (R's names), 'e-BH' ('ebh', 'e_bh'), or statsmodels' "
+                              "names for these: "
                               "'h', 'sh' ('simes-hochberg'), 'ho', 'b' ('bonf'), 'fdr_bh' ('fdr_i', 'fdr_p'), "
                               "'fdr_by' ('fdr_n', 'fdr_c', 'fdrcorr'); case is ignored; got " +
                               repr(py::str(method).ptr()) + unsupported_note(method));
@@ -92,8 +93,12 @@ p : array_like
 method : str, optional
     ``"holm"`` (default), ``"hochberg"``, ``"hommel"``, ``"bonferroni"``
     (family-wise error rate), ``"BH"`` (also ``"fdr"``:
-    Benjamini-Hochberg false discovery rate), ``"BY"`` (Benjamini-Yekutieli,
-    FDR under any dependence) or ``"none"``: R's names.  statsmodels'
+    Benjamini-Hochberg false discovery rate, for independent or positively
+    dependent tests), ``"BY"`` (Benjamini-Yekutieli, FDR under any
+    dependence) or ``"none"``: R's names; ``"e-BH"`` (also ``"ebh"``,
+    ``"e_bh"``): `e_bh` on the e-values ``p ** -0.9 / 10`` (a calibrator:
+    FDR under any dependence, like BY, and less powerful than BY on the
+    same p-values; one p-value comes back unchanged, as in every method).  statsmodels'
     ``multipletests`` names for the same methods are accepted too:
     ``"h"`` (Holm), ``"sh"``/``"simes-hochberg"``, ``"ho"`` (Hommel),
     ``"b"``/``"bonf"``, ``"fdr_bh"`` (``"fdr_i"``, ``"fdr_p"``, ``"fdri"``,
@@ -113,6 +118,66 @@ InvalidArgumentError
     An unknown method, or a p-value outside [0, 1] (infinities included).
 OutOfMemoryError
     No memory for the workspace (32 bytes per p-value; 40 for Hommel).)doc");
+    mod.def(
+        "e_bh",
+        [](py::handle e) {
+            if (e.is_none())
+                throw py::type_error("e_bh() needs an array of e-values, not None");
+            py::array a = as_float_array(e, "e");
+            py::array_t<double> out(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
+            py::module_::import("numpy").attr("copyto")(out, a);
+            size_t n = static_cast<size_t>(out.size());
+            double *d = out.mutable_data();
+            size_t bytes = 0;
+            int st = mcstat_p_adjust_work_size(n, MCSTAT_P_ADJUST_E_BH, &bytes);
+            if (st)
+                throw_status(st);
+            std::unique_ptr<double[]> work(new double[bytes / sizeof(double) + 1]);
+            {
+                py::gil_scoped_release nogil;
+                st = mcstat_e_bh(d, n, work.get(), bytes, d);
+            }
+            if (st == MCSTAT_EINVAL) {
+                size_t k = 0;
+                while (k < n && (std::isnan(d[k]) || d[k] >= 0.0))
+                    k++;
+                throw_invalid("e-values must be >= 0 (inf allowed; NaN marks a missing one), got " +
+                              (k < n ? repr(py::float_(d[k]).ptr()) : std::string("?")) + " at flat index " +
+                              std::to_string(k));
+            }
+            if (st)
+                throw_status(st);
+            return out;
+        },
+        py::arg("e"),
+        R"doc(e-BH (Wang & Ramdas 2022): false discovery rate control from e-values,
+valid under any dependence among them.
+
+With the e-values sorted, e_(1) >= ... >= e_(m), e-BH at level alpha
+rejects the k* largest, k* = max{k : k e_(k) / m >= 1 / alpha}.  The
+values returned make that one comparison at every alpha: reject where
+the result is <= alpha (min over k >= the rank of m / (k e_(k)), capped
+at 1).
+
+Parameters
+----------
+e : array_like
+    e-values in [0, inf] (non-negative, expectation <= 1 under their
+    null), any shape; all of them form one family.  NaN marks a missing
+    one: it stays NaN and is not counted.
+
+Returns
+-------
+ndarray
+    float64, the shape of `e`.  A single e-value gives min(1, 1/e).
+
+Raises
+------
+InvalidArgumentError
+    A negative e-value.
+
+See also ``p_adjust(p, method="e-BH")``, which calibrates p-values into
+e-values first.)doc");
 }
 
 } // namespace mcs

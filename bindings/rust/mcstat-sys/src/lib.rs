@@ -413,6 +413,7 @@ pub const MCSTAT_P_ADJUST_HOCHBERG: c_int = 3;
 pub const MCSTAT_P_ADJUST_HOMMEL: c_int = 4;
 pub const MCSTAT_P_ADJUST_BH: c_int = 5;
 pub const MCSTAT_P_ADJUST_BY: c_int = 6;
+pub const MCSTAT_P_ADJUST_E_BH: c_int = 7;
 
 // ============================================================================
 // 7. Power and sample size (experimental).
@@ -1077,6 +1078,7 @@ extern "C" {
         work_bytes: usize,
         adjusted: *mut f64,
     ) -> c_int;
+    pub fn mcstat_e_bh(e: *const f64, n: usize, work: *mut c_void, work_bytes: usize, adjusted: *mut f64) -> c_int;
 
     // ---- 6. equivalence ------------------------------------------------------
     pub fn mcstat_equivalence_test_1(

@@ -49,7 +49,7 @@ pub use diag::{diagnose, DiagOptions, Diagnostics};
 pub use gof::{battery_test, battery_test_p_values, binom_test, gof_chisq_test, GofOptions};
 pub use ks::{ks_test_2, KsCache, KsOptions};
 pub use moments::{efficiency_test, t_test_1_moments, t_test_2_moments, t_test_2_pooled_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
-pub use p_adjust::{p_adjust, PAdjustMethod};
+pub use p_adjust::{e_bh, p_adjust, PAdjustMethod};
 pub use power::{Power, PowerSolution, PowerTest};
 pub use rows::{Matrix, RowFlags, RowResults, Statuses};
 pub use seq::{SeqHold, SeqKind, SeqOptions, SeqOutcome, SequentialTest};

@@ -21,6 +21,9 @@ pub enum PAdjustMethod {
     BH,
     /// Benjamini-Yekutieli (FDR, any dependence).
     BY,
+    /// e-BH on the e-values p^(-9/10) / 10 (FDR, any dependence; less
+    /// powerful than BY on the same p-values): see [`e_bh`].
+    EBH,
 }
 
 impl PAdjustMethod {
@@ -33,9 +36,10 @@ impl PAdjustMethod {
             PAdjustMethod::Hommel => sys::MCSTAT_P_ADJUST_HOMMEL,
             PAdjustMethod::BH => sys::MCSTAT_P_ADJUST_BH,
             PAdjustMethod::BY => sys::MCSTAT_P_ADJUST_BY,
+            PAdjustMethod::EBH => sys::MCSTAT_P_ADJUST_E_BH,
         }
     }
-    pub const ALL: [PAdjustMethod; 7] = [
+    pub const ALL: [PAdjustMethod; 8] = [
         PAdjustMethod::None,
         PAdjustMethod::Bonferroni,
         PAdjustMethod::Holm,
@@ -43,6 +47,7 @@ impl PAdjustMethod {
         PAdjustMethod::Hommel,
         PAdjustMethod::BH,
         PAdjustMethod::BY,
+        PAdjustMethod::EBH,
     ];
     /// Bytes of scratch the adjustment of n p-values needs (0 for none and
     /// bonferroni).  TooBig when it does not fit in a usize.
@@ -54,7 +59,8 @@ impl PAdjustMethod {
 }
 
 impl fmt::Display for PAdjustMethod {
-    /// R's name: "none", "bonferroni", "holm", "hochberg", "hommel", "BH", "BY".
+    /// R's name: "none", "bonferroni", "holm", "hochberg", "hommel", "BH", "BY";
+    /// and "e-BH".
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(static_str(unsafe { sys::mcstat_p_adjust_method_name(self.raw()) }).unwrap_or("?"))
     }
@@ -62,7 +68,7 @@ impl fmt::Display for PAdjustMethod {
 
 impl std::str::FromStr for PAdjustMethod {
     type Err = Error;
-    /// R's names (also "bh", "fdr", "by").
+    /// R's names (also "bh", "fdr", "by"), "e-BH" ("ebh", "e_bh").
     fn from_str(s: &str) -> Result<PAdjustMethod> {
         let c = c_name(s)?;
         let mut v: c_int = -1;
@@ -116,4 +122,19 @@ pub fn p_adjust_in_place(p: &mut [f64], method: PAdjustMethod, work: &mut Worksp
     let data = p.as_mut_ptr();
     // in place: libmcstat allows adjusted == p
     check(unsafe { sys::mcstat_p_adjust(data, p.len(), method.raw(), ptr, size, data) })
+}
+
+/// e-BH (Wang & Ramdas 2022) on e-values (each in [0, inf] or NaN;
+/// InvalidArgument for a negative one): FDR control under any dependence.
+/// Reject where the value returned is <= alpha; NaN entries stay NaN and
+/// are not counted; a single e-value gives min(1, 1/e).
+pub fn e_bh(e: &[f64]) -> Result<Vec<f64>> {
+    let mut out = e.to_vec();
+    let bytes = PAdjustMethod::EBH.work_size(e.len())?;
+    let mut work = Workspace::new();
+    let (ptr, size) = work.reserve(bytes);
+    let data = out.as_mut_ptr();
+    // in place: libmcstat allows adjusted == e
+    check(unsafe { sys::mcstat_e_bh(data, out.len(), ptr, size, data) })?;
+    Ok(out)
 }

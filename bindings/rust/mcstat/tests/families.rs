@@ -443,6 +443,34 @@ fn p_adjust_against_r() {
     assert_eq!(bad, vec![0.1, 1.5]); // nothing written
 }
 
+#[test]
+fn e_bh_hand_values_and_method() {
+    // descending 20, 10, 1, 0.5 with m = 4: 4/(k e_(k)) = 0.2, 0.2, 4/3, 2,
+    // the minimum from each rank on, capped at 1
+    let got = mcstat::e_bh(&[20.0, 10.0, 1.0, 0.5]).unwrap();
+    let want = [0.2, 0.2, 1.0, 1.0];
+    for k in 0..4 {
+        assert!(rel_err(got[k], want[k]) <= 1e-15, "[{k}] {}", got[k]);
+    }
+    // m = 3 (NaN not counted), descending inf, 4, 0: 3/(2*4) = 0.375 for the 4
+    let got = mcstat::e_bh(&[f64::NAN, 4.0, f64::INFINITY, 0.0]).unwrap();
+    assert!(got[0].is_nan() && rel_err(got[1], 0.375) <= 1e-15 && got[2] == 0.0 && got[3] == 1.0);
+    assert_eq!(mcstat::e_bh(&[1.0, -1.0]).unwrap_err().kind(), ErrorKind::InvalidArgument);
+    assert!(mcstat::e_bh(&[]).unwrap().is_empty());
+    // the method: e-BH on e = p^(-9/10) / 10
+    let m: PAdjustMethod = "e-BH".parse().unwrap();
+    assert_eq!(m, PAdjustMethod::EBH);
+    assert_eq!("ebh".parse::<PAdjustMethod>().unwrap(), PAdjustMethod::EBH);
+    assert_eq!(m.to_string(), "e-BH");
+    let p: [f64; 4] = [0.001, 0.02, 0.3, 0.0];
+    let e: Vec<f64> = p.iter().map(|&v| if v > 0.0 { 0.1 * v.powf(-0.9) } else { f64::INFINITY }).collect();
+    let via_e = mcstat::e_bh(&e).unwrap();
+    let got = p_adjust(&p, m).unwrap();
+    for k in 0..4 {
+        assert!(rel_err(got[k], via_e[k]) <= 1e-12 || got[k] == via_e[k], "[{k}] {} {}", got[k], via_e[k]);
+    }
+}
+
 // ---- power --------------------------------------------------------------------
 
 #[test]
