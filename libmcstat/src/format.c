@@ -77,6 +77,27 @@ static void sb_wrapped(sbuf *s, const char *line)
     sb_puts(s, "\n");
 }
 
+static const char *const DF_NAME[] = {"df"};
+
+/* "t = -2.3376, df = 18.466, p-value = 0.03084" (print.htest: the statistic
+ * and parameters at 5 digits, the p-value through format.pval at 4),
+ * wrapped like strwrap. */
+static void sb_stat_line(sbuf *s, const char *stat_name, double stat, const char *const *par_names,
+                         const double *pars, int n_par, double p)
+{
+    char a[64], line[512];
+    size_t ll = 0;
+    mcstat__rformat1(stat, R_DIGITS - 2, a, sizeof a);
+    ll += (size_t)snprintf(line + ll, sizeof line - ll, "%s = %s", stat_name, a);
+    for (int k = 0; k < n_par; k++) {
+        mcstat__rformat1(pars[k], R_DIGITS - 2, a, sizeof a);
+        ll += (size_t)snprintf(line + ll, sizeof line - ll, ", %s = %s", par_names[k], a);
+    }
+    mcstat__rformat_pval(p, R_DIGITS - 3, a, sizeof a);
+    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
+    sb_wrapped(s, line);
+}
+
 /* print() of a named vector: each column right-justified to the wider of
  * its name and the values' common width (R's format), one space after. */
 static void sb_named(sbuf *s, const char *const *names, const double *v, int n)
@@ -173,20 +194,13 @@ static void format_chisq(const mcstat_result *r, const char *x_name, sbuf *s)
     sb_printf(s, "\n\tChi-squared test for given probabilities\n\n");
     sb_printf(s, "data:  %s\n", x_name);
     char a[64], b[64], line[512];
-    size_t ll = 0;
-    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
-    ll += (size_t)snprintf(line + ll, sizeof line - ll, "X-squared = %s", a);
-    mcstat__rformat1(r->df[0], R_DIGITS - 2, a, sizeof a);
-    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", df = %s", a);
-    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
-    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
-    sb_wrapped(s, line);
+    sb_stat_line(s, "X-squared", r->statistic, DF_NAME, r->df, 1, r->p_value);
     double given = r->chisq_cells_given;
     int cells = r->chisq_cells, est = r->chisq_n_estimated;
     if ((double)cells != given || est > 0) {
         mcstat__rformat1(r->chisq_pool_below, R_DIGITS, a, sizeof a);
         mcstat__rformat1(r->chisq_min_expected, 4, b, sizeof b);
-        ll = (size_t)snprintf(line, sizeof line, "cells: %.0f given, %d after pooling expected counts below %s "
+        size_t ll = (size_t)snprintf(line, sizeof line, "cells: %.0f given, %d after pooling expected counts below %s "
                               "(smallest expected count %s)", given, cells, a, b);
         if (est > 0)
             snprintf(line + ll, sizeof line - ll, "; %d estimated parameter%s", est, est == 1 ? "" : "s");
@@ -209,25 +223,15 @@ static void format_equiv(const mcstat_result *r, const char *x_name, const char 
         sb_printf(s, "data:  %s and %s\n", x_name, y_name);
     else
         sb_printf(s, "data:  %s\n", x_name);
-    size_t ll = 0;
-    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
-    ll += (size_t)snprintf(line + ll, sizeof line - ll, "t = %s", a);
-    mcstat__rformat1(r->df[0], R_DIGITS - 2, a, sizeof a);
-    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", df = %s", a);
-    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
-    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
-    sb_wrapped(s, line);
+    sb_stat_line(s, "t", r->statistic, DF_NAME, r->df, 1, r->p_value);
     static const char *side[] = {"lower", "upper"};
     for (int k = 0; k < 2; k++) {
         double t = k ? r->tost_t_upper : r->tost_t_lower;
         double p = k ? r->tost_p_upper : r->tost_p_lower;
         double bound = k ? r->tost_upper : r->tost_lower;
         mcstat__rformat1(bound, R_DIGITS, b, sizeof b);
-        mcstat__rformat1(t, R_DIGITS - 2, a, sizeof a);
-        ll = (size_t)snprintf(line, sizeof line, "%s bound %s: t = %s", side[k], b, a);
-        mcstat__rformat_pval(p, R_DIGITS - 3, a, sizeof a);
-        snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
-        sb_wrapped(s, line);
+        snprintf(line, sizeof line, "%s bound %s: t", side[k], b);
+        sb_stat_line(s, line, t, NULL, NULL, 0, p);
     }
     mcstat__rformat1(r->tost_lower, R_DIGITS, a, sizeof a);
     mcstat__rformat1(r->tost_upper, R_DIGITS, b, sizeof b);
@@ -256,14 +260,7 @@ static void format_eff(const mcstat_result *r, const char *x_name, const char *y
     char a[64], b[64], line[512];
     sb_puts(s, "\n\tEfficiency ratio test (delta method)\n\n");
     sb_printf(s, "data:  %s and %s\n", x_name, y_name);
-    size_t ll = 0;
-    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
-    ll += (size_t)snprintf(line + ll, sizeof line - ll, "t = %s", a);
-    mcstat__rformat1(r->df[0], R_DIGITS - 2, a, sizeof a);
-    ll += (size_t)snprintf(line + ll, sizeof line - ll, ", df = %s", a);
-    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
-    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
-    sb_wrapped(s, line);
+    sb_stat_line(s, "t", r->statistic, DF_NAME, r->df, 1, r->p_value);
     snprintf(line, sizeof line, "timed batches: %ld of %s, %ld of %s", (long)r->eff_batches_x, x_name,
              (long)r->eff_batches_y, y_name);
     sb_wrapped(s, line);
@@ -421,19 +418,10 @@ int mcstat_result_format(const mcstat_result *r, const char *x_name, const char 
     else
         sb_printf(&s, "data:  %s\n", x_name);
 
-    /* "t = -2.3376, df = 18.466, p-value = 0.03084", wrapped like strwrap */
-    char line[512];
-    size_t ll = 0;
-    mcstat__rformat1(r->statistic, R_DIGITS - 2, a, sizeof a);
-    ll += (size_t)snprintf(line + ll, sizeof line - ll, "%s = %s", tt.stat_name, a);
-    for (int k = 0; k < 2 && tt.param_name[k]; k++) {
-        double par = r->test == MCSTAT_TEST_BINOM ? (double)r->n[0] : r->df[k];
-        mcstat__rformat1(par, R_DIGITS - 2, a, sizeof a);
-        ll += (size_t)snprintf(line + ll, sizeof line - ll, ", %s = %s", tt.param_name[k], a);
-    }
-    mcstat__rformat_pval(r->p_value, R_DIGITS - 3, a, sizeof a);
-    snprintf(line + ll, sizeof line - ll, ", p-value %s%s", a[0] == '<' ? "" : "= ", a);
-    sb_wrapped(&s, line);
+    double pars[2] = {r->df[0], r->df[1]}; /* R's binom.test: its parameter is n, not a df */
+    if (r->test == MCSTAT_TEST_BINOM)
+        pars[0] = (double)r->n[0];
+    sb_stat_line(&s, tt.stat_name, r->statistic, tt.param_name, pars, tt.param_name[1] ? 2 : 1, r->p_value);
 
     static const char *alt_text[] = {"not equal to", "less than", "greater than"};
     mcstat__rformat1(r->null_value, R_DIGITS, a, sizeof a);

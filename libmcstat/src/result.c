@@ -95,6 +95,7 @@ int mcstat_result_log_p_value(const mcstat_result *r, double *log_p)
     case MCSTAT_TEST_T_2:
     case MCSTAT_TEST_T_2_POOLED:
     case MCSTAT_TEST_T_PAIRED:
+    case MCSTAT_TEST_EFFICIENCY: /* a t on Satterthwaite's df, like Welch's */
         if (isnan(r->statistic) || !valid_df(r->df[0]))
             return MCSTAT_EINVAL;
         if ((st = mcstat__t_tails(r->statistic, r->df[0], &t)))
@@ -113,13 +114,6 @@ int mcstat_result_log_p_value(const mcstat_result *r, double *log_p)
         if (isnan(r->statistic) || !valid_df(r->df[0]) || !valid_df(r->df[1]))
             return MCSTAT_EINVAL;
         if ((st = mcstat__f_tails(r->statistic, r->df[0], r->df[1], &t)))
-            return st;
-        lp = log_p_of(&t, r->alternative);
-        break;
-    case MCSTAT_TEST_EFFICIENCY: /* a t on Satterthwaite's df, like Welch's */
-        if (isnan(r->statistic) || !valid_df(r->df[0]))
-            return MCSTAT_EINVAL;
-        if ((st = mcstat__t_tails(r->statistic, r->df[0], &t)))
             return st;
         lp = log_p_of(&t, r->alternative);
         break;
