@@ -475,6 +475,75 @@ static void run_bad_input(void)
     CHECK(out[0] == 0 && out[2] == 0 && out[1] == 0.5);
 }
 
+/* BH and Holm by the textbook: qsort of (p, index), then the step-up /
+ * step-down loops, with fmin/fmax. */
+typedef struct {
+    double p;
+    size_t i;
+} pi_pair;
+
+static int cmp_pair(const void *x, const void *y)
+{
+    double a = ((const pi_pair *)x)->p, b = ((const pi_pair *)y)->p;
+    return (a > b) - (a < b);
+}
+
+static void adjust_by_qsort(const double *p, size_t n, int holm, double *adj)
+{
+    pi_pair *s = malloc(n * sizeof *s);
+    for (size_t k = 0; k < n; k++)
+        s[k] = (pi_pair){p[k], k};
+    qsort(s, n, sizeof *s, cmp_pair);
+    double nd = (double)n, run = holm ? 0.0 : INFINITY;
+    if (holm) {
+        for (size_t i = 0; i < n; i++) {
+            run = fmax(run, (nd - (double)i) * s[i].p);
+            adj[s[i].i] = fmin(1.0, run);
+        }
+    } else {
+        for (size_t i = n; i-- > 0;) {
+            run = fmin(run, nd / (double)(i + 1) * s[i].p);
+            adj[s[i].i] = fmin(1.0, run);
+        }
+    }
+    free(s);
+}
+
+/* Large inputs whose values the sort's distribution passes handle each
+ * way: uniform (a few per bucket), clustered (a crowded bucket: radix),
+ * few distinct values (a bucket that does not spread), a geometric spread
+ * (one value per octave), and one huge outlier among tiny values. */
+static void run_large_shapes(void)
+{
+    const size_t n = 60000;
+    double *p = malloc(n * sizeof *p), *got = malloc(n * sizeof *got), *want = malloc(n * sizeof *want);
+    for (int shape = 0; shape < 5; shape++) {
+        for (size_t k = 0; k < n; k++) {
+            double u = unif();
+            switch (shape) {
+            case 0: p[k] = u; break;
+            case 1: p[k] = k % 3 ? u : 0.25 + 1e-12 * u; break;
+            case 2: p[k] = (double)(k % 4) / 8.0; break;
+            case 3: p[k] = ldexp(1.0 + u, -1 - (int)(k % 900)); break;
+            default: p[k] = k == n / 2 ? 1.0 : 1e-300 * (1.0 + u); break;
+            }
+        }
+        for (int holm = 0; holm < 2; holm++) {
+            adjust_by_qsort(p, n, holm, want);
+            CHECK_INT(mcstat_p_adjust(p, n, holm ? MCSTAT_P_ADJUST_HOLM : MCSTAT_P_ADJUST_BH, NULL, 0, got),
+                      MCSTAT_OK);
+            size_t bad = 0;
+            for (size_t k = 0; k < n; k++)
+                bad += got[k] != want[k];
+            CHECK_MSG(bad == 0, "shape %d %s: %zu of %zu adjusted values differ from qsort's", shape,
+                      holm ? "holm" : "BH", bad, n);
+        }
+    }
+    free(p);
+    free(got);
+    free(want);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -485,6 +554,7 @@ int main(int argc, char **argv)
     run_reference(argv[1]);
     run_hommel_random();
     run_e_bh();
+    run_large_shapes();
     run_bad_input();
     return h_report("test_p_adjust");
 }
