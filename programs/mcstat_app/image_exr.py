@@ -66,7 +66,7 @@ The ASWF ``OpenEXR`` package reads the files; without it a
 from __future__ import annotations
 
 import re
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Dict, Iterable, List, Optional, Tuple
 
 import numpy as np
 
@@ -132,7 +132,7 @@ def kind_of(path: str) -> str:
     return "images"
 
 
-def _sorted_channels(names: Sequence[str]) -> List[str]:
+def _sorted_channels(names: Iterable[str]) -> List[str]:
     return sorted(names, key=lambda c: (_ORDER.index(c) if c in _ORDER else len(_ORDER), c))
 
 

@@ -554,13 +554,13 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
 def _variance_lost(ref: Side, cand: Side) -> Tuple[Optional[np.ndarray], List[str]]:
     """The tests that a side's `Summary.unreliable` marks (not tested), and
     the note counting them."""
-    masks = [s for s in (ref, cand) if isinstance(s, Summary) and s.unreliable is not None]
-    if not masks:
+    sides = [s for s in (ref, cand) if isinstance(s, Summary) and s.unreliable is not None]
+    if not sides:
         return None, []
     lost = np.zeros(ref.shape, dtype=bool)
-    for s in masks:
-        lost |= np.broadcast_to(s.unreliable, ref.shape)
-    notes = sorted({s.unreliable_note for s in masks})
+    for s in sides:
+        lost |= np.broadcast_to(np.asarray(s.unreliable, dtype=bool), ref.shape)
+    notes = sorted({s.unreliable_note for s in sides})
     k = int(lost.sum())
     what = f"{k} pixels" if ref.shape[-1] == 1 else f"{k} tests (pixel channels)"
     return lost, ([f"{what}: {'; '.join(notes)}; not tested"] if k else [])
