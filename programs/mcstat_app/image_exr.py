@@ -55,7 +55,8 @@ or Y or else by name.
 them as the variance information the denoiser needs, not whether they are
 the variance of the samples or of the pixel's estimate, with which
 normalisation (n or n - 1) and filter weights, and the file holds no
-sample count.  Blender Cycles (3.0 and later) writes no variance pass; its
+sample count (the same holds for the ``Denoising Variance`` pass of
+Cycles 2.8x).  Blender Cycles (3.0 and later) writes no variance pass; its
 ``Debug Sample Count`` pass (adaptive sampling) holds each pixel's sample
 count (as a fraction of the maximum) but no second moment.  Render one
 image per seed instead (or several seeds' layers in one EXR).
@@ -121,10 +122,10 @@ def kind_of(path: str) -> str:
     low = [n.lower() for n in names]
     if any("variance" in n for n in low):
         raise ImageInputError(
-            f"{path}: variance AOVs ({', '.join(n for n in names if 'variance' in n.lower())}): Arnold's variance "
-            "filter output does not document whether it is the variance of the samples or of the pixel's estimate, "
-            "its normalisation or filter weights, and the file holds no sample count; render one image per seed "
-            "instead")
+            f"{path}: variance AOVs ({', '.join(n for n in names if 'variance' in n.lower())}): neither Arnold's "
+            "variance filter nor Cycles' former (2.8x) 'Denoising Variance' pass documents whether it is the "
+            "variance of the samples or of the pixel's estimate, its normalisation or filter weights, and the "
+            "file holds no sample count; render one image per seed instead")
     if any("sample count" in n for n in low):
         raise ImageInputError(
             f"{path}: a sample-count pass without a second moment (Cycles writes no variance pass) gives no "
