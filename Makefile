@@ -120,7 +120,7 @@ go-test: install-test go-deps
 
 # Mitsuba 3 from PyPI (examples/mitsuba/requirements.txt).  Only when pip
 # cannot install the wheel do the tests skip, and they say pip's reason.
-mitsuba-test: install-test python-deps
+mitsuba-test: install-test python
 	@if $(PY) -m pip install -q -r examples/mitsuba/requirements.txt > $(BUILD)/mitsuba-pip.log 2>&1; then \
 	  MCSTAT_LIBDIR=$(STAGE)/lib $(PY) -m pytest -q -p no:cacheprovider examples/mitsuba; \
 	else \

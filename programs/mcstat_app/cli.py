@@ -104,7 +104,7 @@ def _image_test(a: argparse.Namespace) -> int:
 
     res = run(a.reference, a.candidate, png=a.png, json_path=a.json, worst=a.worst, alpha=a.alpha,
               method=a.adjust, alternative=a.alternative, channels=a.channels, seed_axis=a.seed_axis,
-              nan_policy=a.nan)
+              nan_policy=a.nan, spp=a.spp)
     if not a.quiet:
         sys.stdout.write(res.text(a.worst))
         if a.png:
@@ -124,7 +124,12 @@ def _add_image_test(sub) -> None:
                     "discoveries). Writes a significance map (PNG) and a summary (text, JSON). Inputs per side: "
                     "one .npy stack (seeds, H, W[, C]); or one image per seed (.exr, .pfm, .npy); or one .npz of "
                     "per-pixel summaries n, mean, M2 (or var); or one .npz of per-pixel accumulators (key moments: "
-                    "mcstat.image.save_moments of a merged MomentsArray).")
+                    "mcstat.image.save_moments of a merged MomentsArray); or one .exr of Mitsuba 3's moment "
+                    "integrator (channels P.X.. and m2_P.X..; needs --spp and a box reconstruction filter: "
+                    "with another filter the moments are weighted over samples shared between pixels and the "
+                    "test is not valid); or one .exr with one layer per seed (seed0.R, seed0.G, ..., "
+                    "seed1.R, ...). Pixels whose variance m2 - m1^2 is lost to float32 rounding are not "
+                    "tested and counted. Arnold's variance AOVs and Cycles' sample-count pass are refused.")
     it.add_argument("-r", "--reference", nargs="+", required=True, metavar="FILE", help="the reference's input")
     it.add_argument("-c", "--candidate", nargs="+", required=True, metavar="FILE", help="the candidate's input")
     it.add_argument("--png", metavar="FILE", default=None, help="write the significance map here")
@@ -142,6 +147,8 @@ def _add_image_test(sub) -> None:
     it.add_argument("--seed-axis", type=int, default=None,
                     help="the seeds axis of a .npy stack, -1 for (H, W, seeds) (default: from the shapes; "
                          "an ambiguous stack is refused)")
+    it.add_argument("--spp", type=int, nargs="+", default=None, metavar="N",
+                    help="samples per pixel of a Mitsuba moment EXR: N (both sides) or REF CAND")
     it.add_argument("--nan", choices=("raise", "omit"), default="raise",
                     help="NaN values: an error, or left out of their pixel's sample (default: %(default)s)")
     it.add_argument("--worst", type=int, default=10, help="list this many smallest p-values (default: 10)")

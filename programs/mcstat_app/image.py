@@ -19,7 +19,13 @@ Inputs, per side (`load_side`):
 - one ``.npz`` of per-pixel accumulators (a render farm's merged
   ``mcstat.MomentsArray``, written by ``mcstat.image.save_moments``): the
   key ``moments``, a ``uint8`` array ``(H, W[, C], 96)`` of libmcstat's
-  96-byte records, each checked (magic, version, checksum) when read.
+  96-byte records, each checked (magic, version, checksum) when read;
+- one ``.exr`` holding a renderer's own per-pixel output, told apart by
+  its channel names (`mcstat_app.image_exr`): Mitsuba 3's ``moment``
+  integrator (``P.X`` ... and ``m2_P.X`` ...; the samples per pixel from
+  ``spp``, a box reconstruction filter required), or several seeds as
+  layers ``seed0.R``, ``seed0.G``, ... ``seed1.R`` ...; Arnold's variance
+  AOVs and Cycles' sample-count pass are refused with the reason.
 
 Each input kind is one reader function in ``_READERS`` returning
 `Samples` or `Summary`.  The significance map's colours are
@@ -50,6 +56,7 @@ from mcstat.image import (
 )
 from mcstat.image import compare as _compare
 
+from . import image_exr
 from .errors import MissingPackageError, OutputError, require
 
 __all__ = ["load_side", "read_image", "compare", "map_rgb", "write_map", "run", "ImageInputError",
@@ -200,10 +207,12 @@ def _read_summary_npz(path: str) -> Summary:
 # Input kinds: a reader per kind, given the side's paths.  A new kind (e.g.
 # serialized per-pixel accumulators) is one function returning Samples or
 # Summary, and one entry here.
-_READERS: Dict[str, Callable[[Sequence[str], Optional[int]], Side]] = {
-    "stack": lambda paths, seed_axis: _read_stack_npy(paths[0], seed_axis),
-    "summary": lambda paths, seed_axis: _read_summary_npz(paths[0]),
-    "images": lambda paths, seed_axis: _stack_images(paths),
+_READERS: Dict[str, Callable[..., Side]] = {
+    "stack": lambda paths, seed_axis, **_: _read_stack_npy(paths[0], seed_axis),
+    "summary": lambda paths, seed_axis, **_: _read_summary_npz(paths[0]),
+    "images": lambda paths, seed_axis, **_: _stack_images(paths),
+    "exr-moment": lambda paths, seed_axis, spp=None, **_: image_exr.read_moment(paths[0], spp),
+    "exr-seeds": lambda paths, seed_axis, **_: image_exr.read_seed_layers(paths[0]),
 }
 
 
@@ -226,34 +235,41 @@ def _kind_of(paths: Sequence[str]) -> str:
         return "summary"
     if len(paths) == 1 and ext == ".npy":
         return "stack"
+    if len(paths) == 1 and ext == ".exr":
+        return image_exr.kind_of(paths[0])  # a renderer's moments or several seeds' layers, by channel names
     return "images"
 
 
-def load_side(paths: Union[str, Sequence[str]], *, seed_axis: Optional[int] = None) -> Side:
-    """Reads one side of a comparison (see the module's doc for the inputs)."""
+def load_side(paths: Union[str, Sequence[str]], *, seed_axis: Optional[int] = None,
+              spp: Optional[int] = None) -> Side:
+    """Reads one side of a comparison (see the module's doc for the inputs);
+    `spp`: the samples per pixel of a Mitsuba moment EXR."""
     if isinstance(paths, (str, os.PathLike)):
         paths = [os.fspath(paths)]
     paths = [os.fspath(p) for p in paths]
     kind = _kind_of(paths)
     try:
-        return _READERS[kind](paths, seed_axis)
+        return _READERS[kind](paths, seed_axis, spp=spp)
     except ImageInputError:
         raise
     except _READ_ERRORS as e:  # a corrupt .npy / .npz (the image files' readers name their file)
         raise ImageInputError(f"{paths[0]}: cannot read: {_reason(e)}") from e
 
 
-def compare(reference, candidate, *, seed_axis: Optional[int] = None, **kw) -> ImageComparison:
-    """``mcstat.image.compare`` whose sides may also be file paths (`load_side`)."""
+def compare(reference, candidate, *, seed_axis: Optional[int] = None, spp=None, **kw) -> ImageComparison:
+    """``mcstat.image.compare`` whose sides may also be file paths
+    (`load_side`); `spp`: the samples per pixel of moment EXRs, one value
+    for both sides or (reference, candidate)."""
     t0 = time.perf_counter()
-    ref, cand = _load(reference, seed_axis), _load(candidate, seed_axis)
+    spp_r, spp_c = image_exr.spp_pair(spp)
+    ref, cand = _load(reference, seed_axis, spp_r), _load(candidate, seed_axis, spp_c)
     t_load = time.perf_counter() - t0
     res = _compare(ref, cand, seed_axis=seed_axis, **kw)
     res.timings["load_and_channels"] += t_load
     return res
 
 
-def _load(x, seed_axis: Optional[int]):
+def _load(x, seed_axis: Optional[int], spp: Optional[int] = None):
     if isinstance(x, (str, os.PathLike)) or (isinstance(x, (list, tuple)) and
                                              all(isinstance(p, (str, os.PathLike)) for p in x)):
         paths = [os.fspath(x)] if isinstance(x, (str, os.PathLike)) else [os.fspath(p) for p in x]
@@ -261,7 +277,7 @@ def _load(x, seed_axis: Optional[int]):
             # the array as it is: the comparison settles its seeds axis
             # with the other side's shape in view
             return _load_stack_npy(paths[0])
-        return load_side(paths, seed_axis=seed_axis)
+        return load_side(paths, seed_axis=seed_axis, spp=spp)
     return x
 
 

@@ -28,6 +28,7 @@ non-finite values, too few seeds).
 """
 from __future__ import annotations
 
+import dataclasses
 import os
 import time
 import warnings
@@ -97,12 +98,17 @@ class Samples:
 @dataclass
 class Summary:
     """Per-pixel summaries: ``n``, ``mean``, ``m2`` (sum of squared
-    deviations), each ``(H, W, C)``."""
+    deviations), each ``(H, W, C)``.  ``unreliable``: an optional bool
+    ``(H, W, C)`` mask of tests whose variance the input lost (e.g. m2 -
+    m1^2 of float32 moments, see `mcstat_app.image_exr`); `compare` does
+    not test them and counts them under ``unreliable_note``."""
 
     n: np.ndarray
     mean: np.ndarray
     m2: np.ndarray
     channel_names: List[str]
+    unreliable: Optional[np.ndarray] = None
+    unreliable_note: str = "variance lost to float32 cancellation in the input (m2 - m1^2)"
 
     @property
     def shape(self) -> Tuple[int, int, int]:
@@ -282,10 +288,16 @@ def _luminance_samples(s: Samples) -> Samples:
 def _select(side: Side, channels: str) -> Side:
     if channels == "luminance":
         if isinstance(side, Summary):
+            if side.mean.shape[-1] != 1 and "Y" in side.channel_names:
+                # a CIE Y channel (Mitsuba's moment AOVs are XYZ) is the luminance
+                k = side.channel_names.index("Y")
+                u = None if side.unreliable is None else side.unreliable[..., k:k + 1]
+                return dataclasses.replace(side, n=side.n[..., k:k + 1], mean=side.mean[..., k:k + 1],
+                                           m2=side.m2[..., k:k + 1], channel_names=["Y"], unreliable=u)
             if side.mean.shape[-1] != 1:
                 raise ImageInputError("luminance from per-channel summaries needs the channels' covariances; "
                                       "use channels='rgb' (per channel) or give luminance summaries")
-            return Summary(side.n, side.mean, side.m2, ["Y"])
+            return dataclasses.replace(side, channel_names=["Y"])
         return _luminance_samples(side)
     if channels in ("rgb", "channels"):
         return side
@@ -310,6 +322,9 @@ class ImageComparison:
     method: str
     alternative: str
     timings: Dict[str, float] = field(default_factory=dict)
+    # tests left out because an input lost their variance, and why
+    variance_lost: int = 0
+    notes: List[str] = field(default_factory=list)
 
     @property
     def shape(self) -> Tuple[int, int, int]:
@@ -363,6 +378,8 @@ class ImageComparison:
             "color_key": {k: (list(v) if isinstance(v, tuple) else v) for k, v in COLOR_KEY.items()},
             "worst": self.worst(worst),
             "timings_s": {k: round(v, 4) for k, v in self.timings.items()},
+            "variance_lost": self.variance_lost,
+            "notes": list(self.notes),
         }
         return out
 
@@ -409,6 +426,7 @@ class ImageComparison:
             lines.append(f"expected false discoveries among them: at most {s['expected_false_discoveries_bound']:.2f}")
         elif s["probability_any_false_discovery_bound"] is not None:
             lines.append(f"probability of any false discovery: at most {s['probability_any_false_discovery_bound']:g}")
+        lines += [f"note: {n}" for n in s["notes"]]
         if s["worst"]:
             lines += ["", "smallest p-values:", "     x      y  ch    p-value   adjusted          t  decision"]
             for r in s["worst"]:
@@ -501,6 +519,10 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         est = f["estimate"].reshape(shp + (2,))
         if np.any((ref.n < 2) | (cand.n < 2)):
             raise TooFewObservationsError("a per-pixel summary has n < 2; Welch's test needs at least 2 per side")
+    lost, notes = _variance_lost(ref, cand)
+    if lost is not None:
+        pvalue, stat = np.where(lost, np.nan, pvalue), np.where(lost, np.nan, stat)
+        status = np.where(lost, -1, status)
     if nan_policy == "raise":
         bad = status == NonFiniteError.status
         if bad.any():
@@ -523,9 +545,25 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         dec[dec > 0] = 0
     res = ImageComparison(pvalue, padj, stat, dec, tested, est[..., 0], est[..., 1], bg, list(ref.channel_names),
                           alpha, _canonical_method(method), alternative)
+    res.variance_lost, res.notes = int(lost.sum()) if lost is not None else 0, notes
     res.timings = {"load_and_channels": t1 - t0, "tests": t2 - t1, "adjust": t3 - t2,
                    "decisions": time.perf_counter() - t3}
     return res
+
+
+def _variance_lost(ref: Side, cand: Side) -> Tuple[Optional[np.ndarray], List[str]]:
+    """The tests that a side's `Summary.unreliable` marks (not tested), and
+    the note counting them."""
+    sides = [s for s in (ref, cand) if isinstance(s, Summary) and s.unreliable is not None]
+    if not sides:
+        return None, []
+    lost = np.zeros(ref.shape, dtype=bool)
+    for s in sides:
+        lost |= np.broadcast_to(np.asarray(s.unreliable, dtype=bool), ref.shape)
+    notes = sorted({s.unreliable_note for s in sides})
+    k = int(lost.sum())
+    what = f"{k} pixels" if ref.shape[-1] == 1 else f"{k} tests (pixel channels)"
+    return lost, ([f"{what}: {'; '.join(notes)}; not tested"] if k else [])
 
 
 def _canonical_method(m: str) -> str:
