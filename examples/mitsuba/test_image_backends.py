@@ -6,7 +6,8 @@ Fixed, disjoint seeds.  Dr.Jit's LLVM output may differ in its last bits
 between CPUs (vector width, FMA), so the decisions are checked to be far
 from the threshold here (the smallest adjusted p-value of the equal case
 is ~0.4; the planted change's strongest blocks have adjusted p ~1e-6).
-About 25 s of CPU: 48 renders of 64 x 64 pixels at 64 spp.
+About 22 s of CPU (24 s with Dr.Jit's kernel cache cold): 48 renders of
+64 x 64 pixels at 64 spp.
 
 Skips, like test_mitsuba.py, only when `make mitsuba-test` set
 MCSTAT_MITSUBA_UNAVAILABLE (pip could not install the wheel).
