@@ -32,6 +32,10 @@ ALPHA = ib.ALPHA
 
 @pytest.fixture(scope="module")
 def stacks():
+    # probed in a subprocess first: a libLLVM Dr.Jit cannot generate code
+    # with aborts the process, which would take the whole pytest run with it
+    assert ib.mitsuba_adapters.pick_variant() == "llvm_ad_rgb", (
+        "Mitsuba's llvm_ad_rgb does not run here: it needs Debian's libllvm19 (tools/deps-debian.sh mitsuba)")
     ref, cand, planted, cpu = ib.renders()
     print(f"\nrenders: {cpu:.1f} s CPU; libLLVM {ib.loaded_libllvm()}")
     return ref, cand, planted
