@@ -53,7 +53,7 @@ from mcstat.image import compare as _compare
 from .errors import MissingPackageError, OutputError, require
 
 __all__ = ["load_side", "read_image", "compare", "map_rgb", "write_map", "run", "ImageInputError",
-           "MissingReaderError"]
+           "MissingReaderError", "legend_rgb", "bias_map_rgb", "bias_legend_rgb", "write_bias_map"]
 
 
 class MissingReaderError(MissingPackageError, ImageInputError):
@@ -266,17 +266,40 @@ def _load(x, seed_axis: Optional[int]):
 
 
 # ---- the significance map ------------------------------------------------------
+def _upper_quantile(v: np.ndarray, q: float) -> float:
+    """The q-quantile of v by selection (np.partition, no full sort): the
+    value of rank floor(q (n - 1))."""
+    k = int(q * (v.size - 1))
+    return float(np.partition(v, k)[k])
+
+
+def _tone_scale(lum: np.ndarray) -> float:
+    """The luminance s of the grey background's tone map L/s / (1 + L/s):
+    the reference luminance's 99th percentile (s maps to mid grey 130)."""
+    finite = lum[np.isfinite(lum)]
+    s = _upper_quantile(finite, 0.99) if finite.size else 1.0
+    return s if s > 0 else 1.0
+
+
+def _full_res(res: ImageComparison, a: np.ndarray) -> np.ndarray:
+    """A block-resolution (H/N, W/N, ...) array upscaled to the image (H, W, ...)."""
+    if res.block is None:
+        return a
+    h, w = res.reference_luminance.shape[:2]
+    n = res.block
+    return np.repeat(np.repeat(a, n, axis=0), n, axis=1)[:h, :w]
+
+
 def map_rgb(res: ImageComparison) -> np.ndarray:
-    """The significance map as (H, W, 3) uint8 (see COLOR_KEY)."""
+    """The significance map as (H, W, 3) uint8 (see COLOR_KEY); block
+    results are drawn at the image's size, each block one colour."""
     lum = res.reference_luminance
-    finite = np.isfinite(lum)
-    scale = np.percentile(lum[finite], 99) if finite.any() else 1.0
-    scale = scale if scale > 0 else 1.0
-    tm = np.where(finite, np.clip(lum, 0, None) / scale, 0.0)
+    scale = _tone_scale(lum)
+    tm = np.where(np.isfinite(lum), np.clip(lum, 0, None) / scale, 0.0)
     tm = tm / (1.0 + tm)  # Reinhard
     grey = (60 + 140 * tm).astype(np.uint8)
     out = np.repeat(grey[..., None], 3, axis=2)
-    pd = res.pixel_decision()
+    pd = _full_res(res, res.pixel_decision())
     out[pd == -2] = COLOR_KEY["not tested"]
     out[pd == 1] = COLOR_KEY["greater"]
     out[pd == -1] = COLOR_KEY["less"]
@@ -284,25 +307,186 @@ def map_rgb(res: ImageComparison) -> np.ndarray:
     return out
 
 
+_BAND_BG = (24, 24, 24)
+_BAND_FG = (235, 235, 235)
+_LEGEND_W = 600   # the legend's width at scale 1 (Pillow's built-in bitmap font, ~6 px a character)
+_ROW = 14
+
+
+def _legend_scale(w: int) -> int:
+    # a legend readable beside a 4K image: drawn at 1x, enlarged by whole pixels
+    return max(1, w // 1200)
+
+
+def _compose(img: np.ndarray, legend: np.ndarray) -> np.ndarray:
+    """img on top, the legend band below; the canvas as wide as the wider."""
+    h, w = img.shape[:2]
+    lh, lw = legend.shape[:2]
+    out = np.empty((h + lh, max(w, lw), 3), dtype=np.uint8)
+    out[:] = _BAND_BG
+    out[:h, :w] = img
+    out[h:, :lw] = legend
+    return out
+
+
+def _draw_band(rows: int, w_img: int, draw_rows: Callable) -> np.ndarray:
+    from PIL import Image, ImageDraw
+
+    s = _legend_scale(w_img)
+    lw = max(_LEGEND_W, -(-w_img // s))
+    band = Image.new("RGB", (lw, rows * _ROW + 8), _BAND_BG)
+    draw_rows(ImageDraw.Draw(band), lw)
+    a = np.asarray(band)
+    if s > 1:
+        a = np.repeat(np.repeat(a, s, axis=0), s, axis=1)
+    return a
+
+
+def legend_rgb(res: ImageComparison, width: int) -> np.ndarray:
+    """The significance map's key (H', W', 3) uint8: a swatch and its
+    meaning per colour, the grey background's scale, alpha, the adjustment
+    and the rejections."""
+    scale = _tone_scale(res.reference_luminance)
+    m = int(res.tested.sum())
+    unit = "blocks" if res.block is not None else "tests"
+    rows = [
+        (COLOR_KEY["greater"], "greater: the candidate significantly brighter than the reference"),
+        (COLOR_KEY["less"], "less: the candidate significantly darker"),
+        (COLOR_KEY["mixed"], "mixed: channels disagree (some greater, some less)"),
+        ("grey", f"not significant: grey 60..200 = reference luminance L, L/s/(1+L/s), s = {scale:.4g} "
+                 "(99th percentile) -> 130"),
+        (COLOR_KEY["not tested"], "not tested: constant or non-finite in both inputs, too few seeds"),
+        (None, f"alpha {res.alpha:g}, {res.method} ({res.alternative}): {res.rejections} of {m} {unit} rejected"
+               + (f", {res.block} x {res.block} block means" if res.block is not None else "")
+               + f"; verdict: {res.verdict}"),
+    ]
+
+    def draw(d, lw: int) -> None:
+        for i, (col, text) in enumerate(rows):
+            y = 4 + i * _ROW
+            if col == "grey":
+                for j, g in enumerate((60, 130, 200)):
+                    d.rectangle([4 + 8 * j, y + 1, 11 + 8 * j, y + 11], fill=(g, g, g))
+                x = 34
+            elif col is not None:
+                d.rectangle([4, y + 1, 27, y + 11], fill=tuple(col), outline=(128, 128, 128))
+                x = 34
+            else:
+                x = 4
+            d.text((x, y), text, fill=_BAND_FG)
+
+    return _draw_band(len(rows), width, draw)
+
+
 def write_map(res: ImageComparison, path: str) -> None:
-    """Writes the significance map as PNG (Pillow)."""
+    """Writes the significance map as PNG (Pillow), its colour key in a
+    band below the image (`legend_rgb`)."""
     Image = require("PIL.Image", "writing the significance map (--png)")
+    img = map_rgb(res)
+    full = _compose(img, legend_rgb(res, img.shape[1]))
     try:
-        Image.fromarray(map_rgb(res), mode="RGB").save(path, format="PNG", compress_level=1)
+        Image.fromarray(full, mode="RGB").save(path, format="PNG", compress_level=1)
     except OSError as e:
         raise OutputError(f"{path}: cannot write the significance map: {_reason(e)}") from e
 
 
+# ---- the detectable-bias map ------------------------------------------------------
+# viridis, sampled at 9 points (dark blue: small detectable bias, i.e. sensitive)
+_VIRIDIS = np.array([(68, 1, 84), (71, 44, 122), (59, 81, 139), (44, 113, 142), (33, 144, 141),
+                     (39, 173, 129), (92, 200, 99), (170, 220, 50), (253, 231, 37)], dtype=np.float64)
+
+
+def _colormap(t: np.ndarray) -> np.ndarray:
+    """t in [0, 1] -> (..., 3) uint8 of `_VIRIDIS`, linear between its points."""
+    x = np.clip(t, 0.0, 1.0) * (len(_VIRIDIS) - 1)
+    i = np.minimum(x.astype(np.intp), len(_VIRIDIS) - 2)
+    f = (x - i)[..., None]
+    return (_VIRIDIS[i] * (1 - f) + _VIRIDIS[i + 1] * f + 0.5).astype(np.uint8)
+
+
+def _bias_scale(v: np.ndarray) -> tuple:
+    """(lo, hi, log): the colour scale from the 1st to the 99th percentile
+    of the finite values, logarithmic when they span more than a factor 10."""
+    f = v[np.isfinite(v)]
+    if f.size == 0:
+        return 0.0, 1.0, False
+    lo, hi = _upper_quantile(f, 0.01), _upper_quantile(f, 0.99)
+    if not hi > lo:
+        hi = lo + (abs(lo) if lo else 1.0)
+    return lo, hi, bool(lo > 0 and hi / lo > 10)
+
+
+def bias_map_rgb(res: ImageComparison) -> np.ndarray:
+    """The detectable bias (the largest over channels) in false colour,
+    (H, W, 3) uint8 at the image's size; black where not tested."""
+    db = res.detectable_bias
+    if db is None:
+        db = np.full(res.shape, np.nan)
+    with np.errstate(invalid="ignore"):
+        v = np.max(np.where(np.isnan(db), -np.inf, db), axis=-1)
+    v = np.where(np.isfinite(v), v, np.nan)
+    lo, hi, log = _bias_scale(v)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = (np.log(v / lo) / np.log(hi / lo)) if log else (v - lo) / (hi - lo)
+    rgb = _colormap(np.nan_to_num(t, nan=0.0))
+    rgb[~np.isfinite(v)] = 0
+    return _full_res(res, rgb)
+
+
+def bias_legend_rgb(res: ImageComparison, width: int) -> np.ndarray:
+    """The bias map's colour bar with its scale and what it shows."""
+    db = res.detectable_bias
+    v = np.nanmax(db, axis=-1) if db is not None and np.isfinite(db).any() else np.full((1, 1), np.nan)
+    lo, hi, log = _bias_scale(v)
+    ticks = [lo * (hi / lo) ** f for f in (0, 0.25, 0.5, 0.75, 1)] if log else \
+            [lo + (hi - lo) * f for f in (0, 0.25, 0.5, 0.75, 1)]
+    unit = "block" if res.block is not None else "pixel"
+    title = (f"detectable bias per {unit}: smallest |candidate - reference| found with probability "
+             f"{res.detect_power:g} at the per-test level {res.level:.3g} ({res.method}, alpha {res.alpha:g})")
+    title2 = (f"{'log' if log else 'linear'} scale, 1st..99th percentile; black: not tested; "
+              f"largest over channels; verdict: {res.verdict}")
+
+    def draw(d, lw: int) -> None:
+        d.text((4, 4), title, fill=_BAND_FG)
+        d.text((4, 4 + _ROW), title2, fill=_BAND_FG)
+        x0, x1, y = 8, lw - 40, 4 + 2 * _ROW + 2
+        bar = _colormap(np.linspace(0.0, 1.0, x1 - x0))
+        for i in range(x1 - x0):
+            d.line([(x0 + i, y), (x0 + i, y + 10)], fill=tuple(int(c) for c in bar[i]))
+        for f, tv in zip((0, 0.25, 0.5, 0.75, 1), ticks):
+            x = int(x0 + f * (x1 - x0 - 1))
+            d.line([(x, y + 10), (x, y + 13)], fill=_BAND_FG)
+            d.text((max(0, x - 12), y + 14), f"{tv:.3g}", fill=_BAND_FG)
+
+    return _draw_band(4, width, draw)
+
+
+def write_bias_map(res: ImageComparison, path: str) -> None:
+    """Writes the detectable-bias map as PNG, its colour bar and scale below."""
+    Image = require("PIL.Image", "writing the detectable-bias map (--bias-png)")
+    img = bias_map_rgb(res)
+    full = _compose(img, bias_legend_rgb(res, img.shape[1]))
+    try:
+        Image.fromarray(full, mode="RGB").save(path, format="PNG", compress_level=1)
+    except OSError as e:
+        raise OutputError(f"{path}: cannot write the detectable-bias map: {_reason(e)}") from e
+
+
 def run(reference, candidate, *, png: Optional[str] = None, json_path: Optional[str] = None, worst: int = 10,
-        **kw) -> ImageComparison:
-    """`compare`, then the PNG and the JSON summary when paths are given."""
-    if png:  # before the work: a missing Pillow is said at once
-        require("PIL.Image", "writing the significance map (--png)")
+        bias_png: Optional[str] = None, **kw) -> ImageComparison:
+    """`compare`, then the PNGs and the JSON summary when paths are given."""
+    if png or bias_png:  # before the work: a missing Pillow is said at once
+        require("PIL.Image", "writing the significance map (--png)" if png else
+                "writing the detectable-bias map (--bias-png)")
     res = compare(reference, candidate, **kw)
     t = time.perf_counter()
     if png:
         write_map(res, png)
     res.timings["png"] = time.perf_counter() - t
+    if bias_png:
+        t = time.perf_counter()
+        write_bias_map(res, bias_png)
+        res.timings["bias_png"] = time.perf_counter() - t
     if json_path:
         try:
             with open(json_path, "w") as f:
