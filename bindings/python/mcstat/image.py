@@ -30,9 +30,9 @@ What a pass means (`ImageComparison.detectable_bias`): for each tested
 pixel, the smallest difference of means |delta| that its test would have
 found with probability `detect_power` (0.8 by default) at its own standard
 error se and Welch degrees of freedom df, at the per-test level `level`
-the adjustment applied (`per_test_level`: the largest raw p-value at which
-one more, not yet rejected, test would have been rejected, the others'
-p-values held fixed).  With c the test's critical value
+the adjustment applied (`per_test_level`: the raw p-value at or below
+which one more, not yet rejected, test is sure to be rejected, the others'
+p-values held fixed -- the threshold of the adjustment's next step).  With c the test's critical value
 (t_{1 - level/2, df} two-sided, t_{1 - level, df} one-sided) and z the
 normal quantile of the power,
 
@@ -40,12 +40,14 @@ normal quantile of the power,
 
 the Johnson-Welch normal approximation to the noncentral t's power
 P(T'(df, delta/se) > c), taking the true standard error to be the
-estimated one.  Against SciPy's noncentral t it overstates the exact delta
-(so the power at delta is at least the target) by at most 4% at df = 2.5,
-2.5% at df >= 4, 1% at df >= 10 and 0.2% at df >= 30 (levels 0.05 to 6e-9,
-powers 0.5 and 0.8); the textbook (c + t_{power, df}) se is off by up to 20%
-(understating) at small df and levels.  A pass (no rejection) therefore says: a
-bias larger than `detectable_bias` at a pixel would probably have been
+estimated one.  Against the exact noncentral t (levels 0.05 to 1e-7) it
+overstates the exact delta, so the power at delta is at least the
+target: at power 0.8 by at most 5% at df = 1, 2% at df = 2, 1.6% at
+2.5, 1% at 4, 0.3% at 10, 0.06% at 30; at power 0.5 by at most 11%, 5%,
+4%, 2.4%, 0.8% and 0.15% (tests/python/test_image_pass.py checks it by
+integrating the normal tails over the chi-squared).  The textbook
+(c + t_{power, df}) se is off by up to 20% either way at small df and
+small levels.  A pass (no rejection) therefore says: a bias larger than `detectable_bias` at a pixel would probably have been
 found; smaller ones could hide.  `compare`'s ``max_detectable_bias`` (or
 ``max_relative_detectable_bias``) turns that into the verdict
 "inconclusive" when the pass could hide a larger bias at the chosen
@@ -554,9 +556,12 @@ def _g(v: Optional[float]) -> str:
 
 def per_test_level(method: str, alpha: float, m: int, rejections: int) -> float:
     """The per-test level an adjustment applied to `m` p-values with
-    `rejections` rejected at `alpha`: the largest raw p-value at which one
-    more (not yet rejected) test would have been rejected, the other
-    p-values held fixed.  With k = min(rejections + 1, m):
+    `rejections` rejected at `alpha`: the raw p-value at or below which one
+    more (not yet rejected) test is sure to be rejected, the other p-values
+    held fixed -- the threshold of the adjustment's next step (for Holm and
+    Bonferroni the largest such p-value; for the step-up methods a p-value
+    a little above it can still be rejected when the not-rejected p-values
+    above it crowd the next thresholds).  With k = min(rejections + 1, m):
 
     - BH: alpha k / m (alpha / m when nothing was rejected);
     - BY: alpha k / (m H_m), H_m = 1 + 1/2 + ... + 1/m;
@@ -673,6 +678,8 @@ def detectable_bias(std_error: Any, df: Any, level: float, *, alternative: str =
     se = np.asarray(std_error, dtype=np.float64)
     d = np.asarray(df, dtype=np.float64)
     se, d = np.broadcast_arrays(se, d)
+    shape = se.shape
+    se, d = se.reshape(-1), d.reshape(-1)  # 1-D: the in-place arithmetic below needs arrays, not scalars
     q = level / 2 if alternative == "two-sided" else level
     c = _t_upper_quantile(q, d)
     z = NormalDist().inv_cdf(power)
@@ -689,7 +696,7 @@ def detectable_bias(std_error: Any, df: Any, level: float, *, alternative: str =
         c += root           # c (1 - 1/(4 df)) + z sqrt(1 + c^2/(2 df))
         c *= se
         c[~(se > 0) | ~np.isfinite(se)] = np.nan
-    return c
+    return c.reshape(shape)
 
 
 def _welch_se_df(cand: "Summary", ref: "Summary") -> Tuple[np.ndarray, np.ndarray]:
