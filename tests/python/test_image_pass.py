@@ -189,6 +189,8 @@ def test_verdicts():
     res = mi.compare(const, const)
     assert not res.tested.any() and res.verdict == "inconclusive"
     assert res.summary()["verdict"] == "inconclusive"
+    json.dumps(res.summary(), allow_nan=False)  # strict JSON when nothing was tested
+    assert "verdict: inconclusive" in res.text()
     for bad in (dict(max_detectable_bias=0.0), dict(max_relative_detectable_bias=-1.0),
                 dict(detect_power=1.0), dict(bias_quantile=1.5), dict(block=0), dict(block=2.5)):
         with pytest.raises(mcstat.InvalidArgumentError):

@@ -711,7 +711,8 @@ def _welch_se_df(cand: "Summary", ref: "Summary") -> Tuple[np.ndarray, np.ndarra
 
 def _bias_stats(res: "ImageComparison") -> Dict[str, Any]:
     qs = (0.5, 0.9, 0.99)
-    out: Dict[str, Any] = {"power": res.detect_power, "level": res.level,
+    out: Dict[str, Any] = {"power": res.detect_power,
+                           "level": res.level if np.isfinite(res.level) else None,  # None: nothing tested
                            "bias_quantile": res.bias_quantile,
                            "definition": "smallest |candidate - reference| mean difference found with probability "
                                          "`power` at the per-test `level` the adjustment applied, over the tested "
@@ -895,6 +896,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     if isinstance(ref, Samples):
         se, dfw = np.asarray(r.std_error, dtype=np.float64), np.asarray(r.df, dtype=np.float64)
     else:
+        assert isinstance(cand, Summary) and isinstance(ref, Summary)
         se, dfw = _welch_se_df(cand, ref)
     t3 = time.perf_counter()
     tested = status == 0
