@@ -290,14 +290,17 @@ def _full_res(res: ImageComparison, a: np.ndarray) -> np.ndarray:
     return np.repeat(np.repeat(a, n, axis=0), n, axis=1)[:h, :w]
 
 
-def _grey_lut() -> np.ndarray:
-    g = np.arange(256, dtype=np.uint8)
-    return np.repeat(g[:, None], 3, axis=1)
+# The significance map's palette: index i is grey (i, i, i), but for the key
+# colours at 1..3 (the map's greys are 60..200, the legend's 24..235, so
+# greys 1..3 never occur); black, "not tested", is index 0.
+_IDX = {"not tested": 0, "greater": 1, "less": 2, "mixed": 3}
+_PALETTE = np.repeat(np.arange(256, dtype=np.uint8)[:, None], 3, axis=1)
+for _k, _i in _IDX.items():
+    _PALETTE[_i] = COLOR_KEY[_k]
 
 
-def map_rgb(res: ImageComparison) -> np.ndarray:
-    """The significance map as (H, W, 3) uint8 (see COLOR_KEY); block
-    results are drawn at the image's size, each block one colour."""
+def _map_index(res: ImageComparison) -> np.ndarray:
+    """The significance map as (H, W) uint8 indices into `_PALETTE`."""
     lum = res.reference_luminance
     scale = _tone_scale(lum)
     # float32 and in place: at 4K each full-size temporary costs more than its arithmetic
@@ -307,15 +310,19 @@ def map_rgb(res: ImageComparison) -> np.ndarray:
     tm /= tm + np.float32(1.0)  # Reinhard
     tm *= np.float32(140.0)
     tm += np.float32(60.0)
-    out = _grey_lut()[tm.astype(np.uint8)]
+    out = tm.astype(np.uint8)
     pd = _full_res(res, res.pixel_decision())
     sig = pd != 0
     if sig.any():
-        pal = np.zeros((5, 3), dtype=np.uint8)   # pd + 2: not tested, less, -, greater, mixed
-        pal[0], pal[1] = COLOR_KEY["not tested"], COLOR_KEY["less"]
-        pal[3], pal[4] = COLOR_KEY["greater"], COLOR_KEY["mixed"]
-        out[sig] = pal[pd[sig] + 2]
+        lut = np.array([_IDX["not tested"], _IDX["less"], 0, _IDX["greater"], _IDX["mixed"]], dtype=np.uint8)
+        out[sig] = lut[pd[sig] + 2]   # pd + 2: not tested, less, -, greater, mixed
     return out
+
+
+def map_rgb(res: ImageComparison) -> np.ndarray:
+    """The significance map as (H, W, 3) uint8 (see COLOR_KEY); block
+    results are drawn at the image's size, each block one colour."""
+    return _PALETTE[_map_index(res)]
 
 
 _BAND_BG = (24, 24, 24)
@@ -389,14 +396,31 @@ def legend_rgb(res: ImageComparison, width: int) -> np.ndarray:
     return _draw_band(len(rows), width, draw)
 
 
+def _to_index(rgb: np.ndarray) -> np.ndarray:
+    """RGB of greys and the key colours (the legend) as `_PALETTE` indices."""
+    out = rgb[..., 0].copy()
+    for k, i in _IDX.items():
+        if i:
+            out[np.all(rgb == COLOR_KEY[k], axis=-1)] = i
+    return out
+
+
 def write_map(res: ImageComparison, path: str) -> None:
     """Writes the significance map as PNG (Pillow), its colour key in a
-    band below the image (`legend_rgb`)."""
+    band below the image (`legend_rgb`).  A palette PNG (one byte a pixel:
+    greys and the key colours), encoded in about a quarter of an RGB one's
+    time; readers see the same colours (Pillow: ``.convert("RGB")``)."""
     Image = require("PIL.Image", "writing the significance map (--png)")
-    img = map_rgb(res)
-    full = _compose(img, legend_rgb(res, img.shape[1]))
+    idx = _map_index(res)
+    h, w = idx.shape
+    legend = _to_index(legend_rgb(res, w))
+    full = np.full((h + legend.shape[0], max(w, legend.shape[1])), _BAND_BG[0], dtype=np.uint8)
+    full[:h, :w] = idx
+    full[h:, :legend.shape[1]] = legend
     try:
-        Image.fromarray(full, mode="RGB").save(path, format="PNG", compress_level=1)
+        im = Image.frombytes("P", (full.shape[1], full.shape[0]), full.tobytes())
+        im.putpalette(_PALETTE.tobytes())
+        im.save(path, format="PNG", compress_level=1)
     except OSError as e:
         raise OutputError(f"{path}: cannot write the significance map: {_reason(e)}") from e
 

@@ -293,7 +293,7 @@ def test_cli_block(tmp_path):
                              "--fail-on-reject", "--png", tmp_path / "m.png")
     assert code == 1, err
     assert "8 x 8 block means" in out
-    img = np.asarray(Image.open(tmp_path / "m.png"))[:48, :48]
+    img = np.asarray(Image.open(tmp_path / "m.png").convert("RGB"))[:48, :48]
     assert (img[16:32, 16:32] == mi.COLOR_KEY["greater"]).all()
 
 
@@ -306,7 +306,9 @@ def test_significance_map_carries_its_key(tmp_path):
     ref, cand = stacks(12, h=40, w=56, box=(4, 20, 4, 20), bias=4.0)
     res = mi.compare(ref, cand)
     app_image.write_map(res, str(tmp_path / "m.png"))
-    img = np.asarray(Image.open(tmp_path / "m.png"))
+    im = Image.open(tmp_path / "m.png")
+    assert im.mode == "P"   # a palette PNG: greys and the key colours
+    img = np.asarray(im.convert("RGB"))
     assert img.shape[0] > 40 and img.shape[1] >= 56
     np.testing.assert_array_equal(img[:40, :56], app_image.map_rgb(res))   # the map itself unchanged
     band = img[40:]

@@ -472,7 +472,8 @@ class ImageComparison:
                 "size": self.block, "grid": [h, w],
                 "image": list(self.image_shape) if self.image_shape else None,
                 "note": "each test is one block's mean per seed; blocks at the right and bottom edges are "
-                        "smaller when the image's size is not a multiple of the block's"},
+                        "smaller when the image's size is not a multiple of the block's; x, y in 'worst' are "
+                        "block indices (the block's first pixel is x * size, y * size)"},
             "worst": self.worst(worst),
             "timings_s": {k: round(v, 4) for k, v in self.timings.items()},
         }
@@ -595,29 +596,40 @@ def _harmonic(m: int) -> float:
     return float(np.log(m) + g + 1.0 / (2 * m) - 1.0 / (12.0 * m * m))
 
 
+_CHUNK = 1 << 18  # values per pass: the temporaries stay in cache and are reused
+
+
 def _t_upper_quantile(q: float, df: np.ndarray) -> np.ndarray:
     """x with P[T_df > x] = q for an array of real df (libmcstat's
-    ``t_quantile``), NaN where df is not positive and finite.  Millions of
-    distinct df: exact at the nodes of a uniform grid in u = 1/df, linear
-    interpolation of log x (of x when q >= 1/2) between them -- for small
-    df, log x is nearly linear in 1/df (x ~ q^(-1/df)) -- with the nodes
-    multiplied (from 512 to at most 65536) until the interpolation is within
-    1e-7 relative of the exact value at every midpoint.  The grid is
-    uniform so each value finds its interval by arithmetic, not a search."""
+    ``t_quantile``), NaN where df is not positive and finite (see
+    `_t_quantile_table`)."""
+    d = np.asarray(df, dtype=np.float64)
+    flat = d.reshape(-1)
+    out = np.empty(flat.size)
+    table = _t_quantile_table(q, flat)
+    for k in range(0, flat.size, _CHUNK):
+        out[k:k + _CHUNK] = _t_quantile_apply(table, flat[k:k + _CHUNK])
+    return out.reshape(d.shape)
+
+
+def _t_quantile_table(q: float, d: np.ndarray) -> Any:
+    """How `_t_quantile_apply` finds t quantiles for the df in `d`.  Few
+    values: exact.  Millions of distinct df: exact at the nodes of a
+    uniform grid in u = 1/df over [1/max, 1/min], linear interpolation of
+    log x (of x when q >= 1/2) between them -- for small df, log x is
+    nearly linear in 1/df (x ~ q^(-1/df)) -- with the nodes multiplied
+    (from 512 to at most 65536) until the interpolation is within 1e-7
+    relative of the exact value at every midpoint.  The grid is uniform
+    so each value finds its interval by arithmetic, not a search."""
     from .distributions import t_quantile
 
-    d = np.asarray(df, dtype=np.float64)
     ok = np.isfinite(d) & (d > 0)
-    if not ok.any():
-        return np.full(d.shape, np.nan)
-    if d.size <= 4096:
-        out = np.full(d.shape, np.nan)
-        out[ok] = t_quantile(q, d[ok], upper=True)
-        return out
-    dv = d[ok] if not ok.all() else d
+    if d.size <= 4096 or not ok.any():
+        return ("exact", q)
+    dv = d if ok.all() else d[ok]
     lo, hi = float(dv.min()), float(dv.max())
     if hi <= lo * (1 + 1e-12):
-        return np.where(ok, float(t_quantile(q, lo, upper=True)), np.nan)
+        return ("exact", q)
     logs = q < 0.5  # x > 0
     u0, u1 = 1.0 / hi, 1.0 / lo
 
@@ -636,15 +648,25 @@ def _t_upper_quantile(q: float, df: np.ndarray) -> np.ndarray:
             break
         # the error of linear interpolation falls as 1/g^2
         g = min(65536, 1 << int(np.ceil(np.log2(g * 1.2 * np.sqrt(err / 1e-7)))))
-    h = (u1 - u0) / g
-    slope = np.diff(ys)
-    # in place where possible: at 8.3 M values each fresh array costs more
-    # than the arithmetic
+    return ("grid", u0, (u1 - u0) / g, g, ys, np.diff(ys), logs)
+
+
+def _t_quantile_apply(table: Any, d: np.ndarray) -> np.ndarray:
+    from .distributions import t_quantile
+
+    ok = np.isfinite(d) & (d > 0)
+    allok = bool(ok.all())
+    if table[0] == "exact":
+        out = np.full(d.shape, np.nan)
+        if ok.any():
+            out[ok] = t_quantile(table[1], d[ok], upper=True)
+        return out
+    _, u0, h, g, ys, slope, logs = table
     with np.errstate(invalid="ignore", divide="ignore"):
         t = np.divide(1.0, d)
         t -= u0
         t *= 1.0 / h
-        if not ok.all():
+        if not allok:
             t[~ok] = 0.0
         np.clip(t, 0.0, float(g), out=t)
         i = t.astype(np.intp)
@@ -656,7 +678,7 @@ def _t_upper_quantile(q: float, df: np.ndarray) -> np.ndarray:
         y += t
     if logs:
         np.exp(y, out=y)
-    if not ok.all():
+    if not allok:
         y[~ok] = np.nan
     return y
 
@@ -679,24 +701,31 @@ def detectable_bias(std_error: Any, df: Any, level: float, *, alternative: str =
     d = np.asarray(df, dtype=np.float64)
     se, d = np.broadcast_arrays(se, d)
     shape = se.shape
-    se, d = se.reshape(-1), d.reshape(-1)  # 1-D: the in-place arithmetic below needs arrays, not scalars
+    se, d = se.reshape(-1), d.reshape(-1)
     q = level / 2 if alternative == "two-sided" else level
-    c = _t_upper_quantile(q, d)
     z = NormalDist().inv_cdf(power)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        inv = np.divide(1.0, d)
-        root = np.multiply(c, c)
-        root *= 0.5 * inv
-        root += 1.0
-        np.sqrt(root, out=root)
-        root *= z
-        inv *= -0.25
-        inv += 1.0
-        c *= inv
-        c += root           # c (1 - 1/(4 df)) + z sqrt(1 + c^2/(2 df))
-        c *= se
-        c[~(se > 0) | ~np.isfinite(se)] = np.nan
-    return c.reshape(shape)
+    table = _t_quantile_table(q, d)
+    out = np.empty(d.size)
+    # a chunk at a time: at 8.3 M pixels, fresh full-size temporaries cost
+    # more than the arithmetic
+    for k in range(0, d.size, _CHUNK):
+        dk, sk = d[k:k + _CHUNK], se[k:k + _CHUNK]
+        c = _t_quantile_apply(table, dk)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            inv = np.divide(1.0, dk)
+            root = np.multiply(c, c)
+            root *= 0.5 * inv
+            root += 1.0
+            np.sqrt(root, out=root)
+            root *= z
+            inv *= -0.25
+            inv += 1.0
+            c *= inv
+            c += root           # c (1 - 1/(4 df)) + z sqrt(1 + c^2/(2 df))
+            c *= sk
+            c[~(sk > 0) | ~np.isfinite(sk)] = np.nan
+        out[k:k + _CHUNK] = c
+    return out.reshape(shape)
 
 
 def _welch_se_df(cand: "Summary", ref: "Summary") -> Tuple[np.ndarray, np.ndarray]:
