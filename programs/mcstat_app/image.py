@@ -457,11 +457,11 @@ def _bias_scale(v: np.ndarray) -> tuple:
     return lo, hi, bool(lo > 0 and hi / lo > 10)
 
 
-def bias_map_rgb(res: ImageComparison) -> np.ndarray:
+def bias_map_rgb(res: ImageComparison, scale: Optional[tuple] = None) -> np.ndarray:
     """The detectable bias (the largest over channels) in false colour,
     (H, W, 3) uint8 at the image's size; black where not tested."""
     v = _bias_per_pixel(res)
-    lo, hi, log = _bias_scale(v)
+    lo, hi, log = scale if scale is not None else _bias_scale(v)
     bad = ~np.isfinite(v)
     with np.errstate(invalid="ignore", divide="ignore"):
         if log:
@@ -493,9 +493,9 @@ def _bias_per_pixel(res: ImageComparison) -> np.ndarray:
     return v
 
 
-def bias_legend_rgb(res: ImageComparison, width: int) -> np.ndarray:
+def bias_legend_rgb(res: ImageComparison, width: int, scale: Optional[tuple] = None) -> np.ndarray:
     """The bias map's colour bar with its scale and what it shows."""
-    lo, hi, log = _bias_scale(_bias_per_pixel(res))
+    lo, hi, log = scale if scale is not None else _bias_scale(_bias_per_pixel(res))
     ticks = [lo * (hi / lo) ** f for f in (0, 0.25, 0.5, 0.75, 1)] if log else \
             [lo + (hi - lo) * f for f in (0, 0.25, 0.5, 0.75, 1)]
     unit = "block" if res.block is not None else "pixel"
@@ -522,8 +522,9 @@ def bias_legend_rgb(res: ImageComparison, width: int) -> np.ndarray:
 def write_bias_map(res: ImageComparison, path: str) -> None:
     """Writes the detectable-bias map as PNG, its colour bar and scale below."""
     Image = require("PIL.Image", "writing the detectable-bias map (--bias-png)")
-    img = bias_map_rgb(res)
-    full = _compose(img, bias_legend_rgb(res, img.shape[1]))
+    scale = _bias_scale(_bias_per_pixel(res))   # one selection for the map and its bar
+    img = bias_map_rgb(res, scale)
+    full = _compose(img, bias_legend_rgb(res, img.shape[1], scale))
     try:
         # zlib's run-length strategy (3): the noisy false colours deflate little
         # better with the default one, at a third of the speed
