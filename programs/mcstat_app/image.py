@@ -439,7 +439,13 @@ def _colormap(t: np.ndarray) -> np.ndarray:
     return (_VIRIDIS[i] * (1 - f) + _VIRIDIS[i + 1] * f + 0.5).astype(np.uint8)
 
 
-_LUT = _colormap(np.linspace(0.0, 1.0, 256))  # the map's 256 colours
+# The bias map's palette: 0 black (not tested), 1..200 the colour scale,
+# 201..255 greys 24..235 for the legend's text (anti-aliased text quantised
+# to 55 greys).
+_NBIAS = 200
+_BIAS_PAL = np.zeros((256, 3), dtype=np.uint8)
+_BIAS_PAL[1:_NBIAS + 1] = _colormap(np.linspace(0.0, 1.0, _NBIAS))
+_BIAS_PAL[_NBIAS + 1:] = np.round(np.linspace(24, 235, 255 - _NBIAS)).astype(np.uint8)[:, None]
 
 
 def _bias_scale(v: np.ndarray) -> tuple:
@@ -457,9 +463,8 @@ def _bias_scale(v: np.ndarray) -> tuple:
     return lo, hi, bool(lo > 0 and hi / lo > 10)
 
 
-def bias_map_rgb(res: ImageComparison, scale: Optional[tuple] = None) -> np.ndarray:
-    """The detectable bias (the largest over channels) in false colour,
-    (H, W, 3) uint8 at the image's size; black where not tested."""
+def _bias_index(res: ImageComparison, scale: Optional[tuple] = None) -> np.ndarray:
+    """The bias map as (H, W) uint8 indices into `_BIAS_PAL`."""
     v = _bias_per_pixel(res)
     lo, hi, log = scale if scale is not None else _bias_scale(v)
     bad = ~np.isfinite(v)
@@ -467,17 +472,23 @@ def bias_map_rgb(res: ImageComparison, scale: Optional[tuple] = None) -> np.ndar
         if log:
             t = np.log(v, dtype=np.float32)
             t -= np.float32(np.log(lo))
-            t *= np.float32(255.0 / np.log(hi / lo))
+            t *= np.float32((_NBIAS - 1) / np.log(hi / lo))
         else:
             t = v.astype(np.float32)
             t -= np.float32(lo)
-            t *= np.float32(255.0 / (hi - lo))
+            t *= np.float32((_NBIAS - 1) / (hi - lo))
         t[bad] = 0.0
-        np.clip(t, 0.0, 255.0, out=t)
-        t += np.float32(0.5)
-    rgb = _LUT[t.astype(np.uint8)]
-    rgb[bad] = 0
-    return _full_res(res, rgb)
+        np.clip(t, 0.0, _NBIAS - 1, out=t)
+        t += np.float32(1.5)   # 1 + rounding
+    idx = t.astype(np.uint8)
+    idx[bad] = 0
+    return _full_res(res, idx)
+
+
+def bias_map_rgb(res: ImageComparison, scale: Optional[tuple] = None) -> np.ndarray:
+    """The detectable bias (the largest over channels) in false colour,
+    (H, W, 3) uint8 at the image's size; black where not tested."""
+    return _BIAS_PAL[_bias_index(res, scale)]
 
 
 def _bias_per_pixel(res: ImageComparison) -> np.ndarray:
@@ -508,7 +519,7 @@ def bias_legend_rgb(res: ImageComparison, width: int, scale: Optional[tuple] = N
         d.text((4, 4), title, fill=_BAND_FG)
         d.text((4, 4 + _ROW), title2, fill=_BAND_FG)
         x0, x1, y = 8, lw - 40, 4 + 2 * _ROW + 2
-        bar = _colormap(np.linspace(0.0, 1.0, x1 - x0))
+        bar = _BIAS_PAL[1 + np.round(np.linspace(0.0, _NBIAS - 1, x1 - x0)).astype(np.intp)]
         for i in range(x1 - x0):
             d.line([(x0 + i, y), (x0 + i, y + 10)], fill=tuple(int(c) for c in bar[i]))
         for f, tv in zip((0, 0.25, 0.5, 0.75, 1), ticks):
@@ -519,16 +530,41 @@ def bias_legend_rgb(res: ImageComparison, width: int, scale: Optional[tuple] = N
     return _draw_band(4, width, draw)
 
 
+def _bias_to_index(rgb: np.ndarray) -> np.ndarray:
+    """The bias legend's RGB (greys, and the colour bar's palette colours)
+    as `_BIAS_PAL` indices."""
+    r = rgb[..., 0].astype(np.int32)
+    g, b = rgb[..., 1].astype(np.int32), rgb[..., 2].astype(np.int32)
+    grey = (r == g) & (g == b)
+    q = np.clip(np.round((r - 24) * (254 - _NBIAS) / 211.0), 0, 254 - _NBIAS).astype(np.int32)
+    out = (_NBIAS + 1 + q).astype(np.uint8)
+    if (~grey).any():
+        pal = _BIAS_PAL[1:_NBIAS + 1].astype(np.int32)
+        keys = (pal[:, 0] << 16) | (pal[:, 1] << 8) | pal[:, 2]
+        order = np.argsort(keys)
+        k = ((r << 16) | (g << 8) | b)[~grey]
+        pos = np.clip(np.searchsorted(keys[order], k), 0, _NBIAS - 1)
+        out[~grey] = (1 + order[pos]).astype(np.uint8)
+    return out
+
+
 def write_bias_map(res: ImageComparison, path: str) -> None:
     """Writes the detectable-bias map as PNG, its colour bar and scale below."""
     Image = require("PIL.Image", "writing the detectable-bias map (--bias-png)")
     scale = _bias_scale(_bias_per_pixel(res))   # one selection for the map and its bar
-    img = bias_map_rgb(res, scale)
-    full = _compose(img, bias_legend_rgb(res, img.shape[1], scale))
+    idx = _bias_index(res, scale)
+    h, w = idx.shape
+    legend = _bias_to_index(bias_legend_rgb(res, w, scale))
+    full = np.full((h + legend.shape[0], max(w, legend.shape[1])), _NBIAS + 1, dtype=np.uint8)  # grey 24
+    full[:h, :w] = idx
+    full[h:, :legend.shape[1]] = legend
     try:
-        # zlib's run-length strategy (3): the noisy false colours deflate little
-        # better with the default one, at a third of the speed
-        Image.fromarray(full, mode="RGB").save(path, format="PNG", compress_level=1, compress_type=3)
+        # a palette PNG (one byte a pixel); zlib's run-length strategy (3):
+        # the noisy false colours deflate little better with the default one,
+        # at a third of the speed
+        im = Image.frombytes("P", (full.shape[1], full.shape[0]), full.tobytes())
+        im.putpalette(_BIAS_PAL.tobytes())
+        im.save(path, format="PNG", compress_level=1, compress_type=3)
     except OSError as e:
         raise OutputError(f"{path}: cannot write the detectable-bias map: {_reason(e)}") from e
 

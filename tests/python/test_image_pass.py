@@ -333,7 +333,9 @@ def test_bias_map_has_its_colour_bar(tmp_path):
     code, out, err = run_cli("image-test", "-r", _save(tmp_path, "r.npy", ref), "-c", _save(tmp_path, "c.npy", cand),
                              "--bias-png", tmp_path / "b.png")
     assert code == 0 and "detectable-bias map" in out, err
-    img = np.asarray(Image.open(tmp_path / "b.png"))
+    im = Image.open(tmp_path / "b.png")
+    assert im.mode == "P"
+    img = np.asarray(im.convert("RGB"))
     assert img.shape[0] > 30
     np.testing.assert_array_equal(img[:30, :50], app_image.bias_map_rgb(res))
     band = img[30:]
