@@ -11,10 +11,12 @@
 No traceback reaches the user: every failure is one line on stderr that
 says what to do, with an exit status per kind (`errors`; ``mcstat --help``
 lists them): 0 success, 1 H0 rejected with ``--fail-on-reject``
-(``image-test``: any pixel differs after the adjustment), 2 bad command
-line, 3 bad input file or data, 4 a missing Python package, 5 an output
-that cannot be written, 70 an internal error, 130 interrupted, 141 stdout
-closed early (broken pipe).
+(``image-test``: verdict "different", any pixel differs after the
+adjustment), 2 bad command line, 3 bad input file or data, 4 a missing
+Python package, 5 an output that cannot be written, 6 ``image-test
+--fail-on-reject``'s verdict "inconclusive" (nothing could be tested, or
+the pass could hide a bias above ``--max-detectable-bias``), 70 an
+internal error, 130 interrupted, 141 stdout closed early (broken pipe).
 """
 from __future__ import annotations
 
@@ -102,17 +104,31 @@ def _test(a: argparse.Namespace) -> int:
 def _image_test(a: argparse.Namespace) -> int:
     from .image import run
 
+    for name in ("block", "max_detectable_bias", "max_relative_detectable_bias"):
+        v = getattr(a, name)
+        if v is not None and not v > 0:
+            raise E.UsageError(f"--{name.replace('_', '-')} must be positive, got {v}")
+    if not 0.0 < a.detect_power < 1.0:
+        raise E.UsageError(f"--detect-power must lie in (0, 1), got {a.detect_power}")
+    if not 0.0 <= a.bias_quantile <= 1.0:
+        raise E.UsageError(f"--bias-quantile must lie in [0, 1], got {a.bias_quantile}")
     res = run(a.reference, a.candidate, png=a.png, json_path=a.json, worst=a.worst, alpha=a.alpha,
               method=a.adjust, alternative=a.alternative, channels=a.channels, seed_axis=a.seed_axis,
-              nan_policy=a.nan, spp=a.spp)
+              nan_policy=a.nan, spp=a.spp, bias_png=a.bias_png, block=a.block, detect_power=a.detect_power,
+              max_detectable_bias=a.max_detectable_bias,
+              max_relative_detectable_bias=a.max_relative_detectable_bias, bias_quantile=a.bias_quantile)
     if not a.quiet:
         sys.stdout.write(res.text(a.worst))
         if a.png:
             print(f"\nsignificance map: {a.png} (red: candidate greater, blue: less, yellow: channels "
-                  "disagree, grey: not significant, black: not tested)")
+                  "disagree, grey: not significant, black: not tested; the key is in the image)")
+        if a.bias_png:
+            print(f"detectable-bias map: {a.bias_png} (the colour bar and scale are in the image)")
         if a.json:
             print(f"summary: {a.json}")
-    return 1 if (a.fail_on_reject and int((res.padjusted <= res.alpha).sum()) > 0) else 0
+    if not a.fail_on_reject:
+        return E.EXIT_OK
+    return {"equal": E.EXIT_OK, "different": E.EXIT_REJECTED, "inconclusive": E.EXIT_INCONCLUSIVE}[res.verdict]
 
 
 def _add_image_test(sub) -> None:
@@ -153,8 +169,26 @@ def _add_image_test(sub) -> None:
                     help="NaN values: an error, or left out of their pixel's sample (default: %(default)s)")
     it.add_argument("--worst", type=int, default=10, help="list this many smallest p-values (default: 10)")
     it.add_argument("--quiet", action="store_true", help="print nothing")
+    it.add_argument("--bias-png", metavar="FILE", default=None,
+                    help="write the detectable-bias map here: per pixel the smallest difference its test would "
+                         "have found with probability --detect-power, in false colour with its colour bar")
+    it.add_argument("--block", type=int, default=None, metavar="N",
+                    help="test the means of N x N blocks per seed instead of pixels (valid whatever the correlation "
+                         "among the pixels inside a block, e.g. a reconstruction filter's; more power for regional "
+                         "biases; per-seed inputs only; edge blocks smaller)")
+    it.add_argument("--detect-power", type=float, default=0.8,
+                    help="the power behind the detectable bias (default: %(default)s)")
+    it.add_argument("--max-detectable-bias", type=float, default=None, metavar="X",
+                    help="with no rejection, the verdict is 'inconclusive' unless the detectable bias at "
+                         "--bias-quantile of the passing pixels is at most X (absolute, the images' units)")
+    it.add_argument("--max-relative-detectable-bias", type=float, default=None, metavar="R",
+                    help="as --max-detectable-bias, relative to |reference mean| per pixel (0.01: 1%%)")
+    it.add_argument("--bias-quantile", type=float, default=0.9,
+                    help="the quantile of the passing pixels' detectable bias that the limits apply to "
+                         "(default: %(default)s)")
     it.add_argument("--fail-on-reject", action="store_true",
-                    help="exit with status 1 when any pixel differs after the adjustment")
+                    help="exit with the verdict: 0 equal, 1 different (some pixel differs after the adjustment), "
+                         "6 inconclusive (nothing tested, or a larger bias than --max-detectable-bias could hide)")
     it.set_defaults(func=_image_test)
 
 

@@ -8,13 +8,18 @@ with a status that tells its kind apart (``mcstat --help`` lists them):
 status  meaning
 ======  =====================================================================
 0       success
-1       H0 rejected, with ``--fail-on-reject``
+1       H0 rejected, with ``--fail-on-reject`` (``image-test``: the verdict
+        "different")
 2       bad command line: an unknown option, a missing or invalid argument
 3       bad input: a file missing, unreadable, corrupt or of the wrong
         format (scene, samples, images), or data a test cannot use
 4       a Python package is missing (an extra of mcstat): the line says what
         to ``pip install``
 5       an output file or folder cannot be written
+6       ``image-test --fail-on-reject``: the verdict is "inconclusive":
+        nothing could be tested, or the pass could hide a bias larger
+        than ``--max-detectable-bias`` / ``--max-relative-detectable-bias``
+        (1 is "different", 0 "equal")
 70      an internal error (a bug; ``MCSTAT_TRACEBACK=1`` shows the traceback)
 130     interrupted (Ctrl-C)
 141     stdout closed early (a broken pipe, e.g. ``| head -1``), as a
@@ -32,6 +37,7 @@ EXIT_USAGE = 2
 EXIT_INPUT = 3
 EXIT_MISSING_PACKAGE = 4
 EXIT_OUTPUT = 5
+EXIT_INCONCLUSIVE = 6
 EXIT_INTERNAL = 70
 EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
@@ -43,6 +49,8 @@ EXIT_STATUS_HELP = """exit status:
   3    bad input: a file missing, unreadable, corrupt or of the wrong format; data a test cannot use
   4    a Python package is missing: the message says what to pip install
   5    an output file or folder cannot be written
+  6    image-test --fail-on-reject: inconclusive (nothing tested, or the pass could hide a bias above
+       --max-detectable-bias / --max-relative-detectable-bias); 1 there is "different", 0 "equal"
   70   internal error (a bug: please report it; MCSTAT_TRACEBACK=1 shows the traceback)
   130  interrupted
   141  stdout closed early (broken pipe)"""

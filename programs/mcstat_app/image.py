@@ -60,7 +60,7 @@ from . import image_exr
 from .errors import MissingPackageError, OutputError, require
 
 __all__ = ["load_side", "read_image", "compare", "map_rgb", "write_map", "run", "ImageInputError",
-           "MissingReaderError"]
+           "MissingReaderError", "legend_rgb", "bias_map_rgb", "bias_legend_rgb", "write_bias_map"]
 
 
 class MissingReaderError(MissingPackageError, ImageInputError):
@@ -282,43 +282,324 @@ def _load(x, seed_axis: Optional[int], spp: Optional[int] = None):
 
 
 # ---- the significance map ------------------------------------------------------
-def map_rgb(res: ImageComparison) -> np.ndarray:
-    """The significance map as (H, W, 3) uint8 (see COLOR_KEY)."""
+def _upper_quantile(v: np.ndarray, q: float) -> float:
+    """The q-quantile of v by selection (np.partition, no full sort): the
+    value of rank floor(q (n - 1))."""
+    k = int(q * (v.size - 1))
+    return float(np.partition(v, k)[k])
+
+
+def _tone_scale(lum: np.ndarray) -> float:
+    """The luminance s of the grey background's tone map L/s / (1 + L/s):
+    the reference luminance's 99th percentile (s maps to mid grey 130)."""
+    finite = lum.ravel() if np.isfinite(lum).all() else lum[np.isfinite(lum)]
+    s = _upper_quantile(finite, 0.99) if finite.size else 1.0
+    return s if s > 0 else 1.0
+
+
+def _full_res(res: ImageComparison, a: np.ndarray) -> np.ndarray:
+    """A block-resolution (H/N, W/N, ...) array upscaled to the image (H, W, ...)."""
+    if res.block is None:
+        return a
+    h, w = res.reference_luminance.shape[:2]
+    n = res.block
+    return np.repeat(np.repeat(a, n, axis=0), n, axis=1)[:h, :w]
+
+
+# The significance map's palette: index i is grey (i, i, i), but for the key
+# colours at 1..3 (the map's greys are 60..200, the legend's 24..235, so
+# greys 1..3 never occur); black, "not tested", is index 0.
+_IDX = {"not tested": 0, "greater": 1, "less": 2, "mixed": 3}
+_PALETTE = np.repeat(np.arange(256, dtype=np.uint8)[:, None], 3, axis=1)
+for _k, _i in _IDX.items():
+    _PALETTE[_i] = COLOR_KEY[_k]
+
+
+def _map_index(res: ImageComparison) -> np.ndarray:
+    """The significance map as (H, W) uint8 indices into `_PALETTE`."""
     lum = res.reference_luminance
-    finite = np.isfinite(lum)
-    scale = np.percentile(lum[finite], 99) if finite.any() else 1.0
-    scale = scale if scale > 0 else 1.0
-    tm = np.where(finite, np.clip(lum, 0, None) / scale, 0.0)
-    tm = tm / (1.0 + tm)  # Reinhard
-    grey = (60 + 140 * tm).astype(np.uint8)
-    out = np.repeat(grey[..., None], 3, axis=2)
-    pd = res.pixel_decision()
-    out[pd == -2] = COLOR_KEY["not tested"]
-    out[pd == 1] = COLOR_KEY["greater"]
-    out[pd == -1] = COLOR_KEY["less"]
-    out[pd == 2] = COLOR_KEY["mixed"]
+    scale = _tone_scale(lum)
+    # float32 and in place: at 4K each full-size temporary costs more than its arithmetic
+    tm = np.nan_to_num(lum.astype(np.float32), nan=0.0, posinf=0.0, neginf=0.0)
+    np.maximum(tm, 0.0, out=tm)
+    tm *= np.float32(1.0 / scale)
+    tm /= tm + np.float32(1.0)  # Reinhard
+    tm *= np.float32(140.0)
+    tm += np.float32(60.0)
+    out = tm.astype(np.uint8)
+    pd = _full_res(res, res.pixel_decision())
+    sig = pd != 0
+    if sig.any():
+        lut = np.array([_IDX["not tested"], _IDX["less"], 0, _IDX["greater"], _IDX["mixed"]], dtype=np.uint8)
+        out[sig] = lut[pd[sig] + 2]   # pd + 2: not tested, less, -, greater, mixed
+    return out
+
+
+def map_rgb(res: ImageComparison) -> np.ndarray:
+    """The significance map as (H, W, 3) uint8 (see COLOR_KEY); block
+    results are drawn at the image's size, each block one colour."""
+    return _PALETTE[_map_index(res)]
+
+
+_BAND_BG = (24, 24, 24)
+_BAND_FG = (235, 235, 235)
+_LEGEND_W = 600   # the legend's width at scale 1 (Pillow's built-in bitmap font, ~6 px a character)
+_ROW = 14
+
+
+def _legend_scale(w: int) -> int:
+    # a legend readable beside a 4K image: drawn at 1x, enlarged by whole pixels
+    return max(1, w // 1200)
+
+
+def _compose(img: np.ndarray, legend: np.ndarray) -> np.ndarray:
+    """img on top, the legend band below; the canvas as wide as the wider."""
+    h, w = img.shape[:2]
+    lh, lw = legend.shape[:2]
+    out = np.empty((h + lh, max(w, lw), 3), dtype=np.uint8)
+    out[:] = _BAND_BG
+    out[:h, :w] = img
+    out[h:, :lw] = legend
+    return out
+
+
+def _draw_band(rows: int, w_img: int, draw_rows: Callable) -> np.ndarray:
+    from PIL import Image, ImageDraw
+
+    s = _legend_scale(w_img)
+    lw = max(_LEGEND_W, -(-w_img // s))
+    band = Image.new("RGB", (lw, rows * _ROW + 8), _BAND_BG)
+    draw_rows(ImageDraw.Draw(band), lw)
+    a = np.asarray(band)
+    if s > 1:
+        a = np.repeat(np.repeat(a, s, axis=0), s, axis=1)
+    return a
+
+
+def legend_rgb(res: ImageComparison, width: int) -> np.ndarray:
+    """The significance map's key (H', W', 3) uint8: a swatch and its
+    meaning per colour, the grey background's scale, alpha, the adjustment
+    and the rejections."""
+    scale = _tone_scale(res.reference_luminance)
+    m = int(res.tested.sum())
+    unit = "blocks" if res.block is not None else "tests"
+    rows = [
+        (COLOR_KEY["greater"], "greater: the candidate significantly brighter than the reference"),
+        (COLOR_KEY["less"], "less: the candidate significantly darker"),
+        (COLOR_KEY["mixed"], "mixed: channels disagree (some greater, some less)"),
+        ("grey", f"not significant: grey 60..200 = reference luminance L, L/s/(1+L/s), s = {scale:.4g} "
+                 "(99th percentile) -> 130"),
+        (COLOR_KEY["not tested"], "not tested: constant or non-finite in both inputs, too few seeds"),
+        (None, f"alpha {res.alpha:g}, {res.method} ({res.alternative}): {res.rejections} of {m} {unit} rejected"
+               + (f", {res.block} x {res.block} block means" if res.block is not None else "")
+               + f"; verdict: {res.verdict}"),
+    ]
+
+    def draw(d, lw: int) -> None:
+        for i, (col, text) in enumerate(rows):
+            y = 4 + i * _ROW
+            if col == "grey":
+                for j, g in enumerate((60, 130, 200)):
+                    d.rectangle([4 + 8 * j, y + 1, 11 + 8 * j, y + 11], fill=(g, g, g))
+                x = 34
+            elif col is not None:
+                d.rectangle([4, y + 1, 27, y + 11], fill=tuple(col), outline=(128, 128, 128))
+                x = 34
+            else:
+                x = 4
+            d.text((x, y), text, fill=_BAND_FG)
+
+    return _draw_band(len(rows), width, draw)
+
+
+def _to_index(rgb: np.ndarray) -> np.ndarray:
+    """RGB of greys and the key colours (the legend) as `_PALETTE` indices."""
+    out = rgb[..., 0].copy()
+    for k, i in _IDX.items():
+        if i:
+            out[np.all(rgb == COLOR_KEY[k], axis=-1)] = i
     return out
 
 
 def write_map(res: ImageComparison, path: str) -> None:
-    """Writes the significance map as PNG (Pillow)."""
+    """Writes the significance map as PNG (Pillow), its colour key in a
+    band below the image (`legend_rgb`).  A palette PNG (one byte a pixel:
+    greys and the key colours), encoded in about a quarter of an RGB one's
+    time; readers see the same colours (Pillow: ``.convert("RGB")``)."""
     Image = require("PIL.Image", "writing the significance map (--png)")
+    idx = _map_index(res)
+    h, w = idx.shape
+    legend = _to_index(legend_rgb(res, w))
+    full = np.full((h + legend.shape[0], max(w, legend.shape[1])), _BAND_BG[0], dtype=np.uint8)
+    full[:h, :w] = idx
+    full[h:, :legend.shape[1]] = legend
     try:
-        Image.fromarray(map_rgb(res), mode="RGB").save(path, format="PNG", compress_level=1)
+        im = Image.frombytes("P", (full.shape[1], full.shape[0]), full.tobytes())
+        im.putpalette(_PALETTE.tobytes())
+        im.save(path, format="PNG", compress_level=1)
     except OSError as e:
         raise OutputError(f"{path}: cannot write the significance map: {_reason(e)}") from e
 
 
+# ---- the detectable-bias map ------------------------------------------------------
+# viridis, sampled at 9 points (dark blue: small detectable bias, i.e. sensitive)
+_VIRIDIS = np.array([(68, 1, 84), (71, 44, 122), (59, 81, 139), (44, 113, 142), (33, 144, 141),
+                     (39, 173, 129), (92, 200, 99), (170, 220, 50), (253, 231, 37)], dtype=np.float64)
+
+
+def _colormap(t: np.ndarray) -> np.ndarray:
+    """t in [0, 1] -> (..., 3) uint8 of `_VIRIDIS`, linear between its points."""
+    x = np.clip(t, 0.0, 1.0) * (len(_VIRIDIS) - 1)
+    i = np.minimum(x.astype(np.intp), len(_VIRIDIS) - 2)
+    f = (x - i)[..., None]
+    return (_VIRIDIS[i] * (1 - f) + _VIRIDIS[i + 1] * f + 0.5).astype(np.uint8)
+
+
+# The bias map's palette: 0 black (not tested), 1..200 the colour scale,
+# 201..255 greys 24..235 for the legend's text (anti-aliased text quantised
+# to 55 greys).
+_NBIAS = 200
+_BIAS_PAL = np.zeros((256, 3), dtype=np.uint8)
+_BIAS_PAL[1:_NBIAS + 1] = _colormap(np.linspace(0.0, 1.0, _NBIAS))
+_BIAS_PAL[_NBIAS + 1:] = np.round(np.linspace(24, 235, 255 - _NBIAS)).astype(np.uint8)[:, None]
+
+
+def _bias_scale(v: np.ndarray) -> tuple:
+    """(lo, hi, log): the colour scale from the 1st to the 99th percentile
+    of the finite values, logarithmic when they span more than a factor 10."""
+    fin = np.isfinite(v)
+    f = v.ravel() if fin.all() else v[fin]
+    if f.size == 0:
+        return 0.0, 1.0, False
+    k0, k1 = int(0.01 * (f.size - 1)), int(0.99 * (f.size - 1))
+    part = np.partition(f, (k0, k1))   # one selection for both
+    lo, hi = float(part[k0]), float(part[k1])
+    if not hi > lo:
+        hi = lo + (abs(lo) if lo else 1.0)
+    return lo, hi, bool(lo > 0 and hi / lo > 10)
+
+
+def _bias_index(res: ImageComparison, scale: Optional[tuple] = None) -> np.ndarray:
+    """The bias map as (H, W) uint8 indices into `_BIAS_PAL`."""
+    v = _bias_per_pixel(res)
+    lo, hi, log = scale if scale is not None else _bias_scale(v)
+    bad = ~np.isfinite(v)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        if log:
+            t = np.log(v, dtype=np.float32)
+            t -= np.float32(np.log(lo))
+            t *= np.float32((_NBIAS - 1) / np.log(hi / lo))
+        else:
+            t = v.astype(np.float32)
+            t -= np.float32(lo)
+            t *= np.float32((_NBIAS - 1) / (hi - lo))
+        t[bad] = 0.0
+        np.clip(t, 0.0, _NBIAS - 1, out=t)
+        t += np.float32(1.5)   # 1 + rounding
+    idx = t.astype(np.uint8)
+    idx[bad] = 0
+    return _full_res(res, idx)
+
+
+def bias_map_rgb(res: ImageComparison, scale: Optional[tuple] = None) -> np.ndarray:
+    """The detectable bias (the largest over channels) in false colour,
+    (H, W, 3) uint8 at the image's size; black where not tested."""
+    return _BIAS_PAL[_bias_index(res, scale)]
+
+
+def _bias_per_pixel(res: ImageComparison) -> np.ndarray:
+    """The detectable bias, the largest over channels, NaN where not tested."""
+    db = res.detectable_bias
+    if db is None:
+        return np.full(res.shape[:2], np.nan)
+    if db.shape[-1] == 1:
+        return db[..., 0]
+    with np.errstate(invalid="ignore"):
+        v = np.max(np.where(np.isnan(db), -np.inf, db), axis=-1)
+    v[~np.isfinite(v)] = np.nan
+    return v
+
+
+def bias_legend_rgb(res: ImageComparison, width: int, scale: Optional[tuple] = None) -> np.ndarray:
+    """The bias map's colour bar with its scale and what it shows."""
+    lo, hi, log = scale if scale is not None else _bias_scale(_bias_per_pixel(res))
+    ticks = [lo * (hi / lo) ** f for f in (0, 0.25, 0.5, 0.75, 1)] if log else \
+            [lo + (hi - lo) * f for f in (0, 0.25, 0.5, 0.75, 1)]
+    unit = "block" if res.block is not None else "pixel"
+    title = (f"detectable bias per {unit}: smallest |candidate - reference| found with probability "
+             f"{res.detect_power:g} at the per-test level {res.level:.3g} ({res.method}, alpha {res.alpha:g})")
+    title2 = (f"{'log' if log else 'linear'} scale, 1st..99th percentile; black: not tested; "
+              f"largest over channels; verdict: {res.verdict}")
+
+    def draw(d, lw: int) -> None:
+        d.text((4, 4), title, fill=_BAND_FG)
+        d.text((4, 4 + _ROW), title2, fill=_BAND_FG)
+        x0, x1, y = 8, lw - 40, 4 + 2 * _ROW + 2
+        bar = _BIAS_PAL[1 + np.round(np.linspace(0.0, _NBIAS - 1, x1 - x0)).astype(np.intp)]
+        for i in range(x1 - x0):
+            d.line([(x0 + i, y), (x0 + i, y + 10)], fill=tuple(int(c) for c in bar[i]))
+        for f, tv in zip((0, 0.25, 0.5, 0.75, 1), ticks):
+            x = int(x0 + f * (x1 - x0 - 1))
+            d.line([(x, y + 10), (x, y + 13)], fill=_BAND_FG)
+            d.text((max(0, x - 12), y + 14), f"{tv:.3g}", fill=_BAND_FG)
+
+    return _draw_band(4, width, draw)
+
+
+def _bias_to_index(rgb: np.ndarray) -> np.ndarray:
+    """The bias legend's RGB (greys, and the colour bar's palette colours)
+    as `_BIAS_PAL` indices."""
+    r = rgb[..., 0].astype(np.int32)
+    g, b = rgb[..., 1].astype(np.int32), rgb[..., 2].astype(np.int32)
+    grey = (r == g) & (g == b)
+    q = np.clip(np.round((r - 24) * (254 - _NBIAS) / 211.0), 0, 254 - _NBIAS).astype(np.int32)
+    out = (_NBIAS + 1 + q).astype(np.uint8)
+    if (~grey).any():
+        pal = _BIAS_PAL[1:_NBIAS + 1].astype(np.int32)
+        keys = (pal[:, 0] << 16) | (pal[:, 1] << 8) | pal[:, 2]
+        order = np.argsort(keys)
+        k = ((r << 16) | (g << 8) | b)[~grey]
+        pos = np.clip(np.searchsorted(keys[order], k), 0, _NBIAS - 1)
+        out[~grey] = (1 + order[pos]).astype(np.uint8)
+    return out
+
+
+def write_bias_map(res: ImageComparison, path: str) -> None:
+    """Writes the detectable-bias map as PNG, its colour bar and scale below."""
+    Image = require("PIL.Image", "writing the detectable-bias map (--bias-png)")
+    scale = _bias_scale(_bias_per_pixel(res))   # one selection for the map and its bar
+    idx = _bias_index(res, scale)
+    h, w = idx.shape
+    legend = _bias_to_index(bias_legend_rgb(res, w, scale))
+    full = np.full((h + legend.shape[0], max(w, legend.shape[1])), _NBIAS + 1, dtype=np.uint8)  # grey 24
+    full[:h, :w] = idx
+    full[h:, :legend.shape[1]] = legend
+    try:
+        # a palette PNG (one byte a pixel); zlib's run-length strategy (3):
+        # the noisy false colours deflate little better with the default one,
+        # at a third of the speed
+        im = Image.frombytes("P", (full.shape[1], full.shape[0]), full.tobytes())
+        im.putpalette(_BIAS_PAL.tobytes())
+        im.save(path, format="PNG", compress_level=1, compress_type=3)
+    except OSError as e:
+        raise OutputError(f"{path}: cannot write the detectable-bias map: {_reason(e)}") from e
+
+
 def run(reference, candidate, *, png: Optional[str] = None, json_path: Optional[str] = None, worst: int = 10,
-        **kw) -> ImageComparison:
-    """`compare`, then the PNG and the JSON summary when paths are given."""
-    if png:  # before the work: a missing Pillow is said at once
-        require("PIL.Image", "writing the significance map (--png)")
+        bias_png: Optional[str] = None, **kw) -> ImageComparison:
+    """`compare`, then the PNGs and the JSON summary when paths are given."""
+    if png or bias_png:  # before the work: a missing Pillow is said at once
+        require("PIL.Image", "writing the significance map (--png)" if png else
+                "writing the detectable-bias map (--bias-png)")
     res = compare(reference, candidate, **kw)
     t = time.perf_counter()
     if png:
         write_map(res, png)
     res.timings["png"] = time.perf_counter() - t
+    if bias_png:
+        t = time.perf_counter()
+        write_bias_map(res, bias_png)
+        res.timings["bias_png"] = time.perf_counter() - t
     if json_path:
         try:
             with open(json_path, "w") as f:

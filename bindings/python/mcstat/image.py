@@ -25,6 +25,42 @@ blue, significantly less; yellow, channels disagree (some greater, some
 less); grey, not significant (the reference's tone-mapped luminance, so the
 picture stays recognisable); black, not tested (constant in both inputs,
 non-finite values, too few seeds).
+
+What a pass means (`ImageComparison.detectable_bias`): for each tested
+pixel, the smallest difference of means |delta| that its test would have
+found with probability `detect_power` (0.8 by default) at its own standard
+error se and Welch degrees of freedom df, at the per-test level `level`
+the adjustment applied (`per_test_level`: the raw p-value at or below
+which one more, not yet rejected, test is sure to be rejected, the others'
+p-values held fixed -- the threshold of the adjustment's next step).  With c the test's critical value
+(t_{1 - level/2, df} two-sided, t_{1 - level, df} one-sided) and z the
+normal quantile of the power,
+
+    delta = se * (c (1 - 1/(4 df)) + z sqrt(1 + c^2 / (2 df))),
+
+the Johnson-Welch normal approximation to the noncentral t's power
+P(T'(df, delta/se) > c), taking the true standard error to be the
+estimated one.  Against the exact noncentral t (levels 0.05 to 1e-7) it
+overstates the exact delta, so the power at delta is at least the
+target: at power 0.8 by at most 5% at df = 1, 2% at df = 2, 1.6% at
+2.5, 1% at 4, 0.3% at 10, 0.06% at 30; at power 0.5 by at most 11%, 5%,
+4%, 2.4%, 0.8% and 0.15% (tests/python/test_image_pass.py checks it by
+integrating the normal tails over the chi-squared).  The textbook
+(c + t_{power, df}) se is off by up to 20% either way at small df and
+small levels.  A pass (no rejection) therefore says: a bias larger than `detectable_bias` at a pixel would probably have been
+found; smaller ones could hide.  `compare`'s ``max_detectable_bias`` (or
+``max_relative_detectable_bias``) turns that into the verdict
+"inconclusive" when the pass could hide a larger bias at the chosen
+quantile of pixels.
+
+Block tests (``compare(..., block=N)``): the mean of each N x N block per
+seed (edge blocks smaller), then the same Welch test per block.  A block
+mean's values across seeds are independent whatever the correlation among
+the pixels inside the block (a reconstruction filter's, a denoiser's), and
+a bias spread over a region adds up while the noise averages out, so block
+tests find small regional biases that per-pixel tests miss (Jung et al.
+2020, JCGT, tested 32 x 32 blocks; here the sums are in double precision
+and the Welch df real).
 """
 from __future__ import annotations
 
@@ -49,7 +85,16 @@ __all__ = [
     "compare",
     "COLOR_KEY",
     "LUMINANCE_WEIGHTS",
+    "VERDICTS",
+    "per_test_level",
+    "detectable_bias",
 ]
+
+# ImageComparison.verdict's values
+VERDICTS = ("equal", "different", "inconclusive")
+
+# libmcstat's calibrator for e-BH on p-values, e = kappa p^(kappa - 1) (p_adjust.c)
+_EBH_KAPPA = 0.1
 
 # Rec. 709 / sRGB primaries, linear light.
 LUMINANCE_WEIGHTS = (0.2126, 0.7152, 0.0722)
@@ -325,6 +370,20 @@ class ImageComparison:
     # tests left out because an input lost their variance, and why
     variance_lost: int = 0
     notes: List[str] = field(default_factory=list)
+    # What a pass means (see the module's doc): (H, W, C) smallest |delta|
+    # found with probability detect_power, NaN where not tested.
+    detectable_bias: Optional[np.ndarray] = None
+    detect_power: float = 0.8
+    level: float = float("nan")   # the per-test level behind detectable_bias (per_test_level)
+    # the verdict's bias limit: absolute, relative to |reference mean|, at this quantile of pixels
+    max_detectable_bias: Optional[float] = None
+    max_relative_detectable_bias: Optional[float] = None
+    bias_quantile: float = 0.9
+    # Block tests: the block's side in pixels (None: per pixel); the arrays
+    # are then at block resolution, reference_luminance and image_shape the image's.
+    block: Optional[int] = None
+    image_shape: Optional[Tuple[int, int]] = None
+    _bias_stats: Optional[Dict[str, Any]] = field(default=None, repr=False)
 
     @property
     def shape(self) -> Tuple[int, int, int]:
@@ -342,6 +401,51 @@ class ImageComparison:
         out[l_ & ~g] = -1
         out[g & l_] = 2
         return out
+
+    @property
+    def rejections(self) -> int:
+        """Tests rejected after the adjustment."""
+        return int(np.count_nonzero(self.padjusted <= self.alpha))
+
+    def bias_statistics(self) -> Dict[str, Any]:
+        """Quantiles (median, 90%, 99%) of `detectable_bias` over the
+        tested pixels that were not rejected (the pass's pixels), absolute
+        and relative to |reference mean| (pixels where it is not 0), and
+        the quantile the verdict uses (`bias_quantile`)."""
+        if self._bias_stats is None:
+            self._bias_stats = _bias_stats(self)
+        return self._bias_stats
+
+    @property
+    def verdict(self) -> str:
+        """``"different"``: some test rejected after the adjustment;
+        ``"inconclusive"``: nothing could be tested, or a bias limit was
+        given (``max_detectable_bias``, ``max_relative_detectable_bias``)
+        and at the `bias_quantile` of the passing pixels a larger bias
+        could have hidden (`detectable_bias` above the limit);
+        ``"equal"``: no rejection, and at least one test ran (and the
+        limits, if given, are met)."""
+        return self.verdict_reason()[0]
+
+    def verdict_reason(self) -> Tuple[str, str]:
+        """`verdict` and one line saying why."""
+        r = self.rejections
+        if r > 0:
+            return "different", f"{r} test(s) rejected after the {self.method} adjustment"
+        if not self.tested.any():
+            return "inconclusive", "no test could be made (constant or non-finite inputs, too few seeds)"
+        b = self.bias_statistics()
+        q = self.bias_quantile
+        for key, limit, what in (("absolute", self.max_detectable_bias, "--max-detectable-bias"),
+                                 ("relative", self.max_relative_detectable_bias, "--max-relative-detectable-bias")):
+            if limit is None:
+                continue
+            v = b[key]["at_bias_quantile"]
+            if v is None or not v <= limit:
+                return "inconclusive", (f"no rejection, but at the {100 * q:g}th percentile of the passing tests a bias "
+                                        f"of {_g(v)} could have hidden ({key}), above the limit {limit:g} ({what})")
+        return "equal", "no rejection" + ("; the detectable bias is within the limit" if (
+            self.max_detectable_bias is not None or self.max_relative_detectable_bias is not None) else "")
 
     def summary(self, worst: int = 10) -> dict:
         m = int(self.tested.sum())
@@ -376,6 +480,15 @@ class ImageComparison:
             "expected_false_discoveries_bound": (self.alpha * adj) if fdr else None,
             "probability_any_false_discovery_bound": None if fdr or self.method == "none" else self.alpha,
             "color_key": {k: (list(v) if isinstance(v, tuple) else v) for k, v in COLOR_KEY.items()},
+            "verdict": self.verdict,
+            "verdict_reason": self.verdict_reason()[1],
+            "detectable_bias": self.bias_statistics(),
+            "block": None if self.block is None else {
+                "size": self.block, "grid": [h, w],
+                "image": list(self.image_shape) if self.image_shape else None,
+                "note": "each test is one block's mean per seed; blocks at the right and bottom edges are "
+                        "smaller when the image's size is not a multiple of the block's; x, y in 'worst' are "
+                        "block indices (the block's first pixel is x * size, y * size)"},
             "worst": self.worst(worst),
             "timings_s": {k: round(v, 4) for k, v in self.timings.items()},
             "variance_lost": self.variance_lost,
@@ -410,10 +523,14 @@ class ImageComparison:
     def text(self, worst: int = 10) -> str:
         s = self.summary(worst)
         h, w = s["image"]["height"], s["image"]["width"]
+        blk = s["block"]
         lines = [
-            "\tPer-pixel Welch two-sample t-tests, candidate vs reference",
+            "\tPer-pixel Welch two-sample t-tests, candidate vs reference" if blk is None else
+            f"\tBlock Welch two-sample t-tests ({blk['size']} x {blk['size']} block means), candidate vs reference",
             "",
-            f"image:  {w} x {h}, channels {', '.join(s['image']['channels'])}: {s['tests']} tests, "
+            (f"image:  {w} x {h}" if blk is None else
+             f"blocks: {w} x {h} of a {blk['image'][1]} x {blk['image'][0]} image (edge blocks smaller)") +
+            f", channels {', '.join(s['image']['channels'])}: {s['tests']} tests, "
             f"{s['tested']} tested, {s['not_tested']} not tested",
             f"alternative: {s['alternative']}, alpha = {s['alpha']:g}, adjustment: {s['adjustment']} "
             f"(controls the {s['controls']}; assumes {s['assumes']})",
@@ -426,13 +543,272 @@ class ImageComparison:
             lines.append(f"expected false discoveries among them: at most {s['expected_false_discoveries_bound']:.2f}")
         elif s["probability_any_false_discovery_bound"] is not None:
             lines.append(f"probability of any false discovery: at most {s['probability_any_false_discovery_bound']:g}")
+        b = s["detectable_bias"]
+        if b["absolute"]["median"] is not None:
+            what = "block" if blk is not None else "pixel"
+            rel = b["relative"]
+            reltxt = (f"; relative to the reference: {_g(rel['median'])}, {_g(rel['p90'])}"
+                      if rel["median"] is not None else "")
+            if s["rejections_adjusted"] == 0:
+                lines.append(f"no differences found; a bias smaller than {_g(b['absolute']['median'])} (median {what}; "
+                             f"{_g(b['absolute']['p90'])} at the 90th percentile{reltxt}) could have hidden")
+            else:
+                lines.append(f"where nothing was found, a bias smaller than {_g(b['absolute']['median'])} (median "
+                             f"{what}; {_g(b['absolute']['p90'])} at the 90th percentile{reltxt}) could have hidden")
+            lines.append(f"  (smallest |difference| found with probability {b['power']:g} at the per-test level "
+                         f"{b['level']:.3g} the adjustment applied)")
         lines += [f"note: {n}" for n in s["notes"]]
+        lines.append(f"verdict: {s['verdict']} ({s['verdict_reason']})")
         if s["worst"]:
-            lines += ["", "smallest p-values:", "     x      y  ch    p-value   adjusted          t  decision"]
+            lines += ["", "smallest p-values" + ("" if blk is None else " (x, y: block indices)") + ":",
+                      "     x      y  ch    p-value   adjusted          t  decision"]
             for r in s["worst"]:
                 lines.append(f"{r['x']:6d} {r['y']:6d} {r['channel']:>3s} {r['pvalue']:10.3g} "
                              f"{r['padjusted']:10.3g} {r['t']:10.4g}  {r['decision']}")
         return "\n".join(lines) + "\n"
+
+
+# ---- what a pass means -----------------------------------------------------------
+def _g(v: Optional[float]) -> str:
+    return "n/a" if v is None else f"{v:.3g}"
+
+
+def per_test_level(method: str, alpha: float, m: int, rejections: int) -> float:
+    """The per-test level an adjustment applied to `m` p-values with
+    `rejections` rejected at `alpha`: the raw p-value at or below which one
+    more (not yet rejected) test is sure to be rejected, the other p-values
+    held fixed -- the threshold of the adjustment's next step (for Holm and
+    Bonferroni the largest such p-value; for the step-up methods a p-value
+    a little above it can still be rejected when the not-rejected p-values
+    above it crowd the next thresholds).  With k = min(rejections + 1, m):
+
+    - BH: alpha k / m (alpha / m when nothing was rejected);
+    - BY: alpha k / (m H_m), H_m = 1 + 1/2 + ... + 1/m;
+    - e-BH (p calibrated to e = kappa p^(kappa - 1), kappa = 1/10):
+      (kappa alpha k / m)^(1 / (1 - kappa));
+    - Holm, Hochberg: alpha / (m - k + 1); Hommel: Hochberg's, which it
+      never rejects less than (so a lower bound of its level);
+    - Bonferroni: alpha / m; none: alpha.
+    """
+    method = _canonical_method(method)
+    if m <= 0:
+        return float("nan")
+    k = min(rejections + 1, m)
+    if method == "BH":
+        return alpha * k / m
+    if method == "BY":
+        return alpha * k / (m * _harmonic(m))
+    if method == "e-BH":
+        return float((_EBH_KAPPA * alpha * k / m) ** (1.0 / (1.0 - _EBH_KAPPA)))
+    if method in ("holm", "hochberg", "hommel"):
+        return alpha / (m - k + 1)
+    if method == "bonferroni":
+        return alpha / m
+    return alpha
+
+
+def _harmonic(m: int) -> float:
+    if m < 10**6:
+        return float(np.sum(1.0 / np.arange(m, 0, -1, dtype=np.float64)))
+    g = 0.5772156649015329  # Euler's; the asymptotic series is exact to rounding here
+    return float(np.log(m) + g + 1.0 / (2 * m) - 1.0 / (12.0 * m * m))
+
+
+_CHUNK = 1 << 18  # values per pass: the temporaries stay in cache and are reused
+
+
+def _t_upper_quantile(q: float, df: np.ndarray) -> np.ndarray:
+    """x with P[T_df > x] = q for an array of real df (libmcstat's
+    ``t_quantile``), NaN where df is not positive and finite (see
+    `_t_quantile_table`)."""
+    d = np.asarray(df, dtype=np.float64)
+    flat = d.reshape(-1)
+    out = np.empty(flat.size)
+    table = _t_quantile_table(q, flat)
+    for k in range(0, flat.size, _CHUNK):
+        out[k:k + _CHUNK] = _t_quantile_apply(table, flat[k:k + _CHUNK])
+    return out.reshape(d.shape)
+
+
+def _t_quantile_table(q: float, d: np.ndarray) -> Any:
+    """How `_t_quantile_apply` finds t quantiles for the df in `d`.  Few
+    values: exact.  Millions of distinct df: exact at the nodes of a
+    uniform grid in u = 1/df over [1/max, 1/min], linear interpolation of
+    log x (of x when q >= 1/2) between them -- for small df, log x is
+    nearly linear in 1/df (x ~ q^(-1/df)) -- with the nodes multiplied
+    (from 512 to at most 65536) until the interpolation is within 1e-7
+    relative of the exact value at every midpoint.  The grid is uniform
+    so each value finds its interval by arithmetic, not a search."""
+    from .distributions import t_quantile
+
+    ok = np.isfinite(d) & (d > 0)
+    if d.size <= 4096 or not ok.any():
+        return ("exact", q)
+    dv = d if ok.all() else d[ok]
+    lo, hi = float(dv.min()), float(dv.max())
+    if hi <= lo * (1 + 1e-12):
+        return ("exact", q)
+    logs = q < 0.5  # x > 0
+    u0, u1 = 1.0 / hi, 1.0 / lo
+
+    def f(u: np.ndarray) -> np.ndarray:
+        x = np.asarray(t_quantile(q, 1.0 / u, upper=True))
+        return np.log(x) if logs else x
+
+    g = 512
+    while True:
+        u = np.linspace(u0, u1, g + 1)
+        ys = f(u)
+        exact = f(0.5 * (u[1:] + u[:-1]))
+        lin = 0.5 * (ys[1:] + ys[:-1])
+        err = np.max(np.abs(np.expm1(lin - exact)) if logs else np.abs(lin - exact) / np.abs(exact))
+        if err <= 1e-7 or g >= 65536:
+            break
+        # the error of linear interpolation falls as 1/g^2
+        g = min(65536, 1 << int(np.ceil(np.log2(g * 1.2 * np.sqrt(err / 1e-7)))))
+    return ("grid", u0, (u1 - u0) / g, g, ys, np.diff(ys), logs)
+
+
+def _t_quantile_apply(table: Any, d: np.ndarray) -> np.ndarray:
+    from .distributions import t_quantile
+
+    ok = np.isfinite(d) & (d > 0)
+    allok = bool(ok.all())
+    if table[0] == "exact":
+        out = np.full(d.shape, np.nan)
+        if ok.any():
+            out[ok] = t_quantile(table[1], d[ok], upper=True)
+        return out
+    _, u0, h, g, ys, slope, logs = table
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.divide(1.0, d)
+        t -= u0
+        t *= 1.0 / h
+        if not allok:
+            t[~ok] = 0.0
+        np.clip(t, 0.0, float(g), out=t)
+        i = t.astype(np.intp)
+        np.minimum(i, g - 1, out=i)
+        t -= i
+        y = np.take(slope, i)
+        y *= t
+        np.take(ys, i, out=t)
+        y += t
+    if logs:
+        np.exp(y, out=y)
+    if not allok:
+        y[~ok] = np.nan
+    return y
+
+
+def detectable_bias(std_error: Any, df: Any, level: float, *, alternative: str = "two-sided",
+                    power: float = 0.8) -> np.ndarray:
+    """The smallest |difference of means| a Welch test with this standard
+    error and these degrees of freedom finds with probability `power` at
+    the per-test `level` (arrays broadcast; NaN where se or df is not
+    positive and finite): se (c (1 - 1/(4 df)) + z sqrt(1 + c^2/(2 df))),
+    c the critical t, z the normal `power` quantile (the module's doc gives
+    the approximation's error)."""
+    from statistics import NormalDist
+
+    if not (0.0 < power < 1.0):
+        raise InvalidArgumentError(f"power must lie in (0, 1), got {power}")
+    if not (0.0 < level < 1.0):
+        raise InvalidArgumentError(f"level must lie in (0, 1), got {level}")
+    se = np.asarray(std_error, dtype=np.float64)
+    d = np.asarray(df, dtype=np.float64)
+    se, d = np.broadcast_arrays(se, d)
+    shape = se.shape
+    se, d = se.reshape(-1), d.reshape(-1)
+    q = level / 2 if alternative == "two-sided" else level
+    z = NormalDist().inv_cdf(power)
+    table = _t_quantile_table(q, d)
+    out = np.empty(d.size)
+    # a chunk at a time: at 8.3 M pixels, fresh full-size temporaries cost
+    # more than the arithmetic
+    for k in range(0, d.size, _CHUNK):
+        dk, sk = d[k:k + _CHUNK], se[k:k + _CHUNK]
+        c = _t_quantile_apply(table, dk)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            inv = np.divide(1.0, dk)
+            root = np.multiply(c, c)
+            root *= 0.5 * inv
+            root += 1.0
+            np.sqrt(root, out=root)
+            root *= z
+            inv *= -0.25
+            inv += 1.0
+            c *= inv
+            c += root           # c (1 - 1/(4 df)) + z sqrt(1 + c^2/(2 df))
+            c *= sk
+            c[~(sk > 0) | ~np.isfinite(sk)] = np.nan
+        out[k:k + _CHUNK] = c
+    return out.reshape(shape)
+
+
+def _welch_se_df(cand: "Summary", ref: "Summary") -> Tuple[np.ndarray, np.ndarray]:
+    """Welch's standard error and degrees of freedom from per-pixel summaries."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        vx = cand.m2 / (cand.n - 1) / cand.n
+        vy = ref.m2 / (ref.n - 1) / ref.n
+        v = vx + vy
+        df = v * v / (vx * vx / (cand.n - 1) + vy * vy / (ref.n - 1))
+        return np.sqrt(v), df
+
+
+def _bias_stats(res: "ImageComparison") -> Dict[str, Any]:
+    qs = (0.5, 0.9, 0.99)
+    out: Dict[str, Any] = {"power": res.detect_power,
+                           "level": res.level if np.isfinite(res.level) else None,  # None: nothing tested
+                           "bias_quantile": res.bias_quantile,
+                           "definition": "smallest |candidate - reference| mean difference found with probability "
+                                         "`power` at the per-test `level` the adjustment applied, over the tested "
+                                         "tests that were not rejected",
+                           "max_detectable_bias": res.max_detectable_bias,
+                           "max_relative_detectable_bias": res.max_relative_detectable_bias}
+    db = res.detectable_bias
+    for key in ("absolute", "relative"):
+        out[key] = {"median": None, "p90": None, "p99": None, "at_bias_quantile": None}
+    if db is None:
+        return out
+    keep = res.tested & ~(res.padjusted <= res.alpha) & np.isfinite(db)
+    vals = db[keep]
+    ref = np.abs(res.mean_reference[keep])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel = vals[ref > 0] / ref[ref > 0]
+    for key, v in (("absolute", vals), ("relative", rel)):
+        if v.size:
+            got = np.quantile(v, qs + (res.bias_quantile,))
+            out[key] = {"median": float(got[0]), "p90": float(got[1]), "p99": float(got[2]),
+                        "at_bias_quantile": float(got[3])}
+    return out
+
+
+# ---- block tests -----------------------------------------------------------------
+def _block_means(s: Samples, n: int, nan_policy: str, name: str) -> Samples:
+    """Per seed, the mean of each n x n block (double sums; the blocks at
+    the right and bottom edges smaller).  Non-finite values: NonFiniteError
+    (nan_policy "raise"), or the block is left untested (all its means NaN)."""
+    k, h, w, c = s.data.shape
+    ys, xs = np.arange(0, h, n), np.arange(0, w, n)
+    d = s.data
+    fin = np.isfinite(d)
+    allfin = bool(fin.all())
+    if not allfin:
+        bad = ~fin.all(axis=0)
+        if nan_policy == "raise":
+            y, x, ch = np.unravel_index(int(np.argmax(bad)), bad.shape)
+            raise NonFiniteError(f"{int(bad.sum())} pixel(s) of the {name} hold NaN or infinite values, the first at "
+                                 f"x={x}, y={y} ({s.channel_names[ch]}); pass nan_policy='omit' (--nan omit) to leave "
+                                 "the blocks holding them untested")
+        d = np.where(fin, d, 0.0)
+    sums = np.add.reduceat(np.add.reduceat(d, ys, axis=1, dtype=np.float64), xs, axis=2, dtype=np.float64)
+    cy, cx = np.diff(np.append(ys, h)), np.diff(np.append(xs, w))
+    means = sums / (cy[:, None] * cx[None, :]).astype(np.float64)[None, :, :, None]
+    if not allfin:
+        badb = np.add.reduceat(np.add.reduceat(bad.astype(np.int64), ys, axis=0), xs, axis=1) > 0
+        means[:, badb] = np.nan
+    return Samples(means, list(s.channel_names))
 
 
 def _reference_luminance(side: Side) -> np.ndarray:
@@ -447,7 +823,10 @@ def _reference_luminance(side: Side) -> np.ndarray:
 
 def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", alternative: str = "two-sided",
             channels: str = "luminance", seed_axis: Optional[int] = None,
-            nan_policy: str = "raise") -> ImageComparison:
+            nan_policy: str = "raise", block: Optional[int] = None, detect_power: float = 0.8,
+            max_detectable_bias: Optional[float] = None,
+            max_relative_detectable_bias: Optional[float] = None,
+            bias_quantile: float = 0.9) -> ImageComparison:
     """Welch's test per pixel (and channel) of candidate against reference,
     p-values adjusted together by `method` (``mcstat.p_adjust``'s names;
     BH controls the false discovery rate at `alpha` for independent or
@@ -478,8 +857,32 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     pixels with infinities are not tested.  Raises `ImageInputError`
     (an `InvalidArgumentError`) for mismatched shapes and unusable inputs,
     `TooFewObservationsError` for fewer than 2 seeds per side.
+
+    `block`: test the means of `block` x `block` blocks instead of pixels
+    (per-seed inputs only: per-pixel summaries lack the covariances of the
+    pixels inside a block); the result is at block resolution (``block``
+    says the size, ``image_shape`` the image's), the blocks at the right and
+    bottom edges smaller when the size does not divide the image's.  With
+    ``nan_policy="omit"`` a block holding a non-finite value in any seed is
+    not tested.
+
+    `detect_power`: the power behind ``detectable_bias`` (see the module's
+    doc).  `max_detectable_bias` (absolute, in the image's units) and
+    `max_relative_detectable_bias` (relative to |reference mean|): the
+    verdict is "inconclusive" rather than "equal" when, at the
+    `bias_quantile` of the passing pixels, ``detectable_bias`` exceeds them.
     """
     t0 = time.perf_counter()
+    if block is not None and (isinstance(block, bool) or not isinstance(block, (int, np.integer)) or block < 1):
+        raise InvalidArgumentError(f"block must be a positive integer (the block's side in pixels), got {block!r}")
+    if not (0.0 < detect_power < 1.0):
+        raise InvalidArgumentError(f"detect_power must lie in (0, 1), got {detect_power}")
+    if not (0.0 <= bias_quantile <= 1.0):
+        raise InvalidArgumentError(f"bias_quantile must lie in [0, 1], got {bias_quantile}")
+    for nm, lim in (("max_detectable_bias", max_detectable_bias),
+                    ("max_relative_detectable_bias", max_relative_detectable_bias)):
+        if lim is not None and not (np.isfinite(lim) and lim > 0):
+            raise InvalidArgumentError(f"{nm} must be positive and finite, got {lim}")
     if seed_axis is None:
         seed_axis = _infer_seed_axis(reference, candidate)
     ref = _as_side(reference, seed_axis)
@@ -493,6 +896,15 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     bg = _reference_luminance(ref)
     ref = _select(ref, channels)
     cand = _select(cand, channels)
+    image_shape = (ref.shape[0], ref.shape[1])
+    if block is not None:
+        if not isinstance(ref, Samples) or not isinstance(cand, Samples):
+            raise ImageInputError("block tests need per-seed renders: a block mean's variance needs the covariances "
+                                  "of the pixels inside the block, which per-pixel summaries (n, mean, M2) lack")
+        if nan_policy not in ("raise", "omit"):
+            raise InvalidArgumentError(f"nan_policy must be 'raise' or 'omit', got {nan_policy!r}")
+        ref = _block_means(ref, int(block), nan_policy, "reference")
+        cand = _block_means(cand, int(block), nan_policy, "candidate")
     t1 = time.perf_counter()
     if isinstance(ref, Samples):
         for name, s in (("reference", ref), ("candidate", cand)):
@@ -532,6 +944,11 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
                                  "NaN values out and not test pixels with infinities")
     t2 = time.perf_counter()
     padj = _core.p_adjust(pvalue, method=method)
+    if isinstance(ref, Samples):
+        se, dfw = np.asarray(r.std_error, dtype=np.float64), np.asarray(r.df, dtype=np.float64)
+    else:
+        assert isinstance(cand, Summary) and isinstance(ref, Summary)
+        se, dfw = _welch_se_df(cand, ref)
     t3 = time.perf_counter()
     tested = status == 0
     sig = padj <= alpha
@@ -546,8 +963,21 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     res = ImageComparison(pvalue, padj, stat, dec, tested, est[..., 0], est[..., 1], bg, list(ref.channel_names),
                           alpha, _canonical_method(method), alternative)
     res.variance_lost, res.notes = int(lost.sum()) if lost is not None else 0, notes
+    t4 = time.perf_counter()
+    m = int(np.count_nonzero(~np.isnan(pvalue)))
+    res.level = per_test_level(res.method, alpha, m, res.rejections)
+    if m > 0:
+        db = detectable_bias(se, dfw, res.level, alternative=alternative, power=detect_power)
+        db[~tested] = np.nan
+        res.detectable_bias = db
+    res.detect_power = detect_power
+    res.max_detectable_bias = max_detectable_bias
+    res.max_relative_detectable_bias = max_relative_detectable_bias
+    res.bias_quantile = bias_quantile
+    if block is not None:
+        res.block, res.image_shape = int(block), image_shape
     res.timings = {"load_and_channels": t1 - t0, "tests": t2 - t1, "adjust": t3 - t2,
-                   "decisions": time.perf_counter() - t3}
+                   "decisions": t4 - t3, "detectable_bias": time.perf_counter() - t4}
     return res
 
 
