@@ -51,18 +51,47 @@
  * Both sums have positive terms (a few ulps each).  Outside (df beyond
  * [1, 1000], the centre of a large df, |t| >= 1e100) it returns 0 and the
  * caller uses mcstat__t_tails. */
-int mcstat__t_tail_fast(double t, double df, double *upper, double *other, double *logk)
+/* log Gamma*(z) for z >= 10: special.c's Stirling series (error below
+ * 3e-17), inline. */
+static double lgs_stirling(double z)
 {
-    double at = fabs(t);
-    if (!(df >= 1.0 && df <= 1000.0) || !(at > 0.0 && at < 1e100))
-        return 0;
-    double a = 0.5 * df, A = a + 0.5;
+    double r = 1.0 / z, r2 = r * r;
+    return r * (1.0 / 12 + r2 * (-1.0 / 360 + r2 * (1.0 / 1260 + r2 * (-1.0 / 1680 +
+                r2 * (1.0 / 1188 + r2 * (-691.0 / 360360 + r2 * (1.0 / 156)))))));
+}
+
+/* The df-dependent part of log K: with a = df/2 shifted to z = a + k >= 10,
+ *   Gamma(a+1/2)/(Gamma(a) sqrt(a)) = Gamma(z+1/2)/(Gamma(z) sqrt(z))
+ *                                     * sqrt(z/a) prod_{i<k} (a+i)/(a+i+1/2),
+ * the first factor exp(z log1p(1/(2z)) - 1/2 + log G*(z+1/2) - log G*(z)).
+ * Returned as that exponent (minus log(2 pi)/2) and the factor f multiplying
+ * |t| inside the one logarithm the tail takes. */
+typedef struct {
+    double a, A, lc, f;
+} t_prefactor;
+
+static void t_prefactor_init(double df, t_prefactor *pf)
+{
+    double a = 0.5 * df, z = a, num = 1.0, den = 1.0;
+    while (z < 10.0) {
+        num *= z;
+        den *= z + 0.5;
+        z += 1.0;
+    }
+    pf->a = a;
+    pf->A = a + 0.5;
+    pf->f = (num / den) * sqrt(z / a);
+    pf->lc = (z * log1p(0.5 / z) - 0.5) + (lgs_stirling(z + 0.5) - lgs_stirling(z)) - LOG_2PI_HALF;
+}
+
+static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *other, double *logk)
+{
+    double a = pf->a, A = pf->A, df = 2.0 * a;
     double r = at * at / df;
     double y = r / (1.0 + r), x = 1.0 / (1.0 + r);
     if (r < 1.0 && A * y > 40.0) /* the central series would be long and c near 1 */
         return 0;
-    double lk = log(at) - A * log1p(r) + (a * log1p(0.5 / a) - 0.5) + mcstat__log_gammastar(A) -
-                mcstat__log_gammastar(a) - LOG_2PI_HALF;
+    double lk = log(at * pf->f) - A * log1p(r) + pf->lc;
     double term = 1.0, sum = 1.0;
     if (r >= 1.0) {
         for (int j = 0;; j++) {
@@ -95,15 +124,38 @@ int mcstat__t_tail_fast(double t, double df, double *upper, double *other, doubl
     return 1;
 }
 
-/* The upper p-quantile of t(df) (0 < p < 1/2) by Newton's method in
- * z = log t on the fast tail: d log P[T > t] / dz = -K / P.  Started from
- * Cornish-Fisher (A&S 26.7.5); stops one step after a step below 1e-9,
- * where the quadratic convergence has left the tail's own rounding.
- * Falls back to mcstat_t_quantile where the fast tail does not apply or
- * the iteration wanders. */
-int mcstat__t_upper_quantile_fast(double p, double df, double *q)
+static int fast_range(double at, double df)
+{
+    return df >= 1.0 && df <= 1000.0 && at >= 1e-100 && at < 1e100;
+}
+
+int mcstat__t_tail_fast(double t, double df, double *upper, double *other, double *logk)
+{
+    double at = fabs(t);
+    if (!fast_range(at, df))
+        return 0;
+    t_prefactor pf;
+    t_prefactor_init(df, &pf);
+    return t_tail_core(at, &pf, upper, other, logk);
+}
+
+/* The upper p-quantile of t(df) (0 < p < 1/2) by Halley's method in
+ * z = log t on the fast tail: with g = log P[T > t] - log p,
+ *   g' = -K/P,  g'' = g' (1 - (df+1) y + K/P),  y = t^2/(df+t^2),
+ * (K = t f(t), d log K/dz = 1 - (df+1) y).  Started from Cornish-Fisher
+ * (A&S 26.7.5, three terms), whose error of 1e-3..1e-5 at df >= 3 the cubic
+ * convergence takes to rounding in two steps; it stops after a step below
+ * 1e-6 (the error left is of the order of its cube).  pf is df's prefactor,
+ * NULL to compute it.  Falls back to mcstat_t_quantile where the fast tail
+ * does not apply or the iteration wanders. */
+static int t_upper_quantile(double p, double df, const t_prefactor *pf, double *q)
 {
     if (p >= 1e-100 && p < 0.5 && df >= 1.0 && df <= 1000.0) {
+        t_prefactor own;
+        if (!pf) {
+            t_prefactor_init(df, &own);
+            pf = &own;
+        }
         double g = mcstat__norm_quantile(p, 1), g2 = g * g, v = 1.0 / df;
         double t = g + v * (g * (g2 + 1.0) / 4.0 +
                             v * (g * ((5.0 * g2 + 16.0) * g2 + 3.0) / 96.0 +
@@ -111,26 +163,33 @@ int mcstat__t_upper_quantile_fast(double p, double df, double *q)
         double lp = log(p);
         if (t > 0.0 && isfinite(t)) {
             double z = log(t);
-            int last = 0;
             for (int it = 0; it < 30; it++) {
-                double u, o, lk;
-                if (!mcstat__t_tail_fast(exp(z), df, &u, &o, &lk) || !(u > 0.0))
+                double u, o, lk, at = exp(z);
+                if (!fast_range(at, df) || !t_tail_core(at, pf, &u, &o, &lk) || !(u > 0.0))
                     break;
-                double step = u * (log(u) - lp) / exp(lk);
+                double h = log(u) - lp, kp = exp(lk) / u, y = at * at / (df + at * at);
+                double d1 = -kp, d2 = d1 * (1.0 - (df + 1.0) * y + kp);
+                double step = -h / d1;
+                double den = 1.0 + 0.5 * step * d2 / d1; /* Halley: -h / (d1 - h d2 / (2 d1)) */
+                if (den > 0.5)
+                    step /= den;
                 if (!isfinite(step))
                     break;
                 step = fmax(-2.0, fmin(2.0, step));
                 z += step;
-                if (last) {
+                if (fabs(step) < 1e-6) {
                     *q = exp(z);
                     return MCSTAT_OK;
                 }
-                if (fabs(step) < 1e-9)
-                    last = 1;
             }
         }
     }
     return mcstat_t_quantile(p, df, 1, q);
+}
+
+int mcstat__t_upper_quantile_fast(double p, double df, double *q)
+{
+    return t_upper_quantile(p, df, NULL, q);
 }
 
 /* ---- arguments ----------------------------------------------------------- */
@@ -277,13 +336,13 @@ static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, 
 /* The critical values (c0, c1) of t(df) for the alternative, as
  * mcstat__finish asks them: two-sided -+q(alpha/2); "less" -q(alpha), +Inf;
  * "greater" -Inf, q(alpha). */
-static int criticals(pix_ctx *c, double df, double *c0, double *c1)
+static int criticals(pix_ctx *c, double df, const t_prefactor *pf, double *c0, double *c1)
 {
     double q;
     int st;
     if (c->alternative == MCSTAT_TWO_SIDED) {
         if (df != c->crit_df) { /* equal df (equal variances' ratio) repeat in flat regions */
-            if ((st = mcstat__t_upper_quantile_fast(0.5 * c->alpha, df, &q)))
+            if ((st = t_upper_quantile(0.5 * c->alpha, df, pf, &q)))
                 return st;
             c->crit_two = q;
             c->crit_df = df;
@@ -292,7 +351,7 @@ static int criticals(pix_ctx *c, double df, double *c0, double *c1)
         *c1 = c->crit_two;
         return MCSTAT_OK;
     }
-    if ((st = mcstat__t_upper_quantile_fast(c->alpha, df, &q)))
+    if ((st = t_upper_quantile(c->alpha, df, pf, &q)))
         return st;
     if (c->alternative == MCSTAT_LESS) {
         *c0 = -q;
@@ -329,9 +388,14 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
     double m = fmax(a, b), ra = a / m, rb = b / m;
     double df = (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
     double up, other, lk, lo_tail, hi_tail;
+    t_prefactor pf, *ppf = NULL;
+    if (df >= 1.0 && df <= 1000.0) { /* shared by the tail and the quantile */
+        t_prefactor_init(df, &pf);
+        ppf = &pf;
+    }
     if (t == 0.0) {
         lo_tail = hi_tail = 0.5;
-    } else if (mcstat__t_tail_fast(t, df, &up, &other, &lk)) {
+    } else if (ppf && fast_range(fabs(t), df) && t_tail_core(fabs(t), ppf, &up, &other, &lk)) {
         lo_tail = t > 0.0 ? other : up;
         hi_tail = t > 0.0 ? up : other;
     } else {
@@ -347,7 +411,7 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
     double lo = NAN, hi = NAN;
     if (c->intervals) {
         double c0, c1;
-        if (criticals(c, df, &c0, &c1))
+        if (criticals(c, df, ppf, &c0, &c1))
             return 0;
         lo = bound(diff, c1, se);
         hi = bound(diff, c0, se);
@@ -372,7 +436,7 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
                 for (size_t j = 0; j < k; j++) {                                                           \
                     double v = (double)row[j];                                                             \
                     sum[j] += v;                                                                           \
-                    amax[j] = fmax(amax[j], fabs(v));                                                      \
+                    { double av = fabs(v); amax[j] = av > amax[j] ? av : amax[j]; }                                                      \
                 }                                                                                          \
             } else {                                                                                       \
                 for (size_t j = 0; j < k; j++) {                                                           \
@@ -380,7 +444,7 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
                     for (size_t c = 0; c < ch; c++)                                                        \
                         v += w[c] * (double)row[j * ch + c];                                               \
                     sum[j] += v;                                                                           \
-                    amax[j] = fmax(amax[j], fabs(v));                                                      \
+                    { double av = fabs(v); amax[j] = av > amax[j] ? av : amax[j]; }                                                      \
                 }                                                                                          \
             }                                                                                              \
         }                                                                                                  \
