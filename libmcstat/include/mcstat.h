@@ -888,10 +888,11 @@ MCSTAT_API int mcstat_var_test_2_matrix(const double *x, size_t nx, size_t x_str
 /* begin..end-1 are tested, so disjoint ranges may run on different threads. */
 /* Results go to the caller's arrays in *out, indexed by pixel (not by       */
 /* i - begin); any of them may be NULL.  Each pixel's p-value agrees with    */
-/* mcstat_t_test_2 on its two samples to 2e-14 relative (the same tail       */
-/* routine where the fast one does not apply), as do statistic, df and the   */
-/* interval; a pixel that fails (too few values, NaN or Inf, constant in     */
-/* both samples) gets its status and NaN outputs, as in the row-wise tests.  */
+/* mcstat_t_test_2 on its two samples to 3e-14 + 4e-16 |log p| relative      */
+/* (both are within that of the exact tail; 3e-13 at the underflow), t, df  */
+/* and the interval to about 1e-14; a pixel that fails (too few values, NaN  */
+/* or Inf, constant in both samples) gets its status and NaN outputs, as in */
+/* the row-wise tests.                                                       */
 /* conf_lo/conf_hi are computed only when one is non-NULL and flags lack     */
 /* MCSTAT_ROWS_NO_INTERVALS; MCSTAT_ROWS_OMIT_NAN leaves NaN values out.     */
 /* Returns MCSTAT_OK when every pixel succeeded, else the status of the      */

@@ -15,7 +15,9 @@
  *     needs only Gamma(a + 1/2) / Gamma(a), and the two positive series
  *     of dist.c's central case and of the upper tail converge
  *     geometrically, so the cost does not depend on the variety of df;
- *   - the critical value is Newton's method in log t on that tail.
+ *   - the critical value is Halley's method in log t on that tail, started
+ *     from a cubic through a per-call table of quantiles in 1/df (solved
+ *     lazily, the same whichever pixels ask), so one step suffices.
  * A pixel outside the fast path's proven ground (a NaN or Inf, extreme
  * magnitudes, too few seeds, nearly constant samples, df or t outside the
  * fast tail's range) is computed by the single call's own code, so its
@@ -31,6 +33,7 @@
 #define GATHER 256        /* the slow path's bounce buffer (2 KiB of stack) */
 #define FAST_LO 0x1p-200  /* moments.c's unscaled range */
 #define FAST_HI 0x1p+200
+#define QT_NODES 256       /* the critical values' table: u = 1/df in steps of 1/256 */
 #define LOG_2PI_HALF 0.91893853320467274178 /* log(2 pi) / 2 */
 
 /* ---- the t tail with b = 1/2 --------------------------------------------
@@ -148,18 +151,27 @@ int mcstat__t_tail_fast(double t, double df, double *upper, double *other, doubl
  * 1e-6 (the error left is of the order of its cube).  pf is df's prefactor,
  * NULL to compute it.  Falls back to mcstat_t_quantile where the fast tail
  * does not apply or the iteration wanders. */
-static int t_upper_quantile(double p, double df, const t_prefactor *pf, double *q)
+static int quantile_ok(double p, double df)
 {
-    if (p >= 1e-100 && p < 0.5 && df >= 1.0 && df <= 1000.0) {
+    return p >= 1e-100 && p < 0.5 && df >= 1.0 && df <= 1000.0;
+}
+
+/* start: a starting value, NaN for Cornish-Fisher's. */
+static int t_upper_quantile(double p, double df, const t_prefactor *pf, double start, double *q)
+{
+    if (quantile_ok(p, df)) {
         t_prefactor own;
         if (!pf) {
             t_prefactor_init(df, &own);
             pf = &own;
         }
-        double g = mcstat__norm_quantile(p, 1), g2 = g * g, v = 1.0 / df;
-        double t = g + v * (g * (g2 + 1.0) / 4.0 +
-                            v * (g * ((5.0 * g2 + 16.0) * g2 + 3.0) / 96.0 +
-                                 v * (g * (((3.0 * g2 + 19.0) * g2 + 17.0) * g2 - 15.0) / 384.0)));
+        double t = start;
+        if (!(t > 0.0)) {
+            double g = mcstat__norm_quantile(p, 1), g2 = g * g, v = 1.0 / df;
+            t = g + v * (g * (g2 + 1.0) / 4.0 +
+                         v * (g * ((5.0 * g2 + 16.0) * g2 + 3.0) / 96.0 +
+                              v * (g * (((3.0 * g2 + 19.0) * g2 + 17.0) * g2 - 15.0) / 384.0)));
+        }
         double lp = log(p);
         if (t > 0.0 && isfinite(t)) {
             double z = log(t);
@@ -189,7 +201,7 @@ static int t_upper_quantile(double p, double df, const t_prefactor *pf, double *
 
 int mcstat__t_upper_quantile_fast(double p, double df, double *q)
 {
-    return t_upper_quantile(p, df, NULL, q);
+    return t_upper_quantile(p, df, NULL, NAN, q);
 }
 
 /* ---- arguments ----------------------------------------------------------- */
@@ -234,6 +246,8 @@ typedef struct {
     double mu0, alpha;
     double crit_two; /* the two-sided critical value at the last df, and that df */
     double crit_df;
+    double qt_p;             /* the level of the critical values: alpha/2 or alpha */
+    double qt[QT_NODES + 1]; /* their quantiles at df = QT_NODES / j, NaN until needed */
     mcstat_qcache qc; /* the slow path's */
     int first;        /* status of the first failing pixel */
 } pix_ctx;
@@ -336,13 +350,46 @@ static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, 
 /* The critical values (c0, c1) of t(df) for the alternative, as
  * mcstat__finish asks them: two-sided -+q(alpha/2); "less" -q(alpha), +Inf;
  * "greater" -Inf, q(alpha). */
+/* Node j of the table: the quantile at df = QT_NODES / j, solved once per
+ * call when first needed (node 0 is df = Inf, the normal quantile); the
+ * same numbers whichever pixels ask, so pixel ranges do not change results. */
+static double qt_node(pix_ctx *c, int j)
+{
+    if (isnan(c->qt[j])) {
+        double q = NAN;
+        if (j == 0)
+            q = mcstat__norm_quantile(c->qt_p, 1);
+        else if (t_upper_quantile(c->qt_p, (double)QT_NODES / j, NULL, NAN, &q))
+            q = NAN;
+        c->qt[j] = q;
+    }
+    return c->qt[j];
+}
+
+/* A starting value for the quantile at df: the cubic through the table's
+ * four nearest nodes in u = 1/df, the quantile being smooth in 1/df (its
+ * Cornish-Fisher series is one in 1/df): about 1e-10 relative at df >= 3,
+ * so one Halley step reaches rounding. */
+static double qt_start(pix_ctx *c, double df)
+{
+    if (!quantile_ok(c->qt_p, df))
+        return NAN;
+    double u = QT_NODES / df;
+    int k = (int)u - 1;
+    k = k < 0 ? 0 : k > QT_NODES - 3 ? QT_NODES - 3 : k;
+    double s = u - k, q0 = qt_node(c, k), q1 = qt_node(c, k + 1), q2 = qt_node(c, k + 2), q3 = qt_node(c, k + 3);
+    double l0 = -(s - 1.0) * (s - 2.0) * (s - 3.0) / 6.0, l1 = s * (s - 2.0) * (s - 3.0) / 2.0;
+    double l2 = -s * (s - 1.0) * (s - 3.0) / 2.0, l3 = s * (s - 1.0) * (s - 2.0) / 6.0;
+    return l0 * q0 + l1 * q1 + l2 * q2 + l3 * q3; /* NaN where a node failed: Cornish-Fisher then */
+}
+
 static int criticals(pix_ctx *c, double df, const t_prefactor *pf, double *c0, double *c1)
 {
     double q;
     int st;
     if (c->alternative == MCSTAT_TWO_SIDED) {
         if (df != c->crit_df) { /* equal df (equal variances' ratio) repeat in flat regions */
-            if ((st = t_upper_quantile(0.5 * c->alpha, df, pf, &q)))
+            if ((st = t_upper_quantile(c->qt_p, df, pf, qt_start(c, df), &q)))
                 return st;
             c->crit_two = q;
             c->crit_df = df;
@@ -351,7 +398,7 @@ static int criticals(pix_ctx *c, double df, const t_prefactor *pf, double *c0, d
         *c1 = c->crit_two;
         return MCSTAT_OK;
     }
-    if ((st = t_upper_quantile(c->alpha, df, pf, &q)))
+    if ((st = t_upper_quantile(c->qt_p, df, pf, qt_start(c, df), &q)))
         return st;
     if (c->alternative == MCSTAT_LESS) {
         *c0 = -q;
@@ -499,6 +546,10 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
     c.alpha = alpha;
     c.crit_two = NAN;
     c.crit_df = NAN;
+    c.qt_p = alternative == MCSTAT_TWO_SIDED ? 0.5 * alpha : alpha;
+    if (c.intervals)
+        for (int j = 0; j <= QT_NODES; j++)
+            c.qt[j] = NAN;
     mcstat__qcache_init(&c.qc);
     c.first = MCSTAT_OK;
     plane px = {xf, xd, xs, channels, w}, py = {yf, yd, ys, channels, w};
