@@ -50,8 +50,8 @@ func pixelSizes(name string, n, seeds, pixels, channels int, weights []float64) 
 
 // runPixels calls f with outputs in C memory (a Go struct handed to C may
 // not hold Go pointers) and copies them out.
-func runPixels(pixels int, flags RowFlags, f func(out *C.mcstat_pixels_out, begin, end C.size_t) C.int) (*PixelResults, error) {
-	var none C.mcstat_pixels_out
+func runPixels(pixels int, flags RowFlags, f func(out *C.struct_mcstat_pixels_out, begin, end C.size_t) C.int) (*PixelResults, error) {
+	var none C.struct_mcstat_pixels_out
 	if st := f(&none, 0, 0); st != C.MCSTAT_OK { // the arguments, on an empty range
 		return nil, newError(st)
 	}
@@ -71,7 +71,7 @@ func runPixels(pixels int, flags RowFlags, f func(out *C.mcstat_pixels_out, begi
 	d := unsafe.Slice(buf, 7*n)
 	col := func(k int) *C.double { return (*C.double)(unsafe.Pointer(&d[k*n])) }
 	intervals := flags&NoIntervals == 0
-	out := C.mcstat_pixels_out{p_value: col(0), statistic: col(1), df: col(2), mean_x: col(3), mean_y: col(4),
+	out := C.struct_mcstat_pixels_out{p_value: col(0), statistic: col(1), df: col(2), mean_x: col(3), mean_y: col(4),
 		status: (*C.int32_t)(unsafe.Pointer(stat))}
 	if intervals {
 		out.conf_lo = col(5)
@@ -111,7 +111,7 @@ func TTest2Pixels(x []float64, nx int, y []float64, ny int, pixels, channels int
 		return nil, err
 	}
 	stride := sz(pixels * channels)
-	return runPixels(pixels, flags, func(o *C.mcstat_pixels_out, b, e C.size_t) C.int {
+	return runPixels(pixels, flags, func(o *C.struct_mcstat_pixels_out, b, e C.size_t) C.int {
 		return C.mcstat_t_test_2_pixels(ptr(x), sz(nx), stride, ptr(y), sz(ny), stride, sz(channels), wptr(weights),
 			b, e, C.double(mu0), C.int(alt), C.double(alpha), C.uint(flags), o)
 	})
@@ -134,7 +134,7 @@ func TTest2PixelsF32(x []float32, nx int, y []float32, ny int, pixels, channels 
 		return (*C.float)(unsafe.Pointer(&v[0]))
 	}
 	stride := sz(pixels * channels)
-	return runPixels(pixels, flags, func(o *C.mcstat_pixels_out, b, e C.size_t) C.int {
+	return runPixels(pixels, flags, func(o *C.struct_mcstat_pixels_out, b, e C.size_t) C.int {
 		return C.mcstat_t_test_2_pixels_f32(fp(x), sz(nx), stride, fp(y), sz(ny), stride, sz(channels), wptr(weights),
 			b, e, C.double(mu0), C.int(alt), C.double(alpha), C.uint(flags), o)
 	})
