@@ -52,6 +52,9 @@ MCSTAT_HIDDEN int mcstat__t_tail_fast(double t, double df, double *upper, double
 /* The upper p-quantile of t(df) by Newton's method on that tail (pixels.c),
  * mcstat_t_quantile where it does not apply; 0 < p < 1. */
 MCSTAT_HIDDEN int mcstat__t_upper_quantile_fast(double p, double df, double *q);
+/* The same as the per-pixel test finds it from its table of quantiles in
+ * 1/df, for n df in one call (pixels.c; for the tests, not thread-safe). */
+MCSTAT_HIDDEN int mcstat__t_upper_quantile_table(double p, const double *df, size_t n, double *q);
 MCSTAT_HIDDEN int mcstat__chisq_tails(double x, double df, mcstat_tails *t);
 MCSTAT_HIDDEN int mcstat__f_tails(double x, double df1, double df2, mcstat_tails *t);
 /* log of mcstat_chisq_quantile / mcstat_f_quantile (p in [0, 1], arguments

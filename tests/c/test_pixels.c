@@ -105,6 +105,30 @@ static void test_reference(void)
            r.fast, r.tails, r.max_fast, r.max_general, r.quantiles, r.max_q);
 }
 
+/* The per-pixel critical values (a table in 1/df, interpolated, Halley
+ * where the interpolation is not good to rounding) against
+ * mcstat_t_quantile over df in [1, 1000], at levels from 0.025 to 1e-12. */
+static void test_quantile_table(void)
+{
+    enum { N = 3000 };
+    static double df[N], q[N];
+    const double ps[] = {0.025, 0.005, 1e-4, 5e-7, 1e-12};
+    unsigned long long s = 4242;
+    for (int i = 0; i < N; i++)
+        df[i] = i < N / 2 ? exp(log(1000.0) * i / (N / 2 - 1)) : exp(log(1000.0) * urand(&s));
+    for (int k = 0; k < 5; k++) {
+        CHECK_INT(mcstat__t_upper_quantile_table(ps[k], df, N, q), MCSTAT_OK);
+        double worst = 0.0;
+        for (int i = 0; i < N; i++) {
+            double want;
+            CHECK_INT(mcstat_t_quantile(ps[k], df[i], 1, &want), MCSTAT_OK);
+            worst = fmax(worst, rel_err(q[i], want));
+            CHECK_REL(q[i], want, QUANT_TOL, "p = %g, df = %.17g", ps[k], df[i]);
+        }
+        printf("critical values at p = %g: max rel err %.3g against mcstat_t_quantile\n", ps[k], worst);
+    }
+}
+
 /* ---- pixels against the single call -------------------------------------- */
 
 #define P 700     /* pixels: more than two blocks */
@@ -373,6 +397,7 @@ static void test_bad_arguments(void)
 int main(void)
 {
     test_reference();
+    test_quantile_table();
     fill();
     test_against_single_calls();
     test_ranges();
