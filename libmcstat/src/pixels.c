@@ -287,6 +287,11 @@ static double bound(mcstat_dd est, double c, double se)
 {
     if (isinf(c))
         return c > 0 ? -INFINITY : INFINITY;
+    /* as there: beyond 2^900 Dekker's split in dd_two_prod overflows into
+     * NaN (df near 1 at alpha = 1e-308); the estimate is then far below the
+     * product's rounding, so plain scaled doubles suffice */
+    if (fabs(c) > 0x1p900 || !(fabs(c) * se <= 0x1p900))
+        return scale2(scale2(-c, -900) * se + scale2(est.hi + est.lo, -900), 900);
     mcstat_dd b = dd_add(est, dd_two_prod(-c, se));
     return b.hi + b.lo;
 }
