@@ -152,9 +152,12 @@ int mcstat__t_tail_fast(double t, double df, double *upper, double *other, doubl
  * 1e-6 (the error left is of the order of its cube).  pf is df's prefactor,
  * NULL to compute it.  Falls back to mcstat_t_quantile where the fast tail
  * does not apply or the iteration wanders. */
+/* Near the centre (p -> 1/2) the quantile is the tail's absolute error
+ * over the density, no longer small relative to itself: there, and for
+ * p below 1e-100, mcstat_t_quantile answers. */
 static int quantile_ok(double p, double df)
 {
-    return p >= 1e-100 && p < 0.5 && df >= 1.0 && df <= 1000.0;
+    return p >= 1e-100 && p <= 0.25 && df >= 1.0 && df <= 1000.0;
 }
 
 /* start: a starting value, NaN for Cornish-Fisher's. */

@@ -10,7 +10,7 @@
  * the pixel's weighted values, NaN removed first under
  * MCSTAT_ROWS_OMIT_NAN); a tested pixel's p-value agrees with it to the
  * accuracy pixels.c claims (loosened tenfold for the fuzzer's extremes),
- * its interval is within [0, 1] ordered; a failed pixel holds NaN; the
+ * its interval ordered and the single call's to 1e-12 of its scale; a failed pixel holds NaN; the
  * return value is the first failing pixel's status; invalid arguments are
  * refused with nothing written; nothing outside the range is written.
  *
@@ -139,9 +139,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FZ_ASSERT(fabs(p[i] - r.p_value) <= tol * r.p_value || (r.p_value < 1e-290 && p[i] < 1e-280),
                   "pixel %zu: p %.17g, single call %.17g", i, p[i], r.p_value);
         FZ_ASSERT(p[i] >= 0.0 && p[i] <= 1.0 && df[i] > 0.0, "pixel %zu: p %.17g df %.17g", i, p[i], df[i]);
-        if (intervals)
+        if (intervals) {
             FZ_ASSERT(!(lo[i] > hi[i]) && !isnan(lo[i]) && !isnan(hi[i]), "pixel %zu: interval [%.17g, %.17g]", i,
                       lo[i], hi[i]);
+            /* the single call's interval, to 1e-12 of its width, its bounds'
+             * size or the standard error */
+            double a = r.conf_int[0], b = r.conf_int[1];
+            double sc = fmax(isfinite(b - a) ? b - a : 0.0, fmax(isfinite(a) ? fabs(a) : 0.0, isfinite(b) ? fabs(b) : 0.0));
+            sc = fmax(sc, r.std_error);
+            FZ_ASSERT((lo[i] == a || fabs(lo[i] - a) <= 1e-12 * sc) && (hi[i] == b || fabs(hi[i] - b) <= 1e-12 * sc),
+                      "pixel %zu: interval [%.17g, %.17g], single call [%.17g, %.17g]", i, lo[i], hi[i], a, b);
+        }
         else
             FZ_ASSERT(isnan(lo[i]) && isnan(hi[i]), "pixel %zu: intervals computed without being asked", i);
     }
