@@ -45,6 +45,16 @@ MCSTAT_HIDDEN double mcstat__norm_quantile(double p, int upper);
 
 /* ---- distributions (dist.c), with validated arguments ------------------- */
 MCSTAT_HIDDEN int mcstat__t_tails(double x, double df, mcstat_tails *t);
+/* The t tails specialised to the incomplete beta's b = 1/2 (pixels.c): the
+ * upper tail P[T > |t|], the other one and log(|t| f(t)); 0 (nothing
+ * written) outside its range, 1 <= df <= 1000 and 0 < |t| < 1e100. */
+MCSTAT_HIDDEN int mcstat__t_tail_fast(double t, double df, double *upper, double *other, double *logk);
+/* The upper p-quantile of t(df) by Newton's method on that tail (pixels.c),
+ * mcstat_t_quantile where it does not apply; 0 < p < 1. */
+MCSTAT_HIDDEN int mcstat__t_upper_quantile_fast(double p, double df, double *q);
+/* The same as the per-pixel test finds it from its table of quantiles in
+ * 1/df, for n df in one call (pixels.c; for the tests, not thread-safe). */
+MCSTAT_HIDDEN int mcstat__t_upper_quantile_table(double p, const double *df, size_t n, double *q);
 MCSTAT_HIDDEN int mcstat__chisq_tails(double x, double df, mcstat_tails *t);
 MCSTAT_HIDDEN int mcstat__f_tails(double x, double df1, double df2, mcstat_tails *t);
 /* log of mcstat_chisq_quantile / mcstat_f_quantile (p in [0, 1], arguments

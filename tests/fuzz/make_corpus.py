@@ -366,10 +366,31 @@ def fuzz_checks(r):
     return seeds
 
 
+def fuzz_pixels(r):
+    seeds = []
+    for sel in range(4):
+        for flags in range(4):
+            pixels, nx, ny = 1 + (sel + flags) % 5, 2 + flags * 2, 3 + sel
+            ch = 1 + flags % 3 if sel & 2 else 1
+            xs = [round(r.gauss(1, 1), 2) for _ in range(nx * pixels * ch)]
+            ys = [round(r.gauss(1, 1), 2) for _ in range(ny * pixels * ch)]
+            if flags & 2:
+                xs[1] = "nan"
+            s = u8(sel) + rng(pixels, 0, 5) + rng(nx, 0, 9) + rng(ny, 0, 9)
+            if sel & 2:
+                s += rng(ch, 1, 3) + b"".join(dbl(w) for w in [0.2126, 0.7152, 0.0722][:ch])
+            s += rng(0, 0, 5) + rng(pixels, 0, 5) + u8(flags)
+            s += doubles(xs, len(xs)) + doubles(ys, len(ys))
+            s += dbl([0.0, 0.0, 0.5, -1.0][sel]) + alt(flags % 3) + alpha(0.05)
+            seeds.append(s)
+    seeds.append(u8(0) + rng(2, 0, 5) + rng(4, 0, 9) + rng(4, 0, 9) + rng(0, 0, 5) + rng(2, 0, 5) + u8(250) + u32(8))
+    return seeds
+
+
 def main():
     for name, make in [("fuzz_tests", fuzz_tests), ("fuzz_ks", fuzz_ks), ("fuzz_moments", fuzz_moments),
                        ("fuzz_bytes", fuzz_bytes), ("fuzz_rows", fuzz_rows), ("fuzz_dist", fuzz_dist),
-                       ("fuzz_format", fuzz_format), ("fuzz_checks", fuzz_checks)]:
+                       ("fuzz_format", fuzz_format), ("fuzz_checks", fuzz_checks), ("fuzz_pixels", fuzz_pixels)]:
         seeds = make(random.Random(name))
         write(name, seeds)
         print("%-13s %3d seeds, %5d bytes" % (name, len(seeds), sum(len(s) for s in seeds)))

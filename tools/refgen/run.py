@@ -64,6 +64,8 @@ GENERATORS = {
                    "every look of the sequential tests: e-value, boundary, sequence, decision (mpmath, 50 digits)"),
     "efficiency": ("python", [G + "make_efficiency_ref.py"], [], [D + "efficiency_ref.tsv"],
                    "the efficiency-ratio test's delta method, df, t p-value and interval (mpmath, 50 digits)"),
+    "t_tail": ("python", [G + "make_t_tail_ref.py"], [], [D + "t_tail_ref.tsv"],
+               "Student t tails at non-integer df in [1, 1000], |t| to 1e8, and quantiles (mpmath, 40 digits)"),
     "ffi": ("python", [G + "make_ffi_ref.py"],
             [D + "ref_data.h", D + "ref_ks.h", D + "ref_ks_exact.h", D + "r_blocks.json"], [D + "ffi_ref.txt"],
             "the C tests' references for the ctypes, Rust and Go bindings"),

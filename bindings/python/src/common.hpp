@@ -105,6 +105,8 @@ py::object make_result(const Result &r);
 void register_p_adjust(py::module_ &mod);
 // Welch's test per row from (n, mean, M2) summaries (summary_rows.cpp).
 void register_summary_rows(py::module_ &mod);
+// Welch's test per pixel on seeds-major stacks (pixels.cpp).
+void register_pixels(py::module_ &mod);
 
 // ---- the K-S test (ks.cpp) ---------------------------------------------------
 void register_ks(py::module_ &mod);

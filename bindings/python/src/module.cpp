@@ -19,6 +19,7 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_efficiency(mod); // the ratio of two estimators' efficiencies
     mcs::register_p_adjust(mod);
     mcs::register_summary_rows(mod);
+    mcs::register_pixels(mod); // Welch per pixel on seeds-major stacks
     mcs::register_check(mod); // renderer checks: BSDFs, emitters, warps
     mcs::register_distributions(mod); // t, chi-squared and F cdf and quantiles
     mcs::register_stream(mod); // mcstat.Stream, after Moments (it returns one)

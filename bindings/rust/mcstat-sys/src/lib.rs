@@ -64,6 +64,21 @@ pub struct mcstat_moments {
     pub reserved: [f64; 7],
 }
 
+/// `mcstat_pixels_out`: the caller's per-pixel output arrays of
+/// `mcstat_t_test_2_pixels` (indexed by pixel); any may be null.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_pixels_out {
+    pub p_value: *mut f64,
+    pub statistic: *mut f64,
+    pub df: *mut f64,
+    pub mean_x: *mut f64,
+    pub mean_y: *mut f64,
+    pub conf_lo: *mut f64,
+    pub conf_hi: *mut f64,
+    pub status: *mut i32,
+}
+
 pub const MCSTAT_STREAM_VERSION: u32 = 1;
 pub const MCSTAT_STREAM_BYTES: usize = 4096;
 pub const MCSTAT_STREAM_CAPACITY: u32 = 492;
@@ -1022,6 +1037,40 @@ extern "C" {
         flags: c_uint,
         out: *mut mcstat_result,
         status: *mut i32,
+    ) -> c_int;
+    pub fn mcstat_t_test_2_pixels(
+        x: *const f64,
+        nx: usize,
+        x_seed_stride: usize,
+        y: *const f64,
+        ny: usize,
+        y_seed_stride: usize,
+        channels: usize,
+        weights: *const f64,
+        begin: usize,
+        end: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *const mcstat_pixels_out,
+    ) -> c_int;
+    pub fn mcstat_t_test_2_pixels_f32(
+        x: *const f32,
+        nx: usize,
+        x_seed_stride: usize,
+        y: *const f32,
+        ny: usize,
+        y_seed_stride: usize,
+        channels: usize,
+        weights: *const f64,
+        begin: usize,
+        end: usize,
+        mu0: f64,
+        alternative: c_int,
+        alpha: f64,
+        flags: c_uint,
+        out: *const mcstat_pixels_out,
     ) -> c_int;
     pub fn mcstat_t_test_1_moments_rows(
         x: *const mcstat_moments,

@@ -345,3 +345,166 @@ pub fn var_test_2_moments_rows(
         )
     })
 }
+
+// ---- Welch per pixel on seeds-major images ---------------------------------------
+
+/// The outputs of [`t_test_2_pixels`], one entry per pixel.  A pixel that
+/// could not be tested (too few values, NaN or Inf, constant in both
+/// samples) has its status (a nonzero `mcstat_status`) in `status` and NaN
+/// elsewhere; the intervals are `None` with `no_intervals`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PixelResults {
+    pub p_value: Vec<f64>,
+    pub statistic: Vec<f64>,
+    pub df: Vec<f64>,
+    pub mean_x: Vec<f64>,
+    pub mean_y: Vec<f64>,
+    pub conf_lo: Option<Vec<f64>>,
+    pub conf_hi: Option<Vec<f64>>,
+    pub status: Vec<i32>,
+}
+
+/// Seeds-major images of `pixels` pixels of `channels` values: the sizes
+/// must fit in the slice and the weights match the channels.
+fn pixel_sizes(len: usize, seeds: usize, pixels: usize, channels: usize, weights: Option<&[f64]>) -> Result<()> {
+    match weights {
+        None if channels != 1 => return Err(Error::invalid(format!("{channels} channels need one weight each"))),
+        Some(w) if w.len() != channels => {
+            return Err(Error::invalid(format!("{} weights for {channels} channels", w.len())))
+        }
+        _ => {}
+    }
+    match pixels.checked_mul(channels).and_then(|p| p.checked_mul(seeds)) {
+        Some(k) if k <= len => Ok(()),
+        _ => Err(Error::invalid(format!(
+            "{seeds} seeds of {pixels} pixels x {channels} channels do not fit in {len} values"
+        ))),
+    }
+}
+
+fn run_pixels(
+    pixels: usize,
+    flags: RowFlags,
+    call: impl Fn(usize, usize, *const sys::mcstat_pixels_out) -> c_int,
+) -> Result<PixelResults> {
+    let null = std::ptr::null_mut();
+    let none = sys::mcstat_pixels_out {
+        p_value: null,
+        statistic: null,
+        df: null,
+        mean_x: null,
+        mean_y: null,
+        conf_lo: null,
+        conf_hi: null,
+        status: std::ptr::null_mut(),
+    };
+    crate::check(call(0, 0, &none))?; // the arguments, on an empty range
+    let intervals = !flags.no_intervals;
+    let mut r = PixelResults {
+        p_value: vec![f64::NAN; pixels],
+        statistic: vec![f64::NAN; pixels],
+        df: vec![f64::NAN; pixels],
+        mean_x: vec![f64::NAN; pixels],
+        mean_y: vec![f64::NAN; pixels],
+        conf_lo: if intervals { Some(vec![f64::NAN; pixels]) } else { None },
+        conf_hi: if intervals { Some(vec![f64::NAN; pixels]) } else { None },
+        status: vec![PENDING; pixels],
+    };
+    let out = sys::mcstat_pixels_out {
+        p_value: r.p_value.as_mut_ptr(),
+        statistic: r.statistic.as_mut_ptr(),
+        df: r.df.as_mut_ptr(),
+        mean_x: r.mean_x.as_mut_ptr(),
+        mean_y: r.mean_y.as_mut_ptr(),
+        conf_lo: r.conf_lo.as_mut().map_or(null, |v| v.as_mut_ptr()),
+        conf_hi: r.conf_hi.as_mut().map_or(null, |v| v.as_mut_ptr()),
+        status: r.status.as_mut_ptr(),
+    };
+    call(0, pixels, &out); // per-pixel failures are in r.status
+    Ok(r)
+}
+
+/// Welch's test per pixel of `x` against `y`, images written seeds-major
+/// as renderers write them: seed s of pixel i, channel c is
+/// `x[s * pixels * channels + i * channels + c]` (`nx` seeds of x, `ny` of
+/// y).  With `weights` (one per channel) the tested value is
+/// `sum_c weights[c] x[..]`, formed in double (luminance from RGB);
+/// `None` with one channel tests the values themselves.  Each pixel agrees
+/// with [`crate::t_test_2`] on its two samples (libmcstat's
+/// `mcstat_t_test_2_pixels`).  `Err` only for bad arguments.
+#[allow(clippy::too_many_arguments)]
+pub fn t_test_2_pixels(
+    x: &[f64],
+    nx: usize,
+    y: &[f64],
+    ny: usize,
+    pixels: usize,
+    channels: usize,
+    weights: Option<&[f64]>,
+    mu0: f64,
+    alternative: Alternative,
+    alpha: f64,
+    flags: RowFlags,
+) -> Result<PixelResults> {
+    pixel_sizes(x.len(), nx, pixels, channels, weights)?;
+    pixel_sizes(y.len(), ny, pixels, channels, weights)?;
+    let w = weights.map_or(std::ptr::null(), |w| w.as_ptr());
+    run_pixels(pixels, flags, |b, e, out| unsafe {
+        sys::mcstat_t_test_2_pixels(
+            x.as_ptr(),
+            nx,
+            pixels * channels,
+            y.as_ptr(),
+            ny,
+            pixels * channels,
+            channels,
+            w,
+            b,
+            e,
+            mu0,
+            alternative.raw(),
+            alpha,
+            flags.bits(),
+            out,
+        )
+    })
+}
+
+/// [`t_test_2_pixels`] on float32 images, read as they are.
+#[allow(clippy::too_many_arguments)]
+pub fn t_test_2_pixels_f32(
+    x: &[f32],
+    nx: usize,
+    y: &[f32],
+    ny: usize,
+    pixels: usize,
+    channels: usize,
+    weights: Option<&[f64]>,
+    mu0: f64,
+    alternative: Alternative,
+    alpha: f64,
+    flags: RowFlags,
+) -> Result<PixelResults> {
+    pixel_sizes(x.len(), nx, pixels, channels, weights)?;
+    pixel_sizes(y.len(), ny, pixels, channels, weights)?;
+    let w = weights.map_or(std::ptr::null(), |w| w.as_ptr());
+    run_pixels(pixels, flags, |b, e, out| unsafe {
+        sys::mcstat_t_test_2_pixels_f32(
+            x.as_ptr(),
+            nx,
+            pixels * channels,
+            y.as_ptr(),
+            ny,
+            pixels * channels,
+            channels,
+            w,
+            b,
+            e,
+            mu0,
+            alternative.raw(),
+            alpha,
+            flags.bits(),
+            out,
+        )
+    })
+}

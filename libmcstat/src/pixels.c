@@ -1,0 +1,650 @@
+/*
+ * pixels.c - Welch's test per pixel on seeds-major images (float32 or
+ * double, optionally a weighted sum of channels), with a Student t tail
+ * specialised to the t distribution.
+ *
+ * The row-wise tests (rows.c) run every pixel through the single call:
+ * an accumulator per sample, the general incomplete beta, a full
+ * mcstat_result.  Here, for a block of pixels that fits in L1:
+ *   - the moments are two passes over the seeds with the pixels inner
+ *     (contiguous, vectorised): the sum, then the deviations d from its
+ *     mean, M2 = sum d^2 - (sum d)^2 / n (the corrected two-pass
+ *     algorithm) and the mean as the double-double mean + sum d / n, so
+ *     1e8 + small noise keeps its digits as in moments.c;
+ *   - the tail is mcstat__t_tail_fast: the prefactor x^a y^(1/2) / B(a, 1/2)
+ *     needs only Gamma(a + 1/2) / Gamma(a), and the two positive series
+ *     of dist.c's central case and of the upper tail converge
+ *     geometrically, so the cost does not depend on the variety of df;
+ *   - the critical value comes from a per-call table of t quantiles in
+ *     1/df (solved lazily, the same whichever pixels ask), interpolated;
+ *     where the interpolation is not good to rounding, Halley's method in
+ *     log t on the fast tail finishes it.
+ * A pixel outside the fast path's proven ground (a NaN or Inf, extreme
+ * magnitudes, too few seeds, nearly constant samples, df or t outside the
+ * fast tail's range) is computed by the single call's own code, so its
+ * status and outputs are the row path's.
+ *
+ * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
+ */
+#include "internal.h"
+
+#include <float.h>
+
+#define PIX_BLOCK 256     /* pixels per block: their sums stay in L1 */
+#define GATHER 256        /* the slow path's bounce buffer (2 KiB of stack) */
+#define FAST_LO 0x1p-200  /* moments.c's unscaled range */
+#define FAST_HI 0x1p+200
+#define QT_NODES 1024      /* the critical values' table: u = 1/df in steps of 1/1024 */
+#define LOG_2PI_HALF 0.91893853320467274178 /* log(2 pi) / 2 */
+
+/* ---- the t tail with b = 1/2 --------------------------------------------
+ * a = df/2, r = t^2/df, x = 1/(1+r), y = r/(1+r).  The prefactor
+ *   K = x^a y^(1/2) / B(a, 1/2) = |t| f(t)
+ *     = |t| / sqrt(2) (1+r)^-(a+1/2) Gamma(a+1/2) / (Gamma(a) sqrt(pi) sqrt(a)),
+ * with Gamma(a+1/2)/(Gamma(a) sqrt(a)) = (1 + 1/(2a))^a e^-1/2 G*(a+1/2)/G*(a)
+ * (G* the Stirling remainders of special.c), so
+ *   log K = log|t| - (a+1/2) log1p(r) + a log1p(1/(2a)) - 1/2
+ *           + log G*(a+1/2) - log G*(a) - log(2 pi)/2.
+ * Nothing there cancels beyond the size of the result.  Then
+ *   r >= 1: P[T > |t|] = I_x(a, 1/2)/2 = K/(2a) sum_j c_j,
+ *           c_{j+1} = c_j (a+1/2+j)/(a+1+j) x, ratio below x <= 1/2;
+ *   r < 1:  P[|T| <= |t|] = I_y(1/2, a) = 2K sum_j c_j,
+ *           c_{j+1} = c_j (a+1/2+j)/(3/2+j) y (dist.c's t_central),
+ *           used while that central probability is at most 0.96, so the
+ *           upper tail (1 - c)/2 carries at most 24 times its error.
+ * Both sums have positive terms (a few ulps each).  Outside (df beyond
+ * [1, 1000], the centre of a large df, |t| >= 1e100) it returns 0 and the
+ * caller uses mcstat__t_tails. */
+/* log Gamma*(z) for z >= 10: special.c's Stirling series (error below
+ * 3e-17), inline. */
+static double lgs_stirling(double z)
+{
+    double r = 1.0 / z, r2 = r * r;
+    return r * (1.0 / 12 + r2 * (-1.0 / 360 + r2 * (1.0 / 1260 + r2 * (-1.0 / 1680 +
+                r2 * (1.0 / 1188 + r2 * (-691.0 / 360360 + r2 * (1.0 / 156)))))));
+}
+
+/* The df-dependent part of log K: with a = df/2 shifted to z = a + k >= 10,
+ *   Gamma(a+1/2)/(Gamma(a) sqrt(a)) = Gamma(z+1/2)/(Gamma(z) sqrt(z))
+ *                                     * sqrt(z/a) prod_{i<k} (a+i)/(a+i+1/2),
+ * the first factor exp(z log1p(1/(2z)) - 1/2 + log G*(z+1/2) - log G*(z)).
+ * Returned as that exponent (minus log(2 pi)/2) and the factor f multiplying
+ * |t| inside the one logarithm the tail takes. */
+typedef struct {
+    double a, A, lc, f;
+} t_prefactor;
+
+static void t_prefactor_init(double df, t_prefactor *pf)
+{
+    double a = 0.5 * df, z = a, num = 1.0, den = 1.0;
+    while (z < 10.0) {
+        num *= z;
+        den *= z + 0.5;
+        z += 1.0;
+    }
+    pf->a = a;
+    pf->A = a + 0.5;
+    pf->f = (num / den) * sqrt(z / a);
+    pf->lc = (z * log1p(0.5 / z) - 0.5) + (lgs_stirling(z + 0.5) - lgs_stirling(z)) - LOG_2PI_HALF;
+}
+
+static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *other, double *logk)
+{
+    double a = pf->a, A = pf->A, df = 2.0 * a;
+    double r = at * at / df;
+    double y = r / (1.0 + r), x = 1.0 / (1.0 + r);
+    if (r < 1.0 && A * y > 40.0) /* the central series would be long and c near 1 */
+        return 0;
+    double lk = log(at * pf->f) - A * log1p(r) + pf->lc;
+    double term = 1.0, sum = 1.0;
+    if (r >= 1.0) {
+        for (int j = 0;; j++) {
+            if (j == 200)
+                return 0;
+            term *= (A + j) / (a + 1.0 + j) * x;
+            sum += term;
+            if (term <= 1e-17 * sum)
+                break;
+        }
+        double u = exp(lk) * sum / (2.0 * a);
+        *upper = u;
+        *other = 1.0 - u;
+    } else {
+        for (int j = 0;; j++) {
+            if (j == 400)
+                return 0;
+            term *= (A + j) / (1.5 + j) * y;
+            sum += term;
+            if (term <= 0.25 * DBL_EPSILON * sum)
+                break;
+        }
+        double c = 2.0 * exp(lk) * sum;
+        if (!(c <= 0.96))
+            return 0;
+        *upper = 0.5 - 0.5 * c;
+        *other = 0.5 + 0.5 * c;
+    }
+    *logk = lk;
+    return 1;
+}
+
+static int fast_range(double at, double df)
+{
+    return df >= 1.0 && df <= 1000.0 && at >= 1e-100 && at < 1e100;
+}
+
+int mcstat__t_tail_fast(double t, double df, double *upper, double *other, double *logk)
+{
+    double at = fabs(t);
+    if (!fast_range(at, df))
+        return 0;
+    t_prefactor pf;
+    t_prefactor_init(df, &pf);
+    return t_tail_core(at, &pf, upper, other, logk);
+}
+
+/* The upper p-quantile of t(df) (0 < p < 1/2) by Halley's method in
+ * z = log t on the fast tail: with g = log P[T > t] - log p,
+ *   g' = -K/P,  g'' = g' (1 - (df+1) y + K/P),  y = t^2/(df+t^2),
+ * (K = t f(t), d log K/dz = 1 - (df+1) y).  Started from Cornish-Fisher
+ * (A&S 26.7.5, three terms), whose error of 1e-3..1e-5 at df >= 3 the cubic
+ * convergence takes to rounding in two steps; it stops after a step below
+ * 1e-6 (the error left is of the order of its cube).  pf is df's prefactor,
+ * NULL to compute it.  Falls back to mcstat_t_quantile where the fast tail
+ * does not apply or the iteration wanders. */
+/* Near the centre (p -> 1/2) the quantile is the tail's absolute error
+ * over the density, no longer small relative to itself: there, and for
+ * p below 1e-100, mcstat_t_quantile answers. */
+static int quantile_ok(double p, double df)
+{
+    return p >= 1e-100 && p <= 0.25 && df >= 1.0 && df <= 1000.0;
+}
+
+/* start: a starting value, NaN for Cornish-Fisher's. */
+static int t_upper_quantile(double p, double df, const t_prefactor *pf, double start, double *q)
+{
+    if (quantile_ok(p, df)) {
+        t_prefactor own;
+        if (!pf) {
+            t_prefactor_init(df, &own);
+            pf = &own;
+        }
+        double t = start;
+        if (!(t > 0.0)) {
+            double g = mcstat__norm_quantile(p, 1), g2 = g * g, v = 1.0 / df;
+            t = g + v * (g * (g2 + 1.0) / 4.0 +
+                         v * (g * ((5.0 * g2 + 16.0) * g2 + 3.0) / 96.0 +
+                              v * (g * (((3.0 * g2 + 19.0) * g2 + 17.0) * g2 - 15.0) / 384.0)));
+        }
+        double lp = log(p);
+        if (t > 0.0 && isfinite(t)) {
+            double z = log(t);
+            for (int it = 0; it < 30; it++) {
+                double u, o, lk, at = exp(z);
+                if (!fast_range(at, df) || !t_tail_core(at, pf, &u, &o, &lk) || !(u > 0.0))
+                    break;
+                double h = log(u) - lp, kp = exp(lk) / u, y = at * at / (df + at * at);
+                double d1 = -kp, d2 = d1 * (1.0 - (df + 1.0) * y + kp);
+                double step = -h / d1;
+                double den = 1.0 + 0.5 * step * d2 / d1; /* Halley: -h / (d1 - h d2 / (2 d1)) */
+                if (den > 0.5)
+                    step /= den;
+                if (!isfinite(step))
+                    break;
+                step = fmax(-2.0, fmin(2.0, step));
+                z += step;
+                if (fabs(step) < 1e-6) {
+                    *q = exp(z);
+                    return MCSTAT_OK;
+                }
+            }
+        }
+    }
+    return mcstat_t_quantile(p, df, 1, q);
+}
+
+int mcstat__t_upper_quantile_fast(double p, double df, double *q)
+{
+    return t_upper_quantile(p, df, NULL, NAN, q);
+}
+
+/* ---- arguments ----------------------------------------------------------- */
+
+/* (n - 1) * stride + end * channels elements must be addressable. */
+static int span_ok(size_t n, size_t stride, size_t end, size_t channels)
+{
+    if (end > SIZE_MAX / channels)
+        return 0;
+    size_t last = end * channels;
+    if (n > 1 && stride > 0 && n - 1 > (SIZE_MAX - last) / stride)
+        return 0;
+    return 1;
+}
+
+static int check_args(const void *x, size_t nx, size_t xs, const void *y, size_t ny, size_t ys, size_t channels,
+                      const double *w, size_t begin, size_t end, double mu0, int alternative, double alpha,
+                      unsigned flags, const mcstat_pixels_out *out)
+{
+    if (!out || end < begin || channels == 0 || (channels > 1 && !w))
+        return MCSTAT_EINVAL;
+    if (end > begin && (!x || !y))
+        return MCSTAT_EINVAL;
+    if (!isfinite(mu0) || !valid_alternative(alternative) || !valid_alpha(alpha))
+        return MCSTAT_EINVAL;
+    if (flags & ~(unsigned)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN))
+        return MCSTAT_EINVAL;
+    if (w)
+        for (size_t c = 0; c < channels; c++)
+            if (!isfinite(w[c]))
+                return MCSTAT_EINVAL;
+    if (!span_ok(nx, xs, end, channels) || !span_ok(ny, ys, end, channels))
+        return MCSTAT_ETOOBIG;
+    return MCSTAT_OK;
+}
+
+/* ---- one pixel's outputs --------------------------------------------------- */
+
+typedef struct {
+    const mcstat_pixels_out *out;
+    int alternative, intervals;
+    double mu0, alpha;
+    double crit_two; /* the two-sided critical value at the last df, and that df */
+    double crit_df;
+    double qt_p;             /* the level of the critical values: alpha/2 or alpha */
+    double qt[QT_NODES + 1]; /* their quantiles at df = QT_NODES / j, NaN until needed */
+    mcstat_qcache qc; /* the slow path's */
+    int first;        /* status of the first failing pixel */
+} pix_ctx;
+
+static void put(const pix_ctx *c, size_t i, int st, double p, double t, double df, double mx, double my,
+                double lo, double hi)
+{
+    const mcstat_pixels_out *o = c->out;
+    if (o->p_value)
+        o->p_value[i] = p;
+    if (o->statistic)
+        o->statistic[i] = t;
+    if (o->df)
+        o->df[i] = df;
+    if (o->mean_x)
+        o->mean_x[i] = mx;
+    if (o->mean_y)
+        o->mean_y[i] = my;
+    if (o->conf_lo)
+        o->conf_lo[i] = lo;
+    if (o->conf_hi)
+        o->conf_hi[i] = hi;
+    if (o->status)
+        o->status[i] = st;
+}
+
+static void fail(pix_ctx *c, size_t i, int st)
+{
+    put(c, i, st, NAN, NAN, NAN, NAN, NAN, NAN, NAN);
+    if (c->first == MCSTAT_OK)
+        c->first = st;
+}
+
+/* est - c se in double-double (t_test.c's ci_bound for unscaled data). */
+static double bound(mcstat_dd est, double c, double se)
+{
+    if (isinf(c))
+        return c > 0 ? -INFINITY : INFINITY;
+    /* as there: beyond 2^900 Dekker's split in dd_two_prod overflows into
+     * NaN (df near 1 at alpha = 1e-308); the estimate is then far below the
+     * product's rounding, so plain scaled doubles suffice */
+    if (fabs(c) > 0x1p900 || !(fabs(c) * se <= 0x1p900))
+        return scale2(scale2(-c, -900) * se + scale2(est.hi + est.lo, -900), 900);
+    mcstat_dd b = dd_add(est, dd_two_prod(-c, se));
+    return b.hi + b.lo;
+}
+
+/* ---- the slow path: the single call's code ---------------------------------- */
+
+typedef struct {
+    const float *f;
+    const double *d;
+    size_t stride, channels;
+    const double *w;
+} plane;
+
+static double value(const plane *pl, size_t s, size_t i)
+{
+    size_t k = s * pl->stride + i * pl->channels;
+    if (pl->channels == 1 && !pl->w)
+        return pl->f ? (double)pl->f[k] : pl->d[k];
+    double v = 0.0;
+    for (size_t c = 0; c < pl->channels; c++)
+        v += pl->w[c] * (pl->f ? (double)pl->f[k + c] : pl->d[k + c]);
+    return v;
+}
+
+/* One pixel's sample into m, GATHER values at a time. */
+static int pixel_moments(const plane *pl, size_t n, size_t i, unsigned flags, mcstat_moments *m)
+{
+    double buf[GATHER];
+    mcstat_moments_init(m);
+    for (size_t s0 = 0; s0 < n; s0 += GATHER) {
+        size_t k = n - s0 < GATHER ? n - s0 : GATHER;
+        for (size_t j = 0; j < k; j++)
+            buf[j] = value(pl, s0 + j, i);
+        int st = (flags & MCSTAT_ROWS_OMIT_NAN) ? mcstat_moments_add_array_omit_nan(m, buf, k, NULL)
+                                                : mcstat_moments_add_array(m, buf, k);
+        if (st)
+            return st;
+    }
+    return MCSTAT_OK;
+}
+
+static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, size_t ny, size_t i,
+                       unsigned flags)
+{
+    mcstat_moments mx, my;
+    mcstat_result r;
+    int st = pixel_moments(px, nx, i, flags, &mx);
+    if (!st)
+        st = pixel_moments(py, ny, i, flags, &my);
+    if (!st)
+        st = mcstat__t_test_2(&mx, &my, c->mu0, c->alternative, c->alpha, c->intervals ? &c->qc : NULL, &r);
+    if (st) {
+        fail(c, i, st);
+        return;
+    }
+    put(c, i, MCSTAT_OK, r.p_value, r.statistic, r.df[0], r.estimate[0], r.estimate[1], r.conf_int[0],
+        r.conf_int[1]);
+}
+
+/* ---- the fast path ------------------------------------------------------------ */
+
+/* The critical values (c0, c1) of t(df) for the alternative, as
+ * mcstat__finish asks them: two-sided -+q(alpha/2); "less" -q(alpha), +Inf;
+ * "greater" -Inf, q(alpha). */
+/* Node j of the table: the quantile at df = QT_NODES / j, solved once per
+ * call when first needed (node 0 is df = Inf, the normal quantile); the
+ * same numbers whichever pixels ask, so pixel ranges do not change results. */
+static double qt_node(pix_ctx *c, int j)
+{
+    if (isnan(c->qt[j])) {
+        double q = NAN;
+        if (j == 0)
+            q = mcstat__norm_quantile(c->qt_p, 1);
+        else if (t_upper_quantile(c->qt_p, (double)QT_NODES / j, NULL, NAN, &q))
+            q = NAN;
+        c->qt[j] = q;
+    }
+    return c->qt[j];
+}
+
+/* The quantile at df from the table: Lagrange through the six nearest
+ * nodes in u = QT_NODES/df (the quantile is smooth in 1/df: its
+ * Cornish-Fisher series is one in 1/df).  *exact is set where the five- and
+ * six-point values agree to 1e-13, i.e. where the six-point one is good to
+ * rounding (measured against SciPy over df in [1, 1000]: within 1.4e-15 at
+ * p = 0.025, 0.005, 1e-4, 5e-7); elsewhere it is only Halley's starting
+ * value.  NaN where a node failed (Cornish-Fisher starts then). */
+static double qt_interp(pix_ctx *c, double df, int *exact)
+{
+    *exact = 0;
+    if (!quantile_ok(c->qt_p, df))
+        return NAN;
+    double u = QT_NODES / df;
+    int k = (int)u - 2;
+    k = k < 0 ? 0 : k > QT_NODES - 5 ? QT_NODES - 5 : k;
+    double s = u - k, q[6], v5 = 0.0, v6 = 0.0;
+    for (int i = 0; i < 6; i++)
+        q[i] = qt_node(c, k + i);
+    for (int i = 0; i < 6; i++) {
+        double l5 = 1.0, l6 = 1.0;
+        for (int m = 0; m < 6; m++) {
+            if (m == i)
+                continue;
+            double f = (s - m) / (double)(i - m);
+            l6 *= f;
+            if (m < 5)
+                l5 *= f;
+        }
+        v6 += l6 * q[i];
+        if (i < 5)
+            v5 += l5 * q[i];
+    }
+    *exact = fabs(v6 - v5) < 1e-13 * fabs(v6);
+    return v6;
+}
+
+static int criticals(pix_ctx *c, double df, const t_prefactor *pf, double *c0, double *c1)
+{
+    double q;
+    int st;
+    if (c->alternative == MCSTAT_TWO_SIDED) {
+        if (df != c->crit_df) { /* equal df (equal variances' ratio) repeat in flat regions */
+            int exact;
+            q = qt_interp(c, df, &exact);
+            if (!exact && (st = t_upper_quantile(c->qt_p, df, pf, q, &q)))
+                return st;
+            c->crit_two = q;
+            c->crit_df = df;
+        }
+        *c0 = -c->crit_two;
+        *c1 = c->crit_two;
+        return MCSTAT_OK;
+    }
+    int exact;
+    q = qt_interp(c, df, &exact);
+    if (!exact && (st = t_upper_quantile(c->qt_p, df, pf, q, &q)))
+        return st;
+    if (c->alternative == MCSTAT_LESS) {
+        *c0 = -q;
+        *c1 = INFINITY;
+    } else {
+        *c0 = -INFINITY;
+        *c1 = q;
+    }
+    return MCSTAT_OK;
+}
+
+/* Pixel i from its moments (nothing NaN or Inf, magnitudes in moments.c's
+ * unscaled range); returns 0 where the slow path must decide. */
+static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x, double ny, mcstat_dd my,
+                      double m2y)
+{
+    /* moments.c's var_scaled moves exponents beyond 2^+-500 out of m2 */
+    if ((m2x > 0.0 && (m2x < 0x1p-500 || m2x > 0x1p+500)) || (m2y > 0.0 && (m2y < 0x1p-500 || m2y > 0x1p+500)))
+        return 0;
+    double vx = m2x / (nx - 1.0), vy = m2y / (ny - 1.0);
+    double a = vx / nx, b = vy / ny, se = sqrt(a + b);
+    /* t_test.c's "constant to within rounding"; near its edge, where the two
+     * accumulations of M2 might decide differently, the slow path decides */
+    double sdmax = sqrt(fmax(vx, vy)), lim = 10.0 * DBL_EPSILON * fmax(fabs(mx.hi), fabs(my.hi));
+    if (!(se > 0.0) || sdmax < lim * (1.0 - 1e-6)) {
+        fail(c, i, MCSTAT_EDEGENERATE);
+        return 1;
+    }
+    if (sdmax < lim * (1.0 + 1e-6))
+        return 0;
+    mcstat_dd diff = dd_add(mx, dd_neg(my));
+    mcstat_dd s = dd_add(diff, (mcstat_dd){-c->mu0, 0.0});
+    double t = (s.hi + s.lo) / se;
+    double m = fmax(a, b), ra = a / m, rb = b / m;
+    double df = (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
+    double up, other, lk, lo_tail, hi_tail;
+    t_prefactor pf, *ppf = NULL;
+    if (df >= 1.0 && df <= 1000.0) { /* shared by the tail and the quantile */
+        t_prefactor_init(df, &pf);
+        ppf = &pf;
+    }
+    if (t == 0.0) {
+        lo_tail = hi_tail = 0.5;
+    } else if (ppf && fast_range(fabs(t), df) && t_tail_core(fabs(t), ppf, &up, &other, &lk)) {
+        lo_tail = t > 0.0 ? other : up;
+        hi_tail = t > 0.0 ? up : other;
+    } else {
+        mcstat_tails tt;
+        if (mcstat__t_tails(t, df, &tt))
+            return 0;
+        lo_tail = tt.p;
+        hi_tail = tt.q;
+    }
+    double p = c->alternative == MCSTAT_LESS      ? lo_tail
+               : c->alternative == MCSTAT_GREATER ? hi_tail
+                                                  : fmin(1.0, 2.0 * fmin(lo_tail, hi_tail));
+    double lo = NAN, hi = NAN;
+    if (c->intervals) {
+        double c0, c1;
+        if (criticals(c, df, ppf, &c0, &c1))
+            return 0;
+        lo = bound(diff, c1, se);
+        hi = bound(diff, c0, se);
+    }
+    put(c, i, MCSTAT_OK, p, t, df, mx.hi, my.hi, lo, hi);
+    return 1;
+}
+
+/* Moments of pixels i0..i0+k-1 of one side into the block's arrays; the
+ * loop over seeds is outside, the contiguous pixels inside.  bad[j] is set
+ * where the fast path cannot use the sums (non-finite, extreme). */
+#define DEFINE_BLOCK_MOMENTS(NAME, T)                                                                      \
+    static void NAME(const T *x, size_t n, size_t stride, size_t ch, const double *w, size_t i0, size_t k, \
+                     mcstat_dd *mean, double *m2, unsigned char *bad)                                      \
+    {                                                                                                      \
+        double sum[PIX_BLOCK], amax[PIX_BLOCK], s1[PIX_BLOCK], s2[PIX_BLOCK];                              \
+        for (size_t j = 0; j < k; j++)                                                                     \
+            sum[j] = amax[j] = s1[j] = s2[j] = 0.0;                                                        \
+        for (size_t s = 0; s < n; s++) {                                                                   \
+            const T *row = x + s * stride + i0 * ch;                                                       \
+            if (ch == 1 && !w) {                                                                           \
+                for (size_t j = 0; j < k; j++) {                                                           \
+                    double v = (double)row[j];                                                             \
+                    sum[j] += v;                                                                           \
+                    { double av = fabs(v); amax[j] = av > amax[j] ? av : amax[j]; }                                                      \
+                }                                                                                          \
+            } else {                                                                                       \
+                for (size_t j = 0; j < k; j++) {                                                           \
+                    double v = 0.0;                                                                        \
+                    for (size_t c = 0; c < ch; c++)                                                        \
+                        v += w[c] * (double)row[j * ch + c];                                               \
+                    sum[j] += v;                                                                           \
+                    { double av = fabs(v); amax[j] = av > amax[j] ? av : amax[j]; }                                                      \
+                }                                                                                          \
+            }                                                                                              \
+        }                                                                                                  \
+        double dn = (double)n;                                                                             \
+        for (size_t j = 0; j < k; j++)                                                                     \
+            sum[j] /= dn; /* the mean to a few ulps; the second pass corrects it */                        \
+        for (size_t s = 0; s < n; s++) {                                                                   \
+            const T *row = x + s * stride + i0 * ch;                                                       \
+            if (ch == 1 && !w) {                                                                           \
+                for (size_t j = 0; j < k; j++) {                                                           \
+                    double d = (double)row[j] - sum[j];                                                    \
+                    s1[j] += d;                                                                            \
+                    s2[j] += d * d;                                                                        \
+                }                                                                                          \
+            } else {                                                                                       \
+                for (size_t j = 0; j < k; j++) {                                                           \
+                    double v = 0.0;                                                                        \
+                    for (size_t c = 0; c < ch; c++)                                                        \
+                        v += w[c] * (double)row[j * ch + c];                                               \
+                    double d = v - sum[j];                                                                 \
+                    s1[j] += d;                                                                            \
+                    s2[j] += d * d;                                                                        \
+                }                                                                                          \
+            }                                                                                              \
+        }                                                                                                  \
+        for (size_t j = 0; j < k; j++) {                                                                   \
+            double c1 = s1[j] / dn;                                                                        \
+            mean[j] = dd_two_sum(sum[j], c1);                                                              \
+            double v2 = s2[j] - s1[j] * c1;                                                                \
+            m2[j] = v2 > 0.0 ? v2 : 0.0;                                                                   \
+            bad[j] = !isfinite(sum[j]) || !isfinite(s2[j]) || !isfinite(s1[j]) ||                          \
+                     (amax[j] != 0.0 && (amax[j] < FAST_LO || amax[j] > FAST_HI));                         \
+        }                                                                                                  \
+    }
+
+DEFINE_BLOCK_MOMENTS(block_moments_f32, float)
+DEFINE_BLOCK_MOMENTS(block_moments_f64, double)
+
+static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const float *yf, const double *yd,
+                  size_t ny, size_t ys, size_t channels, const double *w, size_t begin, size_t end, double mu0,
+                  int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
+{
+    const void *x = xf ? (const void *)xf : (const void *)xd, *y = yf ? (const void *)yf : (const void *)yd;
+    int st = check_args(x, nx, xs, y, ny, ys, channels, w, begin, end, mu0, alternative, alpha, flags, out);
+    if (st)
+        return st;
+    pix_ctx c;
+    c.out = out;
+    c.alternative = alternative;
+    c.intervals = !(flags & MCSTAT_ROWS_NO_INTERVALS) && (out->conf_lo || out->conf_hi);
+    c.mu0 = mu0;
+    c.alpha = alpha;
+    c.crit_two = NAN;
+    c.crit_df = NAN;
+    c.qt_p = alternative == MCSTAT_TWO_SIDED ? 0.5 * alpha : alpha;
+    if (c.intervals)
+        for (int j = 0; j <= QT_NODES; j++)
+            c.qt[j] = NAN;
+    mcstat__qcache_init(&c.qc);
+    c.first = MCSTAT_OK;
+    plane px = {xf, xd, xs, channels, w}, py = {yf, yd, ys, channels, w};
+    mcstat_dd mx[PIX_BLOCK], my[PIX_BLOCK];
+    double m2x[PIX_BLOCK], m2y[PIX_BLOCK];
+    unsigned char bx[PIX_BLOCK], by[PIX_BLOCK];
+    int fast_ok = nx >= 2 && ny >= 2;
+    for (size_t i0 = begin; i0 < end; i0 += PIX_BLOCK) {
+        size_t k = end - i0 < PIX_BLOCK ? end - i0 : PIX_BLOCK;
+        if (fast_ok) {
+            if (xf) {
+                block_moments_f32(xf, nx, xs, channels, w, i0, k, mx, m2x, bx);
+                block_moments_f32(yf, ny, ys, channels, w, i0, k, my, m2y, by);
+            } else {
+                block_moments_f64(xd, nx, xs, channels, w, i0, k, mx, m2x, bx);
+                block_moments_f64(yd, ny, ys, channels, w, i0, k, my, m2y, by);
+            }
+        }
+        for (size_t j = 0; j < k; j++) {
+            size_t i = i0 + j;
+            if (fast_ok && !bx[j] && !by[j] &&
+                fast_pixel(&c, i, (double)nx, mx[j], m2x[j], (double)ny, my[j], m2y[j]))
+                continue;
+            slow_pixel(&c, &px, nx, &py, ny, i, flags);
+        }
+    }
+    return c.first;
+}
+
+int mcstat_t_test_2_pixels(const double *x, size_t nx, size_t x_seed_stride, const double *y, size_t ny,
+                           size_t y_seed_stride, size_t channels, const double *weights, size_t begin, size_t end,
+                           double mu0, int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    return pixels(NULL, x, nx, x_seed_stride, NULL, y, ny, y_seed_stride, channels, weights, begin, end, mu0,
+                  alternative, alpha, flags, out);
+}
+
+int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_seed_stride, const float *y, size_t ny,
+                               size_t y_seed_stride, size_t channels, const double *weights, size_t begin,
+                               size_t end, double mu0, int alternative, double alpha, unsigned flags,
+                               const mcstat_pixels_out *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    return pixels(x, NULL, nx, x_seed_stride, y, NULL, ny, y_seed_stride, channels, weights, begin, end, mu0,
+                  alternative, alpha, flags, out);
+}
+
+/* The critical values as the pixel path finds them (table, interpolation,
+ * Halley where needed), for n degrees of freedom in one call: for the tests. */
+int mcstat__t_upper_quantile_table(double p, const double *df, size_t n, double *q)
+{
+    static pix_ctx c; /* the table is 8 KiB: not on a test's stack; tests are single-threaded */
+    c.alternative = MCSTAT_GREATER;
+    c.qt_p = p;
+    for (int j = 0; j <= QT_NODES; j++)
+        c.qt[j] = NAN;
+    for (size_t i = 0; i < n; i++) {
+        double c0, c1;
+        int st = criticals(&c, df[i], NULL, &c0, &c1);
+        if (st)
+            return st;
+        q[i] = c1;
+    }
+    return MCSTAT_OK;
+}
