@@ -18,6 +18,7 @@ import (
 // are nil with NoIntervals.
 type PixelResults struct {
 	PValue, Statistic, DF, MeanX, MeanY []float64
+	StdError                            []float64 // Welch's standard error of MeanX - MeanY
 	ConfLo, ConfHi                      []float64
 	Status                              []int32
 }
@@ -59,7 +60,7 @@ func runPixels(pixels int, flags RowFlags, f func(out *C.struct_mcstat_pixels_ou
 	if n == 0 {
 		n = 1
 	}
-	buf := (*float64)(C.malloc(C.size_t(n) * 7 * 8))
+	buf := (*float64)(C.malloc(C.size_t(n) * 8 * 8))
 	stat := (*int32)(C.malloc(C.size_t(n) * 4))
 	if buf == nil || stat == nil {
 		C.free(unsafe.Pointer(buf))
@@ -68,18 +69,18 @@ func runPixels(pixels int, flags RowFlags, f func(out *C.struct_mcstat_pixels_ou
 	}
 	defer C.free(unsafe.Pointer(buf))
 	defer C.free(unsafe.Pointer(stat))
-	d := unsafe.Slice(buf, 7*n)
+	d := unsafe.Slice(buf, 8*n)
 	col := func(k int) *C.double { return (*C.double)(unsafe.Pointer(&d[k*n])) }
 	intervals := flags&NoIntervals == 0
 	out := C.struct_mcstat_pixels_out{p_value: col(0), statistic: col(1), df: col(2), mean_x: col(3), mean_y: col(4),
-		status: (*C.int32_t)(unsafe.Pointer(stat))}
+		status: (*C.int32_t)(unsafe.Pointer(stat)), std_error: col(7)}
 	if intervals {
 		out.conf_lo = col(5)
 		out.conf_hi = col(6)
 	}
 	st := f(&out, 0, C.size_t(pixels))
 	get := func(k int) []float64 { return append([]float64(nil), d[k*n:k*n+pixels]...) }
-	r := &PixelResults{PValue: get(0), Statistic: get(1), DF: get(2), MeanX: get(3), MeanY: get(4),
+	r := &PixelResults{PValue: get(0), Statistic: get(1), DF: get(2), MeanX: get(3), MeanY: get(4), StdError: get(7),
 		Status: append([]int32(nil), unsafe.Slice(stat, n)[:pixels]...)}
 	if intervals {
 		r.ConfLo, r.ConfHi = get(5), get(6)

@@ -909,6 +909,7 @@ typedef struct mcstat_pixels_out {
     double *conf_lo;   /* the interval for mean_x - mean_y, or NULL */
     double *conf_hi;
     int32_t *status;   /* MCSTAT_OK or the pixel's error, or NULL */
+    double *std_error; /* Welch's standard error of mean_x - mean_y, or NULL */
 } mcstat_pixels_out;
 
 MCSTAT_API int mcstat_t_test_2_pixels(const double *x, size_t nx, size_t x_seed_stride, const double *y,

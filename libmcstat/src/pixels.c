@@ -256,10 +256,12 @@ typedef struct {
     int first;        /* status of the first failing pixel */
 } pix_ctx;
 
-static void put(const pix_ctx *c, size_t i, int st, double p, double t, double df, double mx, double my,
-                double lo, double hi)
+static void put(const pix_ctx *c, size_t i, int st, double p, double t, double df, double se, double mx,
+                double my, double lo, double hi)
 {
     const mcstat_pixels_out *o = c->out;
+    if (o->std_error)
+        o->std_error[i] = se;
     if (o->p_value)
         o->p_value[i] = p;
     if (o->statistic)
@@ -280,7 +282,7 @@ static void put(const pix_ctx *c, size_t i, int st, double p, double t, double d
 
 static void fail(pix_ctx *c, size_t i, int st)
 {
-    put(c, i, st, NAN, NAN, NAN, NAN, NAN, NAN, NAN);
+    put(c, i, st, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN);
     if (c->first == MCSTAT_OK)
         c->first = st;
 }
@@ -350,7 +352,7 @@ static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, 
         fail(c, i, st);
         return;
     }
-    put(c, i, MCSTAT_OK, r.p_value, r.statistic, r.df[0], r.estimate[0], r.estimate[1], r.conf_int[0],
+    put(c, i, MCSTAT_OK, r.p_value, r.statistic, r.df[0], r.std_error, r.estimate[0], r.estimate[1], r.conf_int[0],
         r.conf_int[1]);
 }
 
@@ -495,7 +497,7 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
         lo = bound(diff, c1, se);
         hi = bound(diff, c0, se);
     }
-    put(c, i, MCSTAT_OK, p, t, df, mx.hi, my.hi, lo, hi);
+    put(c, i, MCSTAT_OK, p, t, df, se, mx.hi, my.hi, lo, hi);
     return 1;
 }
 

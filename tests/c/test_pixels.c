@@ -178,13 +178,13 @@ static void fill(void)
 }
 
 typedef struct {
-    double p[P], t[P], df[P], mx[P], my[P], lo[P], hi[P];
+    double p[P], t[P], df[P], mx[P], my[P], lo[P], hi[P], se[P];
     int32_t st[P];
 } outs;
 
 static mcstat_pixels_out view(outs *o)
 {
-    mcstat_pixels_out v = {o->p, o->t, o->df, o->mx, o->my, o->lo, o->hi, o->st};
+    mcstat_pixels_out v = {o->p, o->t, o->df, o->mx, o->my, o->lo, o->hi, o->st, o->se};
     return v;
 }
 
@@ -242,7 +242,7 @@ static void check_pixels(int f32, size_t ch, const double *w, int alternative, u
                 first = want;
             fails++;
             CHECK(isnan(o.p[i]) && isnan(o.t[i]) && isnan(o.df[i]) && isnan(o.mx[i]) && isnan(o.my[i]) &&
-                  isnan(o.lo[i]) && isnan(o.hi[i]));
+                  isnan(o.lo[i]) && isnan(o.hi[i]) && isnan(o.se[i]));
             continue;
         }
         double e = rel_err(o.p[i], r.p_value);
@@ -258,6 +258,7 @@ static void check_pixels(int f32, size_t ch, const double *w, int alternative, u
         CHECK_MSG(fabs(o.t[i] - r.statistic) <= 1e-14 * fmax(1.0, fabs(r.statistic)), "pixel %zu t %.17g vs %.17g",
                   i, o.t[i], r.statistic);
         CHECK_REL(o.df[i], r.df[0], 1e-14, "pixel %zu df", i);
+        CHECK_REL(o.se[i], r.std_error, 1e-14, "pixel %zu standard error", i);
         if (flags & MCSTAT_ROWS_NO_INTERVALS) {
             CHECK(isnan(o.lo[i]) && isnan(o.hi[i]));
         } else {
@@ -312,7 +313,7 @@ static void test_ranges(void)
     CHECK(!memcmp(&a, &b, sizeof a));
     /* NULL outputs are skipped; what is asked for is the same */
     static double p[P];
-    mcstat_pixels_out vp = {p, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    mcstat_pixels_out vp = {p, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
     mcstat_t_test_2_pixels(x1, NX, P, y1, NY, P, 1, NULL, 0, P, 0.0, MCSTAT_TWO_SIDED, 0.01, 0, &vp);
     CHECK(!memcmp(p, a.p, sizeof p));
 }
@@ -328,7 +329,7 @@ static void test_ill_conditioned(void)
         y[k] = 1e8 + 1e-4 * nrand(&s) + 2e-5;
     }
     double p[Q], t[Q], df[Q];
-    mcstat_pixels_out o = {p, t, df, NULL, NULL, NULL, NULL, NULL};
+    mcstat_pixels_out o = {p, t, df, NULL, NULL, NULL, NULL, NULL, NULL};
     CHECK_INT(mcstat_t_test_2_pixels(x, N, Q, y, N, Q, 1, NULL, 0, Q, 0.0, MCSTAT_TWO_SIDED, 0.05, 0, &o),
               MCSTAT_OK);
     for (int i = 0; i < Q; i++) {
@@ -350,7 +351,7 @@ static void test_bad_arguments(void)
     double x[4] = {1, 2, 3, 4}, y[4] = {2, 3, 4, 6}, p[2] = {-1.0, -1.0};
     float f[4] = {1, 2, 3, 4};
     int32_t st[2] = {-1, -1};
-    mcstat_pixels_out o = {p, NULL, NULL, NULL, NULL, NULL, NULL, st};
+    mcstat_pixels_out o = {p, NULL, NULL, NULL, NULL, NULL, NULL, st, NULL};
     const double w2[2] = {0.5, 0.5}, wbad[2] = {0.5, NAN};
     CHECK_INT(mcstat_t_test_2_pixels(x, 2, 2, y, 2, 2, 1, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, 0, NULL),
               MCSTAT_EINVAL);

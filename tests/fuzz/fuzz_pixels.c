@@ -68,15 +68,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                         "alpha %a\n", f32, weighted, pixels, nx, ny, ch, begin, end, flags, mu0, alt, alpha);
     }
 
-    double p[MAXPIX], t[MAXPIX], df[MAXPIX], mx[MAXPIX], my[MAXPIX], lo[MAXPIX], hi[MAXPIX];
+    double p[MAXPIX], t[MAXPIX], df[MAXPIX], mx[MAXPIX], my[MAXPIX], lo[MAXPIX], hi[MAXPIX], se[MAXPIX];
     int32_t status[MAXPIX];
-    double *arrays[7] = {p, t, df, mx, my, lo, hi};
-    for (int a = 0; a < 7; a++)
+    double *arrays[8] = {p, t, df, mx, my, lo, hi, se};
+    for (int a = 0; a < 8; a++)
         for (size_t i = 0; i < MAXPIX; i++)
             arrays[a][i] = -7.0;
     for (size_t i = 0; i < MAXPIX; i++)
         status[i] = -7;
-    mcstat_pixels_out out = {p, t, df, mx, my, lo, hi, status};
+    mcstat_pixels_out out = {p, t, df, mx, my, lo, hi, status, se};
     const double *wp = weighted ? w : NULL;
     int st = f32 ? mcstat_t_test_2_pixels_f32(xf, nx, plane, yf, ny, plane, ch, wp, begin, end, mu0, alt, alpha,
                                               flags, &out)

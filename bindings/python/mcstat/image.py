@@ -960,7 +960,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     t2 = time.perf_counter()
     padj = _core.p_adjust(pvalue, method=method)
     if isinstance(ref, Samples):
-        se, dfw = np.asarray(r.std_error, dtype=np.float64), np.asarray(r.df, dtype=np.float64)
+        se, dfw = r["std_error"].reshape(shp), r["df"].reshape(shp)
     else:
         assert isinstance(cand, Summary) and isinstance(ref, Summary)
         se, dfw = _welch_se_df(cand, ref)

@@ -76,13 +76,13 @@ void register_pixels(py::module_ &mod)
             const double *wp = weighted ? w.data() : nullptr;
             unsigned flags = (intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
             bool f32 = is_f32(x);
-            py::array_t<double> p(shape), t(shape), df(shape), mx(shape), my(shape);
+            py::array_t<double> p(shape), t(shape), df(shape), mx(shape), my(shape), se(shape);
             py::array_t<double> lo(intervals ? shape : std::vector<py::ssize_t>{0}),
                 hi(intervals ? shape : std::vector<py::ssize_t>{0});
             py::array_t<int32_t> status(shape);
             mcstat_pixels_out out = {p.mutable_data(), t.mutable_data(),  df.mutable_data(),
                                      mx.mutable_data(), my.mutable_data(), intervals ? lo.mutable_data() : nullptr,
-                                     intervals ? hi.mutable_data() : nullptr, status.mutable_data()};
+                                     intervals ? hi.mutable_data() : nullptr, status.mutable_data(), se.mutable_data()};
             // the arguments first, on an empty range: their errors raise, a
             // pixel's only sets its status
             int st = run(x, y, f32, nx, ny, stride, channels, wp, 0, 0, mu0, alternative, alpha, flags, &out);
@@ -101,6 +101,7 @@ void register_pixels(py::module_ &mod)
             d["df"] = df;
             d["mean_x"] = mx;
             d["mean_y"] = my;
+            d["std_error"] = se;
             d["status"] = status;
             if (intervals) {
                 d["conf_lo"] = lo;
@@ -112,7 +113,7 @@ void register_pixels(py::module_ &mod)
         py::arg("alpha") = 0.05, py::arg("mu0") = 0.0, py::arg("intervals") = false, py::arg("omit_nan") = false,
         "Welch's test per pixel of x against y, (seeds, ...) float32 or float64 C-contiguous arrays read in "
         "place; with weights, the tested value is the weighted sum over the last axis. Returns a dict of arrays "
-        "of the pixel shape: pvalue, statistic, df, mean_x, mean_y, status (and conf_lo, conf_hi with "
+        "of the pixel shape: pvalue, statistic, df, mean_x, mean_y, std_error, status (and conf_lo, conf_hi with "
         "intervals).");
 }
 

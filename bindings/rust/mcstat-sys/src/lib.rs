@@ -77,6 +77,7 @@ pub struct mcstat_pixels_out {
     pub conf_lo: *mut f64,
     pub conf_hi: *mut f64,
     pub status: *mut i32,
+    pub std_error: *mut f64,
 }
 
 pub const MCSTAT_STREAM_VERSION: u32 = 1;

@@ -359,6 +359,8 @@ pub struct PixelResults {
     pub df: Vec<f64>,
     pub mean_x: Vec<f64>,
     pub mean_y: Vec<f64>,
+    /// Welch's standard error of mean_x - mean_y.
+    pub std_error: Vec<f64>,
     pub conf_lo: Option<Vec<f64>>,
     pub conf_hi: Option<Vec<f64>>,
     pub status: Vec<i32>,
@@ -397,6 +399,7 @@ fn run_pixels(
         conf_lo: null,
         conf_hi: null,
         status: std::ptr::null_mut(),
+        std_error: null,
     };
     crate::check(call(0, 0, &none))?; // the arguments, on an empty range
     let intervals = !flags.no_intervals;
@@ -406,6 +409,7 @@ fn run_pixels(
         df: vec![f64::NAN; pixels],
         mean_x: vec![f64::NAN; pixels],
         mean_y: vec![f64::NAN; pixels],
+        std_error: vec![f64::NAN; pixels],
         conf_lo: if intervals { Some(vec![f64::NAN; pixels]) } else { None },
         conf_hi: if intervals { Some(vec![f64::NAN; pixels]) } else { None },
         status: vec![PENDING; pixels],
@@ -419,6 +423,7 @@ fn run_pixels(
         conf_lo: r.conf_lo.as_mut().map_or(null, |v| v.as_mut_ptr()),
         conf_hi: r.conf_hi.as_mut().map_or(null, |v| v.as_mut_ptr()),
         status: r.status.as_mut_ptr(),
+        std_error: r.std_error.as_mut_ptr(),
     };
     call(0, pixels, &out); // per-pixel failures are in r.status
     Ok(r)
