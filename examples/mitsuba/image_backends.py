@@ -18,7 +18,7 @@ It prints
      just detect at the level of BH's first discovery (alpha / m), i.e.
      t_crit(1 - alpha / 2m, Welch df) * standard error, as quantiles over
      the pixels, absolute and relative to the reference's mean;
-  2. the same for 8 x 8 blocks (per-seed block means, see block_means);
+  2. the same for 8 x 8 blocks (mcstat.image.compare(..., block=8): per-seed block means);
   3. a planted change: the candidate (llvm_ad_rgb, seeds 2000..2015) with
      the red wall's diffuse reflectance x 1.02.  Per pixel the change is far
      below the noise (the relative standard error of a pixel's difference
@@ -87,43 +87,22 @@ def render_stack(variant, seeds, spp=SPP, **scene_kw):
     return np.stack([np.array(mi.render(scene, spp=spp, seed=int(s)), dtype=np.float32) for s in seeds])
 
 
-def block_means(stack, b):
-    """Per-seed means of b x b blocks of pixels, (seeds, H/b, W/b, C), summed
-    in float64.  A block mean is one number per seed, and the seeds are
-    independent whatever the correlation among the block's pixels, so
-    Welch's test on block means is a valid test of the block's expected mean.
-    (A local stand-in for mcstat.image.compare(..., block=b).)"""
-    k, h, w = stack.shape[:3]
-    if h % b or w % b:
-        raise ValueError(f"block {b} does not divide the image {h} x {w}")
-    s = np.asarray(stack, dtype=np.float64)
-    return s.reshape(k, h // b, b, w // b, b, *s.shape[3:]).mean(axis=(2, 4))
-
-
 def luminance(stack):
     return np.einsum("...c,c->...", np.asarray(stack, dtype=np.float64), LUMINANCE)
 
 
-def detectable_difference(reference, candidate, alpha=ALPHA):
-    """How large a difference in luminance each test would just detect at BH's
-    first-discovery level alpha / m: t_crit(1 - alpha / 2m, Welch df) times
-    the Welch standard error, with the per-seed sample variances as if they
-    were the true ones.  Returns the quantiles (median, 90%) over the tested
-    pixels (or blocks), absolute and relative to the reference's mean."""
-    from scipy import stats
-
-    x, y = luminance(candidate), luminance(reference)
-    nx, ny = len(x), len(y)
-    a, b = x.var(axis=0, ddof=1) / nx, y.var(axis=0, ddof=1) / ny
-    tested = (a + b) > 0
-    a, b = a[tested], b[tested]
-    se = np.sqrt(a + b)
-    df = (a + b) ** 2 / (a * a / (nx - 1) + b * b / (ny - 1))
-    m = int(tested.sum())
-    d = stats.t.isf(alpha / (2 * m), df) * se
-    rel = d / np.abs(y.mean(axis=0)[tested])
-    q = lambda v: {"median": float(np.median(v)), "q90": float(np.quantile(v, 0.9))}  # noqa: E731
-    return {"tests": m, "absolute": q(d), "relative": q(rel)}
+def detectable_difference(reference, candidate, block=None, alpha=ALPHA):
+    """How large a difference in luminance each test (per pixel, or per
+    block of block x block pixels) would detect half the time at the per-test
+    level BH applied (alpha / m for its first discovery): the quantiles of
+    mcstat.image's detectable_bias at power 0.5 (t_crit times the Welch
+    standard error, with the per-seed sample variances as if they were the
+    true ones), absolute and relative to the reference's mean."""
+    res = mcstat.image.compare(reference, candidate, alpha=alpha, method="BH", seed_axis=0, block=block,
+                               detect_power=0.5)
+    b = res.bias_statistics()
+    q = lambda d: {"median": d["median"], "q90": d["p90"]}  # noqa: E731
+    return {"tests": int(res.tested.sum()), "absolute": q(b["absolute"]), "relative": q(b["relative"])}
 
 
 def report(name, res, dd=None):
@@ -169,11 +148,10 @@ def main():
                    detectable_difference(ref, c) if label == "equal" and method == "BH" else None)
             if method == "BH":
                 write_map(res, os.path.join(args.out, f"{label}_pixels.png"))
-        rb, cb = block_means(ref, BLOCK), block_means(c, BLOCK)
         for method in ("BH", "BY"):
-            res = mcstat.image.compare(rb, cb, alpha=ALPHA, method=method, seed_axis=0)
+            res = mcstat.image.compare(ref, c, alpha=ALPHA, method=method, seed_axis=0, block=BLOCK)
             report(f"{label:7s} {BLOCK}x{BLOCK} blocks, {method}", res,
-                   detectable_difference(rb, cb) if label == "equal" and method == "BH" else None)
+                   detectable_difference(ref, c, BLOCK) if label == "equal" and method == "BH" else None)
             if method == "BH":
                 write_map(res, os.path.join(args.out, f"{label}_blocks{BLOCK}.png"))
                 if label == "planted":

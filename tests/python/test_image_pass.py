@@ -348,3 +348,23 @@ def test_bias_map_has_its_colour_bar(tmp_path):
 def _save(d, name, a):
     np.save(d / name, a)
     return d / name
+
+
+def test_blocks_of_rgb_luminance_are_one_test_per_block():
+    # luminance of an RGB stack is formed by the per-pixel test from the
+    # channels; the block means must keep those weights (one test per block,
+    # the same as blocks of the luminance stack itself), NaN handling included
+    rng = np.random.default_rng(41)
+    ref = rng.normal(1.0, 0.3, (8, 16, 12, 3))
+    cand = rng.normal(1.0, 0.3, (8, 16, 12, 3))
+    cand[:, :4, :4, 0] += 0.5
+    w = np.asarray(mcstat.image.LUMINANCE_WEIGHTS)
+    got = mcstat.image.compare(ref, cand, block=4, seed_axis=0)
+    want = mcstat.image.compare(ref @ w, cand @ w, block=4, seed_axis=0)
+    assert got.pvalue.shape == (4, 3, 1)
+    np.testing.assert_allclose(got.pvalue, want.pvalue, rtol=1e-12)
+    cand[3, 9, 5, 2] = np.nan
+    with pytest.raises(mcstat.NonFiniteError, match="x=5, y=9"):
+        mcstat.image.compare(ref, cand, block=4, seed_axis=0)
+    got = mcstat.image.compare(ref, cand, block=4, seed_axis=0, nan_policy="omit")
+    assert not got.tested[2, 1, 0] and int(got.tested.sum()) == 11

@@ -809,8 +809,9 @@ def _block_means(s: Samples, n: int, nan_policy: str, name: str) -> Samples:
         bad = ~fin.all(axis=0)
         if nan_policy == "raise":
             y, x, ch = np.unravel_index(int(np.argmax(bad)), bad.shape)
+            chname = s.channel_names[ch] if ch < len(s.channel_names) else _channel_names(c)[ch]
             raise NonFiniteError(f"{int(bad.sum())} pixel(s) of the {name} hold NaN or infinite values, the first at "
-                                 f"x={x}, y={y} ({s.channel_names[ch]}); pass nan_policy='omit' (--nan omit) to leave "
+                                 f"x={x}, y={y} ({chname}); pass nan_policy='omit' (--nan omit) to leave "
                                  "the blocks holding them untested")
         d = np.where(fin, d, 0.0)
     sums = np.add.reduceat(np.add.reduceat(d, ys, axis=1, dtype=np.float64), xs, axis=2, dtype=np.float64)
@@ -819,6 +820,8 @@ def _block_means(s: Samples, n: int, nan_policy: str, name: str) -> Samples:
     if not allfin:
         badb = np.add.reduceat(np.add.reduceat(bad.astype(np.int64), ys, axis=0), xs, axis=1) > 0
         means[:, badb] = np.nan
+    if isinstance(s, _WeightedSamples):  # luminance: the channels' block means, weighted by the test
+        return _WeightedSamples(means, list(s.channel_names), s.weights)
     return Samples(means, list(s.channel_names))
 
 
