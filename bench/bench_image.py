@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""Per-pixel image comparison at 4K (`mcstat image-test`'s pipeline): time
-per stage and end to end, against SciPy's Welch test plus BH adjustment
-(statsmodels' multipletests and SciPy's false_discovery_control) on the same
-data.  --write rewrites bench/RESULTS_image.md.
+"""Per-pixel image comparison (`mcstat image-test`'s pipeline): the per-pixel
+Welch tests at 1920 x 1080 against SciPy (bench_image_pixels.py), and at 4K
+the time per stage and end to end, with the peak memory of the whole run,
+against SciPy's Welch test plus BH adjustment (statsmodels' multipletests and
+SciPy's false_discovery_control) on the same data.  --write rewrites
+bench/RESULTS_image.md.
 
 Data: 3840 x 2160, 8 seeds per side, float32 .npy stacks (as a renderer
 would write them), a smooth image plus unit noise, the candidate 3.0
@@ -44,6 +46,39 @@ def best(f, reps):
     return min(ts), out
 
 
+PEAK_SCRIPT = """
+import json, sys, time
+sys.path.insert(0, {here!r})
+what, pr, pc, png, channels = sys.argv[1:6]
+import numpy as np
+t = time.perf_counter()
+if what == "idle":
+    from mcstat_app import image as mi
+elif what == "mcstat":
+    from mcstat_app import image as mi
+    mi.run(pr, pc, png=png or None, channels=channels)
+else:
+    from scipy import stats
+    from statsmodels.stats.multitest import multipletests
+    r = stats.ttest_ind(np.load(pc), np.load(pr), axis=0, equal_var=False)
+    multipletests(np.asarray(r.pvalue, dtype=np.float64).ravel(), method="fdr_bh")
+# VmHWM, not ru_maxrss: a child's ru_maxrss starts at its parent's peak
+# (kept across fork and exec), this process's own high-water mark does not
+hwm = [l for l in open("/proc/self/status") if l.startswith("VmHWM:")][0].split()[1]
+print(json.dumps({{"seconds": time.perf_counter() - t, "peak": int(hwm) * 1024}}))
+"""
+
+
+def peak(what, pr, pc, png, channels):
+    """Wall time and peak resident memory of one whole run in a fresh process."""
+    import json
+    import subprocess
+
+    out = subprocess.run([sys.executable, "-c", PEAK_SCRIPT.format(here=HERE), what, pr, pc, png or "", channels],
+                         check=True, capture_output=True, text=True).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
 def run_case(tmp, k, h, w, c, reps, rng):
     import mcstat
     from mcstat_app import image as mi  # the command's pipeline: read files, compare, write the map
@@ -55,9 +90,13 @@ def run_case(tmp, k, h, w, c, reps, rng):
     channels = "rgb" if c > 1 else "luminance"
     png = os.path.join(tmp, "map.png")
     rows = []
-    # end to end, as the CLI runs it
+    # end to end, as the CLI runs it: with the PNG map and without (as the baseline)
     t_e2e, res = best(lambda: mi.run(pr, pc, png=png, channels=channels), reps)
     st = res.timings
+    t_nopng, _ = best(lambda: mi.run(pr, pc, channels=channels), reps)
+    mem = {"mcstat": peak("mcstat", pr, pc, png, channels), "scipy": peak("scipy", pr, pc, "", channels),
+           "idle": peak("idle", pr, pc, "", channels),
+           "input": os.path.getsize(pr) + os.path.getsize(pc)}
     ntests = res.pvalue.size
     # stages of the baseline, on the same arrays
     ref = np.load(pr)
@@ -75,7 +114,8 @@ def run_case(tmp, k, h, w, c, reps, rng):
     t_load, _ = best(lambda: (np.load(pr), np.load(pc)), 1)
     base_total = t_load + t_sc + t_sm
     rows.append((f"{w} x {h}, {k}+{k} seeds, {channels} ({ntests / 1e6:.1f} M tests)", st, t_e2e, t_load, t_sc,
-                 t_sm, t_fdc, t_pa, t_holm, t_hommel, base_total, int((res.padjusted <= 0.05).sum())))
+                 t_sm, t_fdc, t_pa, t_holm, t_hommel, base_total, int((res.padjusted <= 0.05).sum()), t_nopng, mem,
+                 ntests))
     del ref, cand, sc
     for f in (pr, pc, png):
         os.remove(f)
@@ -84,7 +124,7 @@ def run_case(tmp, k, h, w, c, reps, rng):
 
 def table(rows):
     out = []
-    for (name, st, e2e, tload, tsc, tsm, tfdc, tpa, tholm, thommel, btot, nrej) in rows:
+    for (name, st, e2e, tload, tsc, tsm, tfdc, tpa, tholm, thommel, btot, nrej, nopng, mem, ntests) in rows:
         out.append(f"### {name}\n")
         out.append("| stage | mcstat | baseline | baseline / mcstat |")
         out.append("|---|---:|---:|---:|")
@@ -97,10 +137,21 @@ def table(rows):
         out.append(f"| BH adjustment alone, best of runs | {tpa:.2f} s | {tfdc:.2f} s (scipy "
                    f"false_discovery_control) | {tfdc / tpa:.1f} |")
         out.append(f"| decisions + summary arrays | {st['decisions']:.2f} s | | |")
-        out.append(f"| significance map PNG | {st['png']:.2f} s | | |")
-        out.append(f"| **end to end** (`mcstat_app.image.run`, best of runs) | **{e2e:.2f} s** | {btot:.2f} s "
-                   f"(load + SciPy + statsmodels, no PNG) | {btot / e2e:.1f} |")
+        out.append(f"| detectable bias (what a pass means) | {st.get('detectable_bias', float('nan')):.2f} s | | |")
+        out.append(f"| significance map PNG (with its key) | {st['png']:.2f} s | | |")
+        out.append(f"| **end to end, no PNG** (`mcstat_app.image.run`, best of runs) | **{nopng:.2f} s** | {btot:.2f} s "
+                   f"(load + SciPy + statsmodels) | **{btot / nopng:.1f}** |")
+        out.append(f"| end to end with the PNG map | {e2e:.2f} s | | {btot / e2e:.1f} |")
         out.append("")
+        mb = 1024.0 ** 2
+        pm, ps = mem["mcstat"]["peak"], mem["scipy"]["peak"]
+        pi = mem["idle"]["peak"]
+        out.append(f"Peak resident memory of a whole run in a fresh process (VmHWM): mcstat "
+                   f"{pm / mb:.0f} MiB ({mem['mcstat']['seconds']:.2f} s with the PNG), the SciPy + statsmodels "
+                   f"pipeline {ps / mb:.0f} MiB; Python with mcstat_app imported and nothing run {pi / mb:.0f} MiB. "
+                   f"The input files hold {mem['input'] / mb:.0f} MiB and one float64 per test is "
+                   f"{8 * ntests / mb:.0f} MiB: mcstat's peak above the idle interpreter is the input plus "
+                   f"{(pm - pi - mem['input']) / (8 * ntests):.1f} float64 per test.\n")
         out.append(f"Other adjustments of the same p-values: Holm {tholm:.2f} s, Hommel {thommel:.2f} s "
                    f"(O(n log n); R's p.adjust is O(n^2) for Hommel). Rejections after BH at 0.05: {nrej} "
                    f"(the biased box holds {400 * 300 * (3 if 'rgb' in name else 1)} tests).\n")
@@ -120,6 +171,11 @@ def main():
     rng = np.random.default_rng(1)
     rows = []
     load0 = os.getloadavg()[0]
+    import bench_image_pixels as bip
+
+    pw, ph = (960, 540) if a.small else (1920, 1080)
+    prow, psp, prel = bip.measure(mcstat.get_num_threads(), max(2, a.reps), pw, ph)
+    pixels = bip.table(prow, psp, prel, mcstat.get_num_threads(), max(2, a.reps), pw, ph)
     with tempfile.TemporaryDirectory() as tmp:
         rows += run_case(tmp, 8, h, w, 1, a.reps, rng)
         if not a.no_rgb:
@@ -131,7 +187,8 @@ def main():
             f"mcstat threads: {mcstat.get_num_threads()} (the tests and nothing else run in parallel); SciPy "
             f"and statsmodels single-threaded. Load average before / after: {load0:.1f} / "
             f"{os.getloadavg()[0]:.1f} (shared machine: trust ratios more than seconds). Python "
-            f"{platform.python_version()}, NumPy {np.__version__}.\n\n" + table(rows))
+            f"{platform.python_version()}, NumPy {np.__version__}.\n\n"
+            "### Per-pixel Welch tests (`bench/bench_image_pixels.py`)\n\n" + pixels + "\n\n" + table(rows))
     print(text)
     if a.write:
         with open(os.path.join(HERE, "RESULTS_image.md"), "w") as f:

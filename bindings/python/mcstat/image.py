@@ -907,7 +907,11 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         raise ImageInputError("both sides must be per-seed renders, or both per-pixel summaries (.npz)")
     if ref.shape != cand.shape:
         raise ImageInputError(f"the reference is {_fmt_shape(ref.shape)} but the candidate is {_fmt_shape(cand.shape)}")
-    bg = _reference_luminance(ref)
+    # The map's background: per-seed luminance tests compute the reference's
+    # mean luminance anyway (est_r below), so only other inputs take a pass
+    # over the reference for it.
+    bg_from_test = channels == "luminance" and block is None and isinstance(ref, Samples)
+    bg = None if bg_from_test else _reference_luminance(ref)
     ref = _select(ref, channels)
     cand = _select(cand, channels)
     image_shape = (ref.shape[0], ref.shape[1])
@@ -940,13 +944,14 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
                                    omit_nan=nan_policy == "omit")
         shp = cand.shape
         pvalue, stat, status = (r[k].reshape(shp) for k in ("pvalue", "statistic", "status"))
-        est = np.stack([r["mean_x"].reshape(shp), r["mean_y"].reshape(shp)], axis=-1)
+        est_c, est_r = r["mean_x"].reshape(shp), r["mean_y"].reshape(shp)  # no stacked copy: memory
     else:
         shp = ref.shape
         f = _core._t_test_2_summary_rows(cand.n, cand.mean, cand.m2, ref.n, ref.mean, ref.m2,
                                          _core._alternative_code(alternative), alpha)
         pvalue, stat, status = (f[k].reshape(shp) for k in ("pvalue", "statistic", "status"))
         est = f["estimate"].reshape(shp + (2,))
+        est_c, est_r = est[..., 0], est[..., 1]
         if np.any((ref.n < 2) | (cand.n < 2)):
             raise TooFewObservationsError("a per-pixel summary has n < 2; Welch's test needs at least 2 per side")
     lost, notes = _variance_lost(ref, cand)
@@ -968,17 +973,18 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         assert isinstance(cand, Summary) and isinstance(ref, Summary)
         se, dfw = _welch_se_df(cand, ref)
     t3 = time.perf_counter()
+    if bg is None:
+        bg = est_r[..., 0]
     tested = status == 0
     sig = padj <= alpha
     dec = np.zeros(pvalue.shape, dtype=np.int8)
-    diff = est[..., 0] - est[..., 1]
-    dec[sig & (diff > 0)] = 1
-    dec[sig & (diff < 0)] = -1
+    dec[sig & (est_c > est_r)] = 1
+    dec[sig & (est_c < est_r)] = -1
     if alternative == "greater":
         dec[dec < 0] = 0
     elif alternative == "less":
         dec[dec > 0] = 0
-    res = ImageComparison(pvalue, padj, stat, dec, tested, est[..., 0], est[..., 1], bg, list(ref.channel_names),
+    res = ImageComparison(pvalue, padj, stat, dec, tested, est_c, est_r, bg, list(ref.channel_names),
                           alpha, _canonical_method(method), alternative)
     res.variance_lost, res.notes = int(lost.sum()) if lost is not None else 0, notes
     t4 = time.perf_counter()
