@@ -97,7 +97,8 @@ def unregistered(known_py, known_c):
 
 C_BENCHES = ("bench_moments", "bench_check", "check_cost", "ks_bench", "bench_estimators")
 PY_BENCHES = ("bench_python.py", "bench_ks_python.py", "bench_estimators_numpy.py", "ks_numpy.py",
-              "bench_image.py", "bench_check_calibration.py", "bench_sequential.py")
+              "bench_image.py", "bench_image_pixels.py",  # the latter through bench_image.py's first table
+              "bench_check_calibration.py", "bench_sequential.py")
 
 
 def main():
