@@ -27,7 +27,7 @@ picture stays recognisable); black, not tested (constant in both inputs,
 non-finite values, too few seeds).
 
 What a pass means (`ImageComparison.detectable_bias`): for each tested
-pixel, the smallest difference of means |delta| that its test would have
+pixel, the smallest difference of means ``|delta|`` that its test would have
 found with probability `detect_power` (0.8 by default) at its own standard
 error se and Welch degrees of freedom df, at the per-test level `level`
 the adjustment applied (`per_test_level`: the raw p-value at or below
@@ -421,7 +421,7 @@ class ImageComparison:
     def bias_statistics(self) -> Dict[str, Any]:
         """Quantiles (median, 90%, 99%) of `detectable_bias` over the
         tested pixels that were not rejected (the pass's pixels), absolute
-        and relative to |reference mean| (pixels where it is not 0), and
+        and relative to the absolute reference mean (pixels where it is not 0), and
         the quantile the verdict uses (`bias_quantile`)."""
         if self._bias_stats is None:
             self._bias_stats = _bias_stats(self)
@@ -714,7 +714,7 @@ def _t_quantile_apply(table: Any, d: np.ndarray) -> np.ndarray:
 
 def detectable_bias(std_error: Any, df: Any, level: float, *, alternative: str = "two-sided",
                     power: float = 0.8) -> np.ndarray:
-    """The smallest |difference of means| a Welch test with this standard
+    """The smallest absolute difference of means a Welch test with this standard
     error and these degrees of freedom finds with probability `power` at
     the per-test `level` (arrays broadcast; NaN where se or df is not
     positive and finite): se (c (1 - 1/(4 df)) + z sqrt(1 + c^2/(2 df))),
@@ -882,7 +882,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
 
     `detect_power`: the power behind ``detectable_bias`` (see the module's
     doc).  `max_detectable_bias` (absolute, in the image's units) and
-    `max_relative_detectable_bias` (relative to |reference mean|): the
+    `max_relative_detectable_bias` (relative to the absolute reference mean): the
     verdict is "inconclusive" rather than "equal" when, at the
     `bias_quantile` of the passing pixels, ``detectable_bias`` exceeds them.
     """
