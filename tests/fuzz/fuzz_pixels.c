@@ -86,7 +86,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int bad_w = 0;
     for (size_t c = 0; c < ch && weighted; c++)
         bad_w |= !isfinite(w[c]);
-    int invalid = end < begin || bad_w || !isfinite(mu0) || !(alpha > 0.0 && alpha < 1.0) ||
+    int invalid = end < begin || bad_w || !isfinite(mu0) || !fz_alpha_valid(alpha) ||
                   (alt != MCSTAT_TWO_SIDED && alt != MCSTAT_LESS && alt != MCSTAT_GREATER) ||
                   (flags & ~(unsigned)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN));
     int written = 0;
