@@ -287,20 +287,6 @@ static void fail(pix_ctx *c, size_t i, int st)
         c->first = st;
 }
 
-/* est - c se in double-double (t_test.c's ci_bound for unscaled data). */
-static double bound(mcstat_dd est, double c, double se)
-{
-    if (isinf(c))
-        return c > 0 ? -INFINITY : INFINITY;
-    /* as there: beyond 2^900 Dekker's split in dd_two_prod overflows into
-     * NaN (df near 1 at alpha = 1e-308); the estimate is then far below the
-     * product's rounding, so plain scaled doubles suffice */
-    if (fabs(c) > 0x1p900 || !(fabs(c) * se <= 0x1p900))
-        return scale2(scale2(-c, -900) * se + scale2(est.hi + est.lo, -900), 900);
-    mcstat_dd b = dd_add(est, dd_two_prod(-c, se));
-    return b.hi + b.lo;
-}
-
 /* ---- the slow path: the single call's code ---------------------------------- */
 
 typedef struct {
@@ -494,8 +480,8 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
         double c0, c1;
         if (criticals(c, df, ppf, &c0, &c1))
             return 0;
-        lo = bound(diff, c1, se);
-        hi = bound(diff, c0, se);
+        lo = mcstat__ci_bound(diff, c1, se, 0);
+        hi = mcstat__ci_bound(diff, c0, se, 0);
     }
     put(c, i, MCSTAT_OK, p, t, df, se, mx.hi, my.hi, lo, hi);
     return 1;

@@ -30,7 +30,7 @@ static double dd_add_scaled(mcstat_dd a, double b, int e)
 }
 
 /* est - c * se in units of 2^e, est a double-double already in those units. */
-static double ci_bound(mcstat_dd est, double c, double se, int e)
+double mcstat__ci_bound(mcstat_dd est, double c, double se, int e)
 {
     if (isinf(c))
         return c > 0 ? -INFINITY : INFINITY;
@@ -92,8 +92,8 @@ int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, doubl
         return MCSTAT_OK;
     }
     mcstat_dd ms = {scale2(mean.hi, -e), scale2(mean.lo, -e)};
-    r.conf_int[0] = ci_bound(ms, r.critical[1], se, e);
-    r.conf_int[1] = ci_bound(ms, r.critical[0], se, e);
+    r.conf_int[0] = mcstat__ci_bound(ms, r.critical[1], se, e);
+    r.conf_int[1] = mcstat__ci_bound(ms, r.critical[0], se, e);
     *out = r;
     return MCSTAT_OK;
 }
@@ -179,8 +179,8 @@ static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0
         *out = r;
         return MCSTAT_OK;
     }
-    r.conf_int[0] = ci_bound(ds, r.critical[1], se, e);
-    r.conf_int[1] = ci_bound(ds, r.critical[0], se, e);
+    r.conf_int[0] = mcstat__ci_bound(ds, r.critical[1], se, e);
+    r.conf_int[1] = mcstat__ci_bound(ds, r.critical[0], se, e);
     *out = r;
     return MCSTAT_OK;
 }

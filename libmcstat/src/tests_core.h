@@ -57,6 +57,9 @@ MCSTAT_HIDDEN int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alte
                                    mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0,
                                    int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
+/* An interval's bound est - c se, scaled by 2^e, in double-double (the
+ * t tests' and the per-pixel path's; safe for |c| or c se beyond 2^900). */
+MCSTAT_HIDDEN double mcstat__ci_bound(mcstat_dd est, double c, double se, int e);
 /* Student's pooled-variance two-sample t (Welch's code with the pooled
  * standard error and nx + ny - 2 degrees of freedom). */
 MCSTAT_HIDDEN int mcstat__t_test_2_pooled(const mcstat_moments *x, const mcstat_moments *y, double mu0,

@@ -4,8 +4,6 @@ found with the false discovery proportion controlled; on null images the
 fraction of runs with any discovery stays within binomial bounds of alpha;
 the CLI round trip (.npy, PFM, EXR, .npz summaries in; PNG and JSON out);
 clear errors for bad input."""
-import contextlib
-import io
 import json
 import os
 import sys
@@ -18,17 +16,7 @@ from scipy import stats
 import mcstat
 from mcstat import image as mi
 from mcstat_app import image as app_image
-from mcstat_app.cli import main
-
-
-def run_cli(*argv):
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = main([str(a) for a in argv])
-        except SystemExit as e:
-            code = e.code if isinstance(e.code, int) else 2
-    return code, out.getvalue(), err.getvalue()
+from cli_run import run_cli
 
 
 def planted(rng, k=8, h=48, w=64, c=3, bias=2.0, box=(10, 26, 20, 44), sigma=1.0):

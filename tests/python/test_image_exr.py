@@ -3,8 +3,6 @@ Mitsuba 3's moment AOVs to per-pixel summaries (exact against the closed
 form n, m1, n (m2 - m1^2)), the float32 cancellation of m2 - m1^2 detected
 and reported, several seeds as layers of one EXR, and clear errors for
 truncated files, missing channels and the outputs that are refused."""
-import contextlib
-import io
 import sys
 
 import numpy as np
@@ -13,7 +11,7 @@ import pytest
 from mcstat import image as mi
 from mcstat_app import image as app_image
 from mcstat_app import image_exr
-from mcstat_app.cli import main
+from cli_run import run_cli
 
 OpenEXR = pytest.importorskip("OpenEXR")
 SPP = 16
@@ -42,16 +40,6 @@ def moment_channels(m1, m2, prefix="nested"):
 
 def render_samples(rng, h=3, w=4, mean=1.0, sd=0.5):
     return rng.normal(mean, sd, size=(SPP, h, w, 3))
-
-
-def run_cli(*argv):
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = main([str(a) for a in argv])
-        except SystemExit as e:
-            code = e.code if isinstance(e.code, int) else 2
-    return code, out.getvalue(), err.getvalue()
 
 
 def test_moment_exr_to_summaries(tmp_path):

@@ -4,8 +4,6 @@ per verdict, and the maps' colour keys.  Independent checks: SciPy's
 noncentral t for the power at the computed bias, R's definitions of the
 adjustments through mcstat.p_adjust for the per-test levels, mcstat.t_test
 on block means computed here for the block tests."""
-import contextlib
-import io
 import json
 
 import numpy as np
@@ -17,17 +15,7 @@ import mcstat
 from mcstat import image as mi
 from mcstat_app import image as app_image
 from mcstat_app import errors as E
-from mcstat_app.cli import main
-
-
-def run_cli(*argv):
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            code = main([str(a) for a in argv])
-        except SystemExit as e:
-            code = e.code if isinstance(e.code, int) else 2
-    return code, out.getvalue(), err.getvalue()
+from cli_run import run_cli
 
 
 def stacks(seed, k=8, h=32, w=40, c=1, bias=0.0, box=None, sigma=1.0):
