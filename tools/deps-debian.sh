@@ -60,7 +60,7 @@ need() {
     demo)       need python ;;
     valgrind)   add valgrind ;;
     fuzz)       # the runtimes of the installed clang, else of Debian's default clang
-                v=$(clang --version 2> /dev/null | sed -n 's/.*clang version \([0-9]*\).*/\1/p' | head -1)
+                v=$(clang --version 2> /dev/null | sed -n 's/.*clang version \([0-9]*\).*/\1/p' | head -1 || true)
                 add clang "libclang-rt-${v:+$v-}dev" ;;
     abi)        add abigail-tools ;;
     rust)       command -v cargo > /dev/null || add cargo rustc ;;
