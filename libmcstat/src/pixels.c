@@ -37,6 +37,19 @@
 #define QT_NODES 1024      /* the critical values' table: u = 1/df in steps of 1/1024 */
 #define LOG_2PI_HALF 0.91893853320467274178 /* log(2 pi) / 2 */
 
+/* The per-block loops (moments, statistics, prefactors) are compiled twice
+ * on x86-64, for the baseline (SSE2: two doubles a vector) and for AVX2
+ * (four), and chosen at run time.  Each pixel's arithmetic is the same
+ * sequence of IEEE operations in both (no FMA: -ffp-contract=off, and AVX2
+ * does not imply FMA), so the results are bit for bit the same. */
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define PIX_AVX2 1
+#define PIX_INLINE inline __attribute__((always_inline))
+#else
+#define PIX_AVX2 0
+#define PIX_INLINE inline
+#endif
+
 /* ---- the t tail with b = 1/2 --------------------------------------------
  * a = df/2, r = t^2/df, x = 1/(1+r), y = r/(1+r).  The prefactor
  *   K = x^a y^(1/2) / B(a, 1/2) = |t| f(t)
@@ -55,47 +68,74 @@
  * Both sums have positive terms (a few ulps each).  Outside (df beyond
  * [1, 1000], the centre of a large df, |t| >= 1e100) it returns 0 and the
  * caller uses mcstat__t_tails. */
-/* log Gamma*(z) for z >= 10: special.c's Stirling series (error below
- * 3e-17), inline. */
-static double lgs_stirling(double z)
+/* L(z) = log Gamma(z+1/2) - log Gamma(z) - log(z)/2 for z >= 10: the
+ * asymptotic series sum_{n even} (2^(1-n) - 2) B_n / (n (n-1) z^(n-1)),
+ * n = 2..16; the first term left out is below 4e-18 at z = 10 (mpmath). */
+static PIX_INLINE double gamma_half_ratio(double z)
 {
-    double r = 1.0 / z, r2 = r * r;
-    return r * (1.0 / 12 + r2 * (-1.0 / 360 + r2 * (1.0 / 1260 + r2 * (-1.0 / 1680 +
-                r2 * (1.0 / 1188 + r2 * (-691.0 / 360360 + r2 * (1.0 / 156)))))));
+    double w = 1.0 / z, w2 = w * w;
+    return w * (-1.0 / 8 + w2 * (1.0 / 192 + w2 * (-1.0 / 640 + w2 * (17.0 / 14336 +
+           w2 * (-31.0 / 18432 + w2 * (691.0 / 180224 + w2 * (-5461.0 / 425984 +
+           w2 * (929569.0 / 15728640))))))));
 }
 
-/* The df-dependent part of log K: with a = df/2 shifted to z = a + k >= 10,
- *   Gamma(a+1/2)/(Gamma(a) sqrt(a)) = Gamma(z+1/2)/(Gamma(z) sqrt(z))
- *                                     * sqrt(z/a) prod_{i<k} (a+i)/(a+i+1/2),
- * the first factor exp(z log1p(1/(2z)) - 1/2 + log G*(z+1/2) - log G*(z)).
- * Returned as that exponent (minus log(2 pi)/2) and the factor f multiplying
- * |t| inside the one logarithm the tail takes. */
+/* The df-dependent part of K: with a = df/2 shifted to z = a + k >= 10,
+ *   Gamma(a+1/2)/(Gamma(a) sqrt(a)) = exp(L(z)) sqrt(z/a) prod_{i<k} (a+i)/(a+i+1/2),
+ * kept as lc = L(z) - log(2 pi)/2 (for the exponent) and the factor f
+ * (multiplying |t|), so K = |t| f exp(lc - (a+1/2) log1p(r)). */
 typedef struct {
     double a, A, lc, f;
 } t_prefactor;
 
-static void t_prefactor_init(double df, t_prefactor *pf)
+/* f and lc at a = df/2 >= 1/2 (k <= 10), with a fixed trip count and no
+ * branches, so that a loop over pixels calling it vectorises. */
+static PIX_INLINE void t_prefactor_parts(double a, double *f, double *lc)
 {
-    double a = 0.5 * df, z = a, num = 1.0, den = 1.0;
-    while (z < 10.0) {
-        num *= z;
-        den *= z + 0.5;
-        z += 1.0;
+    double z = a, num = 1.0, den = 1.0;
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC unroll 10
+#endif
+    for (int i = 0; i < 10; i++) {
+        int below = isless(z, 10.0); /* quiet: a trapping compare would not vectorise */
+        double zh = z + 0.5, z1 = z + 1.0;
+        num *= below ? z : 1.0;
+        den *= below ? zh : 1.0;
+        z = below ? z1 : z;
     }
-    pf->a = a;
-    pf->A = a + 0.5;
-    pf->f = (num / den) * sqrt(z / a);
-    pf->lc = (z * log1p(0.5 / z) - 0.5) + (lgs_stirling(z + 0.5) - lgs_stirling(z)) - LOG_2PI_HALF;
+    *f = sqrt((z * num * num) / (a * den * den));
+    *lc = gamma_half_ratio(z) - LOG_2PI_HALF;
 }
 
-static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *other, double *logk)
+static void t_prefactor_init(double df, t_prefactor *pf)
+{
+    pf->a = 0.5 * df;
+    pf->A = pf->a + 0.5;
+    t_prefactor_parts(pf->a, &pf->f, &pf->lc);
+}
+
+/* 1/(3/2 + j): the central series' divisors, so its terms need no division. */
+#define RCP1(j) 1.0 / (1.5 + (j))
+#define RCP4(j) RCP1(j), RCP1((j) + 1), RCP1((j) + 2), RCP1((j) + 3)
+#define RCP16(j) RCP4(j), RCP4((j) + 4), RCP4((j) + 8), RCP4((j) + 12)
+#define RCP64(j) RCP16(j), RCP16((j) + 16), RCP16((j) + 32), RCP16((j) + 48)
+#define CENTRAL_TERMS 448
+static const double rcp_central[CENTRAL_TERMS] = {
+    RCP64(0), RCP64(64), RCP64(128), RCP64(192), RCP64(256), RCP64(320), RCP64(384),
+};
+
+/* The tails at |t| = at; *kk = K.  Returns 0 where the caller must use
+ * mcstat__t_tails. */
+static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *other, double *kk)
 {
     double a = pf->a, A = pf->A, df = 2.0 * a;
     double r = at * at / df;
     double y = r / (1.0 + r), x = 1.0 / (1.0 + r);
     if (r < 1.0 && A * y > 40.0) /* the central series would be long and c near 1 */
         return 0;
-    double lk = log(at * pf->f) - A * log1p(r) + pf->lc;
+    /* |t| f exp(e), not exp(log(|t| f) + e): one logarithm fewer, and
+     * the exponent's rounding (relative to K) does not grow with log |t| */
+    double e = pf->lc - A * log1p(r);
+    double k = e > -700.0 ? at * pf->f * exp(e) : exp(log(at * pf->f) + e);
     double term = 1.0, sum = 1.0;
     if (r >= 1.0) {
         for (int j = 0;; j++) {
@@ -106,25 +146,29 @@ static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *
             if (term <= 1e-17 * sum)
                 break;
         }
-        double u = exp(lk) * sum / (2.0 * a);
+        double u = k * sum / (2.0 * a);
         *upper = u;
         *other = 1.0 - u;
     } else {
-        for (int j = 0;; j++) {
-            if (j == 400)
+        /* two terms a step: the second from the first term's predecessor,
+         * so the loop-carried chain is one multiplication per two terms */
+        for (int j = 0;; j += 2) {
+            if (j == CENTRAL_TERMS)
                 return 0;
-            term *= (A + j) / (1.5 + j) * y;
-            sum += term;
+            double q0 = (A + j) * rcp_central[j] * y, q1 = (A + (j + 1)) * rcp_central[j + 1] * y;
+            double t1 = term * q0;
+            term *= q0 * q1;
+            sum += t1 + term;
             if (term <= 0.25 * DBL_EPSILON * sum)
                 break;
         }
-        double c = 2.0 * exp(lk) * sum;
+        double c = 2.0 * k * sum;
         if (!(c <= 0.96))
             return 0;
         *upper = 0.5 - 0.5 * c;
         *other = 0.5 + 0.5 * c;
     }
-    *logk = lk;
+    *kk = k;
     return 1;
 }
 
@@ -139,8 +183,12 @@ int mcstat__t_tail_fast(double t, double df, double *upper, double *other, doubl
     if (!fast_range(at, df))
         return 0;
     t_prefactor pf;
+    double k;
     t_prefactor_init(df, &pf);
-    return t_tail_core(at, &pf, upper, other, logk);
+    if (!t_tail_core(at, &pf, upper, other, &k))
+        return 0;
+    *logk = log(at * pf.f) + pf.lc - pf.A * log1p(at * at / df); /* finite where K underflows */
+    return 1;
 }
 
 /* The upper p-quantile of t(df) (0 < p < 1/2) by Halley's method in
@@ -180,10 +228,10 @@ static int t_upper_quantile(double p, double df, const t_prefactor *pf, double s
         if (t > 0.0 && isfinite(t)) {
             double z = log(t);
             for (int it = 0; it < 30; it++) {
-                double u, o, lk, at = exp(z);
-                if (!fast_range(at, df) || !t_tail_core(at, pf, &u, &o, &lk) || !(u > 0.0))
+                double u, o, k, at = exp(z);
+                if (!fast_range(at, df) || !t_tail_core(at, pf, &u, &o, &k) || !(u > 0.0))
                     break;
-                double h = log(u) - lp, kp = exp(lk) / u, y = at * at / (df + at * at);
+                double h = log(u) - lp, kp = k / u, y = at * at / (df + at * at);
                 double d1 = -kp, d2 = d1 * (1.0 - (df + 1.0) * y + kp);
                 double step = -h / d1;
                 double den = 1.0 + 0.5 * step * d2 / d1; /* Halley: -h / (d1 - h d2 / (2 d1)) */
@@ -430,39 +478,82 @@ static int criticals(pix_ctx *c, double df, const t_prefactor *pf, double *c0, d
     return MCSTAT_OK;
 }
 
-/* Pixel i from its moments (nothing NaN or Inf, magnitudes in moments.c's
- * unscaled range); returns 0 where the slow path must decide. */
-static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x, double ny, mcstat_dd my,
-                      double m2y)
+/* fmin/fmax are library calls without -ffinite-math-only; nothing here is NaN */
+static inline double dmin(double u, double v) { return u < v ? u : v; }
+static inline double dmax(double u, double v) { return u > v ? u : v; }
+
+/* A block's statistics, computed pixel by pixel in straight-line loops the
+ * compiler vectorises (no branches, no calls, no floating-point operation
+ * done conditionally, which -ftrapping-math forbids it to speculate): the
+ * moments in; t, df, the standard error, the difference of the means, the
+ * t prefactor and each pixel's fate out. */
+enum { PIX_FAST, PIX_SLOW, PIX_DEGENERATE };
+
+typedef struct {
+    double t[PIX_BLOCK], df[PIX_BLOCK], se[PIX_BLOCK], dhi[PIX_BLOCK], dlo[PIX_BLOCK];
+    double sdmax[PIX_BLOCK], lim[PIX_BLOCK];
+    double pa[PIX_BLOCK], pf[PIX_BLOCK], plc[PIX_BLOCK]; /* t_prefactor's a, f, lc */
+    unsigned char kind[PIX_BLOCK];
+} block_stats;
+
+static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx, const double *m2x, const unsigned char *bx,
+                             double ny, const mcstat_dd *my, const double *m2y, const unsigned char *by, double mu0,
+                             block_stats *bs)
 {
-    /* moments.c's var_scaled moves exponents beyond 2^+-500 out of m2 */
-    if ((m2x > 0.0 && (m2x < 0x1p-500 || m2x > 0x1p+500)) || (m2y > 0.0 && (m2y < 0x1p-500 || m2y > 0x1p+500)))
-        return 0;
-    double vx = m2x / (nx - 1.0), vy = m2y / (ny - 1.0);
-    double a = vx / nx, b = vy / ny, se = sqrt(a + b);
-    /* t_test.c's "constant to within rounding"; near its edge, where the two
-     * accumulations of M2 might decide differently, the slow path decides */
-    double sdmax = sqrt(fmax(vx, vy)), lim = 10.0 * DBL_EPSILON * fmax(fabs(mx.hi), fabs(my.hi));
-    if (!(se > 0.0) || sdmax < lim * (1.0 - 1e-6)) {
-        fail(c, i, MCSTAT_EDEGENERATE);
-        return 1;
+    for (size_t j = 0; j < k; j++) {
+        double vx = m2x[j] / (nx - 1.0), vy = m2y[j] / (ny - 1.0);
+        double a = vx / nx, b = vy / ny, se = sqrt(a + b);
+        mcstat_dd diff = dd_add(mx[j], dd_neg(my[j]));
+        mcstat_dd sh = dd_add(diff, (mcstat_dd){-mu0, 0.0});
+        double m = dmax(a, b), ra = a / m, rb = b / m;
+        bs->df[j] = (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
+        bs->t[j] = (sh.hi + sh.lo) / se;
+        bs->se[j] = se;
+        bs->dhi[j] = diff.hi;
+        bs->dlo[j] = diff.lo;
+        bs->sdmax[j] = sqrt(dmax(vx, vy));
+        bs->lim[j] = 10.0 * DBL_EPSILON * dmax(fabs(mx[j].hi), fabs(my[j].hi));
     }
-    if (sdmax < lim * (1.0 + 1e-6))
-        return 0;
-    mcstat_dd diff = dd_add(mx, dd_neg(my));
-    mcstat_dd s = dd_add(diff, (mcstat_dd){-c->mu0, 0.0});
-    double t = (s.hi + s.lo) / se;
-    double m = fmax(a, b), ra = a / m, rb = b / m;
-    double df = (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
-    double up, other, lk, lo_tail, hi_tail;
+    for (size_t j = 0; j < k; j++) {
+        double m2a = m2x[j], m2b = m2y[j], sdmax = bs->sdmax[j], lim = bs->lim[j];
+        /* moments.c's var_scaled moves exponents beyond 2^+-500 out of m2 */
+        int extreme = (m2a > 0.0 && (m2a < 0x1p-500 || m2a > 0x1p+500)) ||
+                      (m2b > 0.0 && (m2b < 0x1p-500 || m2b > 0x1p+500));
+        /* t_test.c's "constant to within rounding"; near its edge, where the
+         * two accumulations of M2 might decide differently, the slow path
+         * decides */
+        int degenerate = !(bs->se[j] > 0.0) || sdmax < lim * (1.0 - 1e-6);
+        int edge = sdmax < lim * (1.0 + 1e-6);
+        bs->kind[j] = (unsigned char)(bx[j] || by[j] || extreme ? PIX_SLOW
+                                      : degenerate              ? PIX_DEGENERATE
+                                      : edge                    ? PIX_SLOW
+                                                                : PIX_FAST);
+    }
+    /* the t prefactor (t_prefactor_init), where the fast tail can use it */
+    for (size_t j = 0; j < k; j++) {
+        double a = 0.5 * bs->df[j]; /* used only where df is in [1, 1000] */
+        bs->pa[j] = a;
+        t_prefactor_parts(a, &bs->pf[j], &bs->plc[j]);
+    }
+}
+
+/* Pixel i's outputs from its statistics; returns 0 where the slow path must
+ * decide. */
+static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, double mxh, double myh)
+{
+    double t = bs->t[j], df = bs->df[j], se = bs->se[j];
+    double up, other, kk, lo_tail, hi_tail;
     t_prefactor pf, *ppf = NULL;
     if (df >= 1.0 && df <= 1000.0) { /* shared by the tail and the quantile */
-        t_prefactor_init(df, &pf);
+        pf.a = bs->pa[j];
+        pf.A = pf.a + 0.5;
+        pf.f = bs->pf[j];
+        pf.lc = bs->plc[j];
         ppf = &pf;
     }
     if (t == 0.0) {
         lo_tail = hi_tail = 0.5;
-    } else if (ppf && fast_range(fabs(t), df) && t_tail_core(fabs(t), ppf, &up, &other, &lk)) {
+    } else if (ppf && fast_range(fabs(t), df) && t_tail_core(fabs(t), ppf, &up, &other, &kk)) {
         lo_tail = t > 0.0 ? other : up;
         hi_tail = t > 0.0 ? up : other;
     } else {
@@ -474,16 +565,17 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
     }
     double p = c->alternative == MCSTAT_LESS      ? lo_tail
                : c->alternative == MCSTAT_GREATER ? hi_tail
-                                                  : fmin(1.0, 2.0 * fmin(lo_tail, hi_tail));
+                                                  : dmin(1.0, 2.0 * dmin(lo_tail, hi_tail));
     double lo = NAN, hi = NAN;
     if (c->intervals) {
         double c0, c1;
         if (criticals(c, df, ppf, &c0, &c1))
             return 0;
+        mcstat_dd diff = {bs->dhi[j], bs->dlo[j]};
         lo = mcstat__ci_bound(diff, c1, se, 0);
         hi = mcstat__ci_bound(diff, c0, se, 0);
     }
-    put(c, i, MCSTAT_OK, p, t, df, se, mx.hi, my.hi, lo, hi);
+    put(c, i, MCSTAT_OK, p, t, df, se, mxh, myh, lo, hi);
     return 1;
 }
 
@@ -491,7 +583,7 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
  * loop over seeds is outside, the contiguous pixels inside.  bad[j] is set
  * where the fast path cannot use the sums (non-finite, extreme). */
 #define DEFINE_BLOCK_MOMENTS(NAME, T)                                                                      \
-    static void NAME(const T *x, size_t n, size_t stride, size_t ch, const double *w, size_t i0, size_t k, \
+    static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t ch, const double *w, size_t i0, size_t k, \
                      mcstat_dd *mean, double *m2, unsigned char *bad)                                      \
     {                                                                                                      \
         double sum[PIX_BLOCK], amax[PIX_BLOCK], s1[PIX_BLOCK], s2[PIX_BLOCK];                              \
@@ -550,6 +642,54 @@ static int fast_pixel(pix_ctx *c, size_t i, double nx, mcstat_dd mx, double m2x,
 DEFINE_BLOCK_MOMENTS(block_moments_f32, float)
 DEFINE_BLOCK_MOMENTS(block_moments_f64, double)
 
+/* Set by the tests to compare the baseline loops with the AVX2 ones. */
+static int pixels_baseline_only;
+
+void mcstat__pixels_baseline_only(int on)
+{
+    pixels_baseline_only = on;
+}
+
+/* One block: both sides' moments, then the statistics. */
+typedef struct {
+    mcstat_dd mx[PIX_BLOCK], my[PIX_BLOCK];
+    double m2x[PIX_BLOCK], m2y[PIX_BLOCK];
+    unsigned char bx[PIX_BLOCK], by[PIX_BLOCK];
+    block_stats st;
+} block_work;
+
+typedef struct {
+    const float *xf, *yf;
+    const double *xd, *yd, *w;
+    size_t nx, xs, ny, ys, ch;
+    double mu0;
+} block_input;
+
+static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t k, block_work *b)
+{
+    if (in->xf) {
+        block_moments_f32(in->xf, in->nx, in->xs, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
+        block_moments_f32(in->yf, in->ny, in->ys, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
+    } else {
+        block_moments_f64(in->xd, in->nx, in->xs, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
+        block_moments_f64(in->yd, in->ny, in->ys, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
+    }
+    block_statistics(k, (double)in->nx, b->mx, b->m2x, b->bx, (double)in->ny, b->my, b->m2y, b->by, in->mu0, &b->st);
+}
+
+static void block_pass(const block_input *in, size_t i0, size_t k, block_work *b)
+{
+    block_pass_body(in, i0, k, b);
+}
+
+#if PIX_AVX2
+__attribute__((target("avx2"))) static void block_pass_avx2(const block_input *in, size_t i0, size_t k,
+                                                             block_work *b)
+{
+    block_pass_body(in, i0, k, b);
+}
+#endif
+
 static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const float *yf, const double *yd,
                   size_t ny, size_t ys, size_t channels, const double *w, size_t begin, size_t end, double mu0,
                   int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
@@ -573,29 +713,34 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
     mcstat__qcache_init(&c.qc);
     c.first = MCSTAT_OK;
     plane px = {xf, xd, xs, channels, w}, py = {yf, yd, ys, channels, w};
-    mcstat_dd mx[PIX_BLOCK], my[PIX_BLOCK];
-    double m2x[PIX_BLOCK], m2y[PIX_BLOCK];
-    unsigned char bx[PIX_BLOCK], by[PIX_BLOCK];
-    int fast_ok = nx >= 2 && ny >= 2;
+    block_input in = {xf, yf, xd, yd, w, nx, xs, ny, ys, channels, mu0};
+    block_work *b = malloc(sizeof *b); /* 40 KiB: not on a caller's thread stack */
+    int fast_ok = nx >= 2 && ny >= 2 && b;
+#if PIX_AVX2
+    int avx2 = !pixels_baseline_only && __builtin_cpu_supports("avx2");
+#endif
     for (size_t i0 = begin; i0 < end; i0 += PIX_BLOCK) {
         size_t k = end - i0 < PIX_BLOCK ? end - i0 : PIX_BLOCK;
         if (fast_ok) {
-            if (xf) {
-                block_moments_f32(xf, nx, xs, channels, w, i0, k, mx, m2x, bx);
-                block_moments_f32(yf, ny, ys, channels, w, i0, k, my, m2y, by);
-            } else {
-                block_moments_f64(xd, nx, xs, channels, w, i0, k, mx, m2x, bx);
-                block_moments_f64(yd, ny, ys, channels, w, i0, k, my, m2y, by);
-            }
+#if PIX_AVX2
+            if (avx2)
+                block_pass_avx2(&in, i0, k, b);
+            else
+#endif
+                block_pass(&in, i0, k, b);
         }
         for (size_t j = 0; j < k; j++) {
             size_t i = i0 + j;
-            if (fast_ok && !bx[j] && !by[j] &&
-                fast_pixel(&c, i, (double)nx, mx[j], m2x[j], (double)ny, my[j], m2y[j]))
+            if (fast_ok && b->st.kind[j] == PIX_DEGENERATE) {
+                fail(&c, i, MCSTAT_EDEGENERATE);
+                continue;
+            }
+            if (fast_ok && b->st.kind[j] == PIX_FAST && fast_pixel(&c, i, &b->st, j, b->mx[j].hi, b->my[j].hi))
                 continue;
             slow_pixel(&c, &px, nx, &py, ny, i, flags);
         }
     }
+    free(b);
     return c.first;
 }
 
