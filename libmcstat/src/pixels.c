@@ -54,10 +54,12 @@
  * a = df/2, r = t^2/df, x = 1/(1+r), y = r/(1+r).  The prefactor
  *   K = x^a y^(1/2) / B(a, 1/2) = |t| f(t)
  *     = |t| / sqrt(2) (1+r)^-(a+1/2) Gamma(a+1/2) / (Gamma(a) sqrt(pi) sqrt(a)),
- * with Gamma(a+1/2)/(Gamma(a) sqrt(a)) = (1 + 1/(2a))^a e^-1/2 G*(a+1/2)/G*(a)
- * (G* the Stirling remainders of special.c), so
- *   log K = log|t| - (a+1/2) log1p(r) + a log1p(1/(2a)) - 1/2
- *           + log G*(a+1/2) - log G*(a) - log(2 pi)/2.
+ * with Gamma(a+1/2)/(Gamma(a) sqrt(a)) = exp(L(z)) sqrt(z/a) prod_{i<k} (a+i)/(a+i+1/2)
+ * for z = a + k >= 10 (L below), so
+ *   K = |t| f exp(e),  f = sqrt(z/a) prod (a+i)/(a+i+1/2),
+ *                      e = L(z) - log(2 pi)/2 - (a+1/2) log1p(r).
+ * Nothing there cancels beyond the size of the result, and e's rounding,
+ * relative to K, is that of log p, not of log |t|.
  * Nothing there cancels beyond the size of the result.  Then
  *   r >= 1: P[T > |t|] = I_x(a, 1/2)/2 = K/(2a) sum_j c_j,
  *           c_{j+1} = c_j (a+1/2+j)/(a+1+j) x, ratio below x <= 1/2;
