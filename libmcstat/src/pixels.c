@@ -125,6 +125,23 @@ static const double rcp_central[CENTRAL_TERMS] = {
     RCP64(0), RCP64(64), RCP64(128), RCP64(192), RCP64(256), RCP64(320), RCP64(384),
 };
 
+/* The upper tail's series sum_j c_j (c_0 = 1, ratio below x <= 1/2);
+ * 0 if it has not converged in 200 terms. */
+static PIX_INLINE int upper_series(double a, double A, double x, double *sum)
+{
+    double term = 1.0, s = 1.0;
+    for (int j = 0;; j++) {
+        if (j == 200)
+            return 0;
+        term *= (A + j) / (a + 1.0 + j) * x;
+        s += term;
+        if (term <= 1e-17 * s)
+            break;
+    }
+    *sum = s;
+    return 1;
+}
+
 /* The tails at |t| = at; *kk = K.  Returns 0 where the caller must use
  * mcstat__t_tails. */
 static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *other, double *kk)
@@ -140,14 +157,8 @@ static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *
     double k = e > -700.0 ? at * pf->f * exp(e) : exp(log(at * pf->f) + e);
     double term = 1.0, sum = 1.0;
     if (r >= 1.0) {
-        for (int j = 0;; j++) {
-            if (j == 200)
-                return 0;
-            term *= (A + j) / (a + 1.0 + j) * x;
-            sum += term;
-            if (term <= 1e-17 * sum)
-                break;
-        }
+        if (!upper_series(a, A, x, &sum))
+            return 0;
         double u = k * sum / (2.0 * a);
         *upper = u;
         *other = 1.0 - u;
@@ -495,7 +506,8 @@ typedef struct {
     double t[PIX_BLOCK], df[PIX_BLOCK], se[PIX_BLOCK], dhi[PIX_BLOCK], dlo[PIX_BLOCK];
     double sdmax[PIX_BLOCK], lim[PIX_BLOCK];
     double pa[PIX_BLOCK], pf[PIX_BLOCK], plc[PIX_BLOCK]; /* t_prefactor's a, f, lc */
-    unsigned char kind[PIX_BLOCK];
+    double lower[PIX_BLOCK], upper[PIX_BLOCK]; /* the tails, where tail_ok */
+    unsigned char kind[PIX_BLOCK], tail_ok[PIX_BLOCK];
 } block_stats;
 
 static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx, const double *m2x, const unsigned char *bx,
@@ -539,6 +551,107 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
     }
 }
 
+/* ---- the tails of a block ----------------------------------------------
+ * t_tail_core for many pixels: the prefactors and the upper series pixel by
+ * pixel, the central series (most pixels under the null) four pixels at a
+ * time, so its loop runs as long as the slowest of four and its exit is
+ * taken once per four pixels instead of mispredicted once per pixel.  A
+ * lane that has converged goes on adding terms below its rounding; the
+ * sums are those of t_tail_core to a few ulps. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4m __attribute__((vector_size(32)));
+
+/* The central sums of four pixels (A = a + 1/2, y); 0 if one of them has
+ * not converged in CENTRAL_TERMS terms. */
+static PIX_INLINE int central_series4(const double *A, const double *y, double *sum)
+{
+    v4d va = {A[0], A[1], A[2], A[3]}, vy = {y[0], y[1], y[2], y[3]};
+    v4d term = {1.0, 1.0, 1.0, 1.0}, s = term;
+    for (int j = 0; j < CENTRAL_TERMS; j += 2) {
+        v4d q0 = (va + (double)j) * rcp_central[j] * vy, q1 = (va + (double)(j + 1)) * rcp_central[j + 1] * vy;
+        v4d t1 = term * q0;
+        term = term * (q0 * q1);
+        s = s + (t1 + term);
+        v4m done = term <= 0.25 * DBL_EPSILON * s;
+        if (done[0] & done[1] & done[2] & done[3]) {
+            for (int l = 0; l < 4; l++)
+                sum[l] = s[l];
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Both tails of t(df) at t[j] for the k pixels with want[j] (prefactors
+ * pa, pf, plc as block_statistics leaves them): lower[j], upper[j] where
+ * ok[j] = TAIL_DONE; TAIL_GENERAL where t_tail_core would return 0 too (the
+ * general mcstat__t_tails answers), TAIL_SCALAR where the scalar path
+ * decides (K underflows, df or t outside the fast range). */
+enum { TAIL_SCALAR, TAIL_DONE, TAIL_GENERAL };
+static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, const double *pa, const double *pf,
+                                   const double *plc, const unsigned char *want, double *lower, double *upper,
+                                   unsigned char *ok)
+{
+    size_t idx[PIX_BLOCK + 3], nc = 0;
+    double cA[PIX_BLOCK + 3], cy[PIX_BLOCK + 3], ck[PIX_BLOCK + 3], cs[4];
+    for (size_t j = 0; j < k; j++) {
+        double tj = t[j], at = fabs(tj);
+        ok[j] = TAIL_SCALAR;
+        if (!want[j])
+            continue;
+        if (tj == 0.0) {
+            lower[j] = upper[j] = 0.5;
+            ok[j] = TAIL_DONE;
+            continue;
+        }
+        if (!fast_range(at, df[j]))
+            continue;
+        ok[j] = TAIL_GENERAL; /* unless answered below, as for t_tail_core */
+        double a = pa[j], A = a + 0.5, r = at * at / df[j];
+        double y = r / (1.0 + r), x = 1.0 / (1.0 + r);
+        if (r < 1.0 && A * y > 40.0)
+            continue;
+        double e = plc[j] - A * log1p(r);
+        if (!(e > -700.0)) {
+            ok[j] = TAIL_SCALAR; /* K underflows here: t_tail_core's logarithmic form */
+            continue;
+        }
+        double kk = at * pf[j] * exp(e);
+        if (r >= 1.0) {
+            double sum;
+            if (!upper_series(a, A, x, &sum))
+                continue;
+            double u = kk * sum / (2.0 * a);
+            lower[j] = tj > 0.0 ? 1.0 - u : u;
+            upper[j] = tj > 0.0 ? u : 1.0 - u;
+            ok[j] = TAIL_DONE;
+        } else {
+            idx[nc] = j;
+            cA[nc] = A;
+            cy[nc] = y;
+            ck[nc] = kk;
+            nc++;
+        }
+    }
+    for (size_t g = nc; g % 4; g++) { /* padding lanes: converged at once */
+        cA[g] = 1.0;
+        cy[g] = 0.0;
+    }
+    for (size_t g = 0; g < nc; g += 4) {
+        if (!central_series4(cA + g, cy + g, cs))
+            continue;
+        for (size_t l = 0; l < 4 && g + l < nc; l++) {
+            size_t j = idx[g + l];
+            double c = 2.0 * ck[g + l] * cs[l];
+            if (!(c <= 0.96))
+                continue;
+            lower[j] = t[j] > 0.0 ? 0.5 + 0.5 * c : 0.5 - 0.5 * c;
+            upper[j] = t[j] > 0.0 ? 0.5 - 0.5 * c : 0.5 + 0.5 * c;
+            ok[j] = TAIL_DONE;
+        }
+    }
+}
+
 /* Pixel i's outputs from its statistics; returns 0 where the slow path must
  * decide. */
 static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, double mxh, double myh)
@@ -553,9 +666,13 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
         pf.lc = bs->plc[j];
         ppf = &pf;
     }
-    if (t == 0.0) {
+    if (bs->tail_ok[j] == TAIL_DONE) {
+        lo_tail = bs->lower[j];
+        hi_tail = bs->upper[j];
+    } else if (t == 0.0) {
         lo_tail = hi_tail = 0.5;
-    } else if (ppf && fast_range(fabs(t), df) && t_tail_core(fabs(t), ppf, &up, &other, &kk)) {
+    } else if (bs->tail_ok[j] == TAIL_SCALAR && ppf && fast_range(fabs(t), df) &&
+               t_tail_core(fabs(t), ppf, &up, &other, &kk)) {
         lo_tail = t > 0.0 ? other : up;
         hi_tail = t > 0.0 ? up : other;
     } else {
@@ -677,6 +794,10 @@ static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t 
         block_moments_f64(in->yd, in->ny, in->ys, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
     }
     block_statistics(k, (double)in->nx, b->mx, b->m2x, b->bx, (double)in->ny, b->my, b->m2y, b->by, in->mu0, &b->st);
+    unsigned char want[PIX_BLOCK];
+    for (size_t j = 0; j < k; j++)
+        want[j] = b->st.kind[j] == PIX_FAST;
+    block_tails(k, b->st.t, b->st.df, b->st.pa, b->st.pf, b->st.plc, want, b->st.lower, b->st.upper, b->st.tail_ok);
 }
 
 static void block_pass(const block_input *in, size_t i0, size_t k, block_work *b)
