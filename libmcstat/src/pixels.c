@@ -408,6 +408,22 @@ static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, 
 /* The critical values (c0, c1) of t(df) for the alternative, as
  * mcstat__finish asks them: two-sided -+q(alpha/2); "less" -q(alpha), +Inf;
  * "greater" -Inf, q(alpha). */
+/* Lagrange's values through nodes 0..4 (v5) and 0..5 (v6) at s: the
+ * weights prod_{m != i} (s - m) / prod_{m != i} (i - m), their numerators
+ * from prefix and suffix products, their denominators constants (six
+ * nodes: -+120, 24, 12; five: 24, 6, 4): no division, no branch. */
+static PIX_INLINE void lagrange56(const double *q, double s, double *v5, double *v6)
+{
+    double d0 = s, d1 = s - 1.0, d2 = s - 2.0, d3 = s - 3.0, d4 = s - 4.0, d5 = s - 5.0;
+    double p01 = d0 * d1, p012 = p01 * d2, p0123 = p012 * d3;
+    double s45 = d4 * d5, s345 = d3 * s45, s2345 = d2 * s345;
+    double s34 = d3 * d4, s234 = d2 * s34;
+    *v6 = d1 * s2345 * (-1.0 / 120) * q[0] + d0 * s2345 * (1.0 / 24) * q[1] + p01 * s345 * (-1.0 / 12) * q[2] +
+          p012 * s45 * (1.0 / 12) * q[3] + p0123 * d5 * (-1.0 / 24) * q[4] + p0123 * d4 * (1.0 / 120) * q[5];
+    *v5 = d1 * s234 * (1.0 / 24) * q[0] + d0 * s234 * (-1.0 / 6) * q[1] + p01 * s34 * (1.0 / 4) * q[2] +
+          p012 * d4 * (-1.0 / 6) * q[3] + p0123 * (1.0 / 24) * q[4];
+}
+
 /* Node j of the table: the quantile at df = QT_NODES / j, solved once per
  * call when first needed (node 0 is df = Inf, the normal quantile); the
  * same numbers whichever pixels ask, so pixel ranges do not change results. */
@@ -439,23 +455,10 @@ static double qt_interp(pix_ctx *c, double df, int *exact)
     double u = QT_NODES / df;
     int k = (int)u - 2;
     k = k < 0 ? 0 : k > QT_NODES - 5 ? QT_NODES - 5 : k;
-    double s = u - k, q[6], v5 = 0.0, v6 = 0.0;
+    double q[6], v5, v6;
     for (int i = 0; i < 6; i++)
         q[i] = qt_node(c, k + i);
-    for (int i = 0; i < 6; i++) {
-        double l5 = 1.0, l6 = 1.0;
-        for (int m = 0; m < 6; m++) {
-            if (m == i)
-                continue;
-            double f = (s - m) / (double)(i - m);
-            l6 *= f;
-            if (m < 5)
-                l5 *= f;
-        }
-        v6 += l6 * q[i];
-        if (i < 5)
-            v5 += l5 * q[i];
-    }
+    lagrange56(q, u - k, &v5, &v6);
     *exact = fabs(v6 - v5) < 1e-13 * fabs(v6);
     return v6;
 }
@@ -507,6 +510,9 @@ typedef struct {
     double sdmax[PIX_BLOCK], lim[PIX_BLOCK];
     double pa[PIX_BLOCK], pf[PIX_BLOCK], plc[PIX_BLOCK]; /* t_prefactor's a, f, lc */
     double lower[PIX_BLOCK], upper[PIX_BLOCK]; /* the tails, where tail_ok */
+    double conf_lo[PIX_BLOCK], conf_hi[PIX_BLOCK]; /* the interval, where bound_ok */
+    double qn[6][PIX_BLOCK], qs[PIX_BLOCK]; /* the critical values' six table nodes and the offset in them */
+    long long bound_ok[PIX_BLOCK]; /* 64 bits, as the doubles: the loop vectorises */
     unsigned char kind[PIX_BLOCK], tail_ok[PIX_BLOCK];
 } block_stats;
 
@@ -652,6 +658,56 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
     }
 }
 
+/* ---- the intervals of a block -------------------------------------------
+ * The critical values by qt_interp's table and weights and the bounds by
+ * mcstat__ci_bound's double-double arithmetic, for all pixels of a block in
+ * one branch-free loop; where the interpolation is not good to rounding, or
+ * a bound needs ci_bound's guard against overflow, bound_ok is 0 and the
+ * pixel's own path (criticals, Halley, ci_bound) decides.  First the
+ * table's nodes each pixel needs (solved lazily, one pixel at a time). */
+static void block_nodes(pix_ctx *c, size_t k, block_stats *st)
+{
+    for (size_t j = 0; j < k; j++) {
+        double df = st->df[j];
+        int have = st->kind[j] == PIX_FAST && quantile_ok(c->qt_p, df);
+        int n0 = have ? (int)(QT_NODES / df) - 2 : 0;
+        n0 = n0 < 0 ? 0 : n0 > QT_NODES - 5 ? QT_NODES - 5 : n0;
+        for (int i = 0; i < 6; i++)
+            st->qn[i][j] = have ? qt_node(c, n0 + i) : NAN; /* NaN: no bound here */
+        st->qs[j] = have ? QT_NODES / df - n0 : 0.0;
+    }
+}
+
+static PIX_INLINE void block_bounds(size_t k, int alternative, block_stats *st)
+{
+    for (size_t j = 0; j < k; j++) {
+        double q[6], v5, v6, se = st->se[j];
+        for (int i = 0; i < 6; i++)
+            q[i] = st->qn[i][j];
+        lagrange56(q, st->qs[j], &v5, &v6);
+        double aq = fabs(v6);
+        /* false where a node is NaN */
+        long long ok = (fabs(v6 - v5) < 1e-13 * aq) & (aq <= 0x1p900) & (aq * se <= 0x1p900);
+        mcstat_dd est = {st->dhi[j], st->dlo[j]}, p = dd_two_prod(v6, se);
+        mcstat_dd lo = dd_add(est, dd_neg(p)), hi = dd_add(est, p); /* est -+ q se */
+        st->conf_lo[j] = alternative == MCSTAT_LESS ? -INFINITY : lo.hi + lo.lo;
+        st->conf_hi[j] = alternative == MCSTAT_GREATER ? INFINITY : hi.hi + hi.lo;
+        st->bound_ok[j] = ok;
+    }
+}
+
+static void block_bounds_pass(size_t k, int alternative, block_stats *st)
+{
+    block_bounds(k, alternative, st);
+}
+
+#if PIX_AVX2
+__attribute__((target("avx2"))) static void block_bounds_pass_avx2(size_t k, int alternative, block_stats *st)
+{
+    block_bounds(k, alternative, st);
+}
+#endif
+
 /* Pixel i's outputs from its statistics; returns 0 where the slow path must
  * decide. */
 static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, double mxh, double myh)
@@ -686,7 +742,10 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
                : c->alternative == MCSTAT_GREATER ? hi_tail
                                                   : dmin(1.0, 2.0 * dmin(lo_tail, hi_tail));
     double lo = NAN, hi = NAN;
-    if (c->intervals) {
+    if (c->intervals && bs->bound_ok[j]) {
+        lo = bs->conf_lo[j];
+        hi = bs->conf_hi[j];
+    } else if (c->intervals) {
         double c0, c1;
         if (criticals(c, df, ppf, &c0, &c1))
             return 0;
@@ -851,6 +910,15 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
             else
 #endif
                 block_pass(&in, i0, k, b);
+            if (c.intervals) {
+                block_nodes(&c, k, &b->st);
+#if PIX_AVX2
+                if (avx2)
+                    block_bounds_pass_avx2(k, alternative, &b->st);
+                else
+#endif
+                    block_bounds_pass(k, alternative, &b->st);
+            }
         }
         for (size_t j = 0; j < k; j++) {
             size_t i = i0 + j;
