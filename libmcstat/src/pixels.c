@@ -573,9 +573,14 @@ static PIX_INLINE int central_series4(const double *A, const double *y, double *
 {
     v4d va = {A[0], A[1], A[2], A[3]}, vy = {y[0], y[1], y[2], y[3]};
     v4d term = {1.0, 1.0, 1.0, 1.0}, s = term;
-    for (int j = 0; j < CENTRAL_TERMS; j += 2) {
+    for (int j = 0; j < CENTRAL_TERMS; j += 4) { /* four terms between the tests of convergence */
         v4d q0 = (va + (double)j) * rcp_central[j] * vy, q1 = (va + (double)(j + 1)) * rcp_central[j + 1] * vy;
         v4d t1 = term * q0;
+        term = term * (q0 * q1);
+        s = s + (t1 + term);
+        q0 = (va + (double)(j + 2)) * rcp_central[j + 2] * vy;
+        q1 = (va + (double)(j + 3)) * rcp_central[j + 3] * vy;
+        t1 = term * q0;
         term = term * (q0 * q1);
         s = s + (t1 + term);
         v4m done = term <= 0.25 * DBL_EPSILON * s;
