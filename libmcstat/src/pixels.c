@@ -11,14 +11,19 @@
  *     mean, M2 = sum d^2 - (sum d)^2 / n (the corrected two-pass
  *     algorithm) and the mean as the double-double mean + sum d / n, so
  *     1e8 + small noise keeps its digits as in moments.c;
- *   - the tail is mcstat__t_tail_fast: the prefactor x^a y^(1/2) / B(a, 1/2)
- *     needs only Gamma(a + 1/2) / Gamma(a), and the two positive series
- *     of dist.c's central case and of the upper tail converge
- *     geometrically, so the cost does not depend on the variety of df;
- *   - the critical value comes from a per-call table of t quantiles in
- *     1/df (solved lazily, the same whichever pixels ask), interpolated;
- *     where the interpolation is not good to rounding, Halley's method in
- *     log t on the fast tail finishes it.
+ *   - t, df, the standard errors and the t prefactors in branch-free loops
+ *     over the block;
+ *   - the tails (t_tail_core's series, specialised to b = 1/2: the cost
+ *     does not depend on the variety of df) for the whole block: exp and
+ *     log1p four pixels at a time (vmath.h), the central series four
+ *     pixels a step;
+ *   - the critical values from a per-call table of t quantiles in 1/df
+ *     (solved lazily, the same whichever pixels ask), interpolated, and the
+ *     intervals' bounds, again for the whole block; where the interpolation
+ *     is not good to rounding, Halley's method in log t on the fast tail
+ *     finishes that pixel's.
+ * The block loops are compiled for SSE2 and for AVX2 (chosen at run time,
+ * the same results bit for bit).
  * A pixel outside the fast path's proven ground (a NaN or Inf, extreme
  * magnitudes, too few seeds, nearly constant samples, df or t outside the
  * fast tail's range) is computed by the single call's own code, so its
@@ -27,6 +32,8 @@
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
 #include "internal.h"
+#include "vmath.h"
+
 
 #include <float.h>
 
@@ -564,8 +571,8 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
  * taken once per four pixels instead of mispredicted once per pixel.  A
  * lane that has converged goes on adding terms below its rounding; the
  * sums are those of t_tail_core to a few ulps. */
-typedef double v4d __attribute__((vector_size(32)));
-typedef long long v4m __attribute__((vector_size(32)));
+typedef mcs_v4d v4d;
+typedef mcs_v4i v4m;
 
 /* The central sums of four pixels (A = a + 1/2, y); 0 if one of them has
  * not converged in CENTRAL_TERMS terms. */
@@ -583,7 +590,7 @@ static PIX_INLINE int central_series4(const double *A, const double *y, double *
         t1 = term * q0;
         term = term * (q0 * q1);
         s = s + (t1 + term);
-        v4m done = term <= 0.25 * DBL_EPSILON * s;
+        v4m done = (v4m)(term <= 0.25 * DBL_EPSILON * s);
         if (done[0] & done[1] & done[2] & done[3]) {
             for (int l = 0; l < 4; l++)
                 sum[l] = s[l];
@@ -605,6 +612,32 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
 {
     size_t idx[PIX_BLOCK + 3], nc = 0;
     double cA[PIX_BLOCK + 3], cy[PIX_BLOCK + 3], ck[PIX_BLOCK + 3], cs[4];
+    double rr[PIX_BLOCK], ee[PIX_BLOCK], kk[PIX_BLOCK];
+    /* r, then e = lc - A log1p(r) and K = |t| f exp(e) four pixels at a
+     * time (vmath.h); 0 where the fast tail has nothing to do */
+    for (size_t j = 0; j < k; j++) {
+        double at = fabs(t[j]);
+        rr[j] = want[j] && t[j] != 0.0 && fast_range(at, df[j]) ? at * at / df[j] : 0.0;
+    }
+    for (size_t j = 0; j < k; j += 4) {
+        mcs_v4d r, a, lc, f, at;
+        for (int l = 0; l < 4; l++) {
+            size_t i = j + l < k ? j + l : j; /* past k: a copy of pixel j */
+            r[l] = rr[i];
+            a[l] = rr[i] > 0.0 ? pa[i] : 1.0;
+            lc[l] = rr[i] > 0.0 ? plc[i] : 0.0;
+            f[l] = rr[i] > 0.0 ? pf[i] : 1.0;
+            at[l] = fabs(t[i]);
+        }
+        mcs_v4d e = lc - (a + 0.5) * vm_log1p4(r);
+        v4m low = (v4m)(e < -700.0); /* K computed only where exp(e) stays normal */
+        mcs_v4d x = vm_exp4(vm_select(low, vm_splat(-700.0), e));
+        mcs_v4d kv = at * f * x;
+        for (int l = 0; l < 4 && j + l < k; l++) {
+            ee[j + l] = e[l];
+            kk[j + l] = kv[l];
+        }
+    }
     for (size_t j = 0; j < k; j++) {
         double tj = t[j], at = fabs(tj);
         ok[j] = TAIL_SCALAR;
@@ -618,21 +651,20 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
         if (!fast_range(at, df[j]))
             continue;
         ok[j] = TAIL_GENERAL; /* unless answered below, as for t_tail_core */
-        double a = pa[j], A = a + 0.5, r = at * at / df[j];
+        double a = pa[j], A = a + 0.5, r = rr[j];
         double y = r / (1.0 + r), x = 1.0 / (1.0 + r);
         if (r < 1.0 && A * y > 40.0)
             continue;
-        double e = plc[j] - A * log1p(r);
-        if (!(e > -700.0)) {
+        if (!(ee[j] > -700.0)) {
             ok[j] = TAIL_SCALAR; /* K underflows here: t_tail_core's logarithmic form */
             continue;
         }
-        double kk = at * pf[j] * exp(e);
+        double kj = kk[j];
         if (r >= 1.0) {
             double sum;
             if (!upper_series(a, A, x, &sum))
                 continue;
-            double u = kk * sum / (2.0 * a);
+            double u = kj * sum / (2.0 * a);
             lower[j] = tj > 0.0 ? 1.0 - u : u;
             upper[j] = tj > 0.0 ? u : 1.0 - u;
             ok[j] = TAIL_DONE;
@@ -640,7 +672,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             idx[nc] = j;
             cA[nc] = A;
             cy[nc] = y;
-            ck[nc] = kk;
+            ck[nc] = kj;
             nc++;
         }
     }
@@ -661,6 +693,31 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             ok[j] = TAIL_DONE;
         }
     }
+}
+
+/* Both tails for n (t, df) pairs through block_tails, PIX_BLOCK at a time;
+ * done[i] = 1 where it answered (elsewhere the pixels take the scalar
+ * path).  For the tests, which hold it to the same reference as the
+ * scalar tail. */
+int mcstat__t_tails_block(size_t n, const double *t, const double *df, double *lower, double *upper,
+                          unsigned char *done)
+{
+    MCSTAT_IEEE_SCOPE();
+    double pa[PIX_BLOCK], pf[PIX_BLOCK], plc[PIX_BLOCK];
+    unsigned char want[PIX_BLOCK], ok[PIX_BLOCK];
+    for (size_t i0 = 0; i0 < n; i0 += PIX_BLOCK) {
+        size_t k = n - i0 < PIX_BLOCK ? n - i0 : PIX_BLOCK;
+        for (size_t j = 0; j < k; j++) {
+            double d = df[i0 + j];
+            want[j] = d >= 1.0 && d <= 1000.0;
+            pa[j] = 0.5 * (want[j] ? d : 1.0);
+            t_prefactor_parts(pa[j], &pf[j], &plc[j]);
+        }
+        block_tails(k, t + i0, df + i0, pa, pf, plc, want, lower + i0, upper + i0, ok);
+        for (size_t j = 0; j < k; j++)
+            done[i0 + j] = ok[j] == TAIL_DONE;
+    }
+    return MCSTAT_OK;
 }
 
 /* ---- the intervals of a block -------------------------------------------
