@@ -769,6 +769,20 @@ func TLogCDF(x, df float64, upper bool) (float64, error) {
 func TQuantile(p, df float64, upper bool) (float64, error) {
 	return dist(func(o *C.double) C.int { return C.mcstat_t_quantile(C.double(p), C.double(df), b2i(upper), o) })
 }
+// TQuantiles is TQuantile(p, df[i], upper) for every df[i] at one level, to
+// the same accuracy, fast where many df differ (per-pixel critical values).
+// Where one fails (NaN or non-positive df) its value is NaN, the others are
+// computed, and the error is the first one's.
+func TQuantiles(p float64, df []float64, upper bool) ([]float64, error) {
+	x := make([]float64, len(df))
+	if len(df) == 0 {
+		return x, check(C.mcstat_t_quantiles(C.double(p), nil, 0, b2i(upper), nil))
+	}
+	st := C.mcstat_t_quantiles(C.double(p), (*C.double)(unsafe.Pointer(&df[0])), C.size_t(len(df)), b2i(upper),
+		(*C.double)(unsafe.Pointer(&x[0])))
+	return x, check(st)
+}
+
 func ChisqCDF(x, df float64, upper bool) (float64, error) {
 	return dist(func(o *C.double) C.int { return C.mcstat_chisq_cdf(C.double(x), C.double(df), b2i(upper), o) })
 }

@@ -123,3 +123,32 @@ func TestTTest2PixelsBadArguments(t *testing.T) {
 		t.Errorf("no pixels: %v", err)
 	}
 }
+
+func TestTQuantilesMatchTheSingleCall(t *testing.T) {
+	df := []float64{0.5, 2e3, 1e9}
+	for i := 0; i < 500; i++ {
+		df = append(df, 1.0+0.37*float64(i))
+	}
+	for _, c := range []struct {
+		p     float64
+		upper bool
+	}{{0.025, true}, {1e-9, false}, {0.4, true}} {
+		x, err := TQuantiles(c.p, df, c.upper)
+		if err != nil {
+			t.Fatal(err)
+		}
+		for i, d := range df {
+			want, err := TQuantile(c.p, d, c.upper)
+			if err != nil || math.Abs(x[i]-want) > 2e-14*math.Abs(want) {
+				t.Fatalf("p %g df %g: %g vs %g (%v)", c.p, d, x[i], want, err)
+			}
+		}
+	}
+	x, err := TQuantiles(0.05, []float64{3, math.NaN()}, true)
+	if err == nil || !math.IsNaN(x[1]) || math.IsNaN(x[0]) {
+		t.Fatalf("a NaN df: %v %v", x, err)
+	}
+	if _, err := TQuantiles(math.NaN(), []float64{3}, true); err == nil {
+		t.Fatal("p NaN accepted")
+	}
+}

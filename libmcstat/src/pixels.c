@@ -1016,6 +1016,47 @@ int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_seed_stride, 
                   alternative, alpha, flags, out);
 }
 
+/* ---- t quantiles for many df ------------------------------------------
+ * The pixel path's critical values as a function of their own: the same
+ * per-call table (criticals with the alternative "greater" gives the upper
+ * p-quantile); levels outside the table's range go to mcstat_t_quantile
+ * one value at a time. */
+int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *x)
+{
+    MCSTAT_IEEE_SCOPE();
+    if (!(p >= 0.0 && p <= 1.0) || (n > 0 && (!df || !x)))
+        return MCSTAT_EINVAL;
+    pix_ctx *c = NULL;
+    if (quantile_ok(p, 1.0) && n > 16) { /* a short array does not pay for the table */
+        c = malloc(sizeof *c);
+        if (c) {
+            c->alternative = MCSTAT_GREATER;
+            c->qt_p = p;
+            for (int j = 0; j <= QT_NODES; j++)
+                c->qt[j] = NAN;
+        }
+    }
+    int first = MCSTAT_OK;
+    for (size_t i = 0; i < n; i++) {
+        double q = NAN, c0, c1;
+        int st;
+        if (c) {
+            st = criticals(c, df[i], NULL, &c0, &c1);
+            q = upper ? c1 : -c1; /* t is symmetric: the lower p-quantile is minus the upper */
+        } else {
+            st = mcstat_t_quantile(p, df[i], upper, &q);
+        }
+        if (st) {
+            q = NAN;
+            if (first == MCSTAT_OK)
+                first = st;
+        }
+        x[i] = q;
+    }
+    free(c);
+    return first;
+}
+
 /* The critical values as the pixel path finds them (table, interpolation,
  * Halley where needed), for n degrees of freedom in one call: for the tests. */
 int mcstat__t_upper_quantile_table(double p, const double *df, size_t n, double *q)

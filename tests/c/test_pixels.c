@@ -431,6 +431,44 @@ static void test_bad_arguments(void)
               MCSTAT_OK);
 }
 
+/* mcstat_t_quantiles against mcstat_t_quantile value by value: the same
+ * numbers to QUANT_TOL, the same failures (NaN there, the first one's
+ * status returned), on and off the table's range of levels and df. */
+static void test_t_quantiles(void)
+{
+    enum { N = 3000 };
+    static double df[N], x[N];
+    unsigned long long s = 99;
+    const double special[] = {NAN, -1.0, 0.0, 1e-3, 0.5, 1.0, 1000.0, 1001.0, 1e6, INFINITY, 2.5, 7.25};
+    const size_t ns = sizeof special / sizeof special[0];
+    for (size_t i = 0; i < N; i++)
+        df[i] = i < ns ? special[i] : i % 3 ? 1.0 + 999.0 * urand(&s) : exp(-3.0 + 20.0 * urand(&s));
+    const double ps[] = {0.0, 1e-300, 1e-101, 1e-12, 5e-7, 0.025, 0.25, 0.3, 0.5, 0.975, 1.0};
+    for (size_t k = 0; k < sizeof ps / sizeof ps[0]; k++)
+        for (int upper = 0; upper < 2; upper++) {
+            int st = mcstat_t_quantiles(ps[k], df, N, upper, x), first = MCSTAT_OK;
+            for (size_t i = 0; i < N; i++) {
+                double want = NAN;
+                int sw = mcstat_t_quantile(ps[k], df[i], upper, &want);
+                if (sw) {
+                    CHECK_MSG(isnan(x[i]), "p = %g, df = %g: %g where mcstat_t_quantile fails", ps[k], df[i], x[i]);
+                    if (first == MCSTAT_OK)
+                        first = sw;
+                } else if (isinf(want) || want == 0.0) {
+                    CHECK_MSG(x[i] == want, "p = %g, df = %g: %g, want %g", ps[k], df[i], x[i], want);
+                } else {
+                    CHECK_REL(x[i], want, QUANT_TOL, "p = %g, df = %.17g, upper %d", ps[k], df[i], upper);
+                }
+            }
+            CHECK_INT(st, first);
+        }
+    CHECK_INT(mcstat_t_quantiles(NAN, df, N, 1, x), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_t_quantiles(1.5, df, N, 1, x), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_t_quantiles(0.05, NULL, 3, 1, x), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_t_quantiles(0.05, df, 3, 1, NULL), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_t_quantiles(0.05, NULL, 0, 1, NULL), MCSTAT_OK);
+}
+
 /* The per-block loops compiled for AVX2 and for the baseline give the same
  * outputs bit for bit (on a machine without AVX2 both runs take the
  * baseline), across the battery's kinds of pixels and both element types. */
@@ -460,6 +498,7 @@ int main(void)
 {
     test_reference();
     test_quantile_table();
+    test_t_quantiles();
     fill();
     test_against_single_calls();
     test_simd_paths_agree();

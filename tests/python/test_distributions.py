@@ -205,12 +205,33 @@ def test_the_tests_use_these_distributions():
     (lambda: D.chisq_cdf(1.0, math.inf), r"chisq_cdf: df must be positive and finite, got inf"),
     (lambda: D.f_cdf(1.0, 2.0, -1.0), r"f_cdf: df2 must be positive and finite, got -1\.0"),
     (lambda: D.f_quantile(0.5, np.nan, 2.0), r"f_quantile: df1 must be positive and finite, got nan"),
+    (lambda: D.t_quantile(0.025, np.r_[np.linspace(1.0, 50.0, 200), 0.0]),  # one level, many df: the table
+     r"t_quantile: df must be positive and finite, got 0\.0 at index \(200,\)"),
     (lambda: D.t_cdf([1.0, 2.0], [1.0, 2.0, 3.0]),
      r"t_cdf: the arguments do not broadcast together: x has shape \(2,\), df has shape \(3,\)"),
 ])
 def test_bad_values_name_the_argument(call, message):
     with pytest.raises(mcstat.InvalidArgumentError, match=message):
         call()
+
+
+@pytest.mark.parametrize("p,upper", [(0.025, True), (1e-9, False), (0.7, True), (0.3, False)])
+def test_t_quantile_at_one_level_for_many_df(p, upper):
+    """One p and an array of df take mcstat_t_quantiles (a table in 1/df,
+    over the threads): the single calls' values to rounding."""
+    rng = np.random.default_rng(11)
+    df = np.concatenate([rng.uniform(1.0, 1000.0, 3000), np.exp(rng.uniform(-6.0, 25.0, 2000))]).reshape(50, 100)
+    mcstat.set_num_threads(2)
+    try:
+        got = D.t_quantile(p, df, upper=upper)
+    finally:
+        mcstat.set_num_threads(0)
+    one = np.array([D.t_quantile(p, float(d), upper=upper) for d in df.ravel()]).reshape(df.shape)
+    assert got.shape == df.shape
+    np.testing.assert_allclose(got, one, rtol=2e-14, atol=0)
+    ok = df > 0.1  # below, the quantile overflows to inf (SciPy's is finite and wrong)
+    want = stats.t.isf(p, df[ok]) if upper else stats.t.ppf(p, df[ok])
+    np.testing.assert_allclose(got[ok], want, rtol=1e-11)
 
 
 def test_bad_types():

@@ -73,7 +73,7 @@ def test_t_quantile_interpolation_matches_exact():
         got = mi._t_upper_quantile(q, df)
         assert np.isnan(got[:4]).all()
         want = stats.t.isf(q, df[4:])
-        np.testing.assert_allclose(got[4:], want, rtol=2e-7)
+        np.testing.assert_allclose(got[4:], want, rtol=1e-13)
 
 
 def test_per_test_levels_closed_form():

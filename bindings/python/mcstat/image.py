@@ -69,7 +69,7 @@ import os
 import time
 import warnings
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, cast
 
 import numpy as np
 
@@ -629,87 +629,10 @@ _CHUNK = 1 << 18  # values per pass: the temporaries stay in cache and are reuse
 
 
 def _t_upper_quantile(q: float, df: np.ndarray) -> np.ndarray:
-    """x with P[T_df > x] = q for an array of real df (libmcstat's
-    ``t_quantile``), NaN where df is not positive and finite (see
-    `_t_quantile_table`)."""
-    d = np.asarray(df, dtype=np.float64)
-    flat = d.reshape(-1)
-    out = np.empty(flat.size)
-    table = _t_quantile_table(q, flat)
-    for k in range(0, flat.size, _CHUNK):
-        out[k:k + _CHUNK] = _t_quantile_apply(table, flat[k:k + _CHUNK])
-    return out.reshape(d.shape)
-
-
-def _t_quantile_table(q: float, d: np.ndarray) -> Any:
-    """How `_t_quantile_apply` finds t quantiles for the df in `d`.  Few
-    values: exact.  Millions of distinct df: exact at the nodes of a
-    uniform grid in u = 1/df over [1/max, 1/min], linear interpolation of
-    log x (of x when q >= 1/2) between them -- for small df, log x is
-    nearly linear in 1/df (x ~ q^(-1/df)) -- with the nodes multiplied
-    (from 512 to at most 65536) until the interpolation is within 1e-7
-    relative of the exact value at every midpoint.  The grid is uniform
-    so each value finds its interval by arithmetic, not a search."""
-    from .distributions import t_quantile
-
-    ok = np.isfinite(d) & (d > 0)
-    if d.size <= 4096 or not ok.any():
-        return ("exact", q)
-    dv = d if ok.all() else d[ok]
-    lo, hi = float(dv.min()), float(dv.max())
-    if hi <= lo * (1 + 1e-12):
-        return ("exact", q)
-    logs = q < 0.5  # x > 0
-    u0, u1 = 1.0 / hi, 1.0 / lo
-
-    def f(u: np.ndarray) -> np.ndarray:
-        x = np.asarray(t_quantile(q, 1.0 / u, upper=True))
-        return np.log(x) if logs else x
-
-    g = 512
-    while True:
-        u = np.linspace(u0, u1, g + 1)
-        ys = f(u)
-        exact = f(0.5 * (u[1:] + u[:-1]))
-        lin = 0.5 * (ys[1:] + ys[:-1])
-        err = np.max(np.abs(np.expm1(lin - exact)) if logs else np.abs(lin - exact) / np.abs(exact))
-        if err <= 1e-7 or g >= 65536:
-            break
-        # the error of linear interpolation falls as 1/g^2
-        g = min(65536, 1 << int(np.ceil(np.log2(g * 1.2 * np.sqrt(err / 1e-7)))))
-    return ("grid", u0, (u1 - u0) / g, g, ys, np.diff(ys), logs)
-
-
-def _t_quantile_apply(table: Any, d: np.ndarray) -> np.ndarray:
-    from .distributions import t_quantile
-
-    ok = np.isfinite(d) & (d > 0)
-    allok = bool(ok.all())
-    if table[0] == "exact":
-        out = np.full(d.shape, np.nan)
-        if ok.any():
-            out[ok] = t_quantile(table[1], d[ok], upper=True)
-        return out
-    _, u0, h, g, ys, slope, logs = table
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t = np.divide(1.0, d)
-        t -= u0
-        t *= 1.0 / h
-        if not allok:
-            t[~ok] = 0.0
-        np.clip(t, 0.0, float(g), out=t)
-        i = t.astype(np.intp)
-        np.minimum(i, g - 1, out=i)
-        t -= i
-        y = np.take(slope, i)
-        y *= t
-        np.take(ys, i, out=t)
-        y += t
-    if logs:
-        np.exp(y, out=y)
-    if not allok:
-        y[~ok] = np.nan
-    return y
+    """x with P[T_df > x] = q for an array of real df, NaN where df is not
+    positive (libmcstat's ``mcstat_t_quantiles``: a table in 1/df,
+    interpolated where that is good to rounding, over the threads)."""
+    return cast(np.ndarray, _core._t_quantiles(q, np.asarray(df, dtype=np.float64), True))
 
 
 def detectable_bias(std_error: Any, df: Any, level: float, *, alternative: str = "two-sided",
@@ -733,13 +656,12 @@ def detectable_bias(std_error: Any, df: Any, level: float, *, alternative: str =
     se, d = se.reshape(-1), d.reshape(-1)
     q = level / 2 if alternative == "two-sided" else level
     z = NormalDist().inv_cdf(power)
-    table = _t_quantile_table(q, d)
-    out = np.empty(d.size)
+    out = _t_upper_quantile(q, d)
     # a chunk at a time: at 8.3 M pixels, fresh full-size temporaries cost
     # more than the arithmetic
     for k in range(0, d.size, _CHUNK):
         dk, sk = d[k:k + _CHUNK], se[k:k + _CHUNK]
-        c = _t_quantile_apply(table, dk)
+        c = out[k:k + _CHUNK]
         with np.errstate(invalid="ignore", divide="ignore"):
             inv = np.divide(1.0, dk)
             root = np.multiply(c, c)
@@ -753,7 +675,6 @@ def detectable_bias(std_error: Any, df: Any, level: float, *, alternative: str =
             c += root           # c (1 - 1/(4 df)) + z sqrt(1 + c^2/(2 df))
             c *= sk
             c[~(sk > 0) | ~np.isfinite(sk)] = np.nan
-        out[k:k + _CHUNK] = c
     return out.reshape(shape)
 
 

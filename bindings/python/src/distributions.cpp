@@ -7,6 +7,7 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+#include "threads.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -60,6 +61,18 @@ std::string fault(const Op &op, const char *const names[3], int nargs, const dou
         if (!(v[k] > 0.0 && std::isfinite(v[k])))
             return std::string(names[k]) + " must be positive and finite, got " + val(v[k]);
     return std::string();
+}
+
+// mcstat_t_quantiles over mcstat.set_num_threads' threads (without the
+// GIL): x[i] for df[i] at one level, NaN where an element fails; the first
+// failing element's status.
+int t_quantiles(double p, const double *df, size_t n, bool upper, double *x)
+{
+    py::gil_scoped_release nogil;
+    return mcs_threads::split_ranges(n, static_cast<size_t>(num_threads()), size_t{1} << 16,
+                                     [&](size_t b, size_t e) {
+                                         return mcstat_t_quantiles(p, df + b, e - b, upper ? 1 : 0, x + b);
+                                     });
 }
 
 py::object distribution(const std::string &name, py::handle a0, py::handle a1, py::handle a2, bool upper)
@@ -144,7 +157,20 @@ py::object distribution(const std::string &name, py::handle a0, py::handle a1, p
             }
         }
     };
-    if (total >= GIL_RELEASE_MIN) {
+    if (op->f2 == mcstat_t_quantile && arr[0].size() == 1 && static_cast<size_t>(arr[1].size()) == total &&
+        total > 64) {
+        // one level, many df: mcstat_t_quantiles' table, not one solve each
+        double p = 0.0;
+        std::memcpy(&p, base[0], sizeof p);
+        py::array_t<double, py::array::c_style | py::array::forcecast> dfc(arr[1]);
+        status = t_quantiles(p, dfc.data(), total, upper, out);
+        if (status) {
+            for (bad = 0; bad < total && !std::isnan(out[bad]); bad++)
+                ;
+            bad_v[0] = p;
+            bad_v[1] = bad < total ? dfc.data()[bad] : NAN;
+        }
+    } else if (total >= GIL_RELEASE_MIN) {
         py::gil_scoped_release nogil;
         loop();
     } else {
@@ -180,6 +206,18 @@ void register_distributions(py::module_ &mod)
 {
     mod.def("_distribution", &distribution, py::arg("name"), py::arg("a"), py::arg("b"), py::arg("c"),
             py::arg("upper"), "libmcstat's t, chi-squared and F functions over arrays (use mcstat.distributions).");
+    mod.def(
+        "_t_quantiles",
+        [](double p, py::array_t<double, py::array::c_style | py::array::forcecast> df, bool upper) {
+            py::array_t<double> x(std::vector<py::ssize_t>(df.shape(), df.shape() + df.ndim()));
+            if (!(p >= 0.0 && p <= 1.0))
+                throw_invalid("p must be a probability in [0, 1], got " + repr(py::float_(p).ptr()));
+            t_quantiles(p, df.data(), static_cast<size_t>(df.size()), upper, x.mutable_data());
+            return x;
+        },
+        py::arg("p"), py::arg("df"), py::arg("upper") = true,
+        "t quantiles at one level for an array of df (mcstat_t_quantiles over the threads), NaN where df is not "
+        "a valid degree of freedom.");
 }
 
 } // namespace mcs

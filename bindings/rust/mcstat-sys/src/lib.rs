@@ -1298,6 +1298,7 @@ extern "C" {
     pub fn mcstat_t_cdf(x: f64, df: f64, upper: c_int, p: *mut f64) -> c_int;
     pub fn mcstat_t_logcdf(x: f64, df: f64, upper: c_int, logp: *mut f64) -> c_int;
     pub fn mcstat_t_quantile(p: f64, df: f64, upper: c_int, x: *mut f64) -> c_int;
+    pub fn mcstat_t_quantiles(p: f64, df: *const f64, n: usize, upper: c_int, x: *mut f64) -> c_int;
     pub fn mcstat_chisq_cdf(x: f64, df: f64, upper: c_int, p: *mut f64) -> c_int;
     pub fn mcstat_chisq_logcdf(x: f64, df: f64, upper: c_int, logp: *mut f64) -> c_int;
     pub fn mcstat_chisq_quantile(p: f64, df: f64, upper: c_int, x: *mut f64) -> c_int;

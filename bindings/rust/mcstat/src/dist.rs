@@ -18,6 +18,14 @@ pub fn t_logcdf(x: f64, df: f64, upper: bool) -> Result<f64> {
 pub fn t_quantile(p: f64, df: f64, upper: bool) -> Result<f64> {
     call(|o| unsafe { sys::mcstat_t_quantile(p, df, upper as i32, o) })
 }
+/// `t_quantile(p, df[i], upper)` for every `df[i]` at one level, to the same
+/// accuracy, fast where many df differ (per-pixel critical values).  An
+/// error if one fails (NaN or non-positive df): the first one's.
+pub fn t_quantiles(p: f64, df: &[f64], upper: bool) -> Result<Vec<f64>> {
+    let mut x = vec![f64::NAN; df.len()];
+    check(unsafe { sys::mcstat_t_quantiles(p, df.as_ptr(), df.len(), upper as i32, x.as_mut_ptr()) })?;
+    Ok(x)
+}
 pub fn chisq_cdf(x: f64, df: f64, upper: bool) -> Result<f64> {
     call(|o| unsafe { sys::mcstat_chisq_cdf(x, df, upper as i32, o) })
 }

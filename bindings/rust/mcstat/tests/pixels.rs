@@ -76,3 +76,18 @@ fn pixels_bad_arguments() {
     assert!(t_test_2_pixels(&x, 2, &x, 2, 6, 1, None, 0.0, a, 1.5, d).is_err());
     assert!(t_test_2_pixels_f32(&[], 2, &[], 2, 0, 1, None, 0.0, a, 0.05, d).is_ok());
 }
+
+#[test]
+fn t_quantiles_match_the_single_call() {
+    let df: Vec<f64> = (0..500).map(|i| 1.0 + 0.37 * i as f64).chain([0.5, 2e3, 1e9]).collect();
+    for &(p, upper) in &[(0.025, true), (1e-9, false), (0.4, true)] {
+        let x = mcstat::dist::t_quantiles(p, &df, upper).unwrap();
+        for (d, q) in df.iter().zip(&x) {
+            let want = mcstat::dist::t_quantile(p, *d, upper).unwrap();
+            assert!((q - want).abs() <= 2e-14 * want.abs(), "p {p} df {d}: {q} vs {want}");
+        }
+    }
+    assert!(mcstat::dist::t_quantiles(0.05, &[3.0, f64::NAN], true).is_err());
+    assert!(mcstat::dist::t_quantiles(f64::NAN, &[3.0], true).is_err());
+    assert!(mcstat::dist::t_quantiles(0.05, &[], true).unwrap().is_empty());
+}
