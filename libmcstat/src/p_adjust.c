@@ -55,6 +55,28 @@
 #include "internal.h"
 
 #include <stdlib.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+/* The sort's workspace at image scale (32 bytes a value: 265 MB for a 4K
+ * image) is touched once, page by page; with 4 KiB pages the first touches
+ * cost as much as the sort (measured: 0.3 s of 0.7 s at 8.3 M values), so
+ * where Linux offers transparent huge pages on request, request them.  An
+ * advice: nothing changes where it is refused. */
+static void *work_alloc(size_t bytes)
+{
+    void *w = malloc(bytes ? bytes : 1);
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    const uintptr_t huge = (uintptr_t)2 << 20;
+    if (w && bytes >= 8 * huge) {
+        uintptr_t a = ((uintptr_t)w + huge - 1) & ~(huge - 1), e = ((uintptr_t)w + bytes) & ~(huge - 1);
+        if (e > a)
+            madvise((void *)a, e - a, MADV_HUGEPAGE);
+    }
+#endif
+    return w;
+}
 
 typedef struct {
     uint64_t key; /* the bits of p (p >= 0), then its adjusted value's */
@@ -448,7 +470,7 @@ static int adjust(const double *p, size_t n, int method, int evalues, void *work
         method = MCSTAT_P_ADJUST_HOCHBERG; /* as R: Hommel and Hochberg agree for two */
     void *own = NULL;
     if (!work) {
-        own = malloc(need ? need : 1);
+        own = work_alloc(need);
         if (!own)
             return MCSTAT_ENOMEM;
         work = own;
