@@ -822,7 +822,10 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
 /* Moments of pixels i0..i0+k-1 of one side into the block's arrays; the
  * loop over seeds is outside, the contiguous pixels inside.  bad[j] is set
  * where the fast path cannot use the sums (non-finite, extreme). */
-#define DEFINE_BLOCK_MOMENTS(NAME, T)                                                                      \
+/* RANGE: whether an unweighted value can lie outside [FAST_LO, FAST_HI]: a
+ * double can; a float cannot (its magnitudes span 2^-149 to 2^128), so its
+ * loop skips the |v| maximum. */
+#define DEFINE_BLOCK_MOMENTS(NAME, T, RANGE)                                                               \
     static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t ch, const double *w, size_t i0, size_t k, \
                      mcstat_dd *mean, double *m2, unsigned char *bad)                                      \
     {                                                                                                      \
@@ -835,7 +838,10 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
                 for (size_t j = 0; j < k; j++) {                                                           \
                     double v = (double)row[j];                                                             \
                     sum[j] += v;                                                                           \
-                    { double av = fabs(v); amax[j] = av > amax[j] ? av : amax[j]; }                                                      \
+                    if (RANGE) {                                                                           \
+                        double av = fabs(v);                                                               \
+                        amax[j] = av > amax[j] ? av : amax[j];                                             \
+                    }                                                                                      \
                 }                                                                                          \
             } else {                                                                                       \
                 for (size_t j = 0; j < k; j++) {                                                           \
@@ -843,7 +849,8 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
                     for (size_t c = 0; c < ch; c++)                                                        \
                         v += w[c] * (double)row[j * ch + c];                                               \
                     sum[j] += v;                                                                           \
-                    { double av = fabs(v); amax[j] = av > amax[j] ? av : amax[j]; }                                                      \
+                    double av = fabs(v);                                                                   \
+                    amax[j] = av > amax[j] ? av : amax[j];                                                 \
                 }                                                                                          \
             }                                                                                              \
         }                                                                                                  \
@@ -879,8 +886,8 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
         }                                                                                                  \
     }
 
-DEFINE_BLOCK_MOMENTS(block_moments_f32, float)
-DEFINE_BLOCK_MOMENTS(block_moments_f64, double)
+DEFINE_BLOCK_MOMENTS(block_moments_f32, float, 0)
+DEFINE_BLOCK_MOMENTS(block_moments_f64, double, 1)
 
 /* Set by the tests to compare the baseline loops with the AVX2 ones. */
 static int pixels_baseline_only;
