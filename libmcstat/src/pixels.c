@@ -517,7 +517,9 @@ typedef struct {
     double sdmax[PIX_BLOCK], lim[PIX_BLOCK];
     double pa[PIX_BLOCK], pf[PIX_BLOCK], plc[PIX_BLOCK]; /* t_prefactor's a, f, lc */
     double lower[PIX_BLOCK], upper[PIX_BLOCK]; /* the tails, where tail_ok */
-    double conf_lo[PIX_BLOCK], conf_hi[PIX_BLOCK]; /* the interval, where bound_ok */
+    double conf_lo[PIX_BLOCK], conf_hi[PIX_BLOCK]; /* the interval, where bound_ok, then the outputs' */
+    double p[PIX_BLOCK];                           /* the p-value, where done */
+    unsigned char done[PIX_BLOCK];                 /* fast_values answered */
     double qn[6][PIX_BLOCK], qs[PIX_BLOCK]; /* the critical values' six table nodes and the offset in them */
     long long bound_ok[PIX_BLOCK]; /* 64 bits, as the doubles: the loop vectorises */
     unsigned char kind[PIX_BLOCK], tail_ok[PIX_BLOCK];
@@ -772,7 +774,7 @@ __attribute__((target("avx2"))) static void block_bounds_pass_avx2(size_t k, int
 
 /* Pixel i's outputs from its statistics; returns 0 where the slow path must
  * decide. */
-static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, double mxh, double myh)
+static int fast_values(pix_ctx *c, block_stats *bs, size_t j)
 {
     double t = bs->t[j], df = bs->df[j], se = bs->se[j];
     double up, other, kk, lo_tail, hi_tail;
@@ -815,8 +817,36 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
         lo = mcstat__ci_bound(diff, c1, se, 0);
         hi = mcstat__ci_bound(diff, c0, se, 0);
     }
-    put(c, i, MCSTAT_OK, p, t, df, se, mxh, myh, lo, hi);
+    bs->p[j] = p;
+    bs->conf_lo[j] = lo;
+    bs->conf_hi[j] = hi;
     return 1;
+}
+
+/* The block's outputs, array by array, as if every pixel were a fast one
+ * (done[j] = 1); the others are then overwritten, each by its own path. */
+static void put_block(const pix_ctx *c, size_t i0, size_t k, const block_stats *bs, const mcstat_dd *mx,
+                      const mcstat_dd *my)
+{
+    const mcstat_pixels_out *o = c->out;
+    for (size_t j = 0; o->p_value && j < k; j++)
+        o->p_value[i0 + j] = bs->p[j];
+    for (size_t j = 0; o->statistic && j < k; j++)
+        o->statistic[i0 + j] = bs->t[j];
+    for (size_t j = 0; o->df && j < k; j++)
+        o->df[i0 + j] = bs->df[j];
+    for (size_t j = 0; o->std_error && j < k; j++)
+        o->std_error[i0 + j] = bs->se[j];
+    for (size_t j = 0; o->mean_x && j < k; j++)
+        o->mean_x[i0 + j] = mx[j].hi;
+    for (size_t j = 0; o->mean_y && j < k; j++)
+        o->mean_y[i0 + j] = my[j].hi;
+    for (size_t j = 0; o->conf_lo && j < k; j++)
+        o->conf_lo[i0 + j] = c->intervals ? bs->conf_lo[j] : NAN;
+    for (size_t j = 0; o->conf_hi && j < k; j++)
+        o->conf_hi[i0 + j] = c->intervals ? bs->conf_hi[j] : NAN;
+    for (size_t j = 0; o->status && j < k; j++)
+        o->status[i0 + j] = MCSTAT_OK;
 }
 
 /* Moments of pixels i0..i0+k-1 of one side into the block's arrays; the
@@ -824,7 +854,8 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
  * where the fast path cannot use the sums (non-finite, extreme). */
 /* RANGE: whether an unweighted value can lie outside [FAST_LO, FAST_HI]: a
  * double can; a float cannot (its magnitudes span 2^-149 to 2^128), so its
- * loop skips the |v| maximum. */
+ * loop skips the |v| maximum and its checks are the sum's finiteness only.
+ * A weighted sum of channels is checked whatever the type. */
 #define DEFINE_BLOCK_MOMENTS(NAME, T, RANGE)                                                               \
     static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t ch, const double *w, size_t i0, size_t k, \
                      mcstat_dd *mean, double *m2, unsigned char *bad)                                      \
@@ -881,9 +912,14 @@ static int fast_pixel(pix_ctx *c, size_t i, const block_stats *bs, size_t j, dou
             mean[j] = dd_two_sum(sum[j], c1);                                                              \
             double v2 = s2[j] - s1[j] * c1;                                                                \
             m2[j] = v2 > 0.0 ? v2 : 0.0;                                                                   \
-            bad[j] = !isfinite(sum[j]) || !isfinite(s2[j]) || !isfinite(s1[j]) ||                          \
-                     (amax[j] != 0.0 && (amax[j] < FAST_LO || amax[j] > FAST_HI));                         \
         }                                                                                                  \
+        /* a NaN or Inf among the values makes the sum NaN or Inf; a float's */                            \
+        /* squares cannot overflow, a double's or a weighted sum's can */                                  \
+        const int range = RANGE || w || ch != 1;                                                           \
+        for (size_t j = 0; j < k; j++)                                                                     \
+            bad[j] = !(fabs(sum[j]) <= DBL_MAX) ||                                                         \
+                     (range && (!(fabs(s2[j]) <= DBL_MAX) || !(fabs(s1[j]) <= DBL_MAX) ||                  \
+                                (amax[j] != 0.0 && (amax[j] < FAST_LO || amax[j] > FAST_HI))));            \
     }
 
 DEFINE_BLOCK_MOMENTS(block_moments_f32, float, 0)
@@ -989,15 +1025,19 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
                     block_bounds_pass(k, alternative, &b->st);
             }
         }
+        if (fast_ok) {
+            for (size_t j = 0; j < k; j++)
+                b->st.done[j] = b->st.kind[j] == PIX_FAST && fast_values(&c, &b->st, j);
+            put_block(&c, i0, k, &b->st, b->mx, b->my);
+        }
         for (size_t j = 0; j < k; j++) {
             size_t i = i0 + j;
-            if (fast_ok && b->st.kind[j] == PIX_DEGENERATE) {
+            if (fast_ok && b->st.done[j])
+                continue;
+            if (fast_ok && b->st.kind[j] == PIX_DEGENERATE)
                 fail(&c, i, MCSTAT_EDEGENERATE);
-                continue;
-            }
-            if (fast_ok && b->st.kind[j] == PIX_FAST && fast_pixel(&c, i, &b->st, j, b->mx[j].hi, b->my[j].hi))
-                continue;
-            slow_pixel(&c, &px, nx, &py, ny, i, flags);
+            else
+                slow_pixel(&c, &px, nx, &py, ny, i, flags);
         }
     }
     free(b);
