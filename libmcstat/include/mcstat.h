@@ -899,7 +899,13 @@ MCSTAT_API int mcstat_var_test_2_matrix(const double *x, size_t nx, size_t x_str
 /* first that failed; MCSTAT_EINVAL (nothing written) for NULL pointers, no  */
 /* channels, channels > 1 without weights, non-finite weights or mu0, end <  */
 /* begin, alpha outside (0, 1), an unknown alternative or flag;             */
-/* MCSTAT_ETOOBIG when the strides overflow size_t.  No allocation.          */
+/* MCSTAT_ETOOBIG when the strides overflow size_t.  One allocation of      */
+/* about 64 KiB a call (blocks of pixels' workspace, off the caller's       */
+/* stack); where it fails every pixel takes the single call's route, with  */
+/* the same results, slower.  On x86-64 the block loops run as AVX2 code    */
+/* where the CPU has it (bit for bit the results of the SSE2 code); the     */
+/* environment variable MCSTAT_NO_AVX2=1 keeps them to SSE2 (for tools that */
+/* do not decode every AVX2 instruction, such as valgrind 3.19).            */
 typedef struct mcstat_pixels_out {
     double *p_value;   /* per pixel, or NULL */
     double *statistic; /* Welch's t, or NULL */

@@ -36,6 +36,7 @@
 
 
 #include <float.h>
+#include <stdlib.h>
 
 #define PIX_BLOCK 256     /* pixels per block: their sums stay in L1 */
 #define GATHER 256        /* the slow path's bounce buffer (2 KiB of stack) */
@@ -925,6 +926,14 @@ static void put_block(const pix_ctx *c, size_t i0, size_t k, const block_stats *
 DEFINE_BLOCK_MOMENTS(block_moments_f32, float, 0)
 DEFINE_BLOCK_MOMENTS(block_moments_f64, double, 1)
 
+/* MCSTAT_NO_AVX2 set (and not "0") in the environment: the baseline loops
+ * only (mcstat.h: for valgrind 3.19, which stops at some AVX2 encodings). */
+static int no_avx2_requested(void)
+{
+    const char *e = getenv("MCSTAT_NO_AVX2");
+    return e && *e && strcmp(e, "0") != 0;
+}
+
 /* Set by the tests to compare the baseline loops with the AVX2 ones. */
 static int pixels_baseline_only;
 
@@ -1004,7 +1013,7 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
     block_work *b = malloc(sizeof *b); /* 40 KiB: not on a caller's thread stack */
     int fast_ok = nx >= 2 && ny >= 2 && b;
 #if PIX_AVX2
-    int avx2 = !pixels_baseline_only && __builtin_cpu_supports("avx2");
+    int avx2 = !pixels_baseline_only && !no_avx2_requested() && __builtin_cpu_supports("avx2");
 #endif
     for (size_t i0 = begin; i0 < end; i0 += PIX_BLOCK) {
         size_t k = end - i0 < PIX_BLOCK ? end - i0 : PIX_BLOCK;
