@@ -150,6 +150,43 @@ static PIX_INLINE int upper_series(double a, double A, double x, double *sum)
     return 1;
 }
 
+/* The upper tail K h / (2a) where the central probability c is too close
+ * to 1 for (1 - c)/2 (c > 0.96, |t| below sqrt(df)): h the continued
+ * fraction of I_x(a, 1/2) = K h / a (DLMF 8.17.22, a + 1 > (a + 5/2) x
+ * for the x = 1/(1+r) in (1/2, 1) met here at df >= 1: it converges),
+ * evaluated by Lentz's method.  Its terms d_{2m} = m (1/2 - m) x /
+ * ((a + 2m - 1)(a + 2m)), d_{2m+1} = -(a + m)(a + 1/2 + m) x / ((a + 2m)
+ * (a + 2m + 1)).  The ratio of successive values goes to 1 within
+ * DBL_EPSILON in 10 to 30 steps at the per-pixel df; each step's rounding
+ * adds up, so beyond CF_STEPS (large df, x near 1) it returns 0 and the
+ * general routine answers. */
+#define CF_STEPS 40
+static int upper_cf(double a, double x, double k, double *upper)
+{
+    const double tiny = 0x1p-1000;
+    double c = 1.0, d = 1.0 - (a + 0.5) * x / (a + 1.0);
+    d = 1.0 / (fabs(d) < tiny ? tiny : d);
+    double h = d;
+    for (int m = 1; m <= CF_STEPS; m++) {
+        double m2 = 2.0 * m;
+        for (int odd = 0; odd < 2; odd++) {
+            double dm = odd ? -(a + m) * (a + 0.5 + m) * x / ((a + m2) * (a + 1.0 + m2))
+                            : m * (0.5 - m) * x / ((a - 1.0 + m2) * (a + m2));
+            d = 1.0 + dm * d;
+            c = 1.0 + dm / c;
+            d = 1.0 / (fabs(d) < tiny ? tiny : d);
+            c = fabs(c) < tiny ? tiny : c;
+            double step = c * d;
+            h *= step;
+            if (odd && fabs(step - 1.0) <= DBL_EPSILON) {
+                *upper = k * h / (2.0 * a);
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
 /* The tails at |t| = at; *kk = K.  Returns 0 where the caller must use
  * mcstat__t_tails. */
 static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *other, double *kk)
@@ -183,11 +220,16 @@ static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *
             if (term <= 0.25 * DBL_EPSILON * sum)
                 break;
         }
-        double c = 2.0 * k * sum;
-        if (!(c <= 0.96))
+        double c = 2.0 * k * sum, u;
+        if (c <= 0.96) {
+            *upper = 0.5 - 0.5 * c;
+            *other = 0.5 + 0.5 * c;
+        } else if (upper_cf(a, x, k, &u)) {
+            *upper = u;
+            *other = 1.0 - u;
+        } else {
             return 0;
-        *upper = 0.5 - 0.5 * c;
-        *other = 0.5 + 0.5 * c;
+        }
     }
     *kk = k;
     return 1;
@@ -688,11 +730,11 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             continue;
         for (size_t l = 0; l < 4 && g + l < nc; l++) {
             size_t j = idx[g + l];
-            double c = 2.0 * ck[g + l] * cs[l];
-            if (!(c <= 0.96))
+            double c = 2.0 * ck[g + l] * cs[l], u = 0.5 - 0.5 * c;
+            if (!(c <= 0.96) && !upper_cf(cA[g + l] - 0.5, 1.0 / (1.0 + rr[j]), ck[g + l], &u))
                 continue;
-            lower[j] = t[j] > 0.0 ? 0.5 + 0.5 * c : 0.5 - 0.5 * c;
-            upper[j] = t[j] > 0.0 ? 0.5 - 0.5 * c : 0.5 + 0.5 * c;
+            lower[j] = t[j] > 0.0 ? 1.0 - u : u;
+            upper[j] = t[j] > 0.0 ? u : 1.0 - u;
             ok[j] = TAIL_DONE;
         }
     }
