@@ -769,6 +769,7 @@ func TLogCDF(x, df float64, upper bool) (float64, error) {
 func TQuantile(p, df float64, upper bool) (float64, error) {
 	return dist(func(o *C.double) C.int { return C.mcstat_t_quantile(C.double(p), C.double(df), b2i(upper), o) })
 }
+
 // TQuantiles is TQuantile(p, df[i], upper) for every df[i] at one level, to
 // the same accuracy, fast where many df differ (per-pixel critical values).
 // Where one fails (NaN or non-positive df) its value is NaN, the others are
