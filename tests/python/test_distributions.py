@@ -205,6 +205,8 @@ def test_the_tests_use_these_distributions():
     (lambda: D.chisq_cdf(1.0, math.inf), r"chisq_cdf: df must be positive and finite, got inf"),
     (lambda: D.f_cdf(1.0, 2.0, -1.0), r"f_cdf: df2 must be positive and finite, got -1\.0"),
     (lambda: D.f_quantile(0.5, np.nan, 2.0), r"f_quantile: df1 must be positive and finite, got nan"),
+    (lambda: D.t_quantile(1.5, np.linspace(1.0, 50.0, 200)),
+     r"t_quantile: p must be a probability in \[0, 1\], got 1\.5 at index \(0,\)"),
     (lambda: D.t_quantile(0.025, np.r_[np.linspace(1.0, 50.0, 200), 0.0]),  # one level, many df: the table
      r"t_quantile: df must be positive and finite, got 0\.0 at index \(200,\)"),
     (lambda: D.t_cdf([1.0, 2.0], [1.0, 2.0, 3.0]),

@@ -157,11 +157,14 @@ py::object distribution(const std::string &name, py::handle a0, py::handle a1, p
             }
         }
     };
+    double p0 = 0.0; // the level, where one level meets many df
+    if (arr[0].size() == 1)
+        std::memcpy(&p0, base[0], sizeof p0);
     if (op->f2 == mcstat_t_quantile && arr[0].size() == 1 && static_cast<size_t>(arr[1].size()) == total &&
-        total > 64) {
+        total > 64 && p0 >= 0.0 && p0 <= 1.0) {
         // one level, many df: mcstat_t_quantiles' table, not one solve each
-        double p = 0.0;
-        std::memcpy(&p, base[0], sizeof p);
+        // (an invalid level takes the loop, which names it at index 0)
+        const double p = p0;
         py::array_t<double, py::array::c_style | py::array::forcecast> dfc(arr[1]);
         status = t_quantiles(p, dfc.data(), total, upper, out);
         if (status) {
