@@ -34,7 +34,6 @@
 #include "internal.h"
 #include "vmath.h"
 
-
 #include <float.h>
 #include <stdlib.h>
 
@@ -67,8 +66,7 @@
  *   K = |t| f exp(e),  f = sqrt(z/a) prod (a+i)/(a+i+1/2),
  *                      e = L(z) - log(2 pi)/2 - (a+1/2) log1p(r).
  * Nothing there cancels beyond the size of the result, and e's rounding,
- * relative to K, is that of log p, not of log |t|.
- * Nothing there cancels beyond the size of the result.  Then
+ * relative to K, is that of log p, not of log |t|.  Then
  *   r >= 1: P[T > |t|] = I_x(a, 1/2)/2 = K/(2a) sum_j c_j,
  *           c_{j+1} = c_j (a+1/2+j)/(a+1+j) x, ratio below x <= 1/2;
  *   r < 1:  P[|T| <= |t|] = I_y(1/2, a) = 2K sum_j c_j,
@@ -474,6 +472,15 @@ static PIX_INLINE void lagrange56(const double *q, double s, double *v5, double 
           p012 * d4 * (-1.0 / 6) * q[3] + p0123 * (1.0 / 24) * q[4];
 }
 
+/* The per-call table of critical values at level p, empty (NaN: solved
+ * when first needed). */
+static void qt_table_init(pix_ctx *c, double p)
+{
+    c->qt_p = p;
+    for (int j = 0; j <= QT_NODES; j++)
+        c->qt[j] = NAN;
+}
+
 /* Node j of the table: the quantile at df = QT_NODES / j, solved once per
  * call when first needed (node 0 is df = Inf, the normal quantile); the
  * same numbers whichever pixels ask, so pixel ranges do not change results. */
@@ -616,18 +623,15 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
  * taken once per four pixels instead of mispredicted once per pixel.  A
  * lane that has converged goes on adding terms below its rounding; the
  * sums are those of t_tail_core to a few ulps. */
-typedef mcs_v4d v4d;
-typedef mcs_v4i v4m;
-
 /* The central sums of four pixels (A = a + 1/2, y); 0 if one of them has
  * not converged in CENTRAL_TERMS terms. */
 static PIX_INLINE int central_series4(const double *A, const double *y, double *sum)
 {
-    v4d va = {A[0], A[1], A[2], A[3]}, vy = {y[0], y[1], y[2], y[3]};
-    v4d term = {1.0, 1.0, 1.0, 1.0}, s = term;
+    mcs_v4d va = {A[0], A[1], A[2], A[3]}, vy = {y[0], y[1], y[2], y[3]};
+    mcs_v4d term = {1.0, 1.0, 1.0, 1.0}, s = term;
     for (int j = 0; j < CENTRAL_TERMS; j += 4) { /* four terms between the tests of convergence */
-        v4d q0 = (va + (double)j) * rcp_central[j] * vy, q1 = (va + (double)(j + 1)) * rcp_central[j + 1] * vy;
-        v4d t1 = term * q0;
+        mcs_v4d q0 = (va + (double)j) * rcp_central[j] * vy, q1 = (va + (double)(j + 1)) * rcp_central[j + 1] * vy;
+        mcs_v4d t1 = term * q0;
         term = term * (q0 * q1);
         s = s + (t1 + term);
         q0 = (va + (double)(j + 2)) * rcp_central[j + 2] * vy;
@@ -635,7 +639,7 @@ static PIX_INLINE int central_series4(const double *A, const double *y, double *
         t1 = term * q0;
         term = term * (q0 * q1);
         s = s + (t1 + term);
-        v4m done = (v4m)(term <= 0.25 * DBL_EPSILON * s);
+        mcs_v4i done = (mcs_v4i)(term <= 0.25 * DBL_EPSILON * s);
         if (done[0] & done[1] & done[2] & done[3]) {
             for (int l = 0; l < 4; l++)
                 sum[l] = s[l];
@@ -675,7 +679,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             at[l] = fabs(t[i]);
         }
         mcs_v4d e = lc - (a + 0.5) * vm_log1p4(r);
-        v4m low = (v4m)(e < -700.0); /* K computed only where exp(e) stays normal */
+        mcs_v4i low = (mcs_v4i)(e < -700.0); /* K computed only where exp(e) stays normal */
         mcs_v4d x = vm_exp4(vm_select(low, vm_splat(-700.0), e));
         mcs_v4d kv = at * f * x;
         for (int l = 0; l < 4 && j + l < k; l++) {
@@ -684,7 +688,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
         }
     }
     for (size_t j = 0; j < k; j++) {
-        double tj = t[j], at = fabs(tj);
+        double tj = t[j];
         ok[j] = TAIL_SCALAR;
         if (!want[j])
             continue;
@@ -693,7 +697,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             ok[j] = TAIL_DONE;
             continue;
         }
-        if (!fast_range(at, df[j]))
+        if (!(rr[j] > 0.0)) /* outside the fast range (rr's first loop) */
             continue;
         ok[j] = TAIL_GENERAL; /* unless answered below, as for t_tail_core */
         double a = pa[j], A = a + 0.5, r = rr[j];
@@ -1046,13 +1050,12 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
     c.crit_df = NAN;
     c.qt_p = alternative == MCSTAT_TWO_SIDED ? 0.5 * alpha : alpha;
     if (c.intervals)
-        for (int j = 0; j <= QT_NODES; j++)
-            c.qt[j] = NAN;
+        qt_table_init(&c, c.qt_p);
     mcstat__qcache_init(&c.qc);
     c.first = MCSTAT_OK;
     plane px = {xf, xd, xs, channels, w}, py = {yf, yd, ys, channels, w};
     block_input in = {xf, yf, xd, yd, w, nx, xs, ny, ys, channels, mu0};
-    block_work *b = malloc(sizeof *b); /* 40 KiB: not on a caller's thread stack */
+    block_work *b = malloc(sizeof *b); /* tens of KiB: not on a caller's thread stack */
     int fast_ok = nx >= 2 && ny >= 2 && b;
 #if PIX_AVX2
     int avx2 = !pixels_baseline_only && !no_avx2_requested() && __builtin_cpu_supports("avx2");
@@ -1075,8 +1078,6 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
 #endif
                     block_bounds_pass(k, alternative, &b->st);
             }
-        }
-        if (fast_ok) {
             for (size_t j = 0; j < k; j++)
                 b->st.done[j] = b->st.kind[j] == PIX_FAST && fast_values(&c, &b->st, j);
             put_block(&c, i0, k, &b->st, b->mx, b->my);
@@ -1129,9 +1130,7 @@ int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *
         c = malloc(sizeof *c);
         if (c) {
             c->alternative = MCSTAT_GREATER;
-            c->qt_p = p;
-            for (int j = 0; j <= QT_NODES; j++)
-                c->qt[j] = NAN;
+            qt_table_init(c, p);
         }
     }
     int first = MCSTAT_OK;
@@ -1153,23 +1152,4 @@ int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *
     }
     free(c);
     return first;
-}
-
-/* The critical values as the pixel path finds them (table, interpolation,
- * Halley where needed), for n degrees of freedom in one call: for the tests. */
-int mcstat__t_upper_quantile_table(double p, const double *df, size_t n, double *q)
-{
-    static pix_ctx c; /* the table is 8 KiB: not on a test's stack; tests are single-threaded */
-    c.alternative = MCSTAT_GREATER;
-    c.qt_p = p;
-    for (int j = 0; j <= QT_NODES; j++)
-        c.qt[j] = NAN;
-    for (size_t i = 0; i < n; i++) {
-        double c0, c1;
-        int st = criticals(&c, df[i], NULL, &c0, &c1);
-        if (st)
-            return st;
-        q[i] = c1;
-    }
-    return MCSTAT_OK;
 }

@@ -52,8 +52,6 @@ MCSTAT_HIDDEN int mcstat__t_tail_fast(double t, double df, double *upper, double
 /* The upper p-quantile of t(df) by Newton's method on that tail (pixels.c),
  * mcstat_t_quantile where it does not apply; 0 < p < 1. */
 MCSTAT_HIDDEN int mcstat__t_upper_quantile_fast(double p, double df, double *q);
-/* The same as the per-pixel test finds it from its table of quantiles in
- * 1/df, for n df in one call (pixels.c; for the tests, not thread-safe). */
 /* pixels.c: nonzero runs the per-block loops' baseline (SSE2) code even
  * where AVX2 is there; for the tests, which compare the two bit for bit. */
 MCSTAT_HIDDEN void mcstat__pixels_baseline_only(int on);
@@ -61,7 +59,6 @@ MCSTAT_HIDDEN void mcstat__pixels_baseline_only(int on);
  * central series four at a time) for n pairs; done[i] where they answered. */
 MCSTAT_HIDDEN int mcstat__t_tails_block(size_t n, const double *t, const double *df, double *lower, double *upper,
                                         unsigned char *done);
-MCSTAT_HIDDEN int mcstat__t_upper_quantile_table(double p, const double *df, size_t n, double *q);
 MCSTAT_HIDDEN int mcstat__chisq_tails(double x, double df, mcstat_tails *t);
 MCSTAT_HIDDEN int mcstat__f_tails(double x, double df1, double df2, mcstat_tails *t);
 /* log of mcstat_chisq_quantile / mcstat_f_quantile (p in [0, 1], arguments
