@@ -159,30 +159,54 @@ static PIX_INLINE int upper_series(double a, double A, double x, double *sum)
  * adds up, so beyond CF_STEPS (large df, x near 1) it returns 0 and the
  * general routine answers. */
 #define CF_STEPS 40
-static int upper_cf(double a, double x, double k, double *upper)
+static PIX_INLINE mcs_v4d vm_fabs(mcs_v4d v)
 {
-    const double tiny = 0x1p-1000;
-    double c = 1.0, d = 1.0 - (a + 0.5) * x / (a + 1.0);
-    d = 1.0 / (fabs(d) < tiny ? tiny : d);
-    double h = d;
+    return (mcs_v4d)((mcs_v4i)v & (mcs_v4i){INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX});
+}
+
+/* h of four pixels (a[l], x[l]) at once; ok[l] = 0 where a lane has not
+ * converged in CF_STEPS.  A lane's h stops changing when it converges, so
+ * every lane gets what it would alone, bit for bit. */
+static PIX_INLINE void upper_cf4(const double *a4, const double *x4, double *h4, int *ok)
+{
+    const mcs_v4d tiny = vm_splat(0x1p-1000), one = vm_splat(1.0);
+    mcs_v4d a = {a4[0], a4[1], a4[2], a4[3]}, x = {x4[0], x4[1], x4[2], x4[3]};
+    mcs_v4d c = one, d = one - (a + 0.5) * x / (a + 1.0);
+    d = one / vm_select((mcs_v4i)(vm_fabs(d) < tiny), tiny, d);
+    mcs_v4d h = d;
+    mcs_v4i live = {-1, -1, -1, -1};
     for (int m = 1; m <= CF_STEPS; m++) {
         double m2 = 2.0 * m;
         for (int odd = 0; odd < 2; odd++) {
-            double dm = odd ? -(a + m) * (a + 0.5 + m) * x / ((a + m2) * (a + 1.0 + m2))
-                            : m * (0.5 - m) * x / ((a - 1.0 + m2) * (a + m2));
-            d = 1.0 + dm * d;
-            c = 1.0 + dm / c;
-            d = 1.0 / (fabs(d) < tiny ? tiny : d);
-            c = fabs(c) < tiny ? tiny : c;
-            double step = c * d;
-            h *= step;
-            if (odd && fabs(step - 1.0) <= DBL_EPSILON) {
-                *upper = k * h / (2.0 * a);
-                return 1;
-            }
+            mcs_v4d dm = odd ? -(a + (double)m) * (a + 0.5 + (double)m) * x / ((a + m2) * (a + 1.0 + m2))
+                             : (double)m * (0.5 - m) * x / ((a - 1.0 + m2) * (a + m2));
+            d = one + dm * d;
+            c = one + dm / c;
+            d = one / vm_select((mcs_v4i)(vm_fabs(d) < tiny), tiny, d);
+            c = vm_select((mcs_v4i)(vm_fabs(c) < tiny), tiny, c);
+            mcs_v4d step = c * d;
+            h = vm_select(live, h * step, h);
+            if (odd)
+                live &= ~(mcs_v4i)(vm_fabs(step - 1.0) <= DBL_EPSILON);
         }
+        if (!(live[0] | live[1] | live[2] | live[3]))
+            break;
     }
-    return 0;
+    for (int l = 0; l < 4; l++) {
+        h4[l] = h[l];
+        ok[l] = !live[l];
+    }
+}
+
+static int upper_cf(double a, double x, double k, double *upper)
+{
+    double a4[4] = {a, a, a, a}, x4[4] = {x, x, x, x}, h[4];
+    int ok[4];
+    upper_cf4(a4, x4, h, ok);
+    if (!ok[0])
+        return 0;
+    *upper = k * h[0] / (2.0 * a);
+    return 1;
 }
 
 /* The tails at |t| = at; *kk = K.  Returns 0 where the caller must use
@@ -729,14 +753,42 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
         cA[g] = 1.0;
         cy[g] = 0.0;
     }
+    /* the pixels whose central probability is too close to 1 wait for the
+     * continued fraction, four at a time too (fa, fx, fk; their index in
+     * idx, where the central ones are done with it) */
+    size_t nf = 0;
     for (size_t g = 0; g < nc; g += 4) {
         if (!central_series4(cA + g, cy + g, cs))
             continue;
         for (size_t l = 0; l < 4 && g + l < nc; l++) {
             size_t j = idx[g + l];
             double c = 2.0 * ck[g + l] * cs[l], u = 0.5 - 0.5 * c;
-            if (!(c <= 0.96) && !upper_cf(cA[g + l] - 0.5, 1.0 / (1.0 + rr[j]), ck[g + l], &u))
+            if (!(c <= 0.96)) {
+                idx[nf] = j;
+                cA[nf] = cA[g + l] - 0.5; /* a */
+                cy[nf] = 1.0 / (1.0 + rr[j]); /* x */
+                ck[nf] = ck[g + l];
+                nf++;
                 continue;
+            }
+            lower[j] = t[j] > 0.0 ? 1.0 - u : u;
+            upper[j] = t[j] > 0.0 ? u : 1.0 - u;
+            ok[j] = TAIL_DONE;
+        }
+    }
+    for (size_t g = nf; g % 4; g++) { /* padding lanes: converge at once */
+        cA[g] = 1.0;
+        cy[g] = 0.0;
+    }
+    for (size_t g = 0; g < nf; g += 4) {
+        double h[4];
+        int hok[4];
+        upper_cf4(cA + g, cy + g, h, hok);
+        for (size_t l = 0; l < 4 && g + l < nf; l++) {
+            if (!hok[l])
+                continue;
+            size_t j = idx[g + l];
+            double u = ck[g + l] * h[l] / (2.0 * cA[g + l]);
             lower[j] = t[j] > 0.0 ? 1.0 - u : u;
             upper[j] = t[j] > 0.0 ? u : 1.0 - u;
             ok[j] = TAIL_DONE;
