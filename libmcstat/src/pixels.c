@@ -749,25 +749,48 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             nc++;
         }
     }
+    /* Four lanes run as long as the slowest: grouped by the binary exponent
+     * of y (which sets the series' length), lanes of a kind run together.
+     * A counting sort into sidx, sA, sy, sk. */
+    enum { Y_BINS = 8 };
+    size_t cnt[Y_BINS + 1] = {0}, sidx[PIX_BLOCK + 3];
+    double sA[PIX_BLOCK + 3], sy[PIX_BLOCK + 3], sk[PIX_BLOCK + 3];
+    unsigned char bin[PIX_BLOCK];
+    for (size_t g = 0; g < nc; g++) {
+        uint64_t bits;
+        memcpy(&bits, &cy[g], sizeof bits);
+        int e = 1021 - (int)(bits >> 52); /* y in [2^-(e+2), 2^-(e+1)), as 0 < y < 1/2 here */
+        bin[g] = (unsigned char)(e < Y_BINS - 1 ? e : Y_BINS - 1);
+        cnt[bin[g] + 1]++;
+    }
+    for (int b = 0; b < Y_BINS; b++)
+        cnt[b + 1] += cnt[b];
+    for (size_t g = 0; g < nc; g++) {
+        size_t o = cnt[bin[g]]++;
+        sidx[o] = idx[g];
+        sA[o] = cA[g];
+        sy[o] = cy[g];
+        sk[o] = ck[g];
+    }
     for (size_t g = nc; g % 4; g++) { /* padding lanes: converged at once */
-        cA[g] = 1.0;
-        cy[g] = 0.0;
+        sA[g] = 1.0;
+        sy[g] = 0.0;
     }
     /* the pixels whose central probability is too close to 1 wait for the
-     * continued fraction, four at a time too (fa, fx, fk; their index in
-     * idx, where the central ones are done with it) */
+     * continued fraction, four at a time too (a, x, K in cA, cy, ck; their
+     * index in idx) */
     size_t nf = 0;
     for (size_t g = 0; g < nc; g += 4) {
-        if (!central_series4(cA + g, cy + g, cs))
+        if (!central_series4(sA + g, sy + g, cs))
             continue;
         for (size_t l = 0; l < 4 && g + l < nc; l++) {
-            size_t j = idx[g + l];
-            double c = 2.0 * ck[g + l] * cs[l], u = 0.5 - 0.5 * c;
+            size_t j = sidx[g + l];
+            double c = 2.0 * sk[g + l] * cs[l], u = 0.5 - 0.5 * c;
             if (!(c <= 0.96)) {
                 idx[nf] = j;
-                cA[nf] = cA[g + l] - 0.5; /* a */
+                cA[nf] = sA[g + l] - 0.5; /* a */
                 cy[nf] = 1.0 / (1.0 + rr[j]); /* x */
-                ck[nf] = ck[g + l];
+                ck[nf] = sk[g + l];
                 nf++;
                 continue;
             }
