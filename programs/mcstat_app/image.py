@@ -54,7 +54,7 @@ from mcstat.image import (
     _seed_axis_of,
     summary_of_moments,
 )
-from mcstat.image import compare as _compare
+from mcstat.image import _Owned, compare as _compare
 
 from . import image_exr
 from .errors import MissingPackageError, OutputError, require
@@ -262,9 +262,10 @@ def compare(reference, candidate, *, seed_axis: Optional[int] = None, spp=None, 
     for both sides or (reference, candidate)."""
     t0 = time.perf_counter()
     spp_r, spp_c = image_exr.spp_pair(spp)
-    ref, cand = _load(reference, seed_axis, spp_r), _load(candidate, seed_axis, spp_c)
+    # handed over, not kept here: compare drops the renders once tested
+    sides = _Owned(_load(reference, seed_axis, spp_r)), _Owned(_load(candidate, seed_axis, spp_c))
     t_load = time.perf_counter() - t0
-    res = _compare(ref, cand, seed_axis=seed_axis, **kw)
+    res = _compare(*sides, seed_axis=seed_axis, **kw)
     res.timings["load_and_channels"] += t_load
     return res
 

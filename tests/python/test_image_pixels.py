@@ -140,3 +140,34 @@ def test_compare_omit_nan_and_luminance(rng):
         assert res.pvalue[i + (0,)] == pytest.approx(one.pvalue, rel=P_RTOL)
         assert res.statistic[i + (0,)] == pytest.approx(one.statistic, rel=1e-13)
     assert res.pvalue.shape == ref.shape[1:3] + (1,)
+
+
+def test_handed_over_sides_are_released_after_the_tests(rng, monkeypatch):
+    """mcstat_app hands its loaded renders over (_Owned): compare gives the
+    same results and holds no reference to them by the time it adjusts
+    the p-values, so their memory is gone before the adjustment's."""
+    import gc
+    import weakref
+
+    x = rng.normal(1.0, 0.1, (6, 20, 30, 3)).astype(np.float32)
+    y = rng.normal(1.0, 0.1, (6, 20, 30, 3)).astype(np.float32)
+    kept = mi.compare(y, x)
+    bx, by = mi._Owned(x.copy()), mi._Owned(y.copy())
+    gone = [weakref.ref(bx.value), weakref.ref(by.value)]
+    alive_at_adjust = []
+    adjust = _core.p_adjust
+
+    def watching(*a, **k):
+        gc.collect()
+        alive_at_adjust.append([w() is not None for w in gone])
+        return adjust(*a, **k)
+
+    monkeypatch.setattr(mi._core, "p_adjust", watching)
+    res = mi.compare(by, bx)
+    assert alive_at_adjust == [[False, False]]
+    assert bx.value is None and by.value is None
+    for name in ("pvalue", "padjusted", "statistic", "mean_candidate", "mean_reference", "detectable_bias"):
+        np.testing.assert_array_equal(getattr(res, name), getattr(kept, name))
+    # sides not handed over are the caller's: left as they are
+    mi.compare(y, x)
+    assert x.shape == (6, 20, 30, 3)

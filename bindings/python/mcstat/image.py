@@ -756,6 +756,22 @@ def _reference_luminance(side: Side) -> np.ndarray:
     return mean[..., 0]
 
 
+class _Owned:
+    """A side handed over to `compare` by a caller that keeps no other
+    reference to it (mcstat_app's loaded renders): `compare` drops its
+    arrays once the tests have read them, so that the peak memory is the
+    input or the outputs, not both."""
+
+    __slots__ = ("value",)
+
+    def __init__(self, value: Any) -> None:
+        self.value = value
+
+    def take(self) -> Any:
+        v, self.value = self.value, None
+        return v
+
+
 def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", alternative: str = "two-sided",
             channels: str = "luminance", seed_axis: Optional[int] = None,
             nan_policy: str = "raise", block: Optional[int] = None, detect_power: float = 0.8,
@@ -808,6 +824,9 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     `bias_quantile` of the passing pixels, ``detectable_bias`` exceeds them.
     """
     t0 = time.perf_counter()
+    release = isinstance(reference, _Owned) and isinstance(candidate, _Owned)
+    if release:
+        reference, candidate = reference.take(), candidate.take()
     if block is not None and (isinstance(block, bool) or not isinstance(block, (int, np.integer)) or block < 1):
         raise InvalidArgumentError(f"block must be a positive integer (the block's side in pixels), got {block!r}")
     if not (0.0 < detect_power < 1.0):
@@ -864,6 +883,10 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         r = _core._t_test_2_pixels(xc, yr, weights, _core._alternative_code(alternative), alpha,
                                    omit_nan=nan_policy == "omit")
         shp = cand.shape
+        del xc, yr
+        if release:  # the renders have been read (see _Owned)
+            reference = candidate = None
+            ref.data = cand.data = None  # type: ignore[assignment]
         pvalue, stat, status = (r[k].reshape(shp) for k in ("pvalue", "statistic", "status"))
         est_c, est_r = r["mean_x"].reshape(shp), r["mean_y"].reshape(shp)  # no stacked copy: memory
     else:
