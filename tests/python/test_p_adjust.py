@@ -161,3 +161,52 @@ def test_statsmodels_methods_not_implemented(name):
         mcstat.p_adjust([0.1, 0.2], method=name)
     assert "does not implement" in str(e.value)
     assert repr(name) in str(e.value)
+
+
+def test_work_size():
+    assert mcstat.p_adjust_work_size(1000, "BH") == 32 * 1000
+    assert mcstat.p_adjust_work_size(1000, "fdr_by") == 32 * 1000
+    assert mcstat.p_adjust_work_size(1000, "hommel") == 40 * 1000
+    assert mcstat.p_adjust_work_size(1000, "bonferroni") == 0
+    assert mcstat.p_adjust_work_size(1000, "none") == 0
+    assert mcstat.p_adjust_work_size(0, "holm") == 0
+    with pytest.raises(mcstat.InvalidArgumentError, match="unknown p_adjust method 'nope'"):
+        mcstat.p_adjust_work_size(10, "nope")
+    with pytest.raises(mcstat.InvalidArgumentError, match="n must be >= 0"):
+        mcstat.p_adjust_work_size(-1, "BH")
+    with pytest.raises(mcstat.TooBigError):
+        mcstat.p_adjust_work_size(2**63 - 1, "BH")
+
+
+@pytest.mark.parametrize("method", ["holm", "hochberg", "hommel", "BH", "BY", "e-BH", "bonferroni", "none"])
+def test_caller_workspace_gives_the_same_values(method):
+    rng = np.random.default_rng(11)
+    p = rng.random(5000) ** 3
+    p[::97] = np.nan
+    p[5:40] = p[4]  # ties
+    need = mcstat.p_adjust_work_size(p.size, method)
+    work = np.full(need // 8 + 3, 7.0)  # dirty scratch: nothing may depend on its contents
+    np.testing.assert_array_equal(mcstat.p_adjust(p, method=method, work=work), mcstat.p_adjust(p, method=method))
+    # any dtype and shape will do as long as the bytes are there
+    w8 = np.zeros((need + 64) // 2, dtype=np.uint16).reshape(-1, 1)
+    np.testing.assert_array_equal(mcstat.p_adjust(p, method=method, work=w8), mcstat.p_adjust(p, method=method))
+
+
+def test_caller_workspace_refused():
+    p = np.linspace(0.0, 1.0, 100)
+    need = mcstat.p_adjust_work_size(p.size, "BH")
+    with pytest.raises(mcstat.InvalidArgumentError, match=f"work holds {need - 8} bytes; this call needs {need}"):
+        mcstat.p_adjust(p, method="BH", work=np.zeros(need // 8 - 1))
+    with pytest.raises(mcstat.InvalidArgumentError, match="C-contiguous"):
+        mcstat.p_adjust(p, method="BH", work=np.zeros(need // 4)[::2])
+    ro = np.zeros(need // 8)
+    ro.flags.writeable = False
+    with pytest.raises(mcstat.InvalidArgumentError, match="writable buffer"):
+        mcstat.p_adjust(p, method="BH", work=ro)
+    with pytest.raises(mcstat.InvalidArgumentError, match="writable buffer"):
+        mcstat.p_adjust(p, method="BH", work="not a buffer")
+    with pytest.raises(mcstat.InvalidArgumentError, match="aligned for float64"):
+        mcstat.p_adjust(p, method="BH", work=np.zeros(need + 16, dtype=np.uint8)[1:need + 1])
+    # a bad p-value is named as it is without a workspace
+    with pytest.raises(mcstat.InvalidArgumentError, match="at flat index 3"):
+        mcstat.p_adjust(np.array([0.1, 0.2, 0.3, 1.5]), method="BH", work=np.zeros(16))

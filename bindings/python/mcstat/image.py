@@ -772,6 +772,21 @@ class _Owned:
         return v
 
 
+def _scratch_for_adjust(n: int, method: str, arrays: Sequence[np.ndarray]) -> Optional[np.ndarray]:
+    """The first of the handed-over renders whose memory can serve as the
+    adjustment's workspace (already resident: fresh pages for it cost as
+    much as the sort at image scale), or None."""
+    try:
+        need = _core.p_adjust_work_size(n, method)
+    except InvalidArgumentError:  # an unknown method: p_adjust says so
+        return None
+    for a in arrays:
+        if (need > 0 and a.flags.c_contiguous and a.flags.writeable and a.nbytes >= need
+                and a.ctypes.data % 8 == 0):
+            return a
+    return None
+
+
 def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", alternative: str = "two-sided",
             channels: str = "luminance", seed_axis: Optional[int] = None,
             nan_policy: str = "raise", block: Optional[int] = None, detect_power: float = 0.8,
@@ -824,6 +839,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     `bias_quantile` of the passing pixels, ``detectable_bias`` exceeds them.
     """
     t0 = time.perf_counter()
+    scratch = None  # a handed-over render's memory, reused by the adjustment
     release = isinstance(reference, _Owned) and isinstance(candidate, _Owned)
     if release:
         reference, candidate = reference.take(), candidate.take()
@@ -883,10 +899,11 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         r = _core._t_test_2_pixels(xc, yr, weights, _core._alternative_code(alternative), alpha,
                                    omit_nan=nan_policy == "omit")
         shp = cand.shape
-        del xc, yr
         if release:  # the renders have been read (see _Owned)
+            scratch = _scratch_for_adjust(r["pvalue"].size, method, (xc, yr))
             reference = candidate = None
             ref.data = cand.data = None  # type: ignore[assignment]
+        del xc, yr
         pvalue, stat, status = (r[k].reshape(shp) for k in ("pvalue", "statistic", "status"))
         est_c, est_r = r["mean_x"].reshape(shp), r["mean_y"].reshape(shp)  # no stacked copy: memory
     else:
@@ -910,7 +927,8 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
                                  f"y={y} ({ref.channel_names[ch]}); pass nan_policy='omit' (--nan omit) to leave "
                                  "NaN values out and not test pixels with infinities")
     t2 = time.perf_counter()
-    padj = _core.p_adjust(pvalue, method=method)
+    padj = _core.p_adjust(pvalue, method=method, work=scratch)
+    scratch = None
     if isinstance(ref, Samples):
         se, dfw = r["std_error"].reshape(shp), r["df"].reshape(shp)
     else:
