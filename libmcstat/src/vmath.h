@@ -57,17 +57,15 @@ static inline __attribute__((always_inline)) mcs_v4d vm_exp4(mcs_v4d e)
     mcs_v4d t = e * VM_INV_LN2 + sh;
     mcs_v4d n = t - sh;
     mcs_v4d r = (e - n * VM_LN2_HI) - n * VM_LN2_LO;
-    mcs_v4d p = vm_splat(1.0 / 6227020800.0); /* 1/13! */
-    p = p * r + 1.0 / 479001600.0;
-    p = p * r + 1.0 / 39916800.0;
-    p = p * r + 1.0 / 3628800.0;
-    p = p * r + 1.0 / 362880.0;
-    p = p * r + 1.0 / 40320.0;
-    p = p * r + 1.0 / 5040.0;
-    p = p * r + 1.0 / 720.0;
-    p = p * r + 1.0 / 120.0;
-    p = p * r + 1.0 / 24.0;
-    p = p * r + 1.0 / 6.0;
+    /* sum_{i=3..13} r^(i-3)/i! in pairs (Estrin's scheme: a chain of four
+     * multiplications instead of ten Horner steps; these terms are below
+     * r^3/6, so their rounding stays far below the result's), then the
+     * three leading terms by Horner as before */
+    mcs_v4d r2 = r * r, r4 = r2 * r2, r8 = r4 * r4;
+    mcs_v4d p01 = r * (1.0 / 24.0) + 1.0 / 6.0, p23 = r * (1.0 / 720.0) + 1.0 / 120.0;
+    mcs_v4d p45 = r * (1.0 / 40320.0) + 1.0 / 5040.0, p67 = r * (1.0 / 3628800.0) + 1.0 / 362880.0;
+    mcs_v4d p89 = r * (1.0 / 479001600.0) + 1.0 / 39916800.0, p10 = vm_splat(1.0 / 6227020800.0); /* 1/13! */
+    mcs_v4d p = ((p01 + r2 * p23) + r4 * (p45 + r2 * p67)) + r8 * (p89 + r2 * p10);
     p = p * r + 0.5;
     p = p * r + 1.0;
     p = p * r + 1.0;
@@ -95,17 +93,11 @@ static inline __attribute__((always_inline)) mcs_v4d vm_log1p4(mcs_v4d x)
     m = vm_select(big, m * 0.5, m);
     k = k - big; /* big is -1 where true */
     mcs_v4d f = m - 1.0, s = f / (f + 2.0), z = s * s;
-    mcs_v4d q = vm_splat(1.0 / 23);
-    q = q * z + 1.0 / 21;
-    q = q * z + 1.0 / 19;
-    q = q * z + 1.0 / 17;
-    q = q * z + 1.0 / 15;
-    q = q * z + 1.0 / 13;
-    q = q * z + 1.0 / 11;
-    q = q * z + 1.0 / 9;
-    q = q * z + 1.0 / 7;
-    q = q * z + 1.0 / 5;
-    q = q * z + 1.0 / 3;
+    /* Q in pairs (Estrin, as in vm_exp4): a chain of four multiplications */
+    mcs_v4d z2 = z * z, z4 = z2 * z2, z8 = z4 * z4;
+    mcs_v4d q01 = z * (1.0 / 5) + 1.0 / 3, q23 = z * (1.0 / 9) + 1.0 / 7, q45 = z * (1.0 / 13) + 1.0 / 11;
+    mcs_v4d q67 = z * (1.0 / 17) + 1.0 / 15, q89 = z * (1.0 / 21) + 1.0 / 19, q10 = vm_splat(1.0 / 23);
+    mcs_v4d q = ((q01 + z2 * q23) + z4 * (q45 + z2 * q67)) + z8 * (q89 + z2 * q10);
     mcs_v4d lm = f - s * (f - 2.0 * z * q);
     mcs_v4d dk = vm_int_to_double(k);
     return dk * VM_LN2_HI + (lm + (dk * VM_LN2_LO + c / u));
