@@ -684,36 +684,65 @@ static PIX_INLINE int central_series4(const double *A, const double *y, double *
  * general mcstat__t_tails answers), TAIL_SCALAR where the scalar path
  * decides (K underflows, df or t outside the fast range). */
 enum { TAIL_SCALAR, TAIL_DONE, TAIL_GENERAL };
+
+/* Four pixels' e = lc - A log1p(r), K = |t| f exp(e) and y = r/(1+r) from
+ * r, a, lc, f and t (vmath.h); lanes with r = 0 (no fast tail) compute
+ * with harmless stand-ins, and K only where exp(e) stays normal. */
+static PIX_INLINE void tails_k4(mcs_v4d r, mcs_v4d a, mcs_v4d lc, mcs_v4d f, mcs_v4d t, double *e4, double *k4,
+                                double *y4)
+{
+    mcs_v4i pos = (mcs_v4i)(r > 0.0);
+    a = vm_select(pos, a, vm_splat(1.0));
+    lc = vm_select(pos, lc, vm_splat(0.0));
+    f = vm_select(pos, f, vm_splat(1.0));
+    mcs_v4d at = vm_fabs(t);
+    mcs_v4d e = lc - (a + 0.5) * vm_log1p4(r);
+    mcs_v4i low = (mcs_v4i)(e < -700.0);
+    mcs_v4d x = vm_exp4(vm_select(low, vm_splat(-700.0), e));
+    mcs_v4d kv = at * f * x, y = r / (1.0 + r);
+    memcpy(e4, &e, sizeof e);
+    memcpy(k4, &kv, sizeof kv);
+    memcpy(y4, &y, sizeof y);
+}
 static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, const double *pa, const double *pf,
                                    const double *plc, const unsigned char *want, double *lower, double *upper,
                                    unsigned char *ok)
 {
     size_t idx[PIX_BLOCK + 3], nc = 0;
     double cA[PIX_BLOCK + 3], cy[PIX_BLOCK + 3], ck[PIX_BLOCK + 3], cs[4];
-    double rr[PIX_BLOCK], ee[PIX_BLOCK], kk[PIX_BLOCK];
-    /* r, then e = lc - A log1p(r) and K = |t| f exp(e) four pixels at a
-     * time (vmath.h); 0 where the fast tail has nothing to do */
+    double rr[PIX_BLOCK], ee[PIX_BLOCK], kk[PIX_BLOCK], yy[PIX_BLOCK];
+    /* r, then e, K and y four pixels at a time (tails_k4); r = 0 where the
+     * fast tail has nothing to do */
     for (size_t j = 0; j < k; j++) {
         double at = fabs(t[j]);
         rr[j] = want[j] && t[j] != 0.0 && fast_range(at, df[j]) ? at * at / df[j] : 0.0;
     }
-    for (size_t j = 0; j < k; j += 4) {
+    size_t j = 0;
+    for (; j + 4 <= k; j += 4) {
         mcs_v4d r, a, lc, f, at;
+        memcpy(&r, rr + j, sizeof r);
+        memcpy(&a, pa + j, sizeof a);
+        memcpy(&lc, plc + j, sizeof lc);
+        memcpy(&f, pf + j, sizeof f);
+        memcpy(&at, t + j, sizeof at);
+        tails_k4(r, a, lc, f, at, ee + j, kk + j, yy + j);
+    }
+    if (j < k) {
+        mcs_v4d r, a, lc, f, at;
+        double e4[4], k4[4], y4[4];
         for (int l = 0; l < 4; l++) {
             size_t i = j + l < k ? j + l : j; /* past k: a copy of pixel j */
             r[l] = rr[i];
-            a[l] = rr[i] > 0.0 ? pa[i] : 1.0;
-            lc[l] = rr[i] > 0.0 ? plc[i] : 0.0;
-            f[l] = rr[i] > 0.0 ? pf[i] : 1.0;
-            at[l] = fabs(t[i]);
+            a[l] = pa[i];
+            lc[l] = plc[i];
+            f[l] = pf[i];
+            at[l] = t[i];
         }
-        mcs_v4d e = lc - (a + 0.5) * vm_log1p4(r);
-        mcs_v4i low = (mcs_v4i)(e < -700.0); /* K computed only where exp(e) stays normal */
-        mcs_v4d x = vm_exp4(vm_select(low, vm_splat(-700.0), e));
-        mcs_v4d kv = at * f * x;
-        for (int l = 0; l < 4 && j + l < k; l++) {
-            ee[j + l] = e[l];
-            kk[j + l] = kv[l];
+        tails_k4(r, a, lc, f, at, e4, k4, y4);
+        for (int l = 0; j + l < k; l++) {
+            ee[j + l] = e4[l];
+            kk[j + l] = k4[l];
+            yy[j + l] = y4[l];
         }
     }
     for (size_t j = 0; j < k; j++) {
@@ -729,8 +758,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
         if (!(rr[j] > 0.0)) /* outside the fast range (rr's first loop) */
             continue;
         ok[j] = TAIL_GENERAL; /* unless answered below, as for t_tail_core */
-        double a = pa[j], A = a + 0.5, r = rr[j];
-        double y = r / (1.0 + r), x = 1.0 / (1.0 + r);
+        double a = pa[j], A = a + 0.5, r = rr[j], y = yy[j];
         if (r < 1.0 && A * y > 40.0)
             continue;
         if (!(ee[j] > -700.0)) {
@@ -740,7 +768,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
         double kj = kk[j];
         if (r >= 1.0) {
             double sum;
-            if (!upper_series(a, A, x, &sum))
+            if (!upper_series(a, A, 1.0 / (1.0 + r), &sum))
                 continue;
             double u = kj * sum / (2.0 * a);
             lower[j] = tj > 0.0 ? 1.0 - u : u;
