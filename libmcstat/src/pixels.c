@@ -584,6 +584,20 @@ static int criticals(pix_ctx *c, double df, const t_prefactor *pf, double *c0, d
 static inline double dmin(double u, double v) { return u < v ? u : v; }
 static inline double dmax(double u, double v) { return u > v ? u : v; }
 
+/* x / d, by a multiplication where d is a power of two (x * (1/d) is then
+ * x / d exactly): the divider bounds the block loops, and seed counts are
+ * often powers of two.  inv = 1/d; pow2 is the same for a whole loop,
+ * which the compiler then unswitches. */
+static PIX_INLINE double div_by(double x, double d, double inv, int pow2)
+{
+    return pow2 ? x * inv : x / d;
+}
+
+static int pow2_count(size_t n)
+{
+    return n > 0 && (n & (n - 1)) == 0;
+}
+
 /* A block's statistics, computed pixel by pixel in straight-line loops the
  * compiler vectorises (no branches, no calls, no floating-point operation
  * done conditionally, which -ftrapping-math forbids it to speculate): the
@@ -608,9 +622,11 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
                              double ny, const mcstat_dd *my, const double *m2y, const unsigned char *by, double mu0,
                              block_stats *bs)
 {
+    const int px = pow2_count((size_t)nx), py = pow2_count((size_t)ny);
+    const double ix = 1.0 / nx, iy = 1.0 / ny;
     for (size_t j = 0; j < k; j++) {
         double vx = m2x[j] / (nx - 1.0), vy = m2y[j] / (ny - 1.0);
-        double a = vx / nx, b = vy / ny, se = sqrt(a + b);
+        double a = div_by(vx, nx, ix, px), b = div_by(vy, ny, iy, py), se = sqrt(a + b);
         mcstat_dd diff = dd_add(mx[j], dd_neg(my[j]));
         mcstat_dd sh = dd_add(diff, (mcstat_dd){-mu0, 0.0});
         double m = dmax(a, b), ra = a / m, rb = b / m;
@@ -1017,8 +1033,8 @@ static void put_block(const pix_ctx *c, size_t i0, size_t k, const block_stats *
  * additions are the same, in the same order. */
 #define MOMENT_TILE 8
 #define DEFINE_MOMENT_TILE(NAME, T, RANGE)                                                                 \
-    static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t j0, size_t len, double *sum,  \
-                                double *s1, double *s2, double *amax)                                      \
+    static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t j0, size_t len, double dn,     \
+                                double inv, int p2, double *sum, double *s1, double *s2, double *amax)     \
     {                                                                                                      \
         double a[MOMENT_TILE], b[MOMENT_TILE], q[MOMENT_TILE], mx[MOMENT_TILE];                            \
         for (size_t l = 0; l < len; l++)                                                                   \
@@ -1034,9 +1050,8 @@ static void put_block(const pix_ctx *c, size_t i0, size_t k, const block_stats *
                 }                                                                                          \
             }                                                                                              \
         }                                                                                                  \
-        double dn = (double)n;                                                                             \
         for (size_t l = 0; l < len; l++)                                                                   \
-            a[l] /= dn;                                                                                    \
+            a[l] = div_by(a[l], dn, inv, p2);                                                              \
         for (size_t s = 0; s < n; s++) {                                                                   \
             const T *row = x + s * stride + j0;                                                            \
             for (size_t l = 0; l < len; l++) {                                                             \
@@ -1068,13 +1083,14 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
                      mcstat_dd *mean, double *m2, unsigned char *bad)                                      \
     {                                                                                                      \
         double sum[PIX_BLOCK], amax[PIX_BLOCK], s1[PIX_BLOCK], s2[PIX_BLOCK];                              \
-        double dn = (double)n;                                                                             \
+        const double dn = (double)n, inv = 1.0 / dn;                                                       \
+        const int p2 = pow2_count(n);                                                                      \
         if (ch == 1 && !w) {                                                                               \
             size_t j = 0;                                                                                  \
             for (; j + MOMENT_TILE <= k; j += MOMENT_TILE)                                                 \
-                TILE(x + i0, n, stride, j, MOMENT_TILE, sum, s1, s2, amax);                                \
+                TILE(x + i0, n, stride, j, MOMENT_TILE, dn, inv, p2, sum, s1, s2, amax);                   \
             for (; j < k; j++)                                                                             \
-                TILE(x + i0, n, stride, j, 1, sum, s1, s2, amax);                                          \
+                TILE(x + i0, n, stride, j, 1, dn, inv, p2, sum, s1, s2, amax);                             \
         } else {                                                                                           \
             for (size_t j = 0; j < k; j++)                                                                 \
                 sum[j] = amax[j] = s1[j] = s2[j] = 0.0;                                                    \
@@ -1090,7 +1106,7 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
                 }                                                                                          \
             }                                                                                              \
             for (size_t j = 0; j < k; j++)                                                                 \
-                sum[j] /= dn; /* the mean to a few ulps; the second pass corrects it */                    \
+                sum[j] = div_by(sum[j], dn, inv, p2); /* the mean to a few ulps; the second pass corrects it */ \
             for (size_t s = 0; s < n; s++) {                                                               \
                 const T *row = x + s * stride + i0 * ch;                                                   \
                 for (size_t j = 0; j < k; j++) {                                                           \
@@ -1104,7 +1120,7 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
             }                                                                                              \
         }                                                                                                  \
         for (size_t j = 0; j < k; j++) {                                                                   \
-            double c1 = s1[j] / dn;                                                                        \
+            double c1 = div_by(s1[j], dn, inv, p2);                                                        \
             mean[j] = dd_two_sum(sum[j], c1);                                                              \
             double v2 = s2[j] - s1[j] * c1;                                                                \
             m2[j] = v2 > 0.0 ? v2 : 0.0;                                                                   \
