@@ -701,6 +701,20 @@ static PIX_INLINE int central_series4(const double *A, const double *y, double *
  * decides (K underflows, df or t outside the fast range). */
 enum { TAIL_SCALAR, TAIL_DONE, TAIL_GENERAL };
 
+/* lower, upper <- 1 - u, u for t > 0, else u, 1 - u: by masks, as t's sign
+ * is a coin toss under the null (a branch on it was mispredicted for every
+ * other pixel). */
+static PIX_INLINE void put_tails(double t, double u, double *lower, double *upper)
+{
+    double v = 1.0 - u;
+    uint64_t m = (uint64_t)0 - (uint64_t)(t > 0.0), bu, bv;
+    memcpy(&bu, &u, sizeof bu);
+    memcpy(&bv, &v, sizeof bv);
+    uint64_t lo = (bv & m) | (bu & ~m), up = (bu & m) | (bv & ~m);
+    memcpy(lower, &lo, sizeof lo);
+    memcpy(upper, &up, sizeof up);
+}
+
 /* Four pixels' e = lc - A log1p(r), K = |t| f exp(e) and y = r/(1+r) from
  * r, a, lc, f and t (vmath.h); lanes with r = 0 (no fast tail) compute
  * with harmless stand-ins, and K only where exp(e) stays normal. */
@@ -787,8 +801,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             if (!upper_series(a, A, 1.0 / (1.0 + r), &sum))
                 continue;
             double u = kj * sum / (2.0 * a);
-            lower[j] = tj > 0.0 ? 1.0 - u : u;
-            upper[j] = tj > 0.0 ? u : 1.0 - u;
+            put_tails(tj, u, &lower[j], &upper[j]);
             ok[j] = TAIL_DONE;
         } else {
             idx[nc] = j;
@@ -843,8 +856,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
                 nf++;
                 continue;
             }
-            lower[j] = t[j] > 0.0 ? 1.0 - u : u;
-            upper[j] = t[j] > 0.0 ? u : 1.0 - u;
+            put_tails(t[j], u, &lower[j], &upper[j]);
             ok[j] = TAIL_DONE;
         }
     }
@@ -861,8 +873,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
                 continue;
             size_t j = idx[g + l];
             double u = ck[g + l] * h[l] / (2.0 * cA[g + l]);
-            lower[j] = t[j] > 0.0 ? 1.0 - u : u;
-            upper[j] = t[j] > 0.0 ? u : 1.0 - u;
+            put_tails(t[j], u, &lower[j], &upper[j]);
             ok[j] = TAIL_DONE;
         }
     }
