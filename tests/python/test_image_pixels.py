@@ -177,3 +177,16 @@ def test_handed_over_sides_are_released_after_the_tests(rng, monkeypatch):
     # sides not handed over are the caller's: left as they are
     mi.compare(y, x)
     assert x.shape == (6, 20, 30, 3)
+
+
+@pytest.mark.parametrize("channels", ["luminance", "rgb"])
+def test_map_background_is_the_reference_mean_luminance(rng, channels):
+    """The map's grey background comes from the means the tests computed
+    (the luminance's, or the channels' weighted): the reference's mean
+    luminance, as a separate pass over the renders would give it."""
+    x = rng.normal(1.0, 0.3, (5, 12, 17, 3)).astype(np.float32)
+    y = rng.normal(2.0, 0.3, (5, 12, 17, 3)).astype(np.float32)
+    res = mi.compare(y, x, channels=channels)
+    want = np.einsum("...c,c->...", y.astype(np.float64).mean(axis=0), np.asarray(mi.LUMINANCE_WEIGHTS))
+    np.testing.assert_allclose(res.reference_luminance, want, rtol=1e-14)
+    assert res.reference_luminance.shape == (12, 17)

@@ -751,6 +751,10 @@ def _reference_luminance(side: Side) -> np.ndarray:
         mean = side.mean
     else:
         mean = side.data.mean(axis=0, dtype=np.float64) if side.data.dtype != np.float64 else side.data.mean(axis=0)
+    return _luminance_of_means(mean)
+
+
+def _luminance_of_means(mean: np.ndarray) -> np.ndarray:
     if mean.shape[-1] >= 3:
         return np.einsum("...c,c->...", mean[..., :3], np.asarray(LUMINANCE_WEIGHTS))
     return mean[..., 0]
@@ -863,10 +867,11 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         raise ImageInputError("both sides must be per-seed renders, or both per-pixel summaries (.npz)")
     if ref.shape != cand.shape:
         raise ImageInputError(f"the reference is {_fmt_shape(ref.shape)} but the candidate is {_fmt_shape(cand.shape)}")
-    # The map's background: per-seed luminance tests compute the reference's
-    # mean luminance anyway (est_r below), so only other inputs take a pass
+    # The map's background: per-seed tests compute the reference's means
+    # anyway (est_r below: the luminance's, or each channel's, whose
+    # weighted sum is the mean luminance), so only other inputs take a pass
     # over the reference for it.
-    bg_from_test = channels == "luminance" and block is None and isinstance(ref, Samples)
+    bg_from_test = channels in ("luminance", "rgb", "channels") and block is None and isinstance(ref, Samples)
     bg = None if bg_from_test else _reference_luminance(ref)
     ref = _select(ref, channels)
     cand = _select(cand, channels)
@@ -935,8 +940,8 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         assert isinstance(cand, Summary) and isinstance(ref, Summary)
         se, dfw = _welch_se_df(cand, ref)
     t3 = time.perf_counter()
-    if bg is None:
-        bg = est_r[..., 0]
+    if bg is None:  # luminance of the per-channel means (or the luminance's mean) the test computed
+        bg = _luminance_of_means(est_r)
     tested = status == 0
     sig = padj <= alpha
     dec = np.zeros(pvalue.shape, dtype=np.int8)
