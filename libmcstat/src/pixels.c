@@ -164,11 +164,6 @@ static PIX_INLINE int upper_series(double a, double A, double x, double *sum)
  * adds up, so beyond CF_STEPS (large df, x near 1) it returns 0 and the
  * general routine answers. */
 #define CF_STEPS 40
-static PIX_INLINE mcs_v4d vm_fabs(mcs_v4d v)
-{
-    return (mcs_v4d)((mcs_v4i)v & (mcs_v4i){INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX});
-}
-
 /* h of four pixels (a[l], x[l]) at once; ok[l] = 0 where a lane has not
  * converged in CF_STEPS.  A lane's h stops changing when it converges, so
  * every lane gets what it would alone, bit for bit. */

@@ -12,6 +12,8 @@
 #ifndef MCSTAT_VMATH_H
 #define MCSTAT_VMATH_H
 
+#include <stdint.h>
+
 /* Vectors pass by value only into these always-inlined functions, so the
  * warning that a 32-byte vector's calling convention differs without AVX
  * does not apply; off for the files that include this one (pixels.c and
@@ -37,6 +39,12 @@ static inline __attribute__((always_inline)) mcs_v4d vm_splat(double v)
 static inline __attribute__((always_inline)) mcs_v4d vm_select(mcs_v4i mask, mcs_v4d a, mcs_v4d b)
 {
     return (mcs_v4d)(((mcs_v4i)a & mask) | ((mcs_v4i)b & ~mask));
+}
+
+/* |v| lane by lane: the sign bits cleared */
+static inline __attribute__((always_inline)) mcs_v4d vm_fabs(mcs_v4d v)
+{
+    return (mcs_v4d)((mcs_v4i)v & (mcs_v4i){INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX});
 }
 
 /* small integers (|k| < 2^51) to double, exactly, without a conversion

@@ -262,8 +262,9 @@ def compare(reference, candidate, *, seed_axis: Optional[int] = None, spp=None, 
     for both sides or (reference, candidate)."""
     t0 = time.perf_counter()
     spp_r, spp_c = image_exr.spp_pair(spp)
-    # handed over, not kept here: compare drops the renders once tested
-    sides = _Owned(_load(reference, seed_axis, spp_r)), _Owned(_load(candidate, seed_axis, spp_c))
+    # what this function loaded is handed over, not kept here (compare drops
+    # it once tested); the caller's own arrays are passed as they are
+    sides = _load(reference, seed_axis, spp_r), _load(candidate, seed_axis, spp_c)
     t_load = time.perf_counter() - t0
     res = _compare(*sides, seed_axis=seed_axis, **kw)
     res.timings["load_and_channels"] += t_load
@@ -271,14 +272,16 @@ def compare(reference, candidate, *, seed_axis: Optional[int] = None, spp=None, 
 
 
 def _load(x, seed_axis: Optional[int], spp: Optional[int] = None):
+    """A side given by file paths, loaded and handed over (`_Owned`); any
+    other side as it is."""
     if isinstance(x, (str, os.PathLike)) or (isinstance(x, (list, tuple)) and
                                              all(isinstance(p, (str, os.PathLike)) for p in x)):
         paths = [os.fspath(x)] if isinstance(x, (str, os.PathLike)) else [os.fspath(p) for p in x]
         if seed_axis is None and _kind_of(paths) == "stack":
             # the array as it is: the comparison settles its seeds axis
             # with the other side's shape in view
-            return _load_stack_npy(paths[0])
-        return load_side(paths, seed_axis=seed_axis, spp=spp)
+            return _Owned(_load_stack_npy(paths[0]))
+        return _Owned(load_side(paths, seed_axis=seed_axis, spp=spp))
     return x
 
 

@@ -190,3 +190,21 @@ def test_map_background_is_the_reference_mean_luminance(rng, channels):
     want = np.einsum("...c,c->...", y.astype(np.float64).mean(axis=0), np.asarray(mi.LUMINANCE_WEIGHTS))
     np.testing.assert_allclose(res.reference_luminance, want, rtol=1e-14)
     assert res.reference_luminance.shape == (12, 17)
+
+
+def test_app_compare_leaves_the_callers_sides_alone(rng, tmp_path):
+    """mcstat_app.image.compare hands over only what it loaded from files:
+    a caller's own Samples keep their data; file sides give the same
+    result."""
+    from mcstat_app import image as app
+
+    x = rng.normal(1.0, 0.1, (6, 10, 14, 3)).astype(np.float32)
+    y = rng.normal(1.0, 0.1, (6, 10, 14, 3)).astype(np.float32)
+    sx, sy = mi.Samples(x, ["R", "G", "B"]), mi.Samples(y, ["R", "G", "B"])
+    res = app.compare(sy, sx)
+    assert sx.data is x and sy.data is y
+    np.save(tmp_path / "ref.npy", y)
+    res_files = app.compare(str(tmp_path / "ref.npy"), sx)
+    assert sx.data is x
+    np.testing.assert_array_equal(res_files.pvalue, res.pvalue)
+    np.testing.assert_array_equal(res_files.detectable_bias, res.detectable_bias)

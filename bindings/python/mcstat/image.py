@@ -844,9 +844,11 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     """
     t0 = time.perf_counter()
     scratch = None  # a handed-over render's memory, reused by the adjustment
-    release = isinstance(reference, _Owned) and isinstance(candidate, _Owned)
-    if release:
-        reference, candidate = reference.take(), candidate.take()
+    own_r, own_c = isinstance(reference, _Owned), isinstance(candidate, _Owned)
+    if own_r:
+        reference = reference.take()
+    if own_c:
+        candidate = candidate.take()
     if block is not None and (isinstance(block, bool) or not isinstance(block, (int, np.integer)) or block < 1):
         raise InvalidArgumentError(f"block must be a positive integer (the block's side in pixels), got {block!r}")
     if not (0.0 < detect_power < 1.0):
@@ -904,10 +906,15 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         r = _core._t_test_2_pixels(xc, yr, weights, _core._alternative_code(alternative), alpha,
                                    omit_nan=nan_policy == "omit")
         shp = cand.shape
-        if release:  # the renders have been read (see _Owned)
-            scratch = _scratch_for_adjust(r["pvalue"].size, method, (xc, yr))
-            reference = candidate = None
-            ref.data = cand.data = None  # type: ignore[assignment]
+        # the handed-over renders have been read (see _Owned); a side not
+        # handed over is the caller's and stays as it is
+        scratch = _scratch_for_adjust(r["pvalue"].size, method, [a for a, own in ((xc, own_c), (yr, own_r)) if own])
+        if own_r:
+            reference = None
+            ref.data = None  # type: ignore[assignment]
+        if own_c:
+            candidate = None
+            cand.data = None  # type: ignore[assignment]
         del xc, yr
         pvalue, stat, status = (r[k].reshape(shp) for k in ("pvalue", "statistic", "status"))
         est_c, est_r = r["mean_x"].reshape(shp), r["mean_y"].reshape(shp)  # no stacked copy: memory
