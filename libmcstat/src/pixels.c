@@ -663,30 +663,77 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
  * taken once per four pixels instead of mispredicted once per pixel.  A
  * lane that has converged goes on adding terms below its rounding; the
  * sums are those of t_tail_core to a few ulps. */
-/* The central sums of four pixels (A = a + 1/2, y); 0 if one of them has
- * not converged in CENTRAL_TERMS terms. */
-static PIX_INLINE int central_series4(const double *A, const double *y, double *sum)
+/* Two terms of the central series of four pixels: term <- term q0 q1 and
+ * s <- s + term q0 + term q0 q1, q_i = (A + j + i) / (3/2 + j + i) y; the
+ * loop-carried chain is one multiplication per two terms. */
+static PIX_INLINE void central_step2(mcs_v4d va, mcs_v4d vy, int j, mcs_v4d *term, mcs_v4d *s)
 {
-    mcs_v4d va = {A[0], A[1], A[2], A[3]}, vy = {y[0], y[1], y[2], y[3]};
-    mcs_v4d term = {1.0, 1.0, 1.0, 1.0}, s = term;
-    for (int j = 0; j < CENTRAL_TERMS; j += 4) { /* four terms between the tests of convergence */
-        mcs_v4d q0 = (va + (double)j) * rcp_central[j] * vy, q1 = (va + (double)(j + 1)) * rcp_central[j + 1] * vy;
-        mcs_v4d t1 = term * q0;
-        term = term * (q0 * q1);
-        s = s + (t1 + term);
-        q0 = (va + (double)(j + 2)) * rcp_central[j + 2] * vy;
-        q1 = (va + (double)(j + 3)) * rcp_central[j + 3] * vy;
-        t1 = term * q0;
-        term = term * (q0 * q1);
-        s = s + (t1 + term);
-        mcs_v4i done = (mcs_v4i)(term <= 0.25 * DBL_EPSILON * s);
-        if (done[0] & done[1] & done[2] & done[3]) {
-            for (int l = 0; l < 4; l++)
-                sum[l] = s[l];
-            return 1;
+    mcs_v4d q0 = (va + (double)j) * rcp_central[j] * vy, q1 = (va + (double)(j + 1)) * rcp_central[j + 1] * vy;
+    mcs_v4d t1 = *term * q0;
+    *term = *term * (q0 * q1);
+    *s = *s + (t1 + *term);
+}
+
+/* Four pixels' central series from term j on, four terms a step, until
+ * all four have converged (until_done) or up to term jend; returns the
+ * term it stopped at.  A converged lane stays converged (its terms only
+ * fall from there on). */
+static PIX_INLINE int central_run4(mcs_v4d va, mcs_v4d vy, mcs_v4d *term, mcs_v4d *s, int j, int jend, int until_done)
+{
+    for (; j < jend; j += 4) { /* four terms between the tests of convergence */
+        central_step2(va, vy, j, term, s);
+        central_step2(va, vy, j + 2, term, s);
+        if (until_done) {
+            mcs_v4i done = (mcs_v4i)(*term <= 0.25 * DBL_EPSILON * *s);
+            if (done[0] & done[1] & done[2] & done[3])
+                return j + 4;
         }
     }
-    return 0;
+    return j;
+}
+
+/* The central sums of eight pixels (A = a + 1/2, y), as many terms for all
+ * eight as the slowest needs; 0 if one has not converged in CENTRAL_TERMS
+ * terms.  joint (AVX2): the two vectors of four side by side, so that
+ * their chains overlap in the pipeline; else (SSE2, whose sixteen
+ * registers the side-by-side loop overflows) one after the other, the one
+ * that stopped first taken on to where the other stopped: the same terms,
+ * the same sums, bit for bit. */
+static PIX_INLINE int central_series8(const double *A, const double *y, double *sum, int joint)
+{
+    mcs_v4d va0 = {A[0], A[1], A[2], A[3]}, vy0 = {y[0], y[1], y[2], y[3]};
+    mcs_v4d va1 = {A[4], A[5], A[6], A[7]}, vy1 = {y[4], y[5], y[6], y[7]};
+    mcs_v4d t0 = vm_splat(1.0), s0 = t0, t1 = t0, s1 = t0;
+    int ok = 0;
+    if (joint) {
+        for (int j = 0; j < CENTRAL_TERMS; j += 4) { /* four terms between the tests of convergence */
+            central_step2(va0, vy0, j, &t0, &s0);
+            central_step2(va1, vy1, j, &t1, &s1);
+            central_step2(va0, vy0, j + 2, &t0, &s0);
+            central_step2(va1, vy1, j + 2, &t1, &s1);
+            mcs_v4i done = (mcs_v4i)(t0 <= 0.25 * DBL_EPSILON * s0) & (mcs_v4i)(t1 <= 0.25 * DBL_EPSILON * s1);
+            if (done[0] & done[1] & done[2] & done[3]) {
+                ok = 1;
+                break;
+            }
+        }
+    } else {
+        int j0 = central_run4(va0, vy0, &t0, &s0, 0, CENTRAL_TERMS, 1);
+        int j1 = central_run4(va1, vy1, &t1, &s1, 0, CENTRAL_TERMS, 1);
+        mcs_v4i done = (mcs_v4i)(t0 <= 0.25 * DBL_EPSILON * s0) & (mcs_v4i)(t1 <= 0.25 * DBL_EPSILON * s1);
+        ok = done[0] & done[1] & done[2] & done[3] ? 1 : 0;
+        if (j0 < j1)
+            central_run4(va0, vy0, &t0, &s0, j0, j1, 0);
+        else if (j1 < j0)
+            central_run4(va1, vy1, &t1, &s1, j1, j0, 0);
+    }
+    if (!ok)
+        return 0;
+    for (int l = 0; l < 4; l++) {
+        sum[l] = s0[l];
+        sum[l + 4] = s1[l];
+    }
+    return 1;
 }
 
 /* Both tails of t(df) at t[j] for the k pixels with want[j] (prefactors
@@ -731,10 +778,10 @@ static PIX_INLINE void tails_k4(mcs_v4d r, mcs_v4d a, mcs_v4d lc, mcs_v4d f, mcs
 }
 static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, const double *pa, const double *pf,
                                    const double *plc, const unsigned char *want, double *lower, double *upper,
-                                   unsigned char *ok)
+                                   unsigned char *ok, int joint)
 {
     size_t idx[PIX_BLOCK + 3], nc = 0;
-    double cA[PIX_BLOCK + 3], cy[PIX_BLOCK + 3], ck[PIX_BLOCK + 3], cs[4];
+    double cA[PIX_BLOCK + 3], cy[PIX_BLOCK + 3], ck[PIX_BLOCK + 3], cs[8];
     double rr[PIX_BLOCK], ee[PIX_BLOCK], kk[PIX_BLOCK], yy[PIX_BLOCK];
     /* r, then e, K and y four pixels at a time (tails_k4); r = 0 where the
      * fast tail has nothing to do */
@@ -810,8 +857,8 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
      * of y (which sets the series' length), lanes of a kind run together.
      * A counting sort into sidx, sA, sy, sk. */
     enum { Y_BINS = 8 };
-    size_t cnt[Y_BINS + 1] = {0}, sidx[PIX_BLOCK + 3];
-    double sA[PIX_BLOCK + 3], sy[PIX_BLOCK + 3], sk[PIX_BLOCK + 3];
+    size_t cnt[Y_BINS + 1] = {0}, sidx[PIX_BLOCK + 7];
+    double sA[PIX_BLOCK + 7], sy[PIX_BLOCK + 7], sk[PIX_BLOCK + 7];
     unsigned char bin[PIX_BLOCK];
     for (size_t g = 0; g < nc; g++) {
         uint64_t bits;
@@ -829,7 +876,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
         sy[o] = cy[g];
         sk[o] = ck[g];
     }
-    for (size_t g = nc; g % 4; g++) { /* padding lanes: converged at once */
+    for (size_t g = nc; g % 8; g++) { /* padding lanes: converged at once */
         sA[g] = 1.0;
         sy[g] = 0.0;
     }
@@ -837,10 +884,10 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
      * continued fraction, four at a time too (a, x, K in cA, cy, ck; their
      * index in idx) */
     size_t nf = 0;
-    for (size_t g = 0; g < nc; g += 4) {
-        if (!central_series4(sA + g, sy + g, cs))
+    for (size_t g = 0; g < nc; g += 8) {
+        if (!central_series8(sA + g, sy + g, cs, joint))
             continue;
-        for (size_t l = 0; l < 4 && g + l < nc; l++) {
+        for (size_t l = 0; l < 8 && g + l < nc; l++) {
             size_t j = sidx[g + l];
             double c = 2.0 * sk[g + l] * cs[l], u = 0.5 - 0.5 * c;
             if (!(c <= 0.96)) {
@@ -892,7 +939,7 @@ int mcstat__t_tails_block(size_t n, const double *t, const double *df, double *l
             pa[j] = 0.5 * (want[j] ? d : 1.0);
             t_prefactor_parts(pa[j], &pf[j], &plc[j]);
         }
-        block_tails(k, t + i0, df + i0, pa, pf, plc, want, lower + i0, upper + i0, ok);
+        block_tails(k, t + i0, df + i0, pa, pf, plc, want, lower + i0, upper + i0, ok, 0);
         for (size_t j = 0; j < k; j++)
             done[i0 + j] = ok[j] == TAIL_DONE;
     }
@@ -1174,7 +1221,8 @@ typedef struct {
     double mu0;
 } block_input;
 
-static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t k, block_work *b)
+/* joint: the AVX2 build's central series (central_series8) */
+static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t k, block_work *b, int joint)
 {
     if (in->xf) {
         block_moments_f32(in->xf, in->nx, in->xs, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
@@ -1187,19 +1235,20 @@ static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t 
     unsigned char want[PIX_BLOCK];
     for (size_t j = 0; j < k; j++)
         want[j] = b->st.kind[j] == PIX_FAST;
-    block_tails(k, b->st.t, b->st.df, b->st.pa, b->st.pf, b->st.plc, want, b->st.lower, b->st.upper, b->st.tail_ok);
+    block_tails(k, b->st.t, b->st.df, b->st.pa, b->st.pf, b->st.plc, want, b->st.lower, b->st.upper, b->st.tail_ok,
+                joint);
 }
 
 static void block_pass(const block_input *in, size_t i0, size_t k, block_work *b)
 {
-    block_pass_body(in, i0, k, b);
+    block_pass_body(in, i0, k, b, 0);
 }
 
 #if PIX_AVX2
 __attribute__((target("avx2"))) static void block_pass_avx2(const block_input *in, size_t i0, size_t k,
                                                              block_work *b)
 {
-    block_pass_body(in, i0, k, b);
+    block_pass_body(in, i0, k, b, 1);
 }
 #endif
 
