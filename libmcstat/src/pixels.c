@@ -15,7 +15,7 @@
  *     over the block;
  *   - the tails (t_tail_core's series, specialised to b = 1/2: the cost
  *     does not depend on the variety of df) for the whole block: exp and
- *     log1p four pixels at a time (vmath.h), the central series four
+ *     log1p four pixels at a time (vmath.h), the central series eight
  *     pixels a step;
  *   - the critical values from a per-call table of t quantiles in 1/df
  *     (solved lazily, the same whichever pixels ask), interpolated, and the
@@ -477,9 +477,6 @@ static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, 
 
 /* ---- the fast path ------------------------------------------------------------ */
 
-/* The critical values (c0, c1) of t(df) for the alternative, as
- * mcstat__finish asks them: two-sided -+q(alpha/2); "less" -q(alpha), +Inf;
- * "greater" -Inf, q(alpha). */
 /* Lagrange's values through nodes 0..4 (v5) and 0..5 (v6) at s: the
  * weights prod_{m != i} (s - m) / prod_{m != i} (i - m), their numerators
  * from prefix and suffix products, their denominators constants (six
@@ -544,6 +541,9 @@ static double qt_interp(pix_ctx *c, double df, int *exact)
     return v6;
 }
 
+/* The critical values (c0, c1) of t(df) for the alternative, as
+ * mcstat__finish asks them: two-sided -+q(alpha/2); "less" -q(alpha), +Inf;
+ * "greater" -Inf, q(alpha). */
 static int criticals(pix_ctx *c, double df, const t_prefactor *pf, double *c0, double *c1)
 {
     double q;
@@ -657,10 +657,11 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
 }
 
 /* ---- the tails of a block ----------------------------------------------
- * t_tail_core for many pixels: the prefactors and the upper series pixel by
- * pixel, the central series (most pixels under the null) four pixels at a
- * time, so its loop runs as long as the slowest of four and its exit is
- * taken once per four pixels instead of mispredicted once per pixel.  A
+ * t_tail_core for many pixels: the prefactors four pixels at a time, the
+ * upper series pixel by pixel (few pixels), the central series (most
+ * pixels under the null) eight at a time, so its loop runs as long as the
+ * slowest of eight and its exit is taken once per eight pixels instead of
+ * mispredicted once per pixel; the continued fraction four at a time.  A
  * lane that has converged goes on adding terms below its rounding; the
  * sums are those of t_tail_core to a few ulps. */
 /* Two terms of the central series of four pixels: term <- term q0 q1 and
@@ -1073,13 +1074,6 @@ static void put_block(const pix_ctx *c, size_t i0, size_t k, const block_stats *
         o->status[i0 + j] = MCSTAT_OK;
 }
 
-/* Moments of pixels i0..i0+k-1 of one side into the block's arrays; the
- * loop over seeds is outside, the contiguous pixels inside.  bad[j] is set
- * where the fast path cannot use the sums (non-finite, extreme). */
-/* RANGE: whether an unweighted value can lie outside [FAST_LO, FAST_HI]: a
- * double can; a float cannot (its magnitudes span 2^-149 to 2^128), so its
- * loop skips the |v| maximum and its checks are the sum's finiteness only.
- * A weighted sum of channels is checked whatever the type. */
 /* The unweighted single-channel case (the usual one) goes MOMENT_TILE
  * pixels at a time with the seeds inside, so that the sums stay in
  * registers instead of being loaded and stored once per seed; the

@@ -56,7 +56,7 @@ MCSTAT_HIDDEN int mcstat__t_upper_quantile_fast(double p, double df, double *q);
  * where AVX2 is there; for the tests, which compare the two bit for bit. */
 MCSTAT_HIDDEN void mcstat__pixels_baseline_only(int on);
 /* pixels.c: the per-pixel path's block tails (vector exp and log1p, the
- * central series four at a time) for n pairs; done[i] where they answered. */
+ * central series eight at a time) for n pairs; done[i] where they answered. */
 MCSTAT_HIDDEN int mcstat__t_tails_block(size_t n, const double *t, const double *df, double *lower, double *upper,
                                         unsigned char *done);
 MCSTAT_HIDDEN int mcstat__chisq_tails(double x, double df, mcstat_tails *t);

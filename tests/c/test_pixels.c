@@ -104,7 +104,7 @@ static void ref_row(char **f, int nf, void *ctx)
         CHECK_MSG(fabs(lk - g.logk) <= 1e-13 * fmax(1.0, fabs(g.logk)), "logk %.17g vs %.17g", lk, g.logk);
 }
 
-/* The per-pixel path's block tails (vector exp and log1p, four central
+/* The per-pixel path's block tails (vector exp and log1p, eight central
  * series at a time) on the same points, to the same bound. */
 static void check_block_tails(const ref_stats *r)
 {
