@@ -1048,6 +1048,25 @@ static int fast_values(pix_ctx *c, block_stats *bs, size_t j)
     return 1;
 }
 
+/* done[j] and p[j] for the block: where the block passes answered the
+ * tails (and the bounds, with intervals), the p-value in a loop that
+ * vectorises (lower and upper elsewhere hold a previous block's numbers or
+ * the zeros of calloc, and are not used); fast_values for the other fast
+ * pixels. */
+static void block_values(pix_ctx *c, size_t k, block_stats *bs)
+{
+    const int alt = c->alternative, iv = c->intervals;
+    for (size_t j = 0; j < k; j++) {
+        double lo = bs->lower[j], up = bs->upper[j];
+        double two = dmin(1.0, 2.0 * dmin(lo, up));
+        bs->p[j] = alt == MCSTAT_LESS ? lo : alt == MCSTAT_GREATER ? up : two;
+        bs->done[j] = bs->kind[j] == PIX_FAST && bs->tail_ok[j] == TAIL_DONE && (!iv || bs->bound_ok[j]);
+    }
+    for (size_t j = 0; j < k; j++)
+        if (!bs->done[j] && bs->kind[j] == PIX_FAST)
+            bs->done[j] = (unsigned char)fast_values(c, bs, j);
+}
+
 /* The block's outputs, array by array, as if every pixel were a fast one
  * (done[j] = 1); the others are then overwritten, each by its own path. */
 static void put_block(const pix_ctx *c, size_t i0, size_t k, const block_stats *bs, const mcstat_dd *mx,
@@ -1269,7 +1288,7 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
     c.first = MCSTAT_OK;
     plane px = {xf, xd, xs, channels, w}, py = {yf, yd, ys, channels, w};
     block_input in = {xf, yf, xd, yd, w, nx, xs, ny, ys, channels, mu0};
-    block_work *b = malloc(sizeof *b); /* tens of KiB: not on a caller's thread stack */
+    block_work *b = calloc(1, sizeof *b); /* tens of KiB: not on a caller's thread stack */
     int fast_ok = nx >= 2 && ny >= 2 && b;
 #if PIX_AVX2
     int avx2 = !pixels_baseline_only && !no_avx2_requested() && __builtin_cpu_supports("avx2");
@@ -1292,8 +1311,7 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
 #endif
                     block_bounds_pass(k, alternative, &b->st);
             }
-            for (size_t j = 0; j < k; j++)
-                b->st.done[j] = b->st.kind[j] == PIX_FAST && fast_values(&c, &b->st, j);
+            block_values(&c, k, &b->st);
             put_block(&c, i0, k, &b->st, b->mx, b->my);
         }
         for (size_t j = 0; j < k; j++) {
