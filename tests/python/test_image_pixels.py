@@ -86,6 +86,29 @@ def test_results_do_not_depend_on_the_thread_count(rng):
             np.testing.assert_array_equal(r[k], runs[0][k])
 
 
+def test_image_scale_outputs_are_ordinary_arrays(rng):
+    # 2^19 pixels: each float64 output is 4 MiB, allocated apart from
+    # NumPy's allocator (output_array.hpp); the same numbers as the pixels
+    # computed in small pieces, writable, and alive as long as a view is
+    x, y = stacks(rng, k=2, m=3, shape=(512, 1024), dtype=np.float32)
+    r = _core._t_test_2_pixels(x, y, None, 0, 0.05, intervals=True)
+    views = {k: v[::7, 3:] for k, v in r.items()}
+    rows = [_core._t_test_2_pixels(np.ascontiguousarray(x[:, i:i + 8]), np.ascontiguousarray(y[:, i:i + 8]), None,
+                                   0, 0.05, intervals=True)
+            for i in range(0, 512, 8)]
+    for k, v in r.items():
+        assert v.flags.writeable and v.flags.c_contiguous and v.shape == (512, 1024)
+        np.testing.assert_array_equal(v, np.concatenate([piece[k] for piece in rows]))
+    adjusted = mcstat.p_adjust(r["pvalue"])
+    np.testing.assert_array_equal(adjusted, mcstat.p_adjust(r["pvalue"].tolist()))
+    want = {k: v[::7, 3:].copy() for k, v in r.items()}
+    del r, rows
+    _ = [np.ones(1 << 20) for _ in range(8)]  # memory freed too early would be reused here
+    for k, v in views.items():
+        np.testing.assert_array_equal(v, want[k])
+        v[0, 0] = 0
+
+
 def test_pixels_that_cannot_be_tested(rng):
     x, y = stacks(rng)
     x[:, 0, 0] = 3.0

@@ -3,6 +3,7 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+#include "output_array.hpp"
 
 #include <cmath>
 #include <vector>
@@ -99,7 +100,7 @@ void register_p_adjust(py::module_ &mod)
                               repr(py::str(method).ptr()) + unsupported_note(method));
             py::array a = as_float_array(p, "p");
             // The output, C-ordered, is also the input: adjusted in place.
-            py::array_t<double> out(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
+            auto out = output_array<double>(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
             py::module_::import("numpy").attr("copyto")(out, a);
             size_t n = static_cast<size_t>(out.size());
             double *d = out.mutable_data();
@@ -175,7 +176,7 @@ OutOfMemoryError
             if (e.is_none())
                 throw py::type_error("e_bh() needs an array of e-values, not None");
             py::array a = as_float_array(e, "e");
-            py::array_t<double> out(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
+            auto out = output_array<double>(std::vector<py::ssize_t>(a.shape(), a.shape() + a.ndim()));
             py::module_::import("numpy").attr("copyto")(out, a);
             size_t n = static_cast<size_t>(out.size());
             double *d = out.mutable_data();

@@ -7,6 +7,7 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+#include "output_array.hpp"
 #include "threads.hpp"
 
 #include <cstdint>
@@ -76,10 +77,11 @@ void register_pixels(py::module_ &mod)
             const double *wp = weighted ? w.data() : nullptr;
             unsigned flags = (intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
             bool f32 = is_f32(x);
-            py::array_t<double> p(shape), t(shape), df(shape), mx(shape), my(shape), se(shape);
-            py::array_t<double> lo(intervals ? shape : std::vector<py::ssize_t>{0}),
-                hi(intervals ? shape : std::vector<py::ssize_t>{0});
-            py::array_t<int32_t> status(shape);
+            auto p = output_array<double>(shape), t = output_array<double>(shape), df = output_array<double>(shape),
+                 mx = output_array<double>(shape), my = output_array<double>(shape), se = output_array<double>(shape);
+            std::vector<py::ssize_t> none{0};
+            auto lo = output_array<double>(intervals ? shape : none), hi = output_array<double>(intervals ? shape : none);
+            auto status = output_array<int32_t>(shape);
             mcstat_pixels_out out = {p.mutable_data(), t.mutable_data(),  df.mutable_data(),
                                      mx.mutable_data(), my.mutable_data(), intervals ? lo.mutable_data() : nullptr,
                                      intervals ? hi.mutable_data() : nullptr, status.mutable_data(), se.mutable_data()};
