@@ -758,20 +758,6 @@ static PIX_INLINE int central_series8(const double *A, const double *y, double *
  * decides (K underflows, df or t outside the fast range). */
 enum { TAIL_SCALAR, TAIL_DONE, TAIL_GENERAL };
 
-/* lower, upper <- 1 - u, u for t > 0, else u, 1 - u: by masks, as t's sign
- * is a coin toss under the null (a branch on it was mispredicted for every
- * other pixel). */
-static PIX_INLINE void put_tails(double t, double u, double *lower, double *upper)
-{
-    double v = 1.0 - u;
-    uint64_t m = (uint64_t)0 - (uint64_t)(t > 0.0), bu, bv;
-    memcpy(&bu, &u, sizeof bu);
-    memcpy(&bv, &v, sizeof bv);
-    uint64_t lo = (bv & m) | (bu & ~m), up = (bu & m) | (bv & ~m);
-    memcpy(lower, &lo, sizeof lo);
-    memcpy(upper, &up, sizeof up);
-}
-
 /* Four pixels' e = lc - A log1p(r), K = |t| f exp(e) and y = r/(1+r) from
  * r, a, lc, f and t (vmath.h); lanes with r = 0 (no fast tail) compute
  * with harmless stand-ins, and K only where exp(e) stays normal. */
@@ -797,12 +783,22 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
 {
     size_t idx[PIX_BLOCK + 3], nc = 0;
     double cA[PIX_BLOCK + 3], cy[PIX_BLOCK + 3], ck[PIX_BLOCK + 3], cs[8];
+    /* Four lanes of the central series run as long as the slowest: grouped
+     * by the binary exponent of y (which sets the series' length), lanes of
+     * a kind run together.  A counting sort, into sidx, sA, sy, sk; the
+     * bins counted as the lanes are found. */
+    enum { Y_BINS = 8 };
+    size_t cnt[Y_BINS + 1] = {0}, sidx[PIX_BLOCK + 7];
+    double sA[PIX_BLOCK + 7], sy[PIX_BLOCK + 7], sk[PIX_BLOCK + 7];
+    unsigned char bin[PIX_BLOCK];
     double rr[PIX_BLOCK], ee[PIX_BLOCK], kk[PIX_BLOCK], yy[PIX_BLOCK];
+    double uu[PIX_BLOCK]; /* the upper tail at |t| where ok = TAIL_DONE */
     /* r, then e, K and y four pixels at a time (tails_k4); r = 0 where the
      * fast tail has nothing to do */
     for (size_t j = 0; j < k; j++) {
         double at = fabs(t[j]);
         rr[j] = want[j] && t[j] != 0.0 && fast_range(at, df[j]) ? at * at / df[j] : 0.0;
+        uu[j] = 0.5; /* t = 0's */
     }
     size_t j = 0;
     for (; j + 4 <= k; j += 4) {
@@ -838,7 +834,6 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
         if (!want[j])
             continue;
         if (tj == 0.0) {
-            lower[j] = upper[j] = 0.5;
             ok[j] = TAIL_DONE;
             continue;
         }
@@ -857,10 +852,14 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             double sum;
             if (!upper_series(a, A, 1.0 / (1.0 + r), &sum))
                 continue;
-            double u = kj * sum / (2.0 * a);
-            put_tails(tj, u, &lower[j], &upper[j]);
+            uu[j] = kj * sum / (2.0 * a);
             ok[j] = TAIL_DONE;
         } else {
+            uint64_t bits;
+            memcpy(&bits, &y, sizeof bits);
+            int e = 1021 - (int)(bits >> 52); /* y in [2^-(e+2), 2^-(e+1)), as 0 < y < 1/2 here */
+            bin[nc] = (unsigned char)(e < Y_BINS - 1 ? e : Y_BINS - 1);
+            cnt[bin[nc] + 1]++;
             idx[nc] = j;
             cA[nc] = A;
             cy[nc] = y;
@@ -868,20 +867,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             nc++;
         }
     }
-    /* Four lanes run as long as the slowest: grouped by the binary exponent
-     * of y (which sets the series' length), lanes of a kind run together.
-     * A counting sort into sidx, sA, sy, sk. */
-    enum { Y_BINS = 8 };
-    size_t cnt[Y_BINS + 1] = {0}, sidx[PIX_BLOCK + 7];
-    double sA[PIX_BLOCK + 7], sy[PIX_BLOCK + 7], sk[PIX_BLOCK + 7];
-    unsigned char bin[PIX_BLOCK];
-    for (size_t g = 0; g < nc; g++) {
-        uint64_t bits;
-        memcpy(&bits, &cy[g], sizeof bits);
-        int e = 1021 - (int)(bits >> 52); /* y in [2^-(e+2), 2^-(e+1)), as 0 < y < 1/2 here */
-        bin[g] = (unsigned char)(e < Y_BINS - 1 ? e : Y_BINS - 1);
-        cnt[bin[g] + 1]++;
-    }
+    /* the counting sort: bin b's lanes to sidx[cnt[b]] on, in their order */
     for (int b = 0; b < Y_BINS; b++)
         cnt[b + 1] += cnt[b];
     for (size_t g = 0; g < nc; g++) {
@@ -913,7 +899,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
                 nf++;
                 continue;
             }
-            put_tails(t[j], u, &lower[j], &upper[j]);
+            uu[j] = u;
             ok[j] = TAIL_DONE;
         }
     }
@@ -929,10 +915,19 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             if (!hok[l])
                 continue;
             size_t j = idx[g + l];
-            double u = ck[g + l] * h[l] / (2.0 * cA[g + l]);
-            put_tails(t[j], u, &lower[j], &upper[j]);
+            uu[j] = ck[g + l] * h[l] / (2.0 * cA[g + l]);
             ok[j] = TAIL_DONE;
         }
+    }
+    /* lower, upper <- 1 - u, u for t > 0, else u, 1 - u, in a loop that
+     * vectorises (a branch on t's sign, a coin toss under the null, was
+     * mispredicted for every other pixel; and the lanes' scattered stores
+     * were twice as many) */
+    for (size_t j = 0; j < k; j++) {
+        double u = uu[j], v = 1.0 - u;
+        int pos = t[j] > 0.0;
+        lower[j] = pos ? v : u;
+        upper[j] = pos ? u : v;
     }
 }
 
