@@ -9,6 +9,7 @@ import pytest
 from scipy import stats
 
 import mcstat
+from mcstat import _core
 from mcstat import distributions as D
 
 from conftest import rel_err
@@ -234,6 +235,17 @@ def test_t_quantile_at_one_level_for_many_df(p, upper):
     ok = df > 0.1  # below, the quantile overflows to inf (SciPy's is finite and wrong)
     want = stats.t.isf(p, df[ok]) if upper else stats.t.ppf(p, df[ok])
     np.testing.assert_allclose(got[ok], want, rtol=1e-11)
+
+
+@pytest.mark.parametrize("p", [3e-9, 1e-20, 1e-50, 1e-100])
+def test_t_quantiles_table_at_extreme_levels_against_mpmath(p):
+    """mcstat_t_quantiles' table at levels where the quantile grows like
+    p^(-1/df) (its density follows log(1/p)): mcstat.h's 3e-13 against
+    50-digit roots, df from 1 to 1000 between the table's nodes."""
+    df = np.array([1.0092590872715874, 1.1642440560403042, 1.6832457875510582, 2.9, 7.25, 13.7, 101.3, 999.5])
+    got = _core._t_quantiles(p, np.tile(df, 4), True)[:df.size]  # more than 16 values: the table
+    for d, x in zip(df, got):
+        assert rel_err(x, _exact_quantile(_t_tails, 1, p, x, d)) <= 3e-13, (p, d, x)
 
 
 def test_bad_types():
