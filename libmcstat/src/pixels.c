@@ -671,12 +671,18 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
 /* Two terms of the central series of four pixels: term <- term q0 q1 and
  * s <- s + term q0 + term q0 q1, q_i = (A + j + i) / (3/2 + j + i) y; the
  * loop-carried chain is one multiplication per two terms. */
+#define CENTRAL_STEP2(va, vy, j, term, s)                                                                   \
+    do {                                                                                                     \
+        mcs_v4d q0_ = ((va) + (double)(j)) * rcp_central[j] * (vy);                                          \
+        mcs_v4d q1_ = ((va) + (double)((j) + 1)) * rcp_central[(j) + 1] * (vy);                              \
+        mcs_v4d t1_ = (term) * q0_;                                                                          \
+        (term) = (term) * (q0_ * q1_);                                                                       \
+        (s) = (s) + (t1_ + (term));                                                                          \
+    } while (0)
+
 static PIX_INLINE void central_step2(mcs_v4d va, mcs_v4d vy, int j, mcs_v4d *term, mcs_v4d *s)
 {
-    mcs_v4d q0 = (va + (double)j) * rcp_central[j] * vy, q1 = (va + (double)(j + 1)) * rcp_central[j + 1] * vy;
-    mcs_v4d t1 = *term * q0;
-    *term = *term * (q0 * q1);
-    *s = *s + (t1 + *term);
+    CENTRAL_STEP2(va, vy, j, *term, *s);
 }
 
 /* Four pixels' central series from term j on, four terms a step, until
@@ -701,18 +707,27 @@ static PIX_INLINE int central_run4(mcs_v4d va, mcs_v4d vy, mcs_v4d *term, mcs_v4
 #include <immintrin.h>
 /* central_series8's AVX2 loop: both vectors of four side by side, the
  * test of convergence of all eight lanes by one movemask (extracting the
- * lanes took 5% of the kernel). */
-__attribute__((target("avx2"))) static inline int central_joint8(mcs_v4d va0, mcs_v4d vy0, mcs_v4d va1, mcs_v4d vy1,
-                                                                mcs_v4d *t0, mcs_v4d *s0, mcs_v4d *t1, mcs_v4d *s1)
+ * lanes took 5% of the kernel).  Pointers in and out, and the step as a
+ * macro: no 32-byte vector crosses a call between AVX2 and baseline code
+ * (clang refuses that ABI change even where the call is never taken). */
+__attribute__((target("avx2"))) static inline int central_joint8(const double *A, const double *y, double *sum)
 {
+    mcs_v4d va0 = {A[0], A[1], A[2], A[3]}, vy0 = {y[0], y[1], y[2], y[3]};
+    mcs_v4d va1 = {A[4], A[5], A[6], A[7]}, vy1 = {y[4], y[5], y[6], y[7]};
+    mcs_v4d t0 = {1.0, 1.0, 1.0, 1.0}, s0 = t0, t1 = t0, s1 = t0;
     for (int j = 0; j < CENTRAL_TERMS; j += 4) { /* four terms between the tests of convergence */
-        central_step2(va0, vy0, j, t0, s0);
-        central_step2(va1, vy1, j, t1, s1);
-        central_step2(va0, vy0, j + 2, t0, s0);
-        central_step2(va1, vy1, j + 2, t1, s1);
-        mcs_v4i done = (mcs_v4i)(*t0 <= 0.25 * DBL_EPSILON * *s0) & (mcs_v4i)(*t1 <= 0.25 * DBL_EPSILON * *s1);
-        if (_mm256_movemask_pd((__m256d)done) == 15)
+        CENTRAL_STEP2(va0, vy0, j, t0, s0);
+        CENTRAL_STEP2(va1, vy1, j, t1, s1);
+        CENTRAL_STEP2(va0, vy0, j + 2, t0, s0);
+        CENTRAL_STEP2(va1, vy1, j + 2, t1, s1);
+        mcs_v4i done = (mcs_v4i)(t0 <= 0.25 * DBL_EPSILON * s0) & (mcs_v4i)(t1 <= 0.25 * DBL_EPSILON * s1);
+        if (_mm256_movemask_pd((__m256d)done) == 15) {
+            for (int l = 0; l < 4; l++) {
+                sum[l] = s0[l];
+                sum[l + 4] = s1[l];
+            }
             return 1;
+        }
     }
     return 0;
 }
@@ -727,25 +742,22 @@ __attribute__((target("avx2"))) static inline int central_joint8(mcs_v4d va0, mc
  * the same sums, bit for bit. */
 static PIX_INLINE int central_series8(const double *A, const double *y, double *sum, int joint)
 {
+#if PIX_AVX2
+    if (joint)
+        return central_joint8(A, y, sum);
+#endif
+    (void)joint;
     mcs_v4d va0 = {A[0], A[1], A[2], A[3]}, vy0 = {y[0], y[1], y[2], y[3]};
     mcs_v4d va1 = {A[4], A[5], A[6], A[7]}, vy1 = {y[4], y[5], y[6], y[7]};
     mcs_v4d t0 = vm_splat(1.0), s0 = t0, t1 = t0, s1 = t0;
-    int ok = 0;
-#if PIX_AVX2
-    if (joint) {
-        ok = central_joint8(va0, vy0, va1, vy1, &t0, &s0, &t1, &s1);
-    } else
-#endif
-    {
-        int j0 = central_run4(va0, vy0, &t0, &s0, 0, CENTRAL_TERMS, 1);
-        int j1 = central_run4(va1, vy1, &t1, &s1, 0, CENTRAL_TERMS, 1);
-        mcs_v4i done = (mcs_v4i)(t0 <= 0.25 * DBL_EPSILON * s0) & (mcs_v4i)(t1 <= 0.25 * DBL_EPSILON * s1);
-        ok = done[0] & done[1] & done[2] & done[3] ? 1 : 0;
-        if (j0 < j1)
-            central_run4(va0, vy0, &t0, &s0, j0, j1, 0);
-        else if (j1 < j0)
-            central_run4(va1, vy1, &t1, &s1, j1, j0, 0);
-    }
+    int j0 = central_run4(va0, vy0, &t0, &s0, 0, CENTRAL_TERMS, 1);
+    int j1 = central_run4(va1, vy1, &t1, &s1, 0, CENTRAL_TERMS, 1);
+    mcs_v4i done = (mcs_v4i)(t0 <= 0.25 * DBL_EPSILON * s0) & (mcs_v4i)(t1 <= 0.25 * DBL_EPSILON * s1);
+    int ok = done[0] & done[1] & done[2] & done[3] ? 1 : 0;
+    if (j0 < j1)
+        central_run4(va0, vy0, &t0, &s0, j0, j1, 0);
+    else if (j1 < j0)
+        central_run4(va1, vy1, &t1, &s1, j1, j0, 0);
     if (!ok)
         return 0;
     for (int l = 0; l < 4; l++) {
