@@ -680,11 +680,6 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
         (s) = (s) + (t1_ + (term));                                                                          \
     } while (0)
 
-static PIX_INLINE void central_step2(mcs_v4d va, mcs_v4d vy, int j, mcs_v4d *term, mcs_v4d *s)
-{
-    CENTRAL_STEP2(va, vy, j, *term, *s);
-}
-
 /* Four pixels' central series from term j on, four terms a step, until
  * all four have converged (until_done) or up to term jend; returns the
  * term it stopped at.  A converged lane stays converged (its terms only
@@ -692,8 +687,8 @@ static PIX_INLINE void central_step2(mcs_v4d va, mcs_v4d vy, int j, mcs_v4d *ter
 static PIX_INLINE int central_run4(mcs_v4d va, mcs_v4d vy, mcs_v4d *term, mcs_v4d *s, int j, int jend, int until_done)
 {
     for (; j < jend; j += 4) { /* four terms between the tests of convergence */
-        central_step2(va, vy, j, term, s);
-        central_step2(va, vy, j + 2, term, s);
+        CENTRAL_STEP2(va, vy, j, *term, *s);
+        CENTRAL_STEP2(va, vy, j + 2, *term, *s);
         if (until_done) {
             mcs_v4i done = (mcs_v4i)(*term <= 0.25 * DBL_EPSILON * *s);
             if (done[0] & done[1] & done[2] & done[3])
@@ -1253,6 +1248,14 @@ void mcstat__pixels_baseline_only(int on)
     pixels_baseline_only = on;
 }
 
+#if PIX_AVX2
+/* Whether this call runs the AVX2 loops (per pixel and per quantile). */
+static int use_avx2(void)
+{
+    return !pixels_baseline_only && !no_avx2_requested() && __builtin_cpu_supports("avx2");
+}
+#endif
+
 /* One block: both sides' moments, then the statistics. */
 typedef struct {
     mcstat_dd mx[PIX_BLOCK], my[PIX_BLOCK];
@@ -1326,7 +1329,7 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
     block_work *b = calloc(1, sizeof *b); /* tens of KiB: not on a caller's thread stack */
     int fast_ok = nx >= 2 && ny >= 2 && b;
 #if PIX_AVX2
-    int avx2 = !pixels_baseline_only && !no_avx2_requested() && __builtin_cpu_supports("avx2");
+    int avx2 = use_avx2();
 #endif
     for (size_t i0 = begin; i0 < end; i0 += PIX_BLOCK) {
         size_t k = end - i0 < PIX_BLOCK ? end - i0 : PIX_BLOCK;
@@ -1454,7 +1457,7 @@ int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *
         }
     }
 #if PIX_AVX2
-    int avx2 = !pixels_baseline_only && !no_avx2_requested() && __builtin_cpu_supports("avx2");
+    int avx2 = use_avx2();
 #endif
     int first = MCSTAT_OK;
     for (size_t i0 = 0; i0 < n; i0 += PIX_BLOCK) {
