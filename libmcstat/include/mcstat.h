@@ -835,37 +835,193 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
                                 mcstat_result *out);
 
 /* ======================================================================== */
-/* 4. Per-pixel rows.                                                       */
-/* The tests of section 3 once per row: _matrix calls take rows of raw      */
-/* values (each matrix as data, values per row, stride; then rows);         */
-/* _moments_rows calls take arrays of accumulators (the arrays, then rows). */
-/* Row i's result is bit for bit the single call on row i.                  */
+/* 4. Per-pixel tests.                                                      */
+/* The tests of section 3 once per pixel of an image stack:                 */
+/* mcstat_pixels_test takes any layout (seeds-major stacks as renderers     */
+/* write them, or rows of values per pixel), float32 or double, channels    */
+/* weighted into one value, and writes arrays; the _matrix calls take rows  */
+/* of doubles and write an mcstat_result per row; _moments_rows calls take  */
+/* arrays of accumulators.                                                  */
 /* ======================================================================== */
 
-/* ------------------------------------------------------------------------ */
-/* Row-wise tests: the per-pixel case.                                       */
-/* One test per row of a matrix (an image whose every pixel holds k          */
-/* secondary estimates): row i of x starts at x + i * x_stride (strides in   */
-/* elements) and holds n contiguous values; row i of y pairs with row i of   */
-/* x.  Arguments in one order: each matrix as (data, n, stride), then the   */
-/* number of rows (0.1.0's *_rows names put rows second in the one-sample  */
-/* calls, seventh in the two-sample ones: section 13).  out[i] receives    */
-/* row i's result, bit for bit what the single-sample                       */
-/* call on that row returns, and status[i] (may be NULL) its status; a row   */
-/* that fails gets NaN fields and the other rows are still computed.         */
-/* Critical values are solved once for rows of equal degrees of freedom.     */
-/* flags: MCSTAT_ROWS_NO_INTERVALS skips critical values and confidence      */
-/* intervals (left NaN; p-value, reject and decision remain): the cheap path */
-/* when only the decision map is wanted.  MCSTAT_ROWS_OMIT_NAN skips NaN     */
-/* values in each row (+-Inf remains an error).                              */
-/* Returns MCSTAT_OK when every row succeeded, else the status of the first  */
-/* row that failed; MCSTAT_EINVAL (nothing written) for NULL pointers or     */
-/* unknown flags.  No allocation; disjoint row ranges may run on different   */
-/* threads (out + start, status + start).                                    */
-/* ------------------------------------------------------------------------ */
+/* Flags of the per-pixel and row-wise tests.
+ *   MCSTAT_ROWS_NO_INTERVALS  no critical values and confidence intervals
+ *                             (left NaN; p-value, reject and decision
+ *                             remain): the cheap path when only the
+ *                             decision map is wanted.
+ *   MCSTAT_ROWS_OMIT_NAN      NaN values are left out of each pixel's
+ *                             sample (the paired test leaves out the pairs
+ *                             with a NaN on either side); +-Inf remains an
+ *                             error. */
 #define MCSTAT_ROWS_NO_INTERVALS 1u
 #define MCSTAT_ROWS_OMIT_NAN 2u
 
+/* ------------------------------------------------------------------------ */
+/* Per-pixel tests on image stacks.                                          */
+/* A pixel's sample is n values (seeds, or the batch means of one pixel);    */
+/* an mcstat_pixels_in says where they are: value s of pixel i starts at     */
+/* element s * value_stride + i * pixel_stride of data, and is the weighted */
+/* sum of `channels` consecutive elements there (formed in double: the      */
+/* luminance of RGB without a copy), or the element itself when channels is */
+/* 1 and weights NULL.  A seeds-major stack (seeds, height, width[,         */
+/* channels]) is value_stride = height * width * channels, pixel_stride =   */
+/* channels; rows of values per pixel (height, width, seeds) are            */
+/* value_stride = 1, pixel_stride = seeds.                                  */
+/* The input grows by appending fields (section 1): start from              */
+/* MCSTAT_PIXELS_IN_INIT, which sets size.                                   */
+/* ------------------------------------------------------------------------ */
+enum mcstat_value_type {
+    MCSTAT_VALUE_FLOAT64 = 0, /* double */
+    MCSTAT_VALUE_FLOAT32 = 1  /* float, each value converted to double exactly */
+};
+
+typedef struct mcstat_pixels_in {
+    uint32_t size;          /* sizeof(mcstat_pixels_in): set by the initialiser */
+    int32_t type;           /* enum mcstat_value_type */
+    const void *data;       /* value 0 of pixel 0 (its first channel) */
+    size_t n;               /* values per pixel */
+    size_t value_stride;    /* elements from one value of a pixel to the next */
+    size_t pixel_stride;    /* elements from one pixel to the next */
+    size_t channels;        /* elements per value (consecutive), >= 1 */
+    const double *weights;  /* `channels` finite weights; NULL when channels is 1 */
+} mcstat_pixels_in;
+
+#define MCSTAT_PIXELS_IN_INIT {sizeof(mcstat_pixels_in), MCSTAT_VALUE_FLOAT64, NULL, 0, 0, 0, 1, NULL}
+
+/* Options of mcstat_pixels_test; grows by appending fields (section 1):
+ * start from MCSTAT_PIXELS_OPTIONS_INIT. */
+typedef struct mcstat_pixels_options {
+    uint32_t size;    /* sizeof(mcstat_pixels_options): set by the initialiser */
+    uint32_t flags;   /* MCSTAT_ROWS_NO_INTERVALS, MCSTAT_ROWS_OMIT_NAN; default 0 */
+    int32_t threads;  /* threads the call may use, 1..64; default 1: no thread is
+                         started unless the caller asks.  Results do not depend
+                         on it. */
+    int32_t reserved; /* zero */
+} mcstat_pixels_options;
+
+#define MCSTAT_PIXELS_OPTIONS_INIT {sizeof(mcstat_pixels_options), 0u, 1, 0}
+
+/* Per-pixel results: arrays of the caller's, indexed by pixel (element i is
+ * pixel i, whatever range was asked for); any may be NULL, and only what is
+ * not NULL is computed and written.  Grows by appending fields (section 1):
+ * start from MCSTAT_PIXELS_OUT_INIT (size set, every array NULL). */
+typedef struct mcstat_pixels_out {
+    uint32_t size;       /* sizeof(mcstat_pixels_out): set by the initialiser */
+    uint32_t reserved;   /* zero */
+    double *p_value;     /* for the alternative */
+    double *statistic;   /* t, X-squared or F */
+    double *df;          /* degrees of freedom (F: the numerator's) */
+    double *df2;         /* F: the denominator's degrees of freedom (NaN for the others) */
+    double *estimate;    /* mcstat_result.estimate[0]: the mean of x (t tests; paired: of
+                            the differences), the variance of x (chi-squared), the
+                            ratio of the variances (F) */
+    double *estimate2;   /* estimate[1]: the mean of y (two-sample t; NaN for the others) */
+    double *std_error;   /* t tests: the estimate's (the difference's) standard error */
+    double *conf_lo;     /* the 1 - alpha confidence interval of the tested parameter */
+    double *conf_hi;
+    double *critical_lo; /* mcstat_result.critical[0] and [1] */
+    double *critical_hi;
+    int32_t *status;     /* MCSTAT_OK or the pixel's error */
+    int8_t *decision;    /* MCSTAT_DECISION_*; reject is decision != 0 (0 where failed) */
+    uint64_t *n_x;       /* values used from x (the pairs, paired), after NaN left out */
+    uint64_t *n_y;       /* values used from y (0 for one-sample tests) */
+} mcstat_pixels_out;
+
+#define MCSTAT_PIXELS_OUT_INIT \
+    {sizeof(mcstat_pixels_out), 0u, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, \
+     NULL, NULL, NULL}
+
+/* sizeof of each struct in each release that changed it. */
+#define MCSTAT_PIXELS_IN_SIZE_0_2 56u
+#define MCSTAT_PIXELS_OPTIONS_SIZE_0_2 16u
+#define MCSTAT_PIXELS_OUT_SIZE_0_2 128u
+MCSTAT_API size_t mcstat_sizeof_pixels_in(void);
+MCSTAT_API size_t mcstat_sizeof_pixels_options(void);
+MCSTAT_API size_t mcstat_sizeof_pixels_out(void);
+/* The initialisers for FFI callers (the first `size` bytes, as the
+ * options' _init_size; MCSTAT_EINVAL for NULL or a size no release had). */
+MCSTAT_API int mcstat_pixels_in_init_size(mcstat_pixels_in *in, size_t size);
+MCSTAT_API int mcstat_pixels_options_init_size(mcstat_pixels_options *opt, size_t size);
+MCSTAT_API int mcstat_pixels_out_init_size(mcstat_pixels_out *out, size_t size);
+
+/* The test `test` once per pixel i in [begin, end):
+ *   MCSTAT_TEST_T_1         one-sample t of x's mean against null_value (y NULL)
+ *   MCSTAT_TEST_T_2         Welch's t of mean(x) - mean(y) against null_value
+ *   MCSTAT_TEST_T_2_POOLED  Student's pooled t, likewise
+ *   MCSTAT_TEST_T_PAIRED    paired t of mean(x - y) (x and y of equal n)
+ *   MCSTAT_TEST_VAR_1       chi-squared test of x's variance against null_value (y NULL)
+ *   MCSTAT_TEST_VAR_2       F test of var(x)/var(y) against null_value
+ * Each pixel's results are those of the single call on its sample(s)
+ * (mcstat_t_test_1, ..._2, ..._2_pooled, mcstat_t_test_paired,
+ * mcstat_var_test_1, ..._2): bit for bit, but for Welch's test, whose
+ * block path agrees to within: the p-value 3e-14 + 4e-16 |log p| relative
+ * (both are within that of the exact tail; 3e-13 where it underflows), the
+ * statistic, df, estimates, standard error and interval about 1e-14
+ * relative (the moments are two passes over the values, the single call's
+ * its shifted sums), critical values 3e-13 (from a per-call table of the t
+ * quantile in 1/df).  A pixel Welch's block path does not cover (a NaN or Inf, extreme magnitudes, too few values, samples
+ * constant to within rounding or nearly so, degrees of freedom beyond
+ * 1000) is computed by the single call's own code: its status and outputs
+ * are then the single call's, bit for bit.  A pixel that fails gets its
+ * status, NaN outputs, decision 0 and n_x, n_y 0; the others are still
+ * computed.  opt may be NULL (the defaults).
+ * Returns MCSTAT_OK when every pixel succeeded, else the status of the
+ * first failing pixel (the lowest index); MCSTAT_EINVAL (nothing written)
+ * for NULL pointers (x, out; y for two-sample tests), an unknown test,
+ * type, flag or struct size, no channels, channels > 1 without weights,
+ * non-finite weights, end < begin, alpha outside (0, 1), a null value
+ * outside its domain (finite; positive for the variance tests), an unknown
+ * alternative, two samples of different types, channels or weights,
+ * paired samples of unequal n; MCSTAT_ETOOBIG when the addresses overflow
+ * size_t.  Welch's test runs by blocks of pixels (moments, statistics and
+ * tails vectorised) in a workspace of about 100 KiB a thread, off the
+ * caller's stack (if it cannot be allocated every pixel takes the single
+ * call's code, with the same results, slower); the other tests run each
+ * pixel through the single call's code, bit for bit the _matrix call on
+ * its values, with a buffer of n values a thread (MCSTAT_ENOMEM for the
+ * pixels of a thread that could not have it).  opt->threads > 1 splits the
+ * pixels into that many contiguous ranges, one per thread (at least 4096
+ * pixels each); the first runs on the caller's thread.  On x86-64 the
+ * block loops run as AVX2 code where the CPU has it (bit for bit the
+ * results of the SSE2 code); MCSTAT_NO_AVX2=1 in the environment when the
+ * library first runs them keeps them to SSE2 (for tools that do not decode
+ * every AVX2 instruction, such as valgrind 3.19). */
+MCSTAT_API int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin,
+                                  size_t end, double null_value, int alternative, double alpha,
+                                  const mcstat_pixels_options *opt, const mcstat_pixels_out *out);
+
+/* Welch's test per pixel on seeds-major stacks: mcstat_pixels_test(
+ * MCSTAT_TEST_T_2, ...) with value s of pixel i at x[s * x_seed_stride +
+ * i * channels + c], one thread, flags as in mcstat_pixels_options. */
+MCSTAT_API int mcstat_t_test_2_pixels(const double *x, size_t nx, size_t x_seed_stride, const double *y,
+                                      size_t ny, size_t y_seed_stride, size_t channels, const double *weights,
+                                      size_t begin, size_t end, double mu0, int alternative, double alpha,
+                                      unsigned flags, const mcstat_pixels_out *out);
+MCSTAT_API int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_seed_stride, const float *y,
+                                          size_t ny, size_t y_seed_stride, size_t channels,
+                                          const double *weights, size_t begin, size_t end, double mu0,
+                                          int alternative, double alpha, unsigned flags,
+                                          const mcstat_pixels_out *out);
+
+/* ------------------------------------------------------------------------ */
+/* Row-wise tests with one result struct per row.                            */
+/* Row i of x starts at x + i * x_stride (strides in elements) and holds n   */
+/* contiguous values; row i of y pairs with row i of x.  Arguments in one    */
+/* order: each matrix as (data, n, stride), then the number of rows (0.1.0's */
+/* *_rows names put rows second in the one-sample calls, seventh in the     */
+/* two-sample ones: section 13).  out[i] receives row i's result, bit for   */
+/* bit the single call on that row, and status[i] (may be NULL) its status; */
+/* a row that fails gets NaN fields and the other rows are still computed.  */
+/* Critical values are solved once for rows of equal degrees of freedom.    */
+/* flags: MCSTAT_ROWS_*.  Returns MCSTAT_OK when every row succeeded, else  */
+/* the status of the first row that failed; MCSTAT_EINVAL (nothing written) */
+/* for NULL pointers or unknown flags.  No allocation; disjoint row ranges  */
+/* may run on different threads (x + start * x_stride, out + start, status  */
+/* + start).  The same rows as an mcstat_pixels_in (value_stride 1,         */
+/* pixel_stride the row stride) go through mcstat_pixels_test, which        */
+/* writes arrays instead of structs and runs Welch's test by blocks of      */
+/* pixels: several times faster, within the bounds given there.             */
+/* ------------------------------------------------------------------------ */
 MCSTAT_API int mcstat_t_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows, double mu0,
                                       int alternative, double alpha, unsigned flags, mcstat_result *out,
                                       int32_t *status);
@@ -879,54 +1035,6 @@ MCSTAT_API int mcstat_var_test_2_matrix(const double *x, size_t nx, size_t x_str
                                         size_t ny, size_t y_stride, size_t rows, double ratio,
                                         int alternative, double alpha, unsigned flags, mcstat_result *out,
                                         int32_t *status);
-
-/* Welch's test per pixel on seeds-major images, as renderers write them:   */
-/* seed s of pixel i is x[s * x_seed_stride + i * channels + c] (element     */
-/* strides), in float32 (_f32) or double.  The tested value of a seed is     */
-/* sum_c weights[c] x[s, i, c] formed in double (luminance from RGB without  */
-/* a copy); channels = 1 with weights NULL tests the value itself.  Pixels   */
-/* begin..end-1 are tested, so disjoint ranges may run on different threads. */
-/* Results go to the caller's arrays in *out, indexed by pixel (not by       */
-/* i - begin); any of them may be NULL.  Each pixel's p-value agrees with    */
-/* mcstat_t_test_2 on its two samples to 3e-14 + 4e-16 |log p| relative      */
-/* (both are within that of the exact tail; 3e-13 at the underflow), t, df  */
-/* and the interval to about 1e-14; a pixel that fails (too few values, NaN  */
-/* or Inf, constant in both samples) gets its status and NaN outputs, as in */
-/* the row-wise tests.                                                       */
-/* conf_lo/conf_hi are computed only when one is non-NULL and flags lack     */
-/* MCSTAT_ROWS_NO_INTERVALS; MCSTAT_ROWS_OMIT_NAN leaves NaN values out.     */
-/* Returns MCSTAT_OK when every pixel succeeded, else the status of the      */
-/* first that failed; MCSTAT_EINVAL (nothing written) for NULL pointers, no  */
-/* channels, channels > 1 without weights, non-finite weights or mu0, end <  */
-/* begin, alpha outside (0, 1), an unknown alternative or flag;             */
-/* MCSTAT_ETOOBIG when the strides overflow size_t.  One allocation of      */
-/* about 64 KiB a call (blocks of pixels' workspace, off the caller's       */
-/* stack); where it fails every pixel takes the single call's route, with  */
-/* the same results, slower.  On x86-64 the block loops run as AVX2 code    */
-/* where the CPU has it (bit for bit the results of the SSE2 code); the     */
-/* environment variable MCSTAT_NO_AVX2=1 keeps them to SSE2 (for tools that */
-/* do not decode every AVX2 instruction, such as valgrind 3.19).            */
-typedef struct mcstat_pixels_out {
-    double *p_value;   /* per pixel, or NULL */
-    double *statistic; /* Welch's t, or NULL */
-    double *df;        /* Welch-Satterthwaite degrees of freedom, or NULL */
-    double *mean_x;    /* the two samples' means, or NULL */
-    double *mean_y;
-    double *conf_lo;   /* the interval for mean_x - mean_y, or NULL */
-    double *conf_hi;
-    int32_t *status;   /* MCSTAT_OK or the pixel's error, or NULL */
-    double *std_error; /* Welch's standard error of mean_x - mean_y, or NULL */
-} mcstat_pixels_out;
-
-MCSTAT_API int mcstat_t_test_2_pixels(const double *x, size_t nx, size_t x_seed_stride, const double *y,
-                                      size_t ny, size_t y_seed_stride, size_t channels, const double *weights,
-                                      size_t begin, size_t end, double mu0, int alternative, double alpha,
-                                      unsigned flags, const mcstat_pixels_out *out);
-MCSTAT_API int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_seed_stride, const float *y,
-                                          size_t ny, size_t y_seed_stride, size_t channels,
-                                          const double *weights, size_t begin, size_t end, double mu0,
-                                          int alternative, double alpha, unsigned flags,
-                                          const mcstat_pixels_out *out);
 
 /* The tests on arrays of accumulators: out[i] is bit for bit the
  * mcstat_*_moments call on x[i] (and y[i]), status[i] (may be NULL) its

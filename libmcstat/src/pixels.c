@@ -1,7 +1,8 @@
 /*
- * pixels.c - Welch's test per pixel on seeds-major images (float32 or
- * double, optionally a weighted sum of channels), with a Student t tail
- * specialised to the t distribution.
+ * pixels.c - Welch's test per pixel on image stacks of any layout (float32
+ * or double, optionally a weighted sum of channels), with a Student t tail
+ * specialised to the t distribution; pixels_test.c checks the arguments,
+ * splits the pixels over threads and calls mcstat__pixels_welch per range.
  *
  * The row-wise tests (rows.c) run every pixel through the single call:
  * an accumulator per sample, the general incomplete beta, a full
@@ -39,6 +40,7 @@
 
 #define PIX_BLOCK 256     /* pixels per block: their sums stay in L1 */
 #define GATHER 256        /* the slow path's bounce buffer (2 KiB of stack) */
+/* (PIX_BLOCK and GATHER are also pixels_test.c's) */
 #define FAST_LO 0x1p-200  /* moments.c's unscaled range */
 #define FAST_HI 0x1p+200
 #define QT_NODES 1024      /* the critical values' table: u = 1/df in steps of 1/1024 */
@@ -341,40 +343,6 @@ int mcstat__t_upper_quantile_fast(double p, double df, double *q)
     return t_upper_quantile(p, df, NULL, NAN, q);
 }
 
-/* ---- arguments ----------------------------------------------------------- */
-
-/* (n - 1) * stride + end * channels elements must be addressable. */
-static int span_ok(size_t n, size_t stride, size_t end, size_t channels)
-{
-    if (end > SIZE_MAX / channels)
-        return 0;
-    size_t last = end * channels;
-    if (n > 1 && stride > 0 && n - 1 > (SIZE_MAX - last) / stride)
-        return 0;
-    return 1;
-}
-
-static int check_args(const void *x, size_t nx, size_t xs, const void *y, size_t ny, size_t ys, size_t channels,
-                      const double *w, size_t begin, size_t end, double mu0, int alternative, double alpha,
-                      unsigned flags, const mcstat_pixels_out *out)
-{
-    if (!out || end < begin || channels == 0 || (channels > 1 && !w))
-        return MCSTAT_EINVAL;
-    if (end > begin && (!x || !y))
-        return MCSTAT_EINVAL;
-    if (!isfinite(mu0) || !valid_alternative(alternative) || !valid_alpha(alpha))
-        return MCSTAT_EINVAL;
-    if (flags & ~(unsigned)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN))
-        return MCSTAT_EINVAL;
-    if (w)
-        for (size_t c = 0; c < channels; c++)
-            if (!isfinite(w[c]))
-                return MCSTAT_EINVAL;
-    if (!span_ok(nx, xs, end, channels) || !span_ok(ny, ys, end, channels))
-        return MCSTAT_ETOOBIG;
-    return MCSTAT_OK;
-}
-
 /* ---- one pixel's outputs --------------------------------------------------- */
 
 typedef struct {
@@ -387,13 +355,26 @@ typedef struct {
     double *qt;  /* their quantiles at df = qt_n / j, j = 0..qt_n, NaN until needed */
     int qt_n;
     mcstat_qcache qc; /* the slow path's */
+    uint64_t nx, ny;  /* the sample sizes of the fast path */
     int first;        /* status of the first failing pixel */
 } pix_ctx;
 
 static void put(const pix_ctx *c, size_t i, int st, double p, double t, double df, double se, double mx,
-                double my, double lo, double hi)
+                double my, double lo, double hi, double c0, double c1, int dec, uint64_t nx, uint64_t ny)
 {
     const mcstat_pixels_out *o = c->out;
+    if (o->df2)
+        o->df2[i] = NAN;
+    if (o->critical_lo)
+        o->critical_lo[i] = c0;
+    if (o->critical_hi)
+        o->critical_hi[i] = c1;
+    if (o->decision)
+        o->decision[i] = (int8_t)dec;
+    if (o->n_x)
+        o->n_x[i] = nx;
+    if (o->n_y)
+        o->n_y[i] = ny;
     if (o->std_error)
         o->std_error[i] = se;
     if (o->p_value)
@@ -402,10 +383,10 @@ static void put(const pix_ctx *c, size_t i, int st, double p, double t, double d
         o->statistic[i] = t;
     if (o->df)
         o->df[i] = df;
-    if (o->mean_x)
-        o->mean_x[i] = mx;
-    if (o->mean_y)
-        o->mean_y[i] = my;
+    if (o->estimate)
+        o->estimate[i] = mx;
+    if (o->estimate2)
+        o->estimate2[i] = my;
     if (o->conf_lo)
         o->conf_lo[i] = lo;
     if (o->conf_hi)
@@ -416,7 +397,7 @@ static void put(const pix_ctx *c, size_t i, int st, double p, double t, double d
 
 static void fail(pix_ctx *c, size_t i, int st)
 {
-    put(c, i, st, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN);
+    put(c, i, st, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, 0, 0, 0);
     if (c->first == MCSTAT_OK)
         c->first = st;
 }
@@ -426,13 +407,13 @@ static void fail(pix_ctx *c, size_t i, int st)
 typedef struct {
     const float *f;
     const double *d;
-    size_t stride, channels;
+    size_t stride, ps, channels; /* value and pixel strides, elements per value */
     const double *w;
 } plane;
 
 static double value(const plane *pl, size_t s, size_t i)
 {
-    size_t k = s * pl->stride + i * pl->channels;
+    size_t k = s * pl->stride + i * pl->ps;
     if (pl->channels == 1 && !pl->w)
         return pl->f ? (double)pl->f[k] : pl->d[k];
     double v = 0.0;
@@ -473,7 +454,7 @@ static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, 
         return;
     }
     put(c, i, MCSTAT_OK, r.p_value, r.statistic, r.df[0], r.std_error, r.estimate[0], r.estimate[1], r.conf_int[0],
-        r.conf_int[1]);
+        r.conf_int[1], r.critical[0], r.critical[1], r.decision, r.n[0], r.n[1]);
 }
 
 /* ---- the fast path ------------------------------------------------------------ */
@@ -610,6 +591,8 @@ typedef struct {
     double pa[PIX_BLOCK], pf[PIX_BLOCK], plc[PIX_BLOCK]; /* t_prefactor's a, f, lc */
     double lower[PIX_BLOCK], upper[PIX_BLOCK]; /* the tails, where tail_ok */
     double conf_lo[PIX_BLOCK], conf_hi[PIX_BLOCK]; /* the interval, where bound_ok, then the outputs' */
+    double crit_lo[PIX_BLOCK], crit_hi[PIX_BLOCK]; /* the critical values, likewise */
+    signed char dec[PIX_BLOCK];                    /* MCSTAT_DECISION_*, where done */
     double p[PIX_BLOCK];                           /* the p-value, where done */
     unsigned char done[PIX_BLOCK];                 /* fast_values answered */
     double qn[6][PIX_BLOCK], qs[PIX_BLOCK]; /* the critical values' six table nodes and the offset in them */
@@ -1010,6 +993,8 @@ static PIX_INLINE void block_bounds(size_t k, int alternative, block_stats *st)
         mcstat_dd lo = dd_add(est, dd_neg(p)), hi = dd_add(est, p); /* est -+ q se */
         st->conf_lo[j] = alternative == MCSTAT_LESS ? -INFINITY : lo.hi + lo.lo;
         st->conf_hi[j] = alternative == MCSTAT_GREATER ? INFINITY : hi.hi + hi.lo;
+        st->crit_lo[j] = alternative == MCSTAT_GREATER ? -INFINITY : -v6;
+        st->crit_hi[j] = alternative == MCSTAT_LESS ? INFINITY : v6;
         st->bound_ok[j] = ok;
     }
 }
@@ -1059,21 +1044,28 @@ static int fast_values(pix_ctx *c, block_stats *bs, size_t j)
     double p = c->alternative == MCSTAT_LESS      ? lo_tail
                : c->alternative == MCSTAT_GREATER ? hi_tail
                                                   : dmin(1.0, 2.0 * dmin(lo_tail, hi_tail));
-    double lo = NAN, hi = NAN;
+    double lo = NAN, hi = NAN, c0 = NAN, c1 = NAN;
     if (c->intervals && bs->bound_ok[j]) {
         lo = bs->conf_lo[j];
         hi = bs->conf_hi[j];
+        c0 = bs->crit_lo[j];
+        c1 = bs->crit_hi[j];
     } else if (c->intervals) {
-        double c0, c1;
         if (criticals(c, df, ppf, &c0, &c1))
             return 0;
         mcstat_dd diff = {bs->dhi[j], bs->dlo[j]};
         lo = mcstat__ci_bound(diff, c1, se, 0);
         hi = mcstat__ci_bound(diff, c0, se, 0);
     }
+    /* mcstat__finish's rule: the side of the smaller tail (two-sided) */
+    int low_side = c->alternative == MCSTAT_LESS || (c->alternative == MCSTAT_TWO_SIDED && lo_tail < hi_tail);
+    bs->dec[j] = (signed char)(p <= c->alpha ? (low_side ? MCSTAT_DECISION_LESS : MCSTAT_DECISION_GREATER)
+                                             : MCSTAT_DECISION_EQUAL);
     bs->p[j] = p;
     bs->conf_lo[j] = lo;
     bs->conf_hi[j] = hi;
+    bs->crit_lo[j] = c0;
+    bs->crit_hi[j] = c1;
     return 1;
 }
 
@@ -1088,7 +1080,10 @@ static void block_values(pix_ctx *c, size_t k, block_stats *bs)
     for (size_t j = 0; j < k; j++) {
         double lo = bs->lower[j], up = bs->upper[j];
         double two = dmin(1.0, 2.0 * dmin(lo, up));
-        bs->p[j] = alt == MCSTAT_LESS ? lo : alt == MCSTAT_GREATER ? up : two;
+        double p = alt == MCSTAT_LESS ? lo : alt == MCSTAT_GREATER ? up : two;
+        int low_side = alt == MCSTAT_LESS || (alt == MCSTAT_TWO_SIDED && lo < up);
+        bs->p[j] = p;
+        bs->dec[j] = (signed char)(p <= c->alpha ? (low_side ? -1 : 1) : 0); /* MCSTAT_DECISION_* */
         bs->done[j] = bs->kind[j] == PIX_FAST && bs->tail_ok[j] == TAIL_DONE && (!iv || bs->bound_ok[j]);
     }
     for (size_t j = 0; j < k; j++)
@@ -1110,14 +1105,26 @@ static void put_block(const pix_ctx *c, size_t i0, size_t k, const block_stats *
         o->df[i0 + j] = bs->df[j];
     for (size_t j = 0; o->std_error && j < k; j++)
         o->std_error[i0 + j] = bs->se[j];
-    for (size_t j = 0; o->mean_x && j < k; j++)
-        o->mean_x[i0 + j] = mx[j].hi;
-    for (size_t j = 0; o->mean_y && j < k; j++)
-        o->mean_y[i0 + j] = my[j].hi;
+    for (size_t j = 0; o->estimate && j < k; j++)
+        o->estimate[i0 + j] = mx[j].hi;
+    for (size_t j = 0; o->estimate2 && j < k; j++)
+        o->estimate2[i0 + j] = my[j].hi;
+    for (size_t j = 0; o->df2 && j < k; j++)
+        o->df2[i0 + j] = NAN;
     for (size_t j = 0; o->conf_lo && j < k; j++)
         o->conf_lo[i0 + j] = c->intervals ? bs->conf_lo[j] : NAN;
     for (size_t j = 0; o->conf_hi && j < k; j++)
         o->conf_hi[i0 + j] = c->intervals ? bs->conf_hi[j] : NAN;
+    for (size_t j = 0; o->critical_lo && j < k; j++)
+        o->critical_lo[i0 + j] = c->intervals ? bs->crit_lo[j] : NAN;
+    for (size_t j = 0; o->critical_hi && j < k; j++)
+        o->critical_hi[i0 + j] = c->intervals ? bs->crit_hi[j] : NAN;
+    for (size_t j = 0; o->decision && j < k; j++)
+        o->decision[i0 + j] = (int8_t)bs->dec[j];
+    for (size_t j = 0; o->n_x && j < k; j++)
+        o->n_x[i0 + j] = c->nx;
+    for (size_t j = 0; o->n_y && j < k; j++)
+        o->n_y[i0 + j] = c->ny;
     for (size_t j = 0; o->status && j < k; j++)
         o->status[i0 + j] = MCSTAT_OK;
 }
@@ -1174,13 +1181,13 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
  * loop skips the |v| maximum and its checks are the sum's finiteness only.
  * A weighted sum of channels is checked whatever the type. */
 #define DEFINE_BLOCK_MOMENTS(NAME, TILE, T, RANGE)                                                         \
-    static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t ch, const double *w, size_t i0, size_t k, \
-                     mcstat_dd *mean, double *m2, unsigned char *bad)                                      \
+    static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t ps, size_t ch, const double *w,        \
+                                size_t i0, size_t k, mcstat_dd *mean, double *m2, unsigned char *bad)              \
     {                                                                                                      \
         double sum[PIX_BLOCK], amax[PIX_BLOCK], s1[PIX_BLOCK], s2[PIX_BLOCK];                              \
         const double dn = (double)n, inv = 1.0 / dn;                                                       \
         const int p2 = pow2_count(n);                                                                      \
-        if (ch == 1 && !w) {                                                                               \
+        if (ch == 1 && !w && ps == 1) {                                                                    \
             size_t j = 0;                                                                                  \
             for (; j + MOMENT_TILE <= k; j += MOMENT_TILE)                                                 \
                 TILE(x + i0, n, stride, j, MOMENT_TILE, dn, inv, p2, sum, s1, s2, amax);                   \
@@ -1190,11 +1197,11 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
             for (size_t j = 0; j < k; j++)                                                                 \
                 sum[j] = amax[j] = s1[j] = s2[j] = 0.0;                                                    \
             for (size_t s = 0; s < n; s++) {                                                               \
-                const T *row = x + s * stride + i0 * ch;                                                   \
+                const T *row = x + s * stride + i0 * ps;                                                   \
                 for (size_t j = 0; j < k; j++) {                                                           \
-                    double v = 0.0;                                                                        \
-                    for (size_t c = 0; c < ch; c++)                                                        \
-                        v += w[c] * (double)row[j * ch + c];                                               \
+                    double v = w ? 0.0 : (double)row[j * ps];                                              \
+                    for (size_t c = 0; w && c < ch; c++)                                                   \
+                        v += w[c] * (double)row[j * ps + c];                                               \
                     sum[j] += v;                                                                           \
                     double av = fabs(v);                                                                   \
                     amax[j] = av > amax[j] ? av : amax[j];                                                 \
@@ -1203,11 +1210,11 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
             for (size_t j = 0; j < k; j++)                                                                 \
                 sum[j] = div_by(sum[j], dn, inv, p2); /* the mean to a few ulps; the second pass corrects it */ \
             for (size_t s = 0; s < n; s++) {                                                               \
-                const T *row = x + s * stride + i0 * ch;                                                   \
+                const T *row = x + s * stride + i0 * ps;                                                   \
                 for (size_t j = 0; j < k; j++) {                                                           \
-                    double v = 0.0;                                                                        \
-                    for (size_t c = 0; c < ch; c++)                                                        \
-                        v += w[c] * (double)row[j * ch + c];                                               \
+                    double v = w ? 0.0 : (double)row[j * ps];                                              \
+                    for (size_t c = 0; w && c < ch; c++)                                                   \
+                        v += w[c] * (double)row[j * ps + c];                                               \
                     double d = v - sum[j];                                                                 \
                     s1[j] += d;                                                                            \
                     s2[j] += d * d;                                                                        \
@@ -1267,7 +1274,7 @@ typedef struct {
 typedef struct {
     const float *xf, *yf;
     const double *xd, *yd, *w;
-    size_t nx, xs, ny, ys, ch;
+    size_t nx, xs, xps, ny, ys, yps, ch;
     double mu0;
 } block_input;
 
@@ -1275,11 +1282,11 @@ typedef struct {
 static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t k, block_work *b, int joint)
 {
     if (in->xf) {
-        block_moments_f32(in->xf, in->nx, in->xs, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
-        block_moments_f32(in->yf, in->ny, in->ys, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
+        block_moments_f32(in->xf, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
+        block_moments_f32(in->yf, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
     } else {
-        block_moments_f64(in->xd, in->nx, in->xs, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
-        block_moments_f64(in->yd, in->ny, in->ys, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
+        block_moments_f64(in->xd, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
+        block_moments_f64(in->yd, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
     }
     block_statistics(k, (double)in->nx, b->mx, b->m2x, b->bx, (double)in->ny, b->my, b->m2y, b->by, in->mu0, &b->st);
     unsigned char want[PIX_BLOCK];
@@ -1302,30 +1309,37 @@ __attribute__((target("avx2"))) static void block_pass_avx2(const block_input *i
 }
 #endif
 
-static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const float *yf, const double *yd,
-                  size_t ny, size_t ys, size_t channels, const double *w, size_t begin, size_t end, double mu0,
-                  int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
+/* Welch's test for pixels [begin, end) of x and y (pixels_test.c has
+ * checked the arguments; x and y are of one type and channel weighting).
+ * Returns the status of the first pixel that failed. */
+int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin, size_t end, double mu0,
+                         int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
 {
-    const void *x = xf ? (const void *)xf : (const void *)xd, *y = yf ? (const void *)yf : (const void *)yd;
-    int st = check_args(x, nx, xs, y, ny, ys, channels, w, begin, end, mu0, alternative, alpha, flags, out);
-    if (st)
-        return st;
+    const int f32 = x->type == MCSTAT_VALUE_FLOAT32;
+    const float *xf = f32 ? x->data : NULL, *yf = f32 ? y->data : NULL;
+    const double *xd = f32 ? NULL : x->data, *yd = f32 ? NULL : y->data;
+    const size_t nx = x->n, ny = y->n, channels = x->channels;
+    const double *w = x->weights;
     pix_ctx c;
     c.out = out;
     c.alternative = alternative;
-    c.intervals = !(flags & MCSTAT_ROWS_NO_INTERVALS) && (out->conf_lo || out->conf_hi);
+    c.intervals = !(flags & MCSTAT_ROWS_NO_INTERVALS);
     c.mu0 = mu0;
     c.alpha = alpha;
     c.crit_two = NAN;
     c.crit_df = NAN;
     c.qt_p = alternative == MCSTAT_TWO_SIDED ? 0.5 * alpha : alpha;
+    c.nx = nx;
+    c.ny = ny;
     double qt[QT_NODES + 1];
     if (c.intervals)
         qt_table_init(&c, c.qt_p, qt, QT_NODES);
     mcstat__qcache_init(&c.qc);
     c.first = MCSTAT_OK;
-    plane px = {xf, xd, xs, channels, w}, py = {yf, yd, ys, channels, w};
-    block_input in = {xf, yf, xd, yd, w, nx, xs, ny, ys, channels, mu0};
+    plane px = {xf, xd, x->value_stride, x->pixel_stride, channels, w},
+          py = {yf, yd, y->value_stride, y->pixel_stride, channels, w};
+    block_input in = {xf, yf, xd, yd, w, nx, x->value_stride, x->pixel_stride, ny, y->value_stride, y->pixel_stride,
+                      channels, mu0};
     block_work *b = calloc(1, sizeof *b); /* tens of KiB: not on a caller's thread stack */
     int fast_ok = nx >= 2 && ny >= 2 && b;
 #if PIX_AVX2
@@ -1364,25 +1378,6 @@ static int pixels(const float *xf, const double *xd, size_t nx, size_t xs, const
     }
     free(b);
     return c.first;
-}
-
-int mcstat_t_test_2_pixels(const double *x, size_t nx, size_t x_seed_stride, const double *y, size_t ny,
-                           size_t y_seed_stride, size_t channels, const double *weights, size_t begin, size_t end,
-                           double mu0, int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
-{
-    MCSTAT_IEEE_SCOPE();
-    return pixels(NULL, x, nx, x_seed_stride, NULL, y, ny, y_seed_stride, channels, weights, begin, end, mu0,
-                  alternative, alpha, flags, out);
-}
-
-int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_seed_stride, const float *y, size_t ny,
-                               size_t y_seed_stride, size_t channels, const double *weights, size_t begin,
-                               size_t end, double mu0, int alternative, double alpha, unsigned flags,
-                               const mcstat_pixels_out *out)
-{
-    MCSTAT_IEEE_SCOPE();
-    return pixels(x, NULL, nx, x_seed_stride, y, NULL, ny, y_seed_stride, channels, weights, begin, end, mu0,
-                  alternative, alpha, flags, out);
 }
 
 /* ---- t quantiles for many df ------------------------------------------

@@ -55,6 +55,19 @@ MCSTAT_HIDDEN int mcstat__t_upper_quantile_fast(double p, double df, double *q);
 /* pixels.c: nonzero runs the per-block loops' baseline (SSE2) code even
  * where AVX2 is there; for the tests, which compare the two bit for bit. */
 MCSTAT_HIDDEN void mcstat__pixels_baseline_only(int on);
+/* pixels.c: Welch's test on pixels [begin, end) of arguments pixels_test.c
+ * has checked (x and y of one type and weighting). */
+MCSTAT_HIDDEN int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin,
+                                       size_t end, double mu0, int alternative, double alpha, unsigned flags,
+                                       const mcstat_pixels_out *out);
+/* threads.c: f(ctx, b, e) over [begin, end) split into at most `threads`
+ * contiguous ranges of at least min_per_thread items, the first on the
+ * calling thread; a thread that cannot start runs its range on the caller's
+ * afterwards.  Returns the status of the first range (in index order) that
+ * failed. */
+typedef int (*mcstat__range_fn)(void *ctx, size_t begin, size_t end);
+MCSTAT_HIDDEN int mcstat__run_ranges(size_t begin, size_t end, int threads, size_t min_per_thread,
+                                     mcstat__range_fn f, void *ctx);
 /* pixels.c: the per-pixel path's block tails (vector exp and log1p, the
  * central series eight at a time) for n pairs; done[i] where they answered. */
 MCSTAT_HIDDEN int mcstat__t_tails_block(size_t n, const double *t, const double *df, double *lower, double *upper,

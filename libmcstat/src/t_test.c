@@ -277,12 +277,9 @@ static int add_differences(mcstat_moments *m, const double *x, const double *y, 
     return MCSTAT_OK;
 }
 
-int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative, double alpha,
-                         mcstat_result *out)
+int mcstat__t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative, double alpha,
+                          mcstat_qcache *qc, mcstat_result *out)
 {
-    MCSTAT_IEEE_SCOPE();
-    if (!x || !y || !check_args(mu0, alternative, alpha, out))
-        return MCSTAT_EINVAL;
     for (size_t i = 0; i < n; i++) /* NaN or Inf in the data, not an overflowing difference */
         if (!isfinite(x[i]) || !isfinite(y[i]))
             return MCSTAT_ENONFINITE;
@@ -302,9 +299,7 @@ int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0,
     if (st)
         return st;
     mcstat_result r;
-    mcstat_qcache qc;
-    mcstat__qcache_init(&qc);
-    if ((st = mcstat__t_test_1(&m, scale2(mu0, -s), alternative, alpha, &qc, &r)))
+    if ((st = mcstat__t_test_1(&m, scale2(mu0, -s), alternative, alpha, qc, &r)))
         return st;
     r.test = MCSTAT_TEST_T_PAIRED;
     r.n[1] = r.n[0];
@@ -315,4 +310,15 @@ int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0,
     r.conf_int[1] = scale2(r.conf_int[1], s);
     *out = r;
     return MCSTAT_OK;
+}
+
+int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative, double alpha,
+                         mcstat_result *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    if (!x || !y || !check_args(mu0, alternative, alpha, out))
+        return MCSTAT_EINVAL;
+    mcstat_qcache qc;
+    mcstat__qcache_init(&qc);
+    return mcstat__t_test_paired(x, y, n, mu0, alternative, alpha, &qc, out);
 }

@@ -64,6 +64,9 @@ MCSTAT_HIDDEN double mcstat__ci_bound(mcstat_dd est, double c, double se, int e)
  * standard error and nx + ny - 2 degrees of freedom). */
 MCSTAT_HIDDEN int mcstat__t_test_2_pooled(const mcstat_moments *x, const mcstat_moments *y, double mu0,
                                           int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
+/* The paired t test on x - y (arguments checked but the data; qc as above). */
+MCSTAT_HIDDEN int mcstat__t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative,
+                                        double alpha, mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, double alpha,
                                      mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double ratio,

@@ -225,7 +225,16 @@ typedef struct {
 
 static mcstat_pixels_out view(outs *o)
 {
-    mcstat_pixels_out v = {o->p, o->t, o->df, o->mx, o->my, o->lo, o->hi, o->st, o->se};
+    mcstat_pixels_out v = MCSTAT_PIXELS_OUT_INIT;
+    v.p_value = o->p;
+    v.statistic = o->t;
+    v.df = o->df;
+    v.estimate = o->mx;
+    v.estimate2 = o->my;
+    v.conf_lo = o->lo;
+    v.conf_hi = o->hi;
+    v.status = o->st;
+    v.std_error = o->se;
     return v;
 }
 
@@ -354,7 +363,8 @@ static void test_ranges(void)
     CHECK(!memcmp(&a, &b, sizeof a));
     /* NULL outputs are skipped; what is asked for is the same */
     static double p[P];
-    mcstat_pixels_out vp = {p, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL};
+    mcstat_pixels_out vp = MCSTAT_PIXELS_OUT_INIT;
+    vp.p_value = p;
     mcstat_t_test_2_pixels(x1, NX, P, y1, NY, P, 1, NULL, 0, P, 0.0, MCSTAT_TWO_SIDED, 0.01, 0, &vp);
     CHECK(!memcmp(p, a.p, sizeof p));
 }
@@ -370,7 +380,10 @@ static void test_ill_conditioned(void)
         y[k] = 1e8 + 1e-4 * nrand(&s) + 2e-5;
     }
     double p[Q], t[Q], df[Q];
-    mcstat_pixels_out o = {p, t, df, NULL, NULL, NULL, NULL, NULL, NULL};
+    mcstat_pixels_out o = MCSTAT_PIXELS_OUT_INIT;
+    o.p_value = p;
+    o.statistic = t;
+    o.df = df;
     CHECK_INT(mcstat_t_test_2_pixels(x, N, Q, y, N, Q, 1, NULL, 0, Q, 0.0, MCSTAT_TWO_SIDED, 0.05, 0, &o),
               MCSTAT_OK);
     for (int i = 0; i < Q; i++) {
@@ -392,7 +405,9 @@ static void test_bad_arguments(void)
     double x[4] = {1, 2, 3, 4}, y[4] = {2, 3, 4, 6}, p[2] = {-1.0, -1.0};
     float f[4] = {1, 2, 3, 4};
     int32_t st[2] = {-1, -1};
-    mcstat_pixels_out o = {p, NULL, NULL, NULL, NULL, NULL, NULL, st, NULL};
+    mcstat_pixels_out o = MCSTAT_PIXELS_OUT_INIT;
+    o.p_value = p;
+    o.status = st;
     const double w2[2] = {0.5, 0.5}, wbad[2] = {0.5, NAN};
     CHECK_INT(mcstat_t_test_2_pixels(x, 2, 2, y, 2, 2, 1, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, 0, NULL),
               MCSTAT_EINVAL);

@@ -76,7 +76,16 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             arrays[a][i] = -7.0;
     for (size_t i = 0; i < MAXPIX; i++)
         status[i] = -7;
-    mcstat_pixels_out out = {p, t, df, mx, my, lo, hi, status, se};
+    mcstat_pixels_out out = MCSTAT_PIXELS_OUT_INIT;
+    out.p_value = p;
+    out.statistic = t;
+    out.df = df;
+    out.estimate = mx;
+    out.estimate2 = my;
+    out.conf_lo = lo;
+    out.conf_hi = hi;
+    out.status = status;
+    out.std_error = se;
     const double *wp = weighted ? w : NULL;
     int st = f32 ? mcstat_t_test_2_pixels_f32(xf, nx, plane, yf, ny, plane, ch, wp, begin, end, mu0, alt, alpha,
                                               flags, &out)

@@ -1,0 +1,428 @@
+/*
+ * test_pixels_test.c - mcstat_pixels_test (pixels_test.c): every test, in
+ * seeds-major, row and weighted-RGB layouts, float32 and double, every
+ * alternative, with and without intervals and NaN omission, every output
+ * array against the single call on the pixel's own values (bit for bit
+ * but for Welch's test, whose block path is held to the bounds of
+ * mcstat.h); results independent of the number of threads; the structs'
+ * sizes and initialisers; bad arguments, nothing written.
+ */
+#include "harness.h"
+#include "mcstat.h"
+
+#include <float.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define P 700 /* pixels */
+#define NX 8
+#define NY 7  /* y's values in the unpaired tests (paired: NX) */
+#define CH 3
+#define PAD 3 /* the rows layout leaves PAD unused elements after each row */
+
+static const double RGB[CH] = {0.2126, 0.7152, 0.0722};
+
+enum { SEEDS_MAJOR, ROWS, RGB_SEEDS_MAJOR, N_LAYOUTS };
+
+static double urand(unsigned long long *s)
+{
+    *s = *s * 6364136223846793005ull + 1442695040888963407ull;
+    return (double)(*s >> 11) * 0x1p-53;
+}
+
+/* value s of pixel i of side `side`, before the layout: pixel kinds by
+ * i mod 50 (a NaN, an Inf, a constant sample, a large offset, different
+ * scales), else noise */
+static double truth(int side, size_t s, size_t i, size_t c)
+{
+    unsigned long long st = (i * 131u + s * 7u + (unsigned)side * 100003u + c * 17u) * 2654435761u + 1u;
+    for (int k = 0; k < 3; k++)
+        urand(&st);
+    double u = urand(&st) - 0.5;
+    size_t kind = i % 50;
+    if (kind == 3 && s == 2 && side == 0)
+        return NAN;
+    if (kind == 7 && s == 1 && side == 1)
+        return NAN;
+    if (kind == 11 && s == 0)
+        return INFINITY;
+    if (kind == 13)
+        return 0.25; /* constant */
+    if (kind == 17)
+        return 1e8 + u;
+    return (1.0 + (double)(i % 5)) * u + (side ? 0.05 * (double)(i % 3) : 0.0) + 0.5;
+}
+
+static double xd[N_LAYOUTS][NX * P * CH + P * PAD], yd[N_LAYOUTS][NX * P * CH + P * PAD];
+static float xf[N_LAYOUTS][NX * P * CH + P * PAD], yf[N_LAYOUTS][NX * P * CH + P * PAD];
+
+static void fill(void)
+{
+    for (int L = 0; L < N_LAYOUTS; L++)
+        for (int side = 0; side < 2; side++) {
+            double *d = side ? yd[L] : xd[L];
+            float *f = side ? yf[L] : xf[L];
+            for (size_t i = 0; i < P; i++)
+                for (size_t s = 0; s < NX; s++)
+                    for (size_t c = 0; c < (L == RGB_SEEDS_MAJOR ? CH : 1); c++) {
+                        double v = truth(side, s, i, c);
+                        size_t k = L == ROWS ? i * (NX + PAD) + s : L == SEEDS_MAJOR ? s * P + i : s * P * CH + i * CH + c;
+                        d[k] = v;
+                        f[k] = (float)v;
+                    }
+        }
+}
+
+static mcstat_pixels_in side_in(int L, int f32, int side, size_t n)
+{
+    mcstat_pixels_in in = MCSTAT_PIXELS_IN_INIT;
+    in.type = f32 ? MCSTAT_VALUE_FLOAT32 : MCSTAT_VALUE_FLOAT64;
+    in.data = f32 ? (const void *)(side ? yf[L] : xf[L]) : (const void *)(side ? yd[L] : xd[L]);
+    in.n = n;
+    in.value_stride = L == ROWS ? 1 : L == SEEDS_MAJOR ? P : P * CH;
+    in.pixel_stride = L == ROWS ? NX + PAD : L == SEEDS_MAJOR ? 1 : CH;
+    in.channels = L == RGB_SEEDS_MAJOR ? CH : 1;
+    in.weights = L == RGB_SEEDS_MAJOR ? RGB : NULL;
+    return in;
+}
+
+/* pixel i's values as the call forms them */
+static void values(const mcstat_pixels_in *in, size_t i, double *v)
+{
+    for (size_t s = 0; s < in->n; s++) {
+        size_t k = s * in->value_stride + i * in->pixel_stride;
+        if (!in->weights) {
+            v[s] = in->type ? (double)((const float *)in->data)[k] : ((const double *)in->data)[k];
+            continue;
+        }
+        double a = 0.0;
+        for (size_t c = 0; c < in->channels; c++)
+            a += in->weights[c] * (in->type ? (double)((const float *)in->data)[k + c] : ((const double *)in->data)[k + c]);
+        v[s] = a;
+    }
+}
+
+typedef struct {
+    double p[P], t[P], df[P], df2[P], e[P], e2[P], se[P], lo[P], hi[P], c0[P], c1[P];
+    int32_t st[P];
+    int8_t dec[P];
+    uint64_t nx[P], ny[P];
+} outs;
+
+static mcstat_pixels_out view(outs *o)
+{
+    mcstat_pixels_out v = MCSTAT_PIXELS_OUT_INIT;
+    v.p_value = o->p;
+    v.statistic = o->t;
+    v.df = o->df;
+    v.df2 = o->df2;
+    v.estimate = o->e;
+    v.estimate2 = o->e2;
+    v.std_error = o->se;
+    v.conf_lo = o->lo;
+    v.conf_hi = o->hi;
+    v.critical_lo = o->c0;
+    v.critical_hi = o->c1;
+    v.status = o->st;
+    v.decision = o->dec;
+    v.n_x = o->nx;
+    v.n_y = o->ny;
+    return v;
+}
+
+static int same(double a, double b)
+{
+    return (isnan(a) && isnan(b)) || memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* the single call on pixel i's values */
+static int reference(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t i, double null_value,
+                     int alt, unsigned flags, mcstat_result *r)
+{
+    double vx[NX], vy[NX];
+    values(x, i, vx);
+    if (y)
+        values(y, i, vy);
+    int32_t st = MCSTAT_OK;
+    mcstat_moments mx, my;
+    switch (test) {
+    case MCSTAT_TEST_T_1:
+        mcstat_t_test_1_matrix(vx, x->n, 0, 1, null_value, alt, 0.05, flags, r, &st);
+        return st;
+    case MCSTAT_TEST_VAR_1:
+        mcstat_var_test_1_matrix(vx, x->n, 0, 1, null_value, alt, 0.05, flags, r, &st);
+        return st;
+    case MCSTAT_TEST_T_2:
+        mcstat_t_test_2_matrix(vx, x->n, 0, vy, y->n, 0, 1, null_value, alt, 0.05, flags, r, &st);
+        return st;
+    case MCSTAT_TEST_VAR_2:
+        mcstat_var_test_2_matrix(vx, x->n, 0, vy, y->n, 0, 1, null_value, alt, 0.05, flags, r, &st);
+        return st;
+    case MCSTAT_TEST_T_2_POOLED:
+        mcstat_moments_init(&mx);
+        mcstat_moments_init(&my);
+        st = (flags & MCSTAT_ROWS_OMIT_NAN) ? mcstat_moments_add_array_omit_nan(&mx, vx, x->n, NULL)
+                                            : mcstat_moments_add_array(&mx, vx, x->n);
+        if (!st)
+            st = (flags & MCSTAT_ROWS_OMIT_NAN) ? mcstat_moments_add_array_omit_nan(&my, vy, y->n, NULL)
+                                                : mcstat_moments_add_array(&my, vy, y->n);
+        return st ? st : mcstat_t_test_2_pooled_moments(&mx, &my, null_value, alt, 0.05, r);
+    default: { /* paired */
+        size_t n = 0;
+        for (size_t s = 0; s < x->n; s++)
+            if (!(flags & MCSTAT_ROWS_OMIT_NAN) || (!isnan(vx[s]) && !isnan(vy[s]))) {
+                vx[n] = vx[s];
+                vy[n] = vy[s];
+                n++;
+            }
+        return mcstat_t_test_paired(vx, vy, n, null_value, alt, 0.05, r);
+    }
+    }
+}
+
+/* |a - b| within tol relative to max(|b|, scale), or both the same */
+static int near(double a, double b, double tol, double scale)
+{
+    return same(a, b) || fabs(a - b) <= tol * fmax(fabs(b), scale);
+}
+
+static void check_case(int test, int L, int f32, int alt, unsigned flags)
+{
+    static outs o;
+    memset(&o, 0xff, sizeof o);
+    const int two = test != MCSTAT_TEST_T_1 && test != MCSTAT_TEST_VAR_1;
+    const int welch = test == MCSTAT_TEST_T_2, var = test == MCSTAT_TEST_VAR_1 || test == MCSTAT_TEST_VAR_2;
+    const double null_value = var ? 1.5 : 0.1;
+    mcstat_pixels_in x = side_in(L, f32, 0, NX), y = side_in(L, f32, 1, test == MCSTAT_TEST_T_PAIRED ? NX : NY);
+    mcstat_pixels_options opt = MCSTAT_PIXELS_OPTIONS_INIT;
+    opt.flags = flags;
+    mcstat_pixels_out v = view(&o);
+    int ret = mcstat_pixels_test(test, &x, two ? &y : NULL, 0, P, null_value, alt, 0.05, &opt, &v);
+    int first = MCSTAT_OK, ok_pixels = 0, mism = 0;
+    const int iv = !(flags & MCSTAT_ROWS_NO_INTERVALS);
+    for (size_t i = 0; i < P; i++) {
+        mcstat_result r;
+        int want = reference(test, &x, two ? &y : NULL, i, null_value, alt, flags,
+                             &r);
+        if (want && first == MCSTAT_OK)
+            first = want;
+        int bad = o.st[i] != want;
+        if (want) {
+            bad |= !(isnan(o.p[i]) && isnan(o.t[i]) && isnan(o.df[i]) && isnan(o.e[i]) && isnan(o.lo[i]) &&
+                     isnan(o.c0[i]) && o.dec[i] == 0 && o.nx[i] == 0 && o.ny[i] == 0);
+        } else {
+            ok_pixels++;
+            double rlo = iv ? r.conf_int[0] : NAN, rhi = iv ? r.conf_int[1] : NAN;
+            double rc0 = iv ? r.critical[0] : NAN, rc1 = iv ? r.critical[1] : NAN;
+            double rdf2 = test == MCSTAT_TEST_VAR_2 ? r.df[1] : NAN;
+            double re2 = test == MCSTAT_TEST_T_2 || test == MCSTAT_TEST_T_2_POOLED ? r.estimate[1] : NAN;
+            bad |= o.nx[i] != r.n[0] || o.ny[i] != (two ? r.n[1] : 0);
+            if (!welch) {
+                bad |= !same(o.p[i], r.p_value) || !same(o.t[i], r.statistic) || !same(o.df[i], r.df[0]) ||
+                       !same(o.df2[i], rdf2) || !same(o.e[i], r.estimate[0]) || !same(o.e2[i], re2) ||
+                       !same(o.se[i], r.std_error) || !same(o.lo[i], rlo) || !same(o.hi[i], rhi) ||
+                       !same(o.c0[i], rc0) || !same(o.c1[i], rc1) || o.dec[i] != r.decision;
+            } else {
+                double tol_p = 3e-14 + 4e-16 * fabs(log(fmax(r.p_value, DBL_MIN)));
+                double hw = isfinite(rhi - rlo) ? fabs(rhi - rlo) : fabs(r.std_error);
+                double scale = 4.0 * r.std_error * sqrt((double)NX);
+                bad |= !near(o.p[i], r.p_value, tol_p, 0.0) || !near(o.t[i], r.statistic, 1e-14, 1.0) ||
+                       !near(o.df[i], r.df[0], 1e-14, 0.0) || !isnan(o.df2[i]) ||
+                       !near(o.e[i], r.estimate[0], 8 * DBL_EPSILON, scale) ||
+                       !near(o.e2[i], re2, 8 * DBL_EPSILON, scale) || !near(o.se[i], r.std_error, 1e-14, 0.0) ||
+                       !near(o.lo[i], rlo, 1e-14, hw) || !near(o.hi[i], rhi, 1e-14, hw) ||
+                       !near(o.c0[i], rc0, 3e-13, 0.0) || !near(o.c1[i], rc1, 3e-13, 0.0);
+                /* the decision may differ only where p is within its bound of alpha */
+                if (o.dec[i] != r.decision && fabs(r.p_value - 0.05) > 1e-12)
+                    bad = 1;
+            }
+        }
+        if (bad && mism++ < 3)
+            fprintf(stderr, "test %d layout %d f32 %d alt %d flags %u: pixel %zu differs (status %d, want %d)\n",
+                    test, L, f32, alt, flags, i, (int)o.st[i], want);
+        h_checks++;
+        h_failures += bad;
+    }
+    CHECK_INT(ret, first);
+    CHECK(first != MCSTAT_OK && ok_pixels > P / 2); /* both kinds of pixel were there */
+}
+
+static void test_every_case(void)
+{
+    const int tests[] = {MCSTAT_TEST_T_1,      MCSTAT_TEST_T_2,   MCSTAT_TEST_T_2_POOLED,
+                         MCSTAT_TEST_T_PAIRED, MCSTAT_TEST_VAR_1, MCSTAT_TEST_VAR_2};
+    const int alts[] = {MCSTAT_TWO_SIDED, MCSTAT_LESS, MCSTAT_GREATER};
+    const unsigned flags[] = {0u, MCSTAT_ROWS_NO_INTERVALS, MCSTAT_ROWS_OMIT_NAN};
+    for (size_t t = 0; t < 6; t++)
+        for (int L = 0; L < N_LAYOUTS; L++)
+            for (int f32 = 0; f32 < 2; f32++)
+                for (size_t a = 0; a < 3; a++)
+                    for (size_t f = 0; f < 3; f++)
+                        check_case(tests[t], L, f32, alts[a], flags[f]);
+}
+
+/* The same bytes whatever the number of threads (P2 pixels: several ranges
+ * of at least 4096). */
+#define P2 20000
+static double bx[4 * P2], by[4 * P2];
+static double r1[2][P2], r3[2][P2];
+static int32_t s1[P2], s3[P2];
+
+static void test_threads(void)
+{
+    unsigned long long st = 7;
+    for (size_t k = 0; k < 4 * P2; k++) {
+        bx[k] = urand(&st);
+        by[k] = urand(&st) * 1.1;
+    }
+    bx[5 * 4 + 1] = NAN; /* pixel 5 fails */
+    const int tests[] = {MCSTAT_TEST_T_2, MCSTAT_TEST_VAR_2, MCSTAT_TEST_T_PAIRED};
+    for (size_t t = 0; t < 3; t++) {
+        mcstat_pixels_in x = MCSTAT_PIXELS_IN_INIT, y = MCSTAT_PIXELS_IN_INIT;
+        x.data = bx;
+        y.data = by;
+        x.n = y.n = 4;
+        x.value_stride = y.value_stride = 1;
+        x.pixel_stride = y.pixel_stride = 4;
+        mcstat_pixels_options o1 = MCSTAT_PIXELS_OPTIONS_INIT, o3 = MCSTAT_PIXELS_OPTIONS_INIT;
+        o3.threads = 3;
+        mcstat_pixels_out v1 = MCSTAT_PIXELS_OUT_INIT, v3 = MCSTAT_PIXELS_OUT_INIT;
+        v1.p_value = r1[0];
+        v1.conf_lo = r1[1];
+        v1.status = s1;
+        v3.p_value = r3[0];
+        v3.conf_lo = r3[1];
+        v3.status = s3;
+        double nv = tests[t] == MCSTAT_TEST_VAR_2 ? 1.0 : 0.0;
+        int a = mcstat_pixels_test(tests[t], &x, &y, 0, P2, nv, MCSTAT_TWO_SIDED, 0.05, &o1, &v1);
+        int b = mcstat_pixels_test(tests[t], &x, &y, 0, P2, nv, MCSTAT_TWO_SIDED, 0.05, &o3, &v3);
+        CHECK_INT(a, MCSTAT_ENONFINITE);
+        CHECK_INT(b, a);
+        CHECK(memcmp(r1, r3, sizeof r1) == 0 && memcmp(s1, s3, sizeof s1) == 0);
+    }
+}
+
+static void test_structs(void)
+{
+    CHECK_INT(mcstat_sizeof_pixels_in(), MCSTAT_PIXELS_IN_SIZE_0_2);
+    CHECK_INT(mcstat_sizeof_pixels_options(), MCSTAT_PIXELS_OPTIONS_SIZE_0_2);
+    CHECK_INT(mcstat_sizeof_pixels_out(), MCSTAT_PIXELS_OUT_SIZE_0_2);
+    mcstat_pixels_in in;
+    mcstat_pixels_options op;
+    mcstat_pixels_out ou;
+    memset(&in, 0x55, sizeof in);
+    memset(&op, 0x55, sizeof op);
+    memset(&ou, 0x55, sizeof ou);
+    CHECK_INT(mcstat_pixels_in_init_size(&in, sizeof in), MCSTAT_OK);
+    CHECK_INT(mcstat_pixels_options_init_size(&op, sizeof op), MCSTAT_OK);
+    CHECK_INT(mcstat_pixels_out_init_size(&ou, sizeof ou), MCSTAT_OK);
+    const mcstat_pixels_in din = MCSTAT_PIXELS_IN_INIT;
+    const mcstat_pixels_options dop = MCSTAT_PIXELS_OPTIONS_INIT;
+    const mcstat_pixels_out dou = MCSTAT_PIXELS_OUT_INIT;
+    CHECK(memcmp(&in, &din, sizeof in) == 0 && memcmp(&op, &dop, sizeof op) == 0 &&
+          memcmp(&ou, &dou, sizeof ou) == 0);
+    CHECK_INT(mcstat_pixels_in_init_size(&in, 12), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_pixels_options_init_size(NULL, sizeof op), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_pixels_out_init_size(&ou, sizeof ou + 8), MCSTAT_EINVAL);
+}
+
+static void test_bad_arguments(void)
+{
+    static double p[4] = {-1, -1, -1, -1};
+    static int32_t st[4] = {-1, -1, -1, -1};
+    mcstat_pixels_out o = MCSTAT_PIXELS_OUT_INIT;
+    o.p_value = p;
+    o.status = st;
+    double d[16] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 17};
+    mcstat_pixels_in x = MCSTAT_PIXELS_IN_INIT, y;
+    x.data = d;
+    x.n = 4;
+    x.value_stride = 1;
+    x.pixel_stride = 4;
+    y = x;
+    mcstat_pixels_options opt = MCSTAT_PIXELS_OPTIONS_INIT;
+#define BAD(call, want) CHECK_INT(call, want)
+    BAD(mcstat_pixels_test(99, &x, &y, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_2, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, &y, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, NULL, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, NULL), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 2, 1, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, NAN, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_VAR_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_VAR_2, &x, &y, 0, 2, -1.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, 5, 0.05, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 1.0, NULL, &o), MCSTAT_EINVAL);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, NAN, NULL, &o), MCSTAT_EINVAL);
+    opt.flags = 8u;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, &opt, &o), MCSTAT_EINVAL);
+    opt.flags = 0u;
+    opt.threads = 0;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, &opt, &o), MCSTAT_EINVAL);
+    opt.threads = 65;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, &opt, &o), MCSTAT_EINVAL);
+    opt.threads = 1;
+    opt.size = 3;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, &opt, &o), MCSTAT_EINVAL);
+    mcstat_pixels_in z = x;
+    z.size = 0;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &z, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    z = x;
+    z.type = 2;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &z, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    z = x;
+    z.channels = 0;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &z, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    z.channels = 2; /* without weights */
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &z, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    const double wnan[2] = {1.0, NAN}, w2[2] = {0.5, 0.5};
+    z.weights = wnan;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &z, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    z.weights = w2; /* x weighted, y not */
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_2, &z, &y, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    z = x;
+    z.type = MCSTAT_VALUE_FLOAT32; /* x float, y double */
+    BAD(mcstat_pixels_test(MCSTAT_TEST_VAR_2, &z, &y, 0, 2, 1.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    z = x;
+    z.n = 3; /* paired, unequal */
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_PAIRED, &z, &y, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    z = x;
+    z.data = NULL;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &z, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_EINVAL);
+    z = x;
+    z.value_stride = SIZE_MAX / 2;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &z, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_ETOOBIG);
+    z = x;
+    z.pixel_stride = SIZE_MAX / 4;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_2, &x, &z, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_ETOOBIG);
+    mcstat_pixels_out bo = o;
+    bo.size = 8;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &bo), MCSTAT_EINVAL);
+    bo = o;
+    bo.reserved = 1;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &bo), MCSTAT_EINVAL);
+    CHECK(p[0] == -1.0 && st[0] == -1); /* nothing was written */
+    /* an empty range with NULL data, then a good call */
+    z = x;
+    z.data = NULL;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &z, NULL, 1, 1, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_OK);
+    BAD(mcstat_pixels_test(MCSTAT_TEST_T_1, &x, NULL, 0, 2, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_OK);
+    CHECK(st[0] == MCSTAT_OK && st[1] == MCSTAT_OK && p[0] > 0.0 && p[0] < 1.0 && st[2] == -1);
+    /* too few values: each pixel's status */
+    z = x;
+    z.n = 1;
+    BAD(mcstat_pixels_test(MCSTAT_TEST_VAR_1, &z, NULL, 0, 2, 1.0, MCSTAT_TWO_SIDED, 0.05, NULL, &o), MCSTAT_ETOOFEW);
+    CHECK(st[0] == MCSTAT_ETOOFEW && st[1] == MCSTAT_ETOOFEW && isnan(p[0]));
+#undef BAD
+}
+
+int main(void)
+{
+    fill();
+    test_structs();
+    test_every_case();
+    test_threads();
+    test_bad_arguments();
+    return h_report("test_pixels_test");
+}
