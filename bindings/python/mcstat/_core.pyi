@@ -122,6 +122,7 @@ def t_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    threads: Optional[int] = None,
     equal_var: bool = False,
     paired: bool = False,
 ) -> BatchResult: ...
@@ -137,6 +138,7 @@ def t_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    threads: Optional[int] = None,
     equal_var: bool = False,
     paired: bool = False,
 ) -> BatchResult: ...
@@ -152,6 +154,7 @@ def t_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    threads: Optional[int] = None,
     equal_var: bool = False,
     paired: bool = False,
 ) -> TestResult: ...
@@ -167,6 +170,7 @@ def t_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    threads: Optional[int] = None,
     equal_var: bool = False,
     paired: bool = False,
 ) -> Any: ...
@@ -183,6 +187,7 @@ def var_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    threads: Optional[int] = None,
 ) -> BatchResult: ...
 @overload
 def var_test(
@@ -197,6 +202,7 @@ def var_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    threads: Optional[int] = None,
 ) -> BatchResult: ...
 @overload
 def var_test(
@@ -211,6 +217,7 @@ def var_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    threads: Optional[int] = None,
 ) -> TestResult: ...
 @overload
 def var_test(
@@ -225,6 +232,7 @@ def var_test(
     nan_policy: _TestNanPolicy = "raise",
     intervals: bool = True,
     on_error: _OnError = "raise",
+    threads: Optional[int] = None,
 ) -> Any: ...
 class KSCache:
     def __init__(self, max_bytes: Optional[int] = None, seed: Optional[int] = None) -> None: ...

@@ -32,6 +32,31 @@ _DECISIONS = np.array(["less", "equal", "greater"])
 _SHOW_ROWS = 5  # failed rows named in an error message
 
 
+class _Lazy:
+    """A field computed on first access (see `_Fields`)."""
+
+    __slots__ = ("fn",)
+
+    def __init__(self, fn: Any) -> None:
+        self.fn = fn
+
+
+class _Fields(dict):  # type: ignore[type-arg]
+    """The fields of a BatchResult: a value still a `_Lazy` is computed when
+    first read (the per-pixel kernel writes flat arrays; the paired fields
+    such as ``conf_int`` are stacked only if someone asks)."""
+
+    def __getitem__(self, key: str) -> Any:
+        v = dict.__getitem__(self, key)
+        if isinstance(v, _Lazy):
+            v = v.fn()
+            dict.__setitem__(self, key, v)
+        return v
+
+    def items(self) -> Any:
+        return [(k, self[k]) for k in self.keys()]
+
+
 class BatchResult:
     """The outcome of one test per row (2-D or N-D input with ``axis``).
 
@@ -77,7 +102,7 @@ class BatchResult:
     def __init__(self, kind: str, fields: Dict[str, np.ndarray], alternative: int, alpha: float,
                  null_value: float, intervals: bool) -> None:
         self._kind = kind
-        self._f = fields
+        self._f = fields if isinstance(fields, _Fields) else _Fields(fields)
         self.alternative: str = _ALTERNATIVES[alternative]
         self.alpha: float = alpha
         self.null_value: float = null_value
@@ -221,11 +246,9 @@ def _describe_rows(bad: np.ndarray, shape: Tuple[int, ...]) -> Tuple[np.ndarray,
     return rows, shown + more
 
 
-def _make_batch(kind: str, fields: Dict[str, np.ndarray], alternative: int, alpha: float, null_value: float,
-                axis: int, errors_as_nan: bool, intervals: bool, nan_rows: Any = None) -> BatchResult:
+def _raise_failed(status: np.ndarray, errors_as_nan: bool, nan_rows: Any) -> None:
     # nan_rows (nan_policy="propagate"): rows whose data hold NaN; their NaN
     # fields are the answer, not an error
-    status = fields["status"]
     bad = status != 0
     if nan_rows is not None:
         bad = bad & ~np.asarray(nan_rows, dtype=bool)
@@ -240,4 +263,49 @@ def _make_batch(kind: str, fields: Dict[str, np.ndarray], alternative: int, alph
         extra = f"; {others} of them failed for another reason" if others else ""
         raise cls(f"{_status_text(first)}: {nbad} of {status.size} rows failed (rows {shown}){extra}; "
                   "pass on_error='nan' to get NaN for failed rows instead", rows=rows)
+
+
+def _make_batch(kind: str, fields: Dict[str, np.ndarray], alternative: int, alpha: float, null_value: float,
+                axis: int, errors_as_nan: bool, intervals: bool, nan_rows: Any = None) -> BatchResult:
+    _raise_failed(fields["status"], errors_as_nan, nan_rows)
     return BatchResult(kind, fields, alternative, alpha, null_value, intervals)
+
+
+def _make_pixel_batch(kind: str, raw: Dict[str, Any], alternative: int, alpha: float, null_value: float,
+                      errors_as_nan: bool, intervals: bool, nan_rows: Any = None) -> BatchResult:
+    """The BatchResult of mcstat_pixels_test's flat arrays (rows.cpp): the
+    fields of pairs (df of F, Welch's estimates, intervals, critical values,
+    two-sample sizes), reject and the int8 status are formed on first read.
+    raw["n_x"] / raw["n_y"] are arrays with NaN left out, else the common
+    size (n_y None for one-sample tests)."""
+    status = raw["status"]
+    _raise_failed(status, errors_as_nan, nan_rows)
+    shape = status.shape
+
+    def pair(a: str, b: str) -> _Lazy:
+        return _Lazy(lambda: np.stack([raw[a], raw[b]], axis=-1))
+
+    def nans() -> _Lazy:
+        return _Lazy(lambda: np.full(shape + (2,), np.nan))
+
+    def sizes(v: Any) -> Any:
+        if isinstance(v, np.ndarray):
+            return v.astype(np.int64)
+        return np.where(status == 0, np.int64(v), np.int64(0))
+
+    f = _Fields()
+    f["statistic"] = raw["statistic"]
+    f["pvalue"] = raw["pvalue"]
+    f["std_error"] = raw["std_error"]
+    f["df"] = pair("df", "df2") if raw["df2"] is not None else raw["df"]
+    f["estimate"] = pair("estimate", "estimate2") if raw["estimate2"] is not None else raw["estimate"]
+    f["conf_int"] = pair("conf_lo", "conf_hi") if intervals else nans()
+    f["critical_values"] = pair("critical_lo", "critical_hi") if intervals else nans()
+    f["reject"] = _Lazy(lambda: raw["decision"] != 0)
+    f["decision_code"] = raw["decision"]
+    f["status"] = _Lazy(lambda: status.astype(np.int8))
+    if raw["n_y"] is None:
+        f["nobs"] = _Lazy(lambda: sizes(raw["n_x"]))
+    else:
+        f["nobs"] = _Lazy(lambda: np.stack([sizes(raw["n_x"]), sizes(raw["n_y"])], axis=-1))
+    return BatchResult(kind, f, alternative, alpha, null_value, intervals)

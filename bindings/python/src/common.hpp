@@ -146,6 +146,7 @@ struct TestArgs {
     bool propagate_nan; // nan_policy="propagate": NaN data give a NaN result, decided here, not in C
     bool intervals;
     bool errors_as_nan;
+    int threads = 0; // per-pixel threads= (0: num_threads())
 };
 
 // The result a test on data with NaN gets under nan_policy="propagate" (as

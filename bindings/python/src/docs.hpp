@@ -5,7 +5,7 @@
 
 namespace mcs {
 
-inline constexpr const char T_TEST_DOC[] = R"doc(t_test($module, /, x, y=None, *, mu=0.0, alternative='two-sided', alpha=0.05, axis=-1, nan_policy='raise', intervals=True, on_error='raise', equal_var=False, paired=False)
+inline constexpr const char T_TEST_DOC[] = R"doc(t_test($module, /, x, y=None, *, mu=0.0, alternative='two-sided', alpha=0.05, axis=-1, nan_policy='raise', intervals=True, on_error='raise', threads=None, equal_var=False, paired=False)
 --
 
 Student's one-sample t test, Welch's two-sample t test, Student's pooled
@@ -36,6 +36,16 @@ alpha : float, optional
 axis : int, optional
     The axis holding each sample in N-D input (default: the last).  x and
     y must then have the same shape except along `axis` (no broadcasting).
+    N-D input is one test per pixel (libmcstat's mcstat_pixels_test):
+    float32 stays float32 when both arrays are (other dtypes, and views
+    whose pixels are not one stride apart, are copied to float64 first);
+    seeds-major stacks ``(seeds, H, W)`` with ``axis=0`` and rows
+    ``(H, W, seeds)`` with ``axis=-1`` are read in place.  Each pixel's
+    result is the single call's on its values bit for bit, except Welch's
+    test, whose block path agrees to the bounds of mcstat.h (p-value
+    3e-14 + 4e-16 |log p| relative, the rest about 1e-14, critical values
+    3e-13).  Fields of pairs (``conf_int``, ``estimate``, ...) are formed
+    when first read.
 nan_policy : {"raise", "omit", "propagate"}, optional
     NaN raises `NonFiniteError` (the default), is omitted from its sample
     (row; paired: the pair is dropped), or, with "propagate" (SciPy's
@@ -46,12 +56,15 @@ nan_policy : {"raise", "omit", "propagate"}, optional
     always raise.
 intervals : bool, optional
     False skips the critical values and the confidence interval (NaN):
-    the cheap path when only p-values and decisions are wanted (the pooled
-    and paired tests compute them regardless).
+    the cheap path when only p-values and decisions are wanted.
 on_error : {"raise", "nan"}, optional
     Row-wise tests only: a failed row raises (the exception's ``rows``
     names them), or gets NaN fields, ``reject`` False and a non-zero
     ``status``.  A single test always raises.
+threads : int, optional
+    Row-wise tests only: threads for the pixels, 1..64 (default
+    `get_num_threads()`, capped at 64); each thread takes a contiguous
+    range of at least 4096 pixels.  Results do not depend on it.
 equal_var : bool, optional
     True: Student's test with pooled variance, df = nx + ny - 2 (R's
     ``t.test(var.equal=TRUE)``, SciPy's ``ttest_ind`` default).
@@ -90,7 +103,7 @@ Examples
 >>> print(r.format("new", "trusted"))   # R's print.htest layout
 )doc";
 
-inline constexpr const char VAR_TEST_DOC[] = R"doc(var_test($module, /, x, y=None, *, sigma2=None, ratio=1.0, alternative='two-sided', alpha=0.05, axis=-1, nan_policy='raise', intervals=True, on_error='raise')
+inline constexpr const char VAR_TEST_DOC[] = R"doc(var_test($module, /, x, y=None, *, sigma2=None, ratio=1.0, alternative='two-sided', alpha=0.05, axis=-1, nan_policy='raise', intervals=True, on_error='raise', threads=None)
 --
 
 Chi-squared test of one variance, or the F test of two.
@@ -112,7 +125,7 @@ alternative : {"two-sided", "less", "greater"}, optional
     A claim about the first sample: "less" means var(x) < sigma2 (or
     var(x)/var(y) < ratio): the new estimator has the lower variance
     (ERRATA 4).
-alpha, axis, nan_policy, intervals, on_error
+alpha, axis, nan_policy, intervals, on_error, threads
     As for `t_test`.
 
 Returns

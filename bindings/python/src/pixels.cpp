@@ -1,15 +1,15 @@
 // pixels.cpp - Welch's test per pixel on seeds-major image stacks
-// (libmcstat's mcstat_t_test_2_pixels): float32 or float64 (seeds, ...)
-// arrays read in place, optionally a weighted sum of the last axis (the
-// channels: luminance from RGB without a float64 copy), the pixels split
-// over mcstat.set_num_threads' threads with the GIL released.  For
+// (libmcstat's mcstat_pixels_test): float32 or float64 (seeds, ...) arrays
+// read in place, optionally a weighted sum of the last axis (the channels:
+// luminance from RGB without a float64 copy), the pixels split over
+// mcstat.set_num_threads' threads (at most 64) with the GIL released.  For
 // mcstat.image.compare.
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
 #include "output_array.hpp"
-#include "threads.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,19 +20,6 @@ namespace {
 
 bool is_f32(const py::array &a) { return a.dtype().is(py::dtype::of<float>()); }
 bool is_f64(const py::array &a) { return a.dtype().is(py::dtype::of<double>()); }
-
-int run(const py::array &x, const py::array &y, bool f32, size_t nx, size_t ny, size_t stride, size_t channels,
-        const double *w, size_t begin, size_t end, double mu0, int alternative, double alpha, unsigned flags,
-        const mcstat_pixels_out *out)
-{
-    if (f32)
-        return mcstat_t_test_2_pixels_f32(static_cast<const float *>(x.data()), nx, stride,
-                                          static_cast<const float *>(y.data()), ny, stride, channels, w, begin, end,
-                                          mu0, alternative, alpha, flags, out);
-    return mcstat_t_test_2_pixels(static_cast<const double *>(x.data()), nx, stride,
-                                  static_cast<const double *>(y.data()), ny, stride, channels, w, begin, end, mu0,
-                                  alternative, alpha, flags, out);
-}
 
 } // namespace
 
@@ -82,20 +69,36 @@ void register_pixels(py::module_ &mod)
             std::vector<py::ssize_t> none{0};
             auto lo = output_array<double>(intervals ? shape : none), hi = output_array<double>(intervals ? shape : none);
             auto status = output_array<int32_t>(shape);
-            mcstat_pixels_out out = {p.mutable_data(), t.mutable_data(),  df.mutable_data(),
-                                     mx.mutable_data(), my.mutable_data(), intervals ? lo.mutable_data() : nullptr,
-                                     intervals ? hi.mutable_data() : nullptr, status.mutable_data(), se.mutable_data()};
+            mcstat_pixels_out out = MCSTAT_PIXELS_OUT_INIT;
+            out.p_value = p.mutable_data();
+            out.statistic = t.mutable_data();
+            out.df = df.mutable_data();
+            out.estimate = mx.mutable_data();
+            out.estimate2 = my.mutable_data();
+            out.std_error = se.mutable_data();
+            out.conf_lo = intervals ? lo.mutable_data() : nullptr;
+            out.conf_hi = intervals ? hi.mutable_data() : nullptr;
+            out.status = status.mutable_data();
+            mcstat_pixels_in px = MCSTAT_PIXELS_IN_INIT, py_ = MCSTAT_PIXELS_IN_INIT;
+            px.type = py_.type = f32 ? MCSTAT_VALUE_FLOAT32 : MCSTAT_VALUE_FLOAT64;
+            px.data = x.data();
+            py_.data = y.data();
+            px.n = nx;
+            py_.n = ny;
+            px.value_stride = py_.value_stride = stride;
+            px.pixel_stride = py_.pixel_stride = px.channels = py_.channels = channels;
+            px.weights = py_.weights = wp;
+            mcstat_pixels_options opt = MCSTAT_PIXELS_OPTIONS_INIT;
+            opt.flags = flags;
+            opt.threads = std::min(num_threads(), 64);
             // the arguments first, on an empty range: their errors raise, a
             // pixel's only sets its status
-            int st = run(x, y, f32, nx, ny, stride, channels, wp, 0, 0, mu0, alternative, alpha, flags, &out);
+            int st = mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py_, 0, 0, mu0, alternative, alpha, &opt, &out);
             if (st)
-                throw_status(st, "mcstat_t_test_2_pixels");
+                throw_status(st, "mcstat_pixels_test");
             {
                 py::gil_scoped_release nogil;
-                mcs_threads::split_ranges(pixels, static_cast<size_t>(num_threads()), 4096, [&](size_t b, size_t e) {
-                    run(x, y, f32, nx, ny, stride, channels, wp, b, e, mu0, alternative, alpha, flags, &out);
-                    return 0;
-                });
+                mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py_, 0, pixels, mu0, alternative, alpha, &opt, &out);
             }
             py::dict d;
             d["pvalue"] = p;

@@ -409,6 +409,8 @@ void register_result_helpers(py::module_ &mod)
         py::array_t<int64_t, py::array::forcecast> n(f["nobs"]);
         r.n[0] = static_cast<uint64_t>(n.data()[0]);
         r.n[1] = n.size() > 1 ? static_cast<uint64_t>(n.data()[1]) : 0;
+        if (kind == "t_paired") // one size, the pairs: the single call's n[1] = n[0]
+            r.n[1] = r.n[0];
         return make_result(r);
     });
     mod.def("_result_from_bytes", [](py::bytes b, py::object seed) {

@@ -10,6 +10,7 @@
 //
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
+#include "output_array.hpp"
 #include "threads.hpp"
 
 #include <algorithm>
@@ -35,72 +36,6 @@ int default_threads()
     }
     unsigned h = std::thread::hardware_concurrency();
     return h ? static_cast<int>(h) : 1;
-}
-
-// Where the rows of one operand are: base pointer, byte offset of each row
-// (or a constant stride), the byte stride between a row's values.
-struct Layout {
-    const char *base = nullptr;
-    size_t n = 0;
-    ptrdiff_t inner = 0;          // bytes between consecutive values of a row
-    bool uniform = false;         // rows at base + i * row_stride, values contiguous
-    ptrdiff_t row_stride = 0;     // bytes (uniform only)
-    std::vector<ptrdiff_t> offs;  // bytes, one per row (otherwise)
-};
-
-Layout layout_of(const py::array &a, size_t rows)
-{
-    Layout L;
-    int nd = static_cast<int>(a.ndim());
-    L.base = static_cast<const char *>(a.data());
-    L.n = static_cast<size_t>(a.shape(nd - 1));
-    L.inner = a.strides(nd - 1);
-    // Offsets of the rows over the outer dimensions, in C order.
-    L.offs.assign(rows, 0);
-    std::vector<py::ssize_t> idx(static_cast<size_t>(std::max(nd - 1, 0)), 0);
-    ptrdiff_t off = 0;
-    for (size_t r = 0; r < rows; r++) {
-        L.offs[r] = off;
-        for (int d = nd - 2; d >= 0; d--) {
-            if (++idx[static_cast<size_t>(d)] < a.shape(d)) {
-                off += a.strides(d);
-                break;
-            }
-            off -= a.strides(d) * (a.shape(d) - 1);
-            idx[static_cast<size_t>(d)] = 0;
-        }
-    }
-    bool aligned = reinterpret_cast<uintptr_t>(L.base) % sizeof(double) == 0;
-    bool contiguous_rows = (L.inner == static_cast<ptrdiff_t>(sizeof(double)) || L.n <= 1) && aligned;
-    ptrdiff_t s = rows > 1 ? L.offs[1] - L.offs[0] : 0;
-    bool progression = s >= 0 && s % static_cast<ptrdiff_t>(sizeof(double)) == 0;
-    for (size_t r = 0; progression && r < rows; r++)
-        progression = L.offs[r] == static_cast<ptrdiff_t>(r) * s;
-    if (contiguous_rows && progression) {
-        L.uniform = true;
-        L.row_stride = s;
-        L.offs.clear();
-        L.offs.shrink_to_fit();
-    }
-    return L;
-}
-
-// Rows [r0, r0 + k) of an operand as (pointer, stride in elements): in
-// place when uniform, else gathered into buf (k * n doubles).
-const double *rows_at(const Layout &L, size_t r0, size_t k, std::vector<double> &buf, size_t *stride)
-{
-    if (L.uniform) {
-        *stride = static_cast<size_t>(L.row_stride) / sizeof(double);
-        return reinterpret_cast<const double *>(L.base + static_cast<ptrdiff_t>(r0) * L.row_stride);
-    }
-    buf.resize(k * L.n);
-    for (size_t i = 0; i < k; i++) {
-        const char *p = L.base + L.offs[r0 + i];
-        for (size_t j = 0; j < L.n; j++)
-            std::memcpy(&buf[i * L.n + j], p + static_cast<ptrdiff_t>(j) * L.inner, sizeof(double));
-    }
-    *stride = L.n;
-    return buf.data();
 }
 
 struct Outputs {
@@ -132,83 +67,6 @@ void scatter(const mcstat_result *res, const int32_t *st, size_t r0, size_t k, c
         o.status[j] = static_cast<int8_t>(st[i]);
         for (int s = 0; s < o.nobs_per_row; s++)
             o.nobs[j * o.nobs_per_row + s] = st[i] == 0 ? static_cast<int64_t>(r.n[s]) : 0;
-    }
-}
-
-// Rows of the pooled and the paired test, which have no libmcstat matrix
-// call: each row through the single call (bit for bit that call), a failed
-// row cleared to NaN as the matrix calls clear theirs.
-void extra_rows(const TestArgs &a, const double *px, size_t nx, size_t sx, const double *py_, size_t ny, size_t sy,
-                size_t k, mcstat_result *res, int32_t *st)
-{
-    std::vector<double> kx, ky;
-    for (size_t i = 0; i < k; i++) {
-        const double *x = px + i * sx, *y = py_ + i * sy;
-        int s;
-        if (a.kind == Kind::T2P) {
-            mcstat_moments mx, my;
-            mcstat_moments_init(&mx);
-            mcstat_moments_init(&my);
-            s = a.omit_nan ? mcstat_moments_add_array_omit_nan(&mx, x, nx, nullptr) : mcstat_moments_add_array(&mx, x, nx);
-            if (!s)
-                s = a.omit_nan ? mcstat_moments_add_array_omit_nan(&my, y, ny, nullptr)
-                               : mcstat_moments_add_array(&my, y, ny);
-            if (!s)
-                s = mcstat_t_test_2_pooled_moments(&mx, &my, a.null_value, a.alternative, a.alpha, &res[i]);
-        } else if (a.omit_nan) { // paired: the pairs without NaN
-            kx.clear();
-            ky.clear();
-            for (size_t j = 0; j < nx; j++)
-                if (!std::isnan(x[j]) && !std::isnan(y[j])) {
-                    kx.push_back(x[j]);
-                    ky.push_back(y[j]);
-                }
-            s = mcstat_t_test_paired(kx.data(), ky.data(), kx.size(), a.null_value, a.alternative, a.alpha, &res[i]);
-        } else {
-            s = mcstat_t_test_paired(x, y, nx, a.null_value, a.alternative, a.alpha, &res[i]);
-        }
-        if (s)
-            res[i] = nan_result(a, 0, 0);
-        st[i] = s;
-    }
-}
-
-void run_range(const TestArgs &a, const Layout &X, const Layout &Y, bool two, size_t begin, size_t end,
-               const Outputs &o)
-{
-    unsigned flags = (a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (a.omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
-    // Chunks bound the result buffer and, when gathering, the copy (~1 MiB).
-    size_t per_row = X.n + (two ? Y.n : 0);
-    size_t chunk = std::max<size_t>(1, std::min<size_t>(256, (size_t(1) << 17) / std::max<size_t>(per_row, 1)));
-    std::vector<mcstat_result> res(chunk);
-    std::vector<int32_t> st(chunk);
-    std::vector<double> bx, by;
-    for (size_t r0 = begin; r0 < end; r0 += chunk) {
-        size_t k = std::min(chunk, end - r0), sx = 0, sy = 0;
-        const double *px = rows_at(X, r0, k, bx, &sx);
-        const double *py_ = two ? rows_at(Y, r0, k, by, &sy) : nullptr;
-        switch (a.kind) {
-        case Kind::T1:
-            mcstat_t_test_1_matrix(px, X.n, sx, k, a.null_value, a.alternative, a.alpha, flags, res.data(), st.data());
-            break;
-        case Kind::T2:
-            mcstat_t_test_2_matrix(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
-                                 res.data(), st.data());
-            break;
-        case Kind::V1:
-            mcstat_var_test_1_matrix(px, X.n, sx, k, a.null_value, a.alternative, a.alpha, flags, res.data(),
-                                   st.data());
-            break;
-        case Kind::V2:
-            mcstat_var_test_2_matrix(px, X.n, sx, py_, Y.n, sy, k, a.null_value, a.alternative, a.alpha, flags,
-                                   res.data(), st.data());
-            break;
-        case Kind::T2P:
-        case Kind::TP:
-            extra_rows(a, px, X.n, sx, py_, Y.n, sy, k, res.data(), st.data());
-            break;
-        }
-        scatter(res.data(), st.data(), r0, k, o);
     }
 }
 
@@ -320,6 +178,76 @@ void set_num_threads(int n)
     g_threads.store(n > 0 ? n : 0);
 }
 
+namespace {
+
+int test_code(Kind k)
+{
+    switch (k) {
+    case Kind::T1: return MCSTAT_TEST_T_1;
+    case Kind::T2: return MCSTAT_TEST_T_2;
+    case Kind::V1: return MCSTAT_TEST_VAR_1;
+    case Kind::V2: return MCSTAT_TEST_VAR_2;
+    case Kind::T2P: return MCSTAT_TEST_T_2_POOLED;
+    default: return MCSTAT_TEST_T_PAIRED;
+    }
+}
+
+bool native_float(const py::array &a, char bytes)
+{
+    py::dtype d = a.dtype();
+    return d.kind() == 'f' && d.itemsize() == bytes && d.attr("isnative").cast<bool>();
+}
+
+// v (the test axis last) as an mcstat_pixels_in read in place: the outer
+// axes must collapse into one pixel stride (C order over them, as any
+// view of a C-contiguous stack with the test axis moved does), the strides
+// whole non-negative multiples of the item size, the data aligned.
+bool pixels_view(const py::array &v, size_t itemsize, mcstat_pixels_in *in)
+{
+    int nd = static_cast<int>(v.ndim());
+    auto ok_stride = [&](py::ssize_t s) { return s >= 0 && static_cast<size_t>(s) % itemsize == 0; };
+    if (reinterpret_cast<uintptr_t>(v.data()) % itemsize != 0)
+        return false;
+    py::ssize_t vs = v.shape(nd - 1) > 1 ? v.strides(nd - 1) : 0;
+    if (!ok_stride(vs))
+        return false;
+    py::ssize_t ps = 0; // the stride of the innermost outer axis of size > 1
+    py::ssize_t expect = -1;
+    for (int d = nd - 2; d >= 0; d--) {
+        if (v.shape(d) == 1)
+            continue;
+        if (expect < 0) {
+            ps = v.strides(d);
+            if (!ok_stride(ps))
+                return false;
+        } else if (v.strides(d) != expect) {
+            return false;
+        }
+        expect = v.strides(d) * v.shape(d);
+    }
+    in->data = v.data();
+    in->n = static_cast<size_t>(v.shape(nd - 1));
+    in->value_stride = static_cast<size_t>(vs) / itemsize;
+    in->pixel_stride = static_cast<size_t>(ps) / itemsize;
+    return true;
+}
+
+py::array as_pixels(py::array v, bool f32, mcstat_pixels_in *in)
+{
+    py::module_ np = py::module_::import("numpy");
+    size_t itemsize = f32 ? sizeof(float) : sizeof(double);
+    bool native = native_float(v, static_cast<char>(itemsize));
+    if (!native || !pixels_view(v, itemsize, in)) {
+        // a copy: C order, the test axis last (the rows layout)
+        v = np.attr("ascontiguousarray")(v, py::arg("dtype") = f32 ? "float32" : "float64");
+        pixels_view(v, itemsize, in);
+    }
+    in->type = f32 ? MCSTAT_VALUE_FLOAT32 : MCSTAT_VALUE_FLOAT64;
+    return v;
+}
+
+} // namespace
+
 py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
 {
     int nd = static_cast<int>(x.ndim());
@@ -357,20 +285,95 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
     for (auto s : outer)
         rows *= static_cast<size_t>(s);
 
-    Layout X = layout_of(xv, rows), Y;
+    // float32 stays float32 when both sides are; anything else is read as float64
+    bool f32 = native_float(xv, 4) && (!two || native_float(yv, 4));
+    mcstat_pixels_in px = MCSTAT_PIXELS_IN_INIT, py_ = MCSTAT_PIXELS_IN_INIT;
+    xv = as_pixels(xv, f32, &px);
     if (two)
-        Y = layout_of(yv, rows);
+        yv = as_pixels(yv, f32, &py_);
 
-    BatchOutputs out(outer, a.kind);
+    const bool two_out = a.kind == Kind::T2 || a.kind == Kind::V2 || a.kind == Kind::T2P;
+    auto arr = [&](auto tag) { return output_array<decltype(tag)>(outer); };
+    py::array_t<double> pv = arr(0.0), stat = arr(0.0), df = arr(0.0), est = arr(0.0), se = arr(0.0);
+    py::array_t<double> df2, est2, lo, hi, c0, c1;
+    py::array_t<int32_t> status = arr(int32_t{0});
+    py::array_t<int8_t> decision = arr(int8_t{0});
+    py::array_t<uint64_t> n_x, n_y;
+    mcstat_pixels_out out = MCSTAT_PIXELS_OUT_INIT;
+    out.p_value = pv.mutable_data();
+    out.statistic = stat.mutable_data();
+    out.df = df.mutable_data();
+    out.estimate = est.mutable_data();
+    out.std_error = se.mutable_data();
+    out.status = status.mutable_data();
+    out.decision = decision.mutable_data();
+    if (a.kind == Kind::V2) {
+        df2 = arr(0.0);
+        out.df2 = df2.mutable_data();
+    }
+    if (a.kind == Kind::T2 || a.kind == Kind::T2P) {
+        est2 = arr(0.0);
+        out.estimate2 = est2.mutable_data();
+    }
+    if (a.intervals) {
+        lo = arr(0.0);
+        hi = arr(0.0);
+        c0 = arr(0.0);
+        c1 = arr(0.0);
+        out.conf_lo = lo.mutable_data();
+        out.conf_hi = hi.mutable_data();
+        out.critical_lo = c0.mutable_data();
+        out.critical_hi = c1.mutable_data();
+    }
+    if (a.omit_nan) { // the sizes differ by pixel only when NaN are left out
+        n_x = arr(uint64_t{0});
+        out.n_x = n_x.mutable_data();
+        if (two) {
+            n_y = arr(uint64_t{0});
+            out.n_y = n_y.mutable_data();
+        }
+    }
+    mcstat_pixels_options opt = MCSTAT_PIXELS_OPTIONS_INIT;
+    opt.flags = (a.intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (a.omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u);
+    opt.threads = std::min(a.threads > 0 ? a.threads : num_threads(), 64);
+    int test = test_code(a.kind);
+    // the arguments on an empty range first: theirs raise, a pixel's only sets its status
+    int st = mcstat_pixels_test(test, &px, two ? &py_ : nullptr, 0, 0, a.null_value, a.alternative, a.alpha, &opt,
+                                &out);
+    if (st)
+        throw_status(st, "mcstat_pixels_test");
+    {
+        py::gil_scoped_release nogil;
+        mcstat_pixels_test(test, &px, two ? &py_ : nullptr, 0, rows, a.null_value, a.alternative, a.alpha, &opt,
+                           &out);
+    }
+    py::dict f;
+    f["pvalue"] = pv;
+    f["statistic"] = stat;
+    f["df"] = df;
+    f["df2"] = a.kind == Kind::V2 ? py::object(df2) : py::none();
+    f["estimate"] = est;
+    f["estimate2"] = a.kind == Kind::T2 || a.kind == Kind::T2P ? py::object(est2) : py::none();
+    f["std_error"] = se;
+    f["conf_lo"] = a.intervals ? py::object(lo) : py::none();
+    f["conf_hi"] = a.intervals ? py::object(hi) : py::none();
+    f["critical_lo"] = a.intervals ? py::object(c0) : py::none();
+    f["critical_hi"] = a.intervals ? py::object(c1) : py::none();
+    f["status"] = status;
+    f["decision"] = decision;
+    f["n_x"] = a.omit_nan ? py::object(n_x) : py::int_(px.n);
+    f["n_y"] = !two_out ? py::none() : a.omit_nan ? py::object(n_y) : py::int_(py_.n);
+    py::object nan_rows = py::none();
     if (a.propagate_nan) {
         py::object isnan = np.attr("isnan");
         py::object m = isnan(xv).attr("any")(-1);
         if (two)
             m = m.attr("__or__")(isnan(yv).attr("any")(-1));
-        out.nan_rows = m;
+        nan_rows = m;
     }
-    for_row_ranges(rows, [&](size_t b, size_t e) { run_range(a, X, Y, two, b, e, out.o); });
-    return out.result(a);
+    static py::object make = py::module_::import("mcstat._result").attr("_make_pixel_batch");
+    return make(kind_name(a.kind), f, a.alternative, a.alpha, a.null_value, a.errors_as_nan, a.intervals,
+                py::arg("nan_rows") = nan_rows);
 }
 
 } // namespace mcs

@@ -26,7 +26,7 @@ struct Parsed {
     PyObject *null_value = nullptr; // mu / sigma2
     PyObject *ratio = nullptr;      // var_test only
     PyObject *alternative = nullptr, *alpha = nullptr, *axis = nullptr, *nan_policy = nullptr;
-    PyObject *intervals = nullptr, *on_error = nullptr;
+    PyObject *intervals = nullptr, *on_error = nullptr, *threads = nullptr;
     PyObject *equal_var = nullptr, *paired = nullptr; // t_test only
 };
 
@@ -38,7 +38,8 @@ void parse(const char *fname, bool is_var, PyObject *const *args, Py_ssize_t nar
                       {{"alternative", &p.alternative}, {"alpha", &p.alpha},
                        {is_var ? "sigma2" : "mu", &p.null_value}, {is_var ? "ratio" : nullptr, &p.ratio},
                        {"axis", &p.axis}, {"nan_policy", &p.nan_policy}, {"intervals", &p.intervals},
-                       {"on_error", &p.on_error}, {is_var ? nullptr : "equal_var", &p.equal_var},
+                       {"on_error", &p.on_error}, {"threads", &p.threads},
+                       {is_var ? nullptr : "equal_var", &p.equal_var},
                        {is_var ? nullptr : "paired", &p.paired}});
     if (!p.x)
         throw py::type_error(std::string(fname) + "() missing required argument 'x'");
@@ -62,6 +63,17 @@ void common_args(const Parsed &p, TestArgs &a)
             throw py::type_error("axis must be an int, got " + repr(p.axis));
         }
         a.axis = static_cast<int>(v);
+    }
+    a.threads = 0;
+    if (p.threads && p.threads != Py_None) {
+        long v = PyLong_AsLong(p.threads);
+        if (v == -1 && PyErr_Occurred()) {
+            PyErr_Clear();
+            throw py::type_error("threads must be an int, got " + repr(p.threads));
+        }
+        if (v < 1 || v > 64)
+            throw_invalid("threads must be in 1..64, got " + std::to_string(v));
+        a.threads = static_cast<int>(v);
     }
     a.omit_nan = false;
     a.propagate_nan = false;
@@ -246,14 +258,17 @@ py::object run(const Parsed &p, TestArgs &a)
             throw_status(st, st == MCSTAT_ETOOFEW ? sizes_detail(a, mx->n, my ? my->n : 0) : "");
         return make_result(r);
     }
-    py::array xa = as_float_array(p.x, "x"), ya;
+    // N-D input keeps its dtype (float32 is read as float32: run_rows)
+    py::array rx = real_array(p.x, "x"), ry;
     if (two)
-        ya = as_float_array(p.y, "y");
-    int nd = static_cast<int>(xa.ndim());
-    if (nd == 0 || (two && ya.ndim() == 0))
+        ry = real_array(p.y, "y");
+    if (rx.ndim() == 0 || (two && ry.ndim() == 0))
         throw_invalid("x and y must be at least 1-D arrays (got a scalar)");
-    if (nd > 1 || (two && ya.ndim() > 1))
-        return run_rows(a, xa, ya, two);
+    if (rx.ndim() > 1 || (two && ry.ndim() > 1))
+        return run_rows(a, rx, ry, two);
+    py::array xa = as_float_array(rx, "x"), ya;
+    if (two)
+        ya = as_float_array(ry, "y");
     if (a.axis != 0 && a.axis != -1)
         throw_invalid("axis " + std::to_string(a.axis) + " is out of range for 1-D input");
     // One test: contiguous float64 is read in place, anything else converted once.
