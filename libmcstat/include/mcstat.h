@@ -953,16 +953,21 @@ MCSTAT_API int mcstat_pixels_out_init_size(mcstat_pixels_out *out, size_t size);
  *   MCSTAT_TEST_VAR_2       F test of var(x)/var(y) against null_value
  * Each pixel's results are those of the single call on its sample(s)
  * (mcstat_t_test_1, ..._2, ..._2_pooled, mcstat_t_test_paired,
- * mcstat_var_test_1, ..._2): bit for bit, but for Welch's test, whose
- * block path agrees to within: the p-value 3e-14 + 4e-16 |log p| relative
+ * mcstat_var_test_1, ..._2): bit for bit for the pooled and paired t and
+ * the one-sample t; Welch's and the variance tests run by blocks of pixels
+ * and agree to within: Welch's p-value 3e-14 + 4e-16 |log p| relative
  * (both are within that of the exact tail; 3e-13 where it underflows), the
- * statistic, df, estimates, standard error and interval about 1e-14
- * relative (the moments are two passes over the values, the single call's
- * its shifted sums), critical values 3e-13 (from a per-call table of the t
- * quantile in 1/df).  A pixel Welch's block path does not cover (a NaN or Inf, extreme magnitudes, too few values, samples
- * constant to within rounding or nearly so, degrees of freedom beyond
- * 1000) is computed by the single call's own code: its status and outputs
- * are then the single call's, bit for bit.  A pixel that fails gets its
+ * variance tests' twice that (a per-call table of the general routine's
+ * log tails, interpolated; calls of at least 16384 pixels a thread, fewer
+ * take the single call's code), the statistic, df, estimates, standard
+ * error and interval about 1e-14 relative (the moments are two passes over
+ * the values, the single call's its shifted sums), Welch's critical values
+ * 3e-13 (from a per-call table of the t quantile in 1/df; the variance
+ * tests' are the single call's).  A pixel the block paths do not cover
+ * (a NaN or Inf, extreme magnitudes, too few values, samples constant to
+ * within rounding or nearly so, degrees of freedom beyond 1000, a p-value
+ * too steep in the statistic for the moments' rounding) is computed by the single call's own code: its status and outputs are
+ * then the single call's, bit for bit.  A pixel that fails gets its
  * status, NaN outputs, decision 0 and n_x, n_y 0; the others are still
  * computed.  opt may be NULL (the defaults).
  * Returns MCSTAT_OK when every pixel succeeded, else the status of the
@@ -973,13 +978,12 @@ MCSTAT_API int mcstat_pixels_out_init_size(mcstat_pixels_out *out, size_t size);
  * outside its domain (finite; positive for the variance tests), an unknown
  * alternative, two samples of different types, channels or weights,
  * paired samples of unequal n; MCSTAT_ETOOBIG when the addresses overflow
- * size_t.  Welch's test runs by blocks of pixels (moments, statistics and
- * tails vectorised) in a workspace of about 100 KiB a thread, off the
- * caller's stack (if it cannot be allocated every pixel takes the single
- * call's code, with the same results, slower); the other tests run each
- * pixel through the single call's code, bit for bit the _matrix call on
- * its values, with a buffer of n values a thread (MCSTAT_ENOMEM for the
- * pixels of a thread that could not have it).  opt->threads > 1 splits the
+ * size_t.  The block paths work in about 100 KiB (Welch) or 330 KiB (the
+ * variance tests) a thread, off the caller's stack (if it cannot be
+ * allocated every pixel takes the single call's code, with the same
+ * results, slower); the single call's code takes a buffer of n values a
+ * thread (MCSTAT_ENOMEM for the pixels of a thread that could not have
+ * it).  opt->threads > 1 splits the
  * pixels into that many contiguous ranges, one per thread (at least 4096
  * pixels each); the first runs on the caller's thread.  On x86-64 the
  * block loops run as AVX2 code where the CPU has it (bit for bit the

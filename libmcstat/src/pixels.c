@@ -1239,6 +1239,49 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
 DEFINE_BLOCK_MOMENTS(block_moments_f32, moment_tile_f32, float, 0)
 DEFINE_BLOCK_MOMENTS(block_moments_f64, moment_tile_f64, double, 1)
 
+/* One side's block moments for the other per-pixel tests (pixels_var.c),
+ * in the SSE2 and AVX2 builds: the same numbers as Welch's. */
+static PIX_INLINE void side_moments_body(const mcstat_pixels_in *p, size_t i0, size_t k, mcstat_dd *mean, double *m2,
+                                         unsigned char *bad)
+{
+    if (p->type == MCSTAT_VALUE_FLOAT32)
+        block_moments_f32(p->data, p->n, p->value_stride, p->pixel_stride, p->channels, p->weights, i0, k, mean, m2,
+                          bad);
+    else
+        block_moments_f64(p->data, p->n, p->value_stride, p->pixel_stride, p->channels, p->weights, i0, k, mean, m2,
+                          bad);
+}
+
+static void side_moments(const mcstat_pixels_in *p, size_t i0, size_t k, mcstat_dd *mean, double *m2,
+                         unsigned char *bad)
+{
+    side_moments_body(p, i0, k, mean, m2, bad);
+}
+
+#if PIX_AVX2
+__attribute__((target("avx2"))) static void side_moments_avx2(const mcstat_pixels_in *p, size_t i0, size_t k,
+                                                               mcstat_dd *mean, double *m2, unsigned char *bad)
+{
+    side_moments_body(p, i0, k, mean, m2, bad);
+}
+#endif
+
+#if PIX_AVX2
+static int use_avx2(void);
+#endif
+
+void mcstat__pixels_block_moments(const mcstat_pixels_in *p, size_t i0, size_t k, mcstat_dd *mean, double *m2,
+                                  unsigned char *bad)
+{
+#if PIX_AVX2
+    if (use_avx2()) {
+        side_moments_avx2(p, i0, k, mean, m2, bad);
+        return;
+    }
+#endif
+    side_moments(p, i0, k, mean, m2, bad);
+}
+
 /* MCSTAT_NO_AVX2 set (and not "0") in the environment: the baseline loops
  * only (mcstat.h: for valgrind 3.19, which stops at some AVX2 encodings). */
 static int no_avx2_requested(void)

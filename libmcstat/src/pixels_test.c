@@ -6,6 +6,8 @@
  * The arguments are checked here, once; the pixels are then split into
  * contiguous ranges, one per thread (threads.c), and each range goes to
  *   - Welch's test: the block kernel of pixels.c;
+ *   - the variance tests: the block path of pixels_var.c (a per-call table
+ *     of the tails, the df being the same for every pixel);
  *   - the other tests: each pixel's values gathered into a buffer and run
  *     through the single call's own code (the accumulator, the test on it,
  *     a quantile cache shared by the range, so that equal df solve their
@@ -187,58 +189,81 @@ static void put(const job *jb, size_t i, int st, const mcstat_result *r)
 #undef PUT
 }
 
-/* The tests other than Welch's, pixel by pixel through the single call's code. */
+/* One pixel through the single call's code: its values gathered into the
+ * range's buffers, the accumulators, the test on them with the range's
+ * quantile cache (so equal df solve their critical values once). */
+typedef struct {
+    const job *jb;
+    double *bx, *by;
+    mcstat_qcache qc;
+} single_ctx;
+
+static int single_pixel(void *vctx, size_t i)
+{
+    single_ctx *sc = vctx;
+    const job *jb = sc->jb;
+    const size_t nx = jb->x.n, ny = jb->y.n;
+    mcstat_qcache *q = (jb->flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &sc->qc;
+    mcstat_moments mx, my;
+    mcstat_result r;
+    int st;
+    gather(&jb->x, i, sc->bx);
+    if (two_sample(jb->test))
+        gather(&jb->y, i, sc->by);
+    switch (jb->test) {
+    case MCSTAT_TEST_T_PAIRED: {
+        size_t n = (jb->flags & MCSTAT_ROWS_OMIT_NAN) ? complete_pairs(sc->bx, sc->by, nx) : nx;
+        st = mcstat__t_test_paired(sc->bx, sc->by, n, jb->null_value, jb->alternative, jb->alpha, q, &r);
+        break;
+    }
+    case MCSTAT_TEST_T_1:
+    case MCSTAT_TEST_VAR_1:
+        st = sample_moments(sc->bx, nx, jb->flags, &mx);
+        if (!st)
+            st = (jb->test == MCSTAT_TEST_T_1 ? mcstat__t_test_1 : mcstat__var_test_1)(
+                &mx, jb->null_value, jb->alternative, jb->alpha, q, &r);
+        break;
+    default: /* T_2 (Welch's pixels its block path leaves), T_2_POOLED, VAR_2 */
+        st = sample_moments(sc->bx, nx, jb->flags, &mx);
+        if (!st)
+            st = sample_moments(sc->by, ny, jb->flags, &my);
+        if (!st)
+            st = (jb->test == MCSTAT_TEST_T_2_POOLED ? mcstat__t_test_2_pooled : mcstat__var_test_2)(
+                &mx, &my, jb->null_value, jb->alternative, jb->alpha, q, &r);
+        break;
+    }
+    put(jb, i, st, &r);
+    return st;
+}
+
+/* The tests but Welch's on [begin, end): the variance tests by blocks
+ * (pixels_var.c), the others pixel by pixel through the single call. */
 static int single_call_range(const job *jb, size_t begin, size_t end)
 {
     const int two = two_sample(jb->test);
     const size_t nx = jb->x.n, ny = two ? jb->y.n : 0;
-    double *bx = malloc((nx ? nx : 1) * sizeof *bx), *by = two ? malloc((ny ? ny : 1) * sizeof *by) : NULL;
+    single_ctx sc;
+    sc.jb = jb;
+    sc.bx = malloc((nx ? nx : 1) * sizeof *sc.bx);
+    sc.by = two ? malloc((ny ? ny : 1) * sizeof *sc.by) : NULL;
+    mcstat__qcache_init(&sc.qc);
     int first = MCSTAT_OK;
-    if (!bx || (two && !by)) {
+    if (!sc.bx || (two && !sc.by)) {
         for (size_t i = begin; i < end; i++)
             put(jb, i, MCSTAT_ENOMEM, NULL);
-        free(bx);
-        free(by);
-        return end > begin ? MCSTAT_ENOMEM : MCSTAT_OK;
-    }
-    mcstat_qcache qc;
-    mcstat__qcache_init(&qc);
-    mcstat_qcache *q = (jb->flags & MCSTAT_ROWS_NO_INTERVALS) ? NULL : &qc;
-    for (size_t i = begin; i < end; i++) {
-        mcstat_moments mx, my;
-        mcstat_result r;
-        int st;
-        gather(&jb->x, i, bx);
-        if (two)
-            gather(&jb->y, i, by);
-        switch (jb->test) {
-        case MCSTAT_TEST_T_PAIRED: {
-            size_t n = (jb->flags & MCSTAT_ROWS_OMIT_NAN) ? complete_pairs(bx, by, nx) : nx;
-            st = mcstat__t_test_paired(bx, by, n, jb->null_value, jb->alternative, jb->alpha, q, &r);
-            break;
+        first = end > begin ? MCSTAT_ENOMEM : MCSTAT_OK;
+    } else if (jb->test == MCSTAT_TEST_VAR_1 || jb->test == MCSTAT_TEST_VAR_2) {
+        first = mcstat__pixels_var(jb->test, &jb->x, two ? &jb->y : NULL, begin, end, jb->null_value,
+                                   jb->alternative, jb->alpha, jb->flags, &jb->out, single_pixel, &sc);
+    } else {
+        for (size_t i = begin; i < end; i++) {
+            int st = single_pixel(&sc, i);
+            if (st && first == MCSTAT_OK)
+                first = st;
         }
-        case MCSTAT_TEST_T_1:
-        case MCSTAT_TEST_VAR_1:
-            st = sample_moments(bx, nx, jb->flags, &mx);
-            if (!st)
-                st = (jb->test == MCSTAT_TEST_T_1 ? mcstat__t_test_1 : mcstat__var_test_1)(
-                    &mx, jb->null_value, jb->alternative, jb->alpha, q, &r);
-            break;
-        default: /* T_2_POOLED, VAR_2 */
-            st = sample_moments(bx, nx, jb->flags, &mx);
-            if (!st)
-                st = sample_moments(by, ny, jb->flags, &my);
-            if (!st)
-                st = (jb->test == MCSTAT_TEST_T_2_POOLED ? mcstat__t_test_2_pooled : mcstat__var_test_2)(
-                    &mx, &my, jb->null_value, jb->alternative, jb->alpha, q, &r);
-            break;
-        }
-        put(jb, i, st, &r);
-        if (st && first == MCSTAT_OK)
-            first = st;
     }
-    free(bx);
-    free(by);
+    free(sc.bx);
+    free(sc.by);
     return first;
 }
 

@@ -60,6 +60,19 @@ MCSTAT_HIDDEN void mcstat__pixels_baseline_only(int on);
 MCSTAT_HIDDEN int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin,
                                        size_t end, double mu0, int alternative, double alpha, unsigned flags,
                                        const mcstat_pixels_out *out);
+/* pixels.c: the two-pass moments of pixels i0..i0+k-1 (k <= 256) of one
+ * side, as Welch's block path forms them: mean[j] a double-double, m2[j]
+ * the sum of squared deviations, bad[j] = 1 where they are not to be used
+ * (a NaN or Inf, magnitudes outside [2^-200, 2^200], overflow). */
+MCSTAT_HIDDEN void mcstat__pixels_block_moments(const mcstat_pixels_in *p, size_t i0, size_t k, mcstat_dd *mean,
+                                                double *m2, unsigned char *bad);
+/* pixels_var.c: the variance tests on pixels [begin, end) (arguments
+ * checked; y NULL for MCSTAT_TEST_VAR_1); pixels its block path does not
+ * cover go through the single call's code by single(ctx, i). */
+typedef int (*mcstat__pixel_fn)(void *ctx, size_t i); /* returns the pixel's status */
+MCSTAT_HIDDEN int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin,
+                                     size_t end, double null_value, int alternative, double alpha, unsigned flags,
+                                     const mcstat_pixels_out *out, mcstat__pixel_fn single, void *ctx);
 /* threads.c: f(ctx, b, e) over [begin, end) split into at most `threads`
  * contiguous ranges of at least min_per_thread items, the first on the
  * calling thread; a thread that cannot start runs its range on the caller's

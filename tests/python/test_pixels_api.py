@@ -6,7 +6,7 @@ import pytest
 
 import mcstat
 from mcstat._result import _Lazy
-from pixel_bounds import assert_welch_close
+from pixel_bounds import assert_pvalues_close, assert_welch_close
 
 H, W, N = 5, 7, 8
 TESTS = [  # (function, kwargs, two samples)
@@ -123,3 +123,24 @@ def test_threads_argument(rng, bad, err):
     x = rng.normal(size=(4, 3, 3))
     with pytest.raises(err, match="threads"):
         mcstat.t_test(x, axis=0, threads=bad)
+
+
+@pytest.mark.parametrize("kw,two", [({"sigma2": 0.8}, False), ({"ratio": 1.3}, True)])
+@pytest.mark.parametrize("alternative", ["two-sided", "less", "greater"])
+def test_variance_block_path(rng, kw, two, alternative):
+    # >= 16384 pixels a thread: the variance tests' table (pixels_var.c)
+    x = rng.normal(0.0, 1.0, size=(6, 180, 100)) * rng.uniform(0.3, 3.0, size=(180, 100))
+    y = rng.normal(0.0, 1.0, size=(9, 180, 100))
+    args = (x, y) if two else (x,)
+    b = mcstat.var_test(*args, axis=0, alternative=alternative, threads=1, **kw)
+    sel = [(i, j) for i in range(0, 180, 7) for j in range(0, 100, 3)]
+    want = np.array([mcstat.var_test(*((x[:, i, j], y[:, i, j]) if two else (x[:, i, j],)),
+                                     alternative=alternative, **kw).pvalue for i, j in sel])
+    got = np.array([b.pvalue[i, j] for i, j in sel])
+    assert_pvalues_close(got, want, factor=2.0)
+    for i, j in sel[:50]:
+        r = mcstat.var_test(*((x[:, i, j], y[:, i, j]) if two else (x[:, i, j],)), alternative=alternative, **kw)
+        assert b.critical_values[i, j].tolist() == list(r.critical_values)
+        np.testing.assert_allclose(b.statistic[i, j], r.statistic, rtol=1e-14)
+        np.testing.assert_allclose(b.conf_int[i, j], r.conf_int, rtol=1e-14)
+        assert b.decision[i, j] == r.decision
