@@ -1134,6 +1134,7 @@ static void put_block(const pix_ctx *c, size_t i0, size_t k, const block_stats *
  * registers instead of being loaded and stored once per seed; the
  * additions are the same, in the same order. */
 #define MOMENT_TILE 8
+#define ROWS_TILE_MAX 256 /* longest rows transposed for the tile loop */
 #define DEFINE_MOMENT_TILE(NAME, T, RANGE)                                                                 \
     static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t j0, size_t len, double dn,     \
                                 double inv, int p2, double *sum, double *s1, double *s2, double *amax)     \
@@ -1193,6 +1194,20 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
                 TILE(x + i0, n, stride, j, MOMENT_TILE, dn, inv, p2, sum, s1, s2, amax);                   \
             for (; j < k; j++)                                                                             \
                 TILE(x + i0, n, stride, j, 1, dn, inv, p2, sum, s1, s2, amax);                             \
+        } else if (ch == 1 && !w && stride == 1 && n <= ROWS_TILE_MAX) {                                   \
+            /* rows of values per pixel: MOMENT_TILE pixels' rows transposed into */                       \
+            /* a small buffer, then the tile loop as for seeds-major stacks (the */                        \
+            /* same additions in the same order: the same bits) */                                         \
+            T buf[MOMENT_TILE * ROWS_TILE_MAX];                                                            \
+            for (size_t j = 0; j < k; j += MOMENT_TILE) {                                                  \
+                size_t len = k - j < MOMENT_TILE ? k - j : MOMENT_TILE;                                    \
+                for (size_t l = 0; l < len; l++) {                                                         \
+                    const T *r = x + (i0 + j + l) * ps;                                                    \
+                    for (size_t s = 0; s < n; s++)                                                         \
+                        buf[s * MOMENT_TILE + l] = r[s];                                                   \
+                }                                                                                          \
+                TILE(buf, n, MOMENT_TILE, 0, len, dn, inv, p2, sum + j, s1 + j, s2 + j, amax + j);         \
+            }                                                                                              \
         } else {                                                                                           \
             for (size_t j = 0; j < k; j++)                                                                 \
                 sum[j] = amax[j] = s1[j] = s2[j] = 0.0;                                                    \

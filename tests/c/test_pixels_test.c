@@ -515,11 +515,34 @@ static void test_variance_tails(void)
     printf("variance tails over 24 decades of the statistic: max p-value error / bound %.3f\n", worst);
 }
 
+/* The layouts read the same values: every block path gives the same bytes
+ * for the seeds-major stack and the rows (the rows transposed into the
+ * tile loop, pixels.c). */
+static void test_layouts_agree(void)
+{
+    static outs a, b;
+    const int tests[] = {MCSTAT_TEST_T_2, MCSTAT_TEST_VAR_2, MCSTAT_TEST_VAR_1};
+    for (size_t t = 0; t < 3; t++)
+        for (int f32 = 0; f32 < 2; f32++) {
+            int two = tests[t] != MCSTAT_TEST_VAR_1;
+            mcstat_pixels_in xs = side_in(SEEDS_MAJOR, f32, 0, NX), ys = side_in(SEEDS_MAJOR, f32, 1, NY);
+            mcstat_pixels_in xr = side_in(ROWS, f32, 0, NX), yr = side_in(ROWS, f32, 1, NY);
+            memset(&a, 0, sizeof a);
+            memset(&b, 0, sizeof b);
+            mcstat_pixels_out va = view(&a), vb = view(&b);
+            double nv = tests[t] == MCSTAT_TEST_T_2 ? 0.0 : 1.0;
+            mcstat_pixels_test(tests[t], &xs, two ? &ys : NULL, 0, P, nv, MCSTAT_TWO_SIDED, 0.05, NULL, &va);
+            mcstat_pixels_test(tests[t], &xr, two ? &yr : NULL, 0, P, nv, MCSTAT_TWO_SIDED, 0.05, NULL, &vb);
+            CHECK_MSG(memcmp(&a, &b, sizeof a) == 0, "test %d f32 %d: layouts differ", tests[t], f32);
+        }
+}
+
 int main(void)
 {
     fill();
     test_structs();
     test_every_case();
+    test_layouts_agree();
     test_variance_tails();
     test_threads();
     test_bad_arguments();
