@@ -98,7 +98,7 @@ def unregistered(known_py, known_c):
 C_BENCHES = ("bench_moments", "bench_check", "check_cost", "ks_bench", "bench_estimators")
 PY_BENCHES = ("bench_python.py", "bench_ks_python.py", "bench_estimators_numpy.py", "ks_numpy.py",
               "bench_image.py", "bench_image_pixels.py",  # the latter through bench_image.py's first table
-              "bench_check_calibration.py", "bench_sequential.py")
+              "bench_check_calibration.py", "bench_sequential.py", "bench_pixels.py")
 
 
 def main():
@@ -160,6 +160,10 @@ def main():
     # ---- Python against SciPy / NumPy ---------------------------------------------
     run([py, "bench/bench_python.py", *quick] + (["--no-image"] if args.quick else []))
     parts.append(section(os.path.join(HERE, "RESULTS_python.md")))
+
+    # ---- the per-pixel calls (mcstat_pixels_test) against SciPy / NumPy ---------------
+    run([py, "bench/bench_pixels.py", *quick])
+    parts.append(section(os.path.join(HERE, "RESULTS_pixels.md")))
 
     # ---- estimators: C against vectorised NumPy ------------------------------------
     est_args = ["--n", "400000", "--chunk", "100000", "--reps", "3"] if args.quick else []

@@ -387,10 +387,40 @@ def fuzz_pixels(r):
     return seeds
 
 
+def fuzz_pixels_test(r):
+    seeds = []
+    for test in range(8):
+        for variant in range(4):
+            f32, rows, weighted = variant & 1, (variant >> 1) & 1, test % 3 == 0
+            sel = test | f32 << 3 | rows << 4 | weighted << 5
+            pixels, nx, ny = 1 + (test + variant) % 5, 2 + variant, 3 + test % 4
+            if test == 3:
+                ny = nx
+            ch = 1 + variant % 3 if weighted else 1
+            xs = [round(r.gauss(1, 1), 2) for _ in range(nx * pixels * ch)]
+            ys = [round(r.gauss(1, 1), 2) for _ in range(ny * pixels * ch)]
+            flags = variant % 4
+            if flags & 2:
+                xs[1] = "nan"
+            s = u8(sel) + rng(pixels, 0, 5) + rng(nx, 0, 9) + rng(ny, 0, 9)
+            if weighted:
+                s += rng(ch, 1, 3) + b"".join(dbl(w) for w in [0.2126, 0.7152, 0.0722][:ch])
+            s += rng(0, 0, 5) + rng(pixels, 0, 5) + u8(flags) + u8(variant)
+            s += doubles(xs, len(xs)) + doubles(ys, len(ys))
+            s += dbl(1.5 if test in (4, 5) else 0.25 * variant) + alt(variant % 3) + alpha(0.05)
+            seeds.append(s)
+    # unequal paired sizes, an invalid thread count, unknown flags
+    seeds.append(u8(3 | 64) + rng(2, 0, 5) + rng(4, 0, 9) + rng(3, 0, 9) + rng(0, 0, 5) + rng(2, 0, 5) + u8(0) + u8(0))
+    seeds.append(u8(1) + rng(2, 0, 5) + rng(4, 0, 9) + rng(4, 0, 9) + rng(0, 0, 5) + rng(2, 0, 5) + u8(0) + u8(251))
+    seeds.append(u8(5) + rng(2, 0, 5) + rng(4, 0, 9) + rng(4, 0, 9) + rng(0, 0, 5) + rng(2, 0, 5) + u8(250) + u32(8))
+    return seeds
+
+
 def main():
     for name, make in [("fuzz_tests", fuzz_tests), ("fuzz_ks", fuzz_ks), ("fuzz_moments", fuzz_moments),
                        ("fuzz_bytes", fuzz_bytes), ("fuzz_rows", fuzz_rows), ("fuzz_dist", fuzz_dist),
-                       ("fuzz_format", fuzz_format), ("fuzz_checks", fuzz_checks), ("fuzz_pixels", fuzz_pixels)]:
+                       ("fuzz_format", fuzz_format), ("fuzz_checks", fuzz_checks), ("fuzz_pixels", fuzz_pixels),
+                       ("fuzz_pixels_test", fuzz_pixels_test)]:
         seeds = make(random.Random(name))
         write(name, seeds)
         print("%-13s %3d seeds, %5d bytes" % (name, len(seeds), sum(len(s) for s in seeds)))
