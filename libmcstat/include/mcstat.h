@@ -955,11 +955,12 @@ MCSTAT_API int mcstat_pixels_out_init_size(mcstat_pixels_out *out, size_t size);
  * (mcstat_t_test_1, ..._2, ..._2_pooled, mcstat_t_test_paired,
  * mcstat_var_test_1, ..._2): bit for bit for the pooled and paired t and
  * the one-sample t; Welch's and the variance tests run by blocks of pixels
- * and agree to within: Welch's p-value 3e-14 + 4e-16 |log p| relative
- * (both are within that of the exact tail; 3e-13 where it underflows), the
- * variance tests' twice that (a per-call table of the general routine's
- * log tails, interpolated; calls of at least 16384 pixels a thread, fewer
- * take the single call's code), the statistic, df, estimates, standard
+ * and agree to within: Welch's p-value is within 3e-14 + 4e-16 |log p|
+ * relative of the exact tail at its statistic, as the single call's is
+ * (3e-13 where it underflows), so the two agree to twice that; the
+ * variance tests' p-values (from a per-call table of the general routine's
+ * log tails, interpolated) agree with the single call's to twice that
+ * too; the statistic, df, estimates, standard
  * error and interval about 1e-14 relative (the moments are two passes over
  * the values, the single call's its shifted sums), Welch's critical values
  * 3e-13 (from a per-call table of the t quantile in 1/df; the variance

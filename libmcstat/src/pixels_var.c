@@ -17,8 +17,10 @@
  * code, as do pixels with a
  * NaN or Inf, extreme magnitudes, zero or nearly zero variance, df beyond
  * 1000, all pixels of a call whose critical values leave the normal
- * doubles, and ranges of fewer than MIN_TABLE_PIXELS pixels (a thread's),
- * which do not pay for the table's points.  The moments are pixels.c's two passes (the single call's are
+ * doubles.  Which path a pixel takes depends on its values and the call's
+ * constants only, never on the range or the threads: a small call pays for
+ * the few points it needs (each about as costly as one pixel's single
+ * call).  The moments are pixels.c's two passes (the single call's are
  * shifted sums): statistics agree to a few ulps, and the p-value to the
  * bound of mcstat.h.  Critical values are the single call's, solved once.
  *
@@ -32,8 +34,6 @@
 #define VBLOCK 256   /* pixels per block (mcstat__pixels_block_moments' limit) */
 #define STEPS 512    /* table points per standard deviation of u */
 #define SPAN 20      /* standard deviations each side of the centre */
-/* Below this many pixels a call does not pay for its table's points. */
-#define MIN_TABLE_PIXELS 16384
 #define MID (STEPS * SPAN)
 #define N_NODES (2 * MID + 1)
 #define MAX_DF 1000.0
@@ -43,13 +43,15 @@
 typedef struct {
     int chisq;
     double df1, df2, centre, h, inv_h;
-    double *lt; /* log lower tail at 2j, log upper at 2j + 1; NaN until solved, +Inf: unusable */
+    double *lt;           /* log lower tail at 2j, log upper at 2j + 1; +Inf: unusable */
+    unsigned char *known; /* known[j]: point j solved (calloc'd: untouched pages cost nothing) */
 } tail_table;
 
 static int table_node(tail_table *tb, int j, double *lp, double *lq)
 {
     double *v = tb->lt + 2 * j;
-    if (isnan(v[0])) {
+    if (!tb->known[j]) {
+        tb->known[j] = 1;
         double s = tb->centre * exp((double)(j - MID) * tb->h);
         mcstat_tails t;
         int st = tb->chisq ? mcstat__chisq_tails(s, tb->df1, &t) : mcstat__f_tails(s, tb->df1, tb->df2, &t);
@@ -130,6 +132,7 @@ typedef struct {
     double m2x[VBLOCK], m2y[VBLOCK];
     unsigned char bx[VBLOCK], by[VBLOCK];
     double lt[2 * N_NODES];
+    unsigned char known[N_NODES];
 } var_work;
 
 /* Whether the two-pass M2 of n values about `mean` keeps ~1e-15 of relative
@@ -148,7 +151,7 @@ int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_
     const size_t nx = x->n, ny = two ? y->n : 0;
     const double df1 = (double)nx - 1.0, df2 = two ? (double)ny - 1.0 : 0.0;
     int first = MCSTAT_OK;
-    int fast = nx >= 2 && (!two || ny >= 2) && df1 <= MAX_DF && df2 <= MAX_DF && end - begin >= MIN_TABLE_PIXELS;
+    int fast = nx >= 2 && (!two || ny >= 2) && df1 <= MAX_DF && df2 <= MAX_DF && end > begin;
     double c0 = NAN, c1 = NAN;
     if (fast && intervals) { /* the single call's critical values, once */
         mcstat_qcache qc;
@@ -170,14 +173,13 @@ int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_
         if (!(ends0 || (c0 >= DBL_MIN && c0 <= DBL_MAX)) || !(ends1 || (c1 >= DBL_MIN && c1 <= DBL_MAX)))
             fast = 0;
     }
-    var_work *w = fast ? malloc(sizeof *w) : NULL; /* ~330 KiB: not on a caller's thread stack */
-    tail_table tb = {!two, df1, df2, two ? 1.0 : df1, 0.0, 0.0, NULL};
+    var_work *w = fast ? calloc(1, sizeof *w) : NULL; /* ~350 KiB: not on a caller's thread stack */
+    tail_table tb = {!two, df1, df2, two ? 1.0 : df1, 0.0, 0.0, NULL, NULL};
     if (w) {
         tb.h = sqrt(two ? 2.0 / df1 + 2.0 / df2 : 2.0 / df1) / STEPS;
         tb.inv_h = 1.0 / tb.h;
         tb.lt = w->lt;
-        for (int j = 0; j < 2 * N_NODES; j++)
-            w->lt[j] = NAN;
+        tb.known = w->known;
     }
     const mcstat_pixels_out *o = out;
     for (size_t i0 = begin; i0 < end; i0 += VBLOCK) {

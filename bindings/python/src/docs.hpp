@@ -41,10 +41,10 @@ axis : int, optional
     whose pixels are not one stride apart, are copied to float64 first);
     seeds-major stacks ``(seeds, H, W)`` with ``axis=0`` and rows
     ``(H, W, seeds)`` with ``axis=-1`` are read in place.  Each pixel's
-    result is the single call's on its values bit for bit, except Welch's
-    test, whose block path agrees to the bounds of mcstat.h (p-value
-    3e-14 + 4e-16 |log p| relative, the rest about 1e-14, critical values
-    3e-13).  Fields of pairs (``conf_int``, ``estimate``, ...) are formed
+    result is the single call's on its values bit for bit, except for
+    Welch's test and the variance tests, whose block paths agree to the
+    bounds of mcstat.h (p-value 6e-14 + 8e-16 |log p| relative, the rest
+    about 1e-14, Welch's critical values 3e-13).  Fields of pairs (``conf_int``, ``estimate``, ...) are formed
     when first read.
 nan_policy : {"raise", "omit", "propagate"}, optional
     NaN raises `NonFiniteError` (the default), is omitted from its sample

@@ -64,21 +64,115 @@ pub struct mcstat_moments {
     pub reserved: [f64; 7],
 }
 
+/// `enum mcstat_value_type`: the element type of an `mcstat_pixels_in`.
+pub const MCSTAT_VALUE_FLOAT64: i32 = 0;
+pub const MCSTAT_VALUE_FLOAT32: i32 = 1;
+
+/// `mcstat_pixels_in`: where the values of each pixel are (value s of
+/// pixel i at element `s * value_stride + i * pixel_stride` of `data`,
+/// `channels` consecutive elements weighted by `weights`).  Start from
+/// [`mcstat_pixels_in::init`] (the header's `MCSTAT_PIXELS_IN_INIT`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_pixels_in {
+    pub size: u32,
+    pub type_: i32,
+    pub data: *const c_void,
+    pub n: usize,
+    pub value_stride: usize,
+    pub pixel_stride: usize,
+    pub channels: usize,
+    pub weights: *const f64,
+}
+
+impl mcstat_pixels_in {
+    /// `MCSTAT_PIXELS_IN_INIT`.
+    pub fn init() -> Self {
+        mcstat_pixels_in {
+            size: std::mem::size_of::<Self>() as u32,
+            type_: MCSTAT_VALUE_FLOAT64,
+            data: std::ptr::null(),
+            n: 0,
+            value_stride: 0,
+            pixel_stride: 0,
+            channels: 1,
+            weights: std::ptr::null(),
+        }
+    }
+}
+
+/// `mcstat_pixels_options`: flags (`MCSTAT_ROWS_*`) and threads (1..64).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct mcstat_pixels_options {
+    pub size: u32,
+    pub flags: u32,
+    pub threads: i32,
+    pub reserved: i32,
+}
+
+impl mcstat_pixels_options {
+    /// `MCSTAT_PIXELS_OPTIONS_INIT`.
+    pub fn init() -> Self {
+        mcstat_pixels_options { size: std::mem::size_of::<Self>() as u32, flags: 0, threads: 1, reserved: 0 }
+    }
+}
+
 /// `mcstat_pixels_out`: the caller's per-pixel output arrays of
-/// `mcstat_t_test_2_pixels` (indexed by pixel); any may be null.
+/// `mcstat_pixels_test` and `mcstat_t_test_2_pixels` (indexed by pixel);
+/// any may be null.  Start from [`mcstat_pixels_out::init`].
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct mcstat_pixels_out {
+    pub size: u32,
+    pub reserved: u32,
     pub p_value: *mut f64,
     pub statistic: *mut f64,
     pub df: *mut f64,
-    pub mean_x: *mut f64,
-    pub mean_y: *mut f64,
+    pub df2: *mut f64,
+    pub estimate: *mut f64,
+    pub estimate2: *mut f64,
+    pub std_error: *mut f64,
     pub conf_lo: *mut f64,
     pub conf_hi: *mut f64,
+    pub critical_lo: *mut f64,
+    pub critical_hi: *mut f64,
     pub status: *mut i32,
-    pub std_error: *mut f64,
+    pub decision: *mut i8,
+    pub n_x: *mut u64,
+    pub n_y: *mut u64,
 }
+
+impl mcstat_pixels_out {
+    /// `MCSTAT_PIXELS_OUT_INIT`: the size set, every array null.
+    pub fn init() -> Self {
+        let n = std::ptr::null_mut();
+        mcstat_pixels_out {
+            size: std::mem::size_of::<Self>() as u32,
+            reserved: 0,
+            p_value: n,
+            statistic: n,
+            df: n,
+            df2: n,
+            estimate: n,
+            estimate2: n,
+            std_error: n,
+            conf_lo: n,
+            conf_hi: n,
+            critical_lo: n,
+            critical_hi: n,
+            status: std::ptr::null_mut(),
+            decision: std::ptr::null_mut(),
+            n_x: std::ptr::null_mut(),
+            n_y: std::ptr::null_mut(),
+        }
+    }
+}
+
+/// sizeof of the per-pixel structs in each release that changed them.
+pub const MCSTAT_PIXELS_IN_SIZE_0_2: usize = 56;
+pub const MCSTAT_PIXELS_OPTIONS_SIZE_0_2: usize = 16;
+pub const MCSTAT_PIXELS_OUT_SIZE_0_2: usize = 128;
 
 pub const MCSTAT_STREAM_VERSION: u32 = 1;
 pub const MCSTAT_STREAM_BYTES: usize = 4096;
@@ -794,6 +888,9 @@ const _: () = {
     assert!(size_of::<mcstat_check_options>() == MCSTAT_CHECK_OPTIONS_SIZE_0_2);
     assert!(size_of::<mcstat_seq_options>() == MCSTAT_SEQ_OPTIONS_SIZE_0_2);
     assert!(size_of::<mcstat_seq>() == 448);
+    assert!(size_of::<mcstat_pixels_in>() == MCSTAT_PIXELS_IN_SIZE_0_2);
+    assert!(size_of::<mcstat_pixels_options>() == MCSTAT_PIXELS_OPTIONS_SIZE_0_2);
+    assert!(size_of::<mcstat_pixels_out>() == MCSTAT_PIXELS_OUT_SIZE_0_2);
 };
 
 extern "C" {
@@ -1054,6 +1151,24 @@ extern "C" {
         alternative: c_int,
         alpha: f64,
         flags: c_uint,
+        out: *const mcstat_pixels_out,
+    ) -> c_int;
+    pub fn mcstat_sizeof_pixels_in() -> usize;
+    pub fn mcstat_sizeof_pixels_options() -> usize;
+    pub fn mcstat_sizeof_pixels_out() -> usize;
+    pub fn mcstat_pixels_in_init_size(x: *mut mcstat_pixels_in, size: usize) -> c_int;
+    pub fn mcstat_pixels_options_init_size(opt: *mut mcstat_pixels_options, size: usize) -> c_int;
+    pub fn mcstat_pixels_out_init_size(out: *mut mcstat_pixels_out, size: usize) -> c_int;
+    pub fn mcstat_pixels_test(
+        test: c_int,
+        x: *const mcstat_pixels_in,
+        y: *const mcstat_pixels_in,
+        begin: usize,
+        end: usize,
+        null_value: f64,
+        alternative: c_int,
+        alpha: f64,
+        opt: *const mcstat_pixels_options,
         out: *const mcstat_pixels_out,
     ) -> c_int;
     pub fn mcstat_t_test_2_pixels_f32(

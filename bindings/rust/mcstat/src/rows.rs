@@ -390,17 +390,7 @@ fn run_pixels(
     call: impl Fn(usize, usize, *const sys::mcstat_pixels_out) -> c_int,
 ) -> Result<PixelResults> {
     let null = std::ptr::null_mut();
-    let none = sys::mcstat_pixels_out {
-        p_value: null,
-        statistic: null,
-        df: null,
-        mean_x: null,
-        mean_y: null,
-        conf_lo: null,
-        conf_hi: null,
-        status: std::ptr::null_mut(),
-        std_error: null,
-    };
+    let none = sys::mcstat_pixels_out::init();
     crate::check(call(0, 0, &none))?; // the arguments, on an empty range
     let intervals = !flags.no_intervals;
     let mut r = PixelResults {
@@ -418,12 +408,13 @@ fn run_pixels(
         p_value: r.p_value.as_mut_ptr(),
         statistic: r.statistic.as_mut_ptr(),
         df: r.df.as_mut_ptr(),
-        mean_x: r.mean_x.as_mut_ptr(),
-        mean_y: r.mean_y.as_mut_ptr(),
+        estimate: r.mean_x.as_mut_ptr(),
+        estimate2: r.mean_y.as_mut_ptr(),
         conf_lo: r.conf_lo.as_mut().map_or(null, |v| v.as_mut_ptr()),
         conf_hi: r.conf_hi.as_mut().map_or(null, |v| v.as_mut_ptr()),
         status: r.status.as_mut_ptr(),
         std_error: r.std_error.as_mut_ptr(),
+        ..sys::mcstat_pixels_out::init()
     };
     call(0, pixels, &out); // per-pixel failures are in r.status
     Ok(r)
@@ -512,4 +503,277 @@ pub fn t_test_2_pixels_f32(
             out,
         )
     })
+}
+
+// ---- any test per pixel, any layout: mcstat_pixels_test --------------------------
+
+/// The values of one side of [`pixels_test`], float64 or float32 (read as
+/// they are, each converted to double exactly).
+#[derive(Clone, Copy, Debug)]
+pub enum PixelData<'a> {
+    F64(&'a [f64]),
+    F32(&'a [f32]),
+}
+
+impl PixelData<'_> {
+    fn len(&self) -> usize {
+        match self {
+            PixelData::F64(v) => v.len(),
+            PixelData::F32(v) => v.len(),
+        }
+    }
+}
+
+/// Where the values of each pixel are: value `s` of pixel `i` starts at
+/// element `s * value_stride + i * pixel_stride` of `data` and is the
+/// weighted sum of `channels` consecutive elements there (`weights`, one
+/// per channel; `None` with one channel: the element itself).
+#[derive(Clone, Copy, Debug)]
+pub struct Pixels<'a> {
+    pub data: PixelData<'a>,
+    /// Values per pixel.
+    pub n: usize,
+    pub value_stride: usize,
+    pub pixel_stride: usize,
+    pub channels: usize,
+    pub weights: Option<&'a [f64]>,
+}
+
+impl<'a> Pixels<'a> {
+    /// A seeds-major stack `(n, pixels)` as renderers write it: value s of
+    /// pixel i at `s * pixels + i`.
+    pub fn seeds_major(data: PixelData<'a>, n: usize, pixels: usize) -> Self {
+        Pixels { data, n, value_stride: pixels, pixel_stride: 1, channels: 1, weights: None }
+    }
+
+    /// Rows of `n` values per pixel `(pixels, n)`: value s of pixel i at `i * n + s`.
+    pub fn rows(data: PixelData<'a>, n: usize) -> Self {
+        Pixels { data, n, value_stride: 1, pixel_stride: n, channels: 1, weights: None }
+    }
+
+    /// Every element `pixels` pixels address lies in the slice.
+    fn check(&self, pixels: usize) -> Result<()> {
+        match self.weights {
+            None if self.channels != 1 => {
+                return Err(Error::invalid(format!("{} channels need one weight each", self.channels)))
+            }
+            Some(w) if w.len() != self.channels => {
+                return Err(Error::invalid(format!("{} weights for {} channels", w.len(), self.channels)))
+            }
+            _ => {}
+        }
+        if self.channels == 0 {
+            return Err(Error::invalid("channels must be at least 1"));
+        }
+        if pixels == 0 || self.n == 0 {
+            return Ok(());
+        }
+        let last = (self.n - 1)
+            .checked_mul(self.value_stride)
+            .and_then(|a| (pixels - 1).checked_mul(self.pixel_stride).and_then(|b| a.checked_add(b)))
+            .and_then(|a| a.checked_add(self.channels - 1));
+        match last {
+            Some(l) if l < self.data.len() => Ok(()),
+            _ => Err(Error::invalid(format!(
+                "{} values of {} pixels (strides {} and {}, {} channels) do not fit in {} elements",
+                self.n,
+                pixels,
+                self.value_stride,
+                self.pixel_stride,
+                self.channels,
+                self.data.len()
+            ))),
+        }
+    }
+
+    fn raw(&self) -> sys::mcstat_pixels_in {
+        let (type_, data) = match self.data {
+            PixelData::F64(v) => (sys::MCSTAT_VALUE_FLOAT64, v.as_ptr() as *const std::os::raw::c_void),
+            PixelData::F32(v) => (sys::MCSTAT_VALUE_FLOAT32, v.as_ptr() as *const std::os::raw::c_void),
+        };
+        sys::mcstat_pixels_in {
+            type_,
+            data,
+            n: self.n,
+            value_stride: self.value_stride,
+            pixel_stride: self.pixel_stride,
+            channels: self.channels,
+            weights: self.weights.map_or(std::ptr::null(), |w| w.as_ptr()),
+            ..sys::mcstat_pixels_in::init()
+        }
+    }
+}
+
+/// The tests of [`pixels_test`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PixelTest {
+    /// One-sample t of x's mean against the null value.
+    T1,
+    /// Welch's t of mean(x) - mean(y).
+    T2,
+    /// Student's pooled t.
+    T2Pooled,
+    /// Paired t of mean(x - y) (equal n).
+    TPaired,
+    /// Chi-squared test of x's variance.
+    Var1,
+    /// F test of var(x) / var(y).
+    Var2,
+}
+
+impl PixelTest {
+    fn raw(self) -> c_int {
+        match self {
+            PixelTest::T1 => sys::MCSTAT_TEST_T_1,
+            PixelTest::T2 => sys::MCSTAT_TEST_T_2,
+            PixelTest::T2Pooled => sys::MCSTAT_TEST_T_2_POOLED,
+            PixelTest::TPaired => sys::MCSTAT_TEST_T_PAIRED,
+            PixelTest::Var1 => sys::MCSTAT_TEST_VAR_1,
+            PixelTest::Var2 => sys::MCSTAT_TEST_VAR_2,
+        }
+    }
+
+    fn two_sample(self) -> bool {
+        !matches!(self, PixelTest::T1 | PixelTest::Var1)
+    }
+}
+
+/// The outputs of [`pixels_test`], one entry per pixel (mcstat.h's
+/// `mcstat_pixels_out`).  A pixel that failed has its status in `status`,
+/// NaN elsewhere, decision 0 and sizes 0.  With `no_intervals` the
+/// intervals and critical values are NaN.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PixelTestResults {
+    pub p_value: Vec<f64>,
+    pub statistic: Vec<f64>,
+    /// The degrees of freedom (F: the numerator's).
+    pub df: Vec<f64>,
+    /// F: the denominator's degrees of freedom (NaN for the others).
+    pub df2: Vec<f64>,
+    /// The single call's estimate[0]: x's mean (t tests; paired: of the
+    /// differences), x's variance (chi-squared), the ratio (F).
+    pub estimate: Vec<f64>,
+    /// estimate[1]: y's mean (two-sample t; NaN for the others).
+    pub estimate2: Vec<f64>,
+    pub std_error: Vec<f64>,
+    pub conf_lo: Vec<f64>,
+    pub conf_hi: Vec<f64>,
+    pub critical_lo: Vec<f64>,
+    pub critical_hi: Vec<f64>,
+    pub status: Vec<i32>,
+    /// -1, 0, +1 (`Decision`'s less, equal, greater).
+    pub decision: Vec<i8>,
+    pub n_x: Vec<u64>,
+    pub n_y: Vec<u64>,
+}
+
+/// `test` once per pixel `0..pixels` of `x` (and `y` for the two-sample
+/// tests; `None` for `T1` and `Var1`), libmcstat's `mcstat_pixels_test`:
+/// each pixel's results are the single call's on its values (bit for bit
+/// but for Welch's and the variance tests, within the bounds of mcstat.h).
+/// `threads` (1..64) splits the pixels into contiguous ranges, one per
+/// thread; results do not depend on it.  `Err` only for bad arguments
+/// (slices too short for the strides, weights that do not match the
+/// channels, the arguments mcstat_pixels_test refuses); a pixel's failure
+/// is its `status`.
+#[allow(clippy::too_many_arguments)]
+pub fn pixels_test(
+    test: PixelTest,
+    x: &Pixels<'_>,
+    y: Option<&Pixels<'_>>,
+    pixels: usize,
+    null_value: f64,
+    alternative: Alternative,
+    alpha: f64,
+    flags: RowFlags,
+    threads: usize,
+) -> Result<PixelTestResults> {
+    if test.two_sample() != y.is_some() {
+        return Err(Error::invalid(if test.two_sample() {
+            "this test needs y"
+        } else {
+            "a one-sample test takes no y"
+        }));
+    }
+    x.check(pixels)?;
+    if let Some(y) = y {
+        y.check(pixels)?;
+    }
+    if threads == 0 || threads > 64 {
+        return Err(Error::invalid(format!("threads must be in 1..64, got {threads}")));
+    }
+    let rx = x.raw();
+    let ry = y.map(|y| y.raw());
+    let py = ry.as_ref().map_or(std::ptr::null(), |r| r as *const sys::mcstat_pixels_in);
+    let mut opt = sys::mcstat_pixels_options::init();
+    opt.flags = flags.bits();
+    opt.threads = threads as i32;
+    let call = |begin: usize, end: usize, out: &sys::mcstat_pixels_out| unsafe {
+        sys::mcstat_pixels_test(test.raw(), &rx, py, begin, end, null_value, alternative.raw(), alpha, &opt, out)
+    };
+    crate::check(call(0, 0, &sys::mcstat_pixels_out::init()))?; // the arguments, on an empty range
+    let nan = || vec![f64::NAN; pixels];
+    let mut r = PixelTestResults {
+        p_value: nan(),
+        statistic: nan(),
+        df: nan(),
+        df2: nan(),
+        estimate: nan(),
+        estimate2: nan(),
+        std_error: nan(),
+        conf_lo: nan(),
+        conf_hi: nan(),
+        critical_lo: nan(),
+        critical_hi: nan(),
+        status: vec![PENDING; pixels],
+        decision: vec![0; pixels],
+        n_x: vec![0; pixels],
+        n_y: vec![0; pixels],
+    };
+    let out = sys::mcstat_pixels_out {
+        p_value: r.p_value.as_mut_ptr(),
+        statistic: r.statistic.as_mut_ptr(),
+        df: r.df.as_mut_ptr(),
+        df2: r.df2.as_mut_ptr(),
+        estimate: r.estimate.as_mut_ptr(),
+        estimate2: r.estimate2.as_mut_ptr(),
+        std_error: r.std_error.as_mut_ptr(),
+        conf_lo: r.conf_lo.as_mut_ptr(),
+        conf_hi: r.conf_hi.as_mut_ptr(),
+        critical_lo: r.critical_lo.as_mut_ptr(),
+        critical_hi: r.critical_hi.as_mut_ptr(),
+        status: r.status.as_mut_ptr(),
+        decision: r.decision.as_mut_ptr(),
+        n_x: r.n_x.as_mut_ptr(),
+        n_y: r.n_y.as_mut_ptr(),
+        ..sys::mcstat_pixels_out::init()
+    };
+    call(0, pixels, &out); // per-pixel failures are in r.status
+    Ok(r)
+}
+
+/// `sizeof` of the per-pixel structs as this libmcstat was built
+/// (`mcstat_sizeof_pixels_{in,options,out}`): (in, options, out).
+pub fn pixels_struct_sizes() -> (usize, usize, usize) {
+    unsafe { (sys::mcstat_sizeof_pixels_in(), sys::mcstat_sizeof_pixels_options(), sys::mcstat_sizeof_pixels_out()) }
+}
+
+/// The per-pixel structs' initialisers for a given size (the first `size`
+/// bytes of each, as an older caller would have them): libmcstat's
+/// `mcstat_pixels_{in,options,out}_init_size`.  `Err` for a size no
+/// release had.
+pub fn pixels_structs_init_size(
+    in_size: usize,
+    options_size: usize,
+    out_size: usize,
+) -> Result<(sys::mcstat_pixels_in, sys::mcstat_pixels_options, sys::mcstat_pixels_out)> {
+    let mut a = sys::mcstat_pixels_in::init();
+    let mut b = sys::mcstat_pixels_options::init();
+    let mut c = sys::mcstat_pixels_out::init();
+    unsafe {
+        crate::check(sys::mcstat_pixels_in_init_size(&mut a, in_size))?;
+        crate::check(sys::mcstat_pixels_options_init_size(&mut b, options_size))?;
+        crate::check(sys::mcstat_pixels_out_init_size(&mut c, out_size))?;
+    }
+    Ok((a, b, c))
 }
