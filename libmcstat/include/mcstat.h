@@ -1137,6 +1137,51 @@ MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work
  * e-values proper (likelihood ratios, sequential tests' betting wealth). */
 MCSTAT_API int mcstat_e_bh(const double *e, size_t n, void *work, size_t work_bytes, double *adjusted);
 
+/* ------------------------------------------------------------------------ */
+/* Escalation instead of reruns: a two-stage test (Bauer & Koehne 1994).     */
+/* A test suite that reruns a failed statistical test until it passes has   */
+/* no error rate left.  Escalation keeps it: stage 1 tests n samples and     */
+/* gives p1; p1 <= alpha1 rejects, p1 > alpha0 passes, and in between the   */
+/* test continues on fresh samples (an independent stage 2, of any size     */
+/* chosen after seeing stage 1) giving p2, and rejects when p1 p2 <= c     */
+/* (Fisher's product).  With c = (alpha - alpha1) / ln(alpha0 / alpha1) the  */
+/* probability of a rejection under H0 is alpha1 + c ln(alpha0 / alpha1) =   */
+/* alpha exactly for uniform p-values, at most alpha for valid (super-      */
+/* uniform) ones such as discrete tests' or a Holm battery's smallest       */
+/* adjusted p-value; the stages must be independent (fresh random numbers). */
+/* A correct test escalates with probability alpha0 - alpha1, so it costs    */
+/* on average n1 + (alpha0 - alpha1) n2 samples; a borderline error, whose   */
+/* p1 falls between the bounds, is judged on n1 + n2.                        */
+/* ------------------------------------------------------------------------ */
+typedef struct mcstat_escalation {
+    double alpha;  /* the level of the whole two-stage test */
+    double alpha1; /* stage 1 rejects when p1 <= alpha1 */
+    double alpha0; /* stage 1 passes when p1 > alpha0, escalates when alpha1 < p1 <= alpha0 */
+    double c;      /* stage 2 rejects when p1 p2 <= c (c <= alpha1) */
+} mcstat_escalation;
+
+/* The decisions of mcstat_escalation_decide. */
+enum mcstat_escalation_decision {
+    MCSTAT_ESCALATION_PASS = 0,     /* no evidence against H0 at alpha */
+    MCSTAT_ESCALATION_REJECT = 1,   /* H0 rejected at alpha */
+    MCSTAT_ESCALATION_CONTINUE = 2  /* stage 1 was inconclusive: run stage 2 */
+};
+
+/* *out <- the design of level alpha in (0, 1) that spends alpha1 = share1
+ * alpha at stage 1 (share1 in (0, 1); 1/2 is a good default) and escalates
+ * up to alpha0 in (alpha1, 1].  MCSTAT_EINVAL for arguments outside those
+ * ranges, NaN included, or when alpha0 is so close to alpha1 that stage 2
+ * could not spend the rest (c > alpha1, i.e. alpha0 < alpha1
+ * e^((1 - share1) / share1)); nothing written then. */
+MCSTAT_API int mcstat_escalation_design(double alpha, double share1, double alpha0, mcstat_escalation *out);
+/* *decision <- the design's decision (enum mcstat_escalation_decision) on
+ * stage 1's p1 alone (p2 NaN), or on both stages (p2 in [0, 1]: valid only
+ * when stage 1 said MCSTAT_ESCALATION_CONTINUE, MCSTAT_EINVAL otherwise).
+ * MCSTAT_EINVAL: design or decision NULL, a design mcstat_escalation_design
+ * would not make, p1 outside [0, 1] (NaN included), p2 neither NaN nor in
+ * [0, 1]. */
+MCSTAT_API int mcstat_escalation_decide(const mcstat_escalation *design, double p1, double p2, int *decision);
+
 /* ======================================================================== */
 /* 6. Equivalence.                                                          */
 /* Not "is it different?" but "is the difference below eps?": the TOST      */
