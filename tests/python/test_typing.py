@@ -95,6 +95,9 @@ def test_readme_examples_run(examples):
         "pairs": [(rng.normal(size=40), rng.normal(size=40)) for _ in range(3)],
         "pvalues": rng.uniform(size=1000), "rejections": 61,
         "wo": np.array([0.3, 0.1, 0.948683]),
+        # seeds-major float32 stacks, as a renderer writes them (8 seeds of a 4 x 5 image)
+        "renders": rng.normal(1.0, 0.1, (8, 4, 5)).astype(np.float32),
+        "reference_renders": rng.normal(1.0, 0.1, (8, 4, 5)).astype(np.float32),
     }
     blocks = readme_blocks()
     ran = 0

@@ -17,6 +17,8 @@ after: _A
 x: _A
 img: _A
 reference_img: _A
+renders: npt.NDArray[np.float32]
+reference_renders: npt.NDArray[np.float32]
 batch: _A
 primary: _A
 pairs: List[Tuple[_A, _A]]
