@@ -103,6 +103,8 @@ py::object make_result(const Result &r);
 
 // ---- adjusted p-values (p_adjust.cpp) -------------------------------------
 void register_p_adjust(py::module_ &mod);
+// escalation.cpp: mcstat.Escalation, the two-stage test instead of reruns
+void register_escalation(py::module_ &mod);
 // Welch's test per row from (n, mean, M2) summaries (summary_rows.cpp).
 void register_summary_rows(py::module_ &mod);
 // Welch's test per pixel on seeds-major stacks (pixels.cpp).

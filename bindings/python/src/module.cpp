@@ -18,6 +18,7 @@ PYBIND11_MODULE(_core, mod)
     mcs::register_chisq(mod); // chi-squared goodness of fit
     mcs::register_efficiency(mod); // the ratio of two estimators' efficiencies
     mcs::register_p_adjust(mod);
+    mcs::register_escalation(mod); // the two-stage test instead of reruns
     mcs::register_summary_rows(mod);
     mcs::register_pixels(mod); // Welch per pixel on seeds-major stacks
     mcs::register_check(mod); // renderer checks: BSDFs, emitters, warps
