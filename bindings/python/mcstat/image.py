@@ -61,6 +61,11 @@ a bias spread over a region adds up while the noise averages out, so block
 tests find small regional biases that per-pixel tests miss (Jung et al.
 2020, JCGT, tested 32 x 32 blocks; here the sums are in double precision
 and the Welch df real).
+
+Equivalence (`equivalence`): the converse question, "is the candidate the
+reference up to a margin?", for backends that should agree (CPU and GPU,
+scalar and vectorised): two one-sided tests per block, and "equivalent"
+only when every block is shown inside the margin.
 """
 from __future__ import annotations
 
@@ -88,6 +93,8 @@ __all__ = [
     "VERDICTS",
     "per_test_level",
     "detectable_bias",
+    "equivalence",
+    "ImageEquivalence",
 ]
 
 # ImageComparison.verdict's values
@@ -1001,6 +1008,10 @@ def _canonical_method(m: str) -> str:
 
 def _fmt_shape(s: Tuple[int, int, int]) -> str:
     return f"{s[1]} x {s[0]} pixels (width x height) with {s[2]} channel(s)"
+
+
+# Backend equivalence (TOST per block, an intersection-union verdict): its own file.
+from ._image_equivalence import ImageEquivalence, equivalence  # noqa: E402
 
 
 # The file readers, the map writer and the command moved to the application
