@@ -39,6 +39,10 @@ tests use (cdf, log cdf, quantile, over arrays) in `mcstat.distributions`.
 `compare_efficiency` times two estimators itself (interleaved batches)
 and runs `efficiency_test` on their samples and times.
 
+In a test suite: `mcstat.testing` (assertions, one error budget for the
+whole suite, escalation instead of reruns, and its pytest plugin, enabled
+by ``pytest --mcstat-alpha A``); `Escalation` is its two-stage test.
+
 One-sided alternatives are claims about the first sample in every test:
 ``ks_test(x, y, alternative="less")`` means x tends to be smaller, which
 SciPy's ``ks_2samp`` and R's ``ks.test`` call "greater".
@@ -69,6 +73,7 @@ from ._core import (  # noqa: E402  (the extension looks the errors up at import
     __libmcstat_version__,
     __libmcstat_version_number__,
     batch_means,
+    Escalation,
     e_bh,
     get_num_threads,
     gsl_handler_was_default,
@@ -131,6 +136,7 @@ __all__ = [
     "p_adjust",
     "p_adjust_work_size",
     "e_bh",
+    "Escalation",
     "TestResult",
     "BatchResult",
     "MomentsArray",
