@@ -24,7 +24,8 @@
 //     and on accumulators, KSTest2 (KSOptions, KSCache);
 //   - per-pixel rows: the *Matrix tests on a Matrix and the *Rows tests on
 //     a MomentsRows, one RowResult (a Result or an error) per row;
-//   - PAdjust (R's p.adjust); EquivalenceTest1/2 (TOST);
+//   - PAdjust (R's p.adjust); NewEscalation (a two-stage test instead of
+//     reruns); EquivalenceTest1/2 (TOST);
 //   - PowerOptions (Compute, Solve, String as R's power.t.test);
 //   - Diagnose, TailIndex, TSize, BatchSize;
 //   - GOFChisqTest, BinomTest, BatteryTest, BatteryTestPValues;

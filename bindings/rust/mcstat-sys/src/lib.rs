@@ -525,6 +525,22 @@ pub const MCSTAT_P_ADJUST_BH: c_int = 5;
 pub const MCSTAT_P_ADJUST_BY: c_int = 6;
 pub const MCSTAT_P_ADJUST_E_BH: c_int = 7;
 
+/// `mcstat_escalation`: a two-stage design, written by
+/// `mcstat_escalation_design` (plain data, no pointers).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct mcstat_escalation {
+    pub alpha: f64,
+    pub alpha1: f64,
+    pub alpha0: f64,
+    pub c: f64,
+}
+
+/// `enum mcstat_escalation_decision`, written by `mcstat_escalation_decide`.
+pub const MCSTAT_ESCALATION_PASS: c_int = 0;
+pub const MCSTAT_ESCALATION_REJECT: c_int = 1;
+pub const MCSTAT_ESCALATION_CONTINUE: c_int = 2;
+
 // ============================================================================
 // 7. Power and sample size (experimental).
 // ============================================================================
@@ -891,6 +907,7 @@ const _: () = {
     assert!(size_of::<mcstat_pixels_in>() == MCSTAT_PIXELS_IN_SIZE_0_2);
     assert!(size_of::<mcstat_pixels_options>() == MCSTAT_PIXELS_OPTIONS_SIZE_0_2);
     assert!(size_of::<mcstat_pixels_out>() == MCSTAT_PIXELS_OUT_SIZE_0_2);
+    assert!(size_of::<mcstat_escalation>() == 32);
 };
 
 extern "C" {
@@ -1244,6 +1261,8 @@ extern "C" {
         adjusted: *mut f64,
     ) -> c_int;
     pub fn mcstat_e_bh(e: *const f64, n: usize, work: *mut c_void, work_bytes: usize, adjusted: *mut f64) -> c_int;
+    pub fn mcstat_escalation_design(alpha: f64, share1: f64, alpha0: f64, out: *mut mcstat_escalation) -> c_int;
+    pub fn mcstat_escalation_decide(design: *const mcstat_escalation, p1: f64, p2: f64, decision: *mut c_int) -> c_int;
 
     // ---- 6. equivalence ------------------------------------------------------
     pub fn mcstat_equivalence_test_1(

@@ -109,6 +109,10 @@ fn offsets_match_the_c_compiler() {
     assert_eq!(offset!(mcstat_seq, log_e), 352);
     assert_eq!(offset!(mcstat_seq, cs), 368);
     assert_eq!(offset!(mcstat_seq, reserved), 384);
+    assert_eq!(size_of::<mcstat_escalation>(), 32);
+    assert_eq!(offset!(mcstat_escalation, alpha1), 8);
+    assert_eq!(offset!(mcstat_escalation, alpha0), 16);
+    assert_eq!(offset!(mcstat_escalation, c), 24);
 }
 
 /// MAJOR.MINOR.PATCH of the repository's mcstat.h, the one source of

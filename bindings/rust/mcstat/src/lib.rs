@@ -21,11 +21,12 @@
 //! The families, each in its module and re-exported here: the tests on
 //! slices and on accumulators ([`Moments`]), per-pixel rows ([`rows`]),
 //! accumulator arrays and the per-thread [`Stream`], Kolmogorov-Smirnov
-//! ([`ks_test_2`]), equivalence (TOST), multiple testing ([`p_adjust()`]),
-//! power ([`power`]), estimator diagnostics ([`diag`]), goodness of fit and
-//! the binomial battery test ([`gof`]), renderer checks ([`check`]),
-//! sequential anytime-valid tests ([`SequentialTest`]) and the
-//! distributions ([`dist`]).
+//! ([`ks_test_2`]), equivalence (TOST), multiple testing ([`p_adjust()`])
+//! and escalation instead of reruns ([`Escalation`]), power ([`power`]),
+//! estimator diagnostics ([`diag`]), goodness of fit and the binomial
+//! battery test ([`gof`]), renderer checks ([`check`]), sequential
+//! anytime-valid tests ([`SequentialTest`]) and the distributions
+//! ([`dist`]).
 use std::ffi::{CStr, CString};
 use std::fmt;
 use std::os::raw::{c_char, c_int};
@@ -36,6 +37,7 @@ pub use mcstat_sys as sys;
 pub mod check;
 pub mod diag;
 pub mod dist;
+pub mod escalation;
 pub mod gof;
 mod ks;
 mod moments;
@@ -46,6 +48,7 @@ mod seq;
 
 pub use check::{check_bsdf, check_emitter, check_warp, CheckModel, CheckOptions, CheckReport, Domain, Route};
 pub use diag::{diagnose, DiagOptions, Diagnostics};
+pub use escalation::{Escalation, EscalationDecision};
 pub use gof::{battery_test, battery_test_p_values, binom_test, gof_chisq_test, GofOptions};
 pub use ks::{ks_test_2, KsCache, KsOptions};
 pub use moments::{efficiency_test, t_test_1_moments, t_test_2_moments, t_test_2_pooled_moments, var_test_1_moments, var_test_2_moments, Moments, MomentsArray, Stream};
