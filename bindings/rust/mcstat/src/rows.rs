@@ -650,10 +650,10 @@ pub struct PixelTestResults {
     pub df: Vec<f64>,
     /// F: the denominator's degrees of freedom (NaN for the others).
     pub df2: Vec<f64>,
-    /// The single call's estimate[0]: x's mean (t tests; paired: of the
+    /// The single call's `estimate[0]`: x's mean (t tests; paired: of the
     /// differences), x's variance (chi-squared), the ratio (F).
     pub estimate: Vec<f64>,
-    /// estimate[1]: y's mean (two-sample t; NaN for the others).
+    /// `estimate[1]`: y's mean (two-sample t; NaN for the others).
     pub estimate2: Vec<f64>,
     pub std_error: Vec<f64>,
     pub conf_lo: Vec<f64>,
