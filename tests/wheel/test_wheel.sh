@@ -116,4 +116,31 @@ for side in ("ref", "cand"):
 EOF
 run exr 0 "$mcstat" image-test -r ref?.exr -c cand?.exr --png map-exr.png
 
+# the testing extra: the pytest plugin from the wheel, inert without its
+# option, then a budgeted suite whose one biased test fails with its seed
+pip_install pip-testing "$whl[testing]"
+cat > test_wheel_suite.py <<'EOF'
+import numpy as np, pytest
+from mcstat.testing import assert_unbiased
+
+def draw(mu):
+    return lambda n, seed: np.random.default_rng(seed).normal(mu, 1.0, n)
+
+@pytest.mark.mcstat
+@pytest.mark.parametrize("k", range(4))
+def test_unbiased(k):
+    assert_unbiased(draw(0.0), 0.0, n=5000)
+
+@pytest.mark.mcstat
+def test_biased():
+    assert_unbiased(draw(0.2), 0.0, n=5000)
+EOF
+run plugin-off 1 "$vpy" -m pytest -q -p no:cacheprovider test_wheel_suite.py
+grep -q "no suite budget is active" "$work/plugin-off.out" || fail "plugin off: $(tail -5 "$work/plugin-off.out")"
+run plugin 1 "$vpy" -m pytest -q -p no:cacheprovider test_wheel_suite.py --mcstat-alpha 1e-3 --mcstat-seed 3
+grep -q "1 failed, 4 passed" "$work/plugin.out" || fail "plugin: $(tail -5 "$work/plugin.out")"
+grep -q "alpha spent 0.001 of the suite's 0.001" "$work/plugin.out" || fail "plugin: no summary"
+grep -q "reproduce: pytest 'test_wheel_suite.py::test_biased' --mcstat-alpha 0.001 --mcstat-seed 3" \
+    "$work/plugin.out" || fail "plugin: no reproduce line"
+
 echo "wheel test passed: $(basename "$whl") ($(du -k "$raw" | cut -f1) KiB before repair, $(du -k "$whl" | cut -f1) KiB after) in $((SECONDS - t0)) s"

@@ -15,7 +15,9 @@ message holds the deciding stage's report, the alpha spent, the stages'
 p-values, the seed and how to reproduce it; a pass records what it could
 have missed (the smallest error of each kind the check detects).  A check
 that could not answer (a route's assumption failed: heavy tails, too few
-samples) fails as "inconclusive": no answer is not a pass.
+samples) fails as "inconclusive" when no statistical route answered: no
+answer is not a pass.  A route short of
+data beside others that answered is listed with what the pass could miss.
 """
 from __future__ import annotations
 
@@ -177,15 +179,22 @@ def _check_stage(run: Callable[..., Any]) -> Callable[[int, int, float], _Stage]
     def stage(n: int, seed: int, a: float) -> _Stage:
         rep = run(n=n, seed=seed, alpha=a)
         invalid = [r.name for r in rep.routes if r.state == "invalid"]
+        ran = [r for r in rep.routes if r.state == "ran" and not r.deterministic]
         hide = ", ".join(f"{r.name} {r.detectable:.3g}" for r in rep.routes
                          if r.state == "ran" and r.detectable is not None)
+        if invalid:
+            hide += ("; " if hide else "") + "no answer from " + ", ".join(invalid)
+        # no answer is not a pass when no statistical route answered; a route
+        # without an answer (short of data, heavy tails) beside others that
+        # answered is listed with what the pass could miss
+        why = "no statistical route answered (" + ", ".join(invalid) + ")" if not ran and invalid else ""
         text = str(rep)
         if rep.kind == "bsdf" and rep.n_failed > 0.5 * rep.n and rep.pdf_without_eval == 0:
             text += ("\n  note: most samples failed; a failed sample must return pdf 0 (and weight 0), as "
                      "Mitsuba and pbrt report one")
         return _Stage(p=float(rep.pvalue), text=text, samples=int(rep.n + rep.n_pilot + rep.n_eval),
                       could_hide=("detectable: " + hide) if hide else "",
-                      inconclusive=("no answer from route(s) " + ", ".join(invalid)) if invalid else "",
+                      inconclusive=why,
                       payload=rep)
     return stage
 

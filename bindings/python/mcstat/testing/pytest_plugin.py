@@ -18,8 +18,8 @@ Then:
 - the terminal summary says what ran, the alpha and samples spent, the
   escalations and failures, and what each pass could have missed (``-v``);
   ``--mcstat-artifacts DIR`` writes each failure's report and pictures
-  there.  Each test's share is in its report (``user_properties``: JUnit
-  XML shows it).
+  there, ``--mcstat-report FILE`` every check's record as JSON.  Each
+  test's share is in its report (``user_properties``: JUnit XML shows it).
 
 Without the option the marker is still known (no warnings) and the
 assertions need ``alpha=``.  Under pytest-xdist each worker computes the
@@ -27,6 +27,8 @@ same shares from the same collection; the summary is per worker.
 """
 from __future__ import annotations
 
+import dataclasses
+import json
 from typing import Any, Generator, List, Optional, Tuple
 
 import pytest
@@ -47,6 +49,8 @@ def pytest_addoption(parser: Any) -> None:
     g.addoption("--mcstat-alpha0", type=float, default=None,
                 help="stage-1 p-values up to this escalate (default 0.05)")
     g.addoption("--mcstat-artifacts", default=None, help="folder for the failures' reports and pictures")
+    g.addoption("--mcstat-report", default=None,
+                help="write every check's record (test, alpha, seed, samples, p-values, decision) as JSON here")
     parser.addini("mcstat_alpha", "the run's false-failure budget (turns the plugin on)", default=None)
     parser.addini("mcstat_seed", "master seed", default=None)
     parser.addini("mcstat_escalate", "stage-2 size factor (0: off)", default=None)
@@ -159,6 +163,12 @@ def pytest_terminal_summary(terminalreporter: Any, exitstatus: int, config: Any)
     suite = config.stash.get(_KEY, None)
     if suite is None:
         return
+    path = config.getoption("--mcstat-report")
+    if path:
+        with open(path, "w", encoding="utf-8") as f:
+            json.dump({"alpha": suite.alpha, "master_seed": suite.master_seed, "escalate": suite.escalate,
+                       "alpha0": suite.alpha0, "tests": len(suite.shares),
+                       "records": [dataclasses.asdict(r) for r in suite.records]}, f, indent=1)
     text = suite.summary()
     if config.getoption("verbose") < 1:  # the per-pass lines only when asked
         text = text.split("\n  what each pass could have missed")[0]
