@@ -120,9 +120,22 @@ go-test: install-test go-deps
 
 # Mitsuba 3 from PyPI (examples/mitsuba/requirements.txt).  Only when pip
 # cannot install the wheel do the tests skip, and they say pip's reason.
+# The demo suite (examples/mitsuba/suite) runs under mcstat's pytest plugin
+# at master seed 0, where every case passes, and again with one planted bug,
+# where exactly the planted test must fail (a fixed-seed regression test;
+# its calibration over seeds is examples/mitsuba/RESULTS_suite.md's).
+SUITE_PLANT := bsdf-plastic-t20-p0=bsdf-pdf:1.05
 mitsuba-test: install-test python
 	@if $(PY) -m pip install -q -r examples/mitsuba/requirements.txt > $(BUILD)/mitsuba-pip.log 2>&1; then \
-	  MCSTAT_LIBDIR=$(STAGE)/lib $(PY) -m pytest -q -p no:cacheprovider examples/mitsuba; \
+	  MCSTAT_LIBDIR=$(STAGE)/lib $(PY) -m pytest -q -p no:cacheprovider examples/mitsuba \
+	    --ignore=examples/mitsuba/suite && \
+	  $(PY) -m pytest -q -p no:cacheprovider examples/mitsuba/suite --mcstat-alpha 1e-2 --mcstat-seed 0 && \
+	  { MCSTAT_DEMO_PLANT=$(SUITE_PLANT) $(PY) -m pytest -q -rf -p no:cacheprovider \
+	      examples/mitsuba/suite/test_bsdfs.py --mcstat-alpha 1e-2 --mcstat-seed 0 > $(BUILD)/suite-planted.log; \
+	    tail -4 $(BUILD)/suite-planted.log; \
+	    test "$$(grep -c '^FAILED' $(BUILD)/suite-planted.log)" = 1 && \
+	    grep -q '^FAILED.*\[$(firstword $(subst =, ,$(SUITE_PLANT)))\]' $(BUILD)/suite-planted.log || \
+	    { echo "the planted suite should fail on $(SUITE_PLANT) alone"; exit 1; }; }; \
 	else \
 	  cat $(BUILD)/mitsuba-pip.log; \
 	  MCSTAT_MITSUBA_UNAVAILABLE="$$(tail -1 $(BUILD)/mitsuba-pip.log)" MCSTAT_LIBDIR=$(STAGE)/lib \

@@ -338,7 +338,7 @@ def emitter_scene(shape="rectangle"):
     return mi.load_dict({"type": "scene", "light": light})
 
 
-def emitter_callables(shape="rectangle", ref=(0.0, 0.0, 0.0), bug=None, channel=0):
+def emitter_callables(shape="rectangle", ref=(0.0, 0.0, 0.0), bug=None, channel=0, factor=BUG_FACTOR):
     """(sample, eval, pdf) for mcstat.check_emitter: the area light of
     emitter_scene(shape) sampled by direction from the point ref.  eval(d) is
     the radiance arriving at ref along d (0 where the ray misses the light),
@@ -346,7 +346,8 @@ def emitter_callables(shape="rectangle", ref=(0.0, 0.0, 0.0), bug=None, channel=
     (EMITTER_BUGS), as plain wrappers: sampler (the first uniform u0 replaced by
     u0^1.2 before Mitsuba's sampler: directions off, pdf and weight reported as
     pdf() and eval()/pdf() there), pdf (pdf() * 1.1 where d.x > 0.2), eval
-    (eval() * 1.1), weight (sample weight * 1.1)."""
+    (eval() * 1.1), weight (sample weight * 1.1); `factor` replaces 1.1, and
+    1 + 2 (factor - 1) replaces the sampler's exponent 1.2."""
     if bug not in (None, "none") and bug not in EMITTER_BUGS:
         raise ValueError("bug must be one of %s or None, not %r" % (", ".join(EMITTER_BUGS), bug))
     scene = emitter_scene(shape)
@@ -357,7 +358,7 @@ def emitter_callables(shape="rectangle", ref=(0.0, 0.0, 0.0), bug=None, channel=
     def raw_sample(u):
         u = _u32(u)
         if bug == "sampler":
-            u[:, 0] = u[:, 0] ** np.float32(1.2)
+            u[:, 0] = u[:, 0] ** np.float32(1.0 + 2.0 * (factor - 1.0))
         k = len(u)
         if jit:
             it = dr.zeros(mi.Interaction3f, k)
@@ -411,17 +412,17 @@ def emitter_callables(shape="rectangle", ref=(0.0, 0.0, 0.0), bug=None, channel=
     def sample(u):
         d, w, p = raw_sample(u)
         if bug == "weight":
-            w = w * BUG_FACTOR
+            w = w * factor
         return d, w, p
 
     def eval_(d):
         v = raw_eval(d)
-        return v * BUG_FACTOR if bug == "eval" else v
+        return v * factor if bug == "eval" else v
 
     def pdf(d):
         p = raw_pdf(d)
         if bug == "pdf":
-            p = np.where(np.asarray(d)[:, 0] > 0.2, p * BUG_FACTOR, p)
+            p = np.where(np.asarray(d)[:, 0] > 0.2, p * factor, p)
         return p
 
     return sample, eval_, pdf
