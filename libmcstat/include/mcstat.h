@@ -1877,7 +1877,17 @@ typedef struct mcstat_check_report {
     double albedo, albedo_se;        /* mean weight and its standard error */
     double albedo_eval, albedo_eval_se; /* the eval-only estimate of the same integral */
     double tail_index[2];  /* Hill's upper tail index of the weights, of the eval-only estimates */
-    double reserved[8];
+    MCSTAT_ANONYMOUS union {
+        double reserved[8];
+        MCSTAT_ANONYMOUS struct {
+            /* samples with weight 0 where the reported pdf and eval() are > 0: counted
+               as successes.  A sampler that marks a failed sample by its weight alone
+               (Mitsuba and pbrt mark it by pdf 0) shows here; the text says so when
+               they are 1% of n or more */
+            uint64_t zero_weight;
+            double reserved_rest[7];
+        };
+    };
     mcstat_check_route_result route[MCSTAT_CHECK_ROUTES];
     char message[256];     /* MCSTAT_ECALLBACK: what went wrong, naming the callback, the point
                               and the value; otherwise empty */

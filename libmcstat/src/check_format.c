@@ -240,6 +240,15 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
         put_g(&t, "%.3g", r->tail_index[1]);
         put(&t, "%s\n", r->heavy_tailed ? " (below 2: infinite variance)" : "");
     }
+    /* many zero weights with pdf > 0: most likely failed samples marked by the
+     * weight alone, which the mass and cells routes then count as successes */
+    if (r->kind != MCSTAT_CHECK_KIND_WARP && r->zero_weight > 0 && r->zero_weight >= r->n / 100)
+        put(&t,
+            "%llu samples have weight 0 where pdf and eval() are > 0: if sample() failed there, it must "
+            "return pdf 0 "
+            "(as Mitsuba and pbrt mark a failed sample); counted as successes they enter the mass and "
+            "cells routes\n",
+            (unsigned long long)r->zero_weight);
     if (r->pdf_without_eval > 0)
         put(&t, "pdf() > 0 where eval() = 0 at %llu points (samples wasted there; not an error)\n",
             (unsigned long long)r->pdf_without_eval);

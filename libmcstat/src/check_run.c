@@ -251,6 +251,7 @@ typedef struct run {
     uint64_t bad[MCSTAT_CHECK_ROUTES], checked[MCSTAT_CHECK_ROUTES];
     double worst[MCSTAT_CHECK_ROUTES], worst_x[MCSTAT_CHECK_ROUTES][3], worst_v[MCSTAT_CHECK_ROUTES][2];
     uint64_t pdf_without_eval; /* pdf > 0 where eval = 0 (counted, not a failure) */
+    uint64_t zero_weight;      /* successes (pdf > 0) whose weight is 0 where eval() > 0 */
     size_t n_rects;            /* cubature rectangles: a fine partition of the domain */
     uint64_t seed;
 } run;
@@ -519,6 +520,7 @@ static int tested_sample(run *r, sums *sm)
             double f = r->s.f[i];
             if (deterministic)
                 compare(r, MCSTAT_CHECK_WEIGHT, x, w, f / ps);
+            r->zero_weight += w == 0.0 && f > 0.0;
             compare(r, MCSTAT_CHECK_SUPPORT, x, f > 0.0 && p == 0.0 ? f : 0.0, 0.0);
             if (p > 0.0 && f == 0.0)
                 r->pdf_without_eval++;
@@ -1283,6 +1285,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
                 out->p_value = 0.0;
         }
     out->pdf_without_eval = r.pdf_without_eval;
+    out->zero_weight = r.zero_weight;
     free(owned);
     return MCSTAT_OK;
 }

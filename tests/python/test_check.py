@@ -378,3 +378,23 @@ def test_tolerated_share_of_points_beyond_rtol():
     assert strict.route("weight").reject and strict.reject
     with pytest.raises(mcstat.InvalidArgumentError, match="tolerated"):
         mcstat.check_bsdf(sample, m.eval, m.pdf, WI, tolerated=1.0)
+
+
+def test_failures_marked_by_the_weight_alone_are_named():
+    """A sampler that marks a failed sample by weight 0 (keeping a direction
+    and its pdf) is rejected by the weight route, and the report says how a
+    failed sample is marked; a correct one carries no such line."""
+    m = Lobe(20, WI)
+
+    def sample(wi, u):
+        x, w, p = m.sample(wi, u)
+        failed = u[:, 2] < 0.2  # a fifth of the samples "fail", pdf kept
+        return x, np.where(failed, 0.0, w), p
+
+    r = mcstat.check_bsdf(sample, m.eval, m.pdf, WI, n=5000)
+    assert r.reject and r.route("weight").reject
+    frac = r.zero_weight / r.n
+    assert 0.17 < frac < 0.23, frac
+    assert "weight 0 where pdf and eval() are > 0" in str(r) and "must return pdf 0" in str(r)
+    good = mcstat.check_bsdf(m.sample, m.eval, m.pdf, WI, n=5000)
+    assert good.zero_weight == 0 and "must return pdf 0" not in str(good)

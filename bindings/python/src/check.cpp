@@ -544,6 +544,9 @@ void register_check(py::module_ &mod)
         .def_property_readonly("calls", [](const Report &r) { return r.r.calls; })
         .def_property_readonly("pdf_without_eval", [](const Report &r) { return r.r.pdf_without_eval; },
                                "Points where pdf() > 0 but eval() = 0 (samples wasted there; not an error).")
+        .def_property_readonly("zero_weight", [](const Report &r) { return r.r.zero_weight; },
+                               "Samples with weight 0 where the reported pdf and eval() are > 0, counted as successes (a sampler "
+                               "that marks a failed sample by its weight alone shows here: it must return pdf 0).")
         .def_property_readonly("mass_sampled", [](const Report &r) { return r.r.mass_sampled; })
         .def_property_readonly("mass_sampled_se", [](const Report &r) { return r.r.mass_sampled_se; })
         .def_property_readonly("mass", [](const Report &r) { return r.r.mass; })

@@ -188,11 +188,7 @@ def _check_stage(run: Callable[..., Any]) -> Callable[[int, int, float], _Stage]
         # without an answer (short of data, heavy tails) beside others that
         # answered is listed with what the pass could miss
         why = "no statistical route answered (" + ", ".join(invalid) + ")" if not ran and invalid else ""
-        text = str(rep)
-        if rep.kind == "bsdf" and rep.n_failed > 0.5 * rep.n and rep.pdf_without_eval == 0:
-            text += ("\n  note: most samples failed; a failed sample must return pdf 0 (and weight 0), as "
-                     "Mitsuba and pbrt report one")
-        return _Stage(p=float(rep.pvalue), text=text, samples=int(rep.n + rep.n_pilot + rep.n_eval),
+        return _Stage(p=float(rep.pvalue), text=str(rep), samples=int(rep.n + rep.n_pilot + rep.n_eval),
                       could_hide=("detectable: " + hide) if hide else "",
                       inconclusive=why,
                       payload=rep)
