@@ -43,7 +43,7 @@ axis : int, optional
     ``(H, W, seeds)`` with ``axis=-1`` are read in place.  Each pixel's
     result is the single call's on its values bit for bit, except for
     Welch's test and the variance tests, whose block paths agree to the
-    bounds of mcstat.h (p-value 6e-14 + 8e-16 |log p| relative, the rest
+    bounds of mcstat.h (p-value 6e-14 + 8e-16 abs(log p) relative, the rest
     about 1e-14, Welch's critical values 3e-13).  Fields of pairs (``conf_int``, ``estimate``, ...) are formed
     when first read.
 nan_policy : {"raise", "omit", "propagate"}, optional
