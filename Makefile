@@ -148,7 +148,7 @@ include ci/test-steps.mk
 test:
 	tools/deps-debian.sh test
 	$(MAKE) python-deps
-	$(MAKE) $(TEST_STEPS)
+	$(MAKE) $(TEST_STEPS) CMAKE_FLAGS="$(CMAKE_FLAGS) -DMCSTAT_REQUIRE_TEST_FRAMEWORKS=ON"
 
 # ---- API reference (make docs; part of make test) ----------------------------
 # Into $(BUILD)/docs: c/html (Doxygen over mcstat.h and mcstat_check.h,

@@ -27,8 +27,9 @@
 #               which examples/mitsuba uses when it runs (else scalar_rgb)
 #   docs        python rust go + doxygen (make docs: the API reference; sphinx
 #               comes from requirements-dev.txt)
+#   cxxtest     GoogleTest and Catch2 v2 (examples/testing_cpp: mcstat_testing.h)
 #   test        everything make test runs (ci/test-steps.mk): python valgrind
-#               fuzz abi rust go mitsuba docs typing.  The sanitizer runtimes of asan-test and
+#               fuzz abi rust go mitsuba docs typing cxxtest.  The sanitizer runtimes of asan-test and
 #               tsan-test come with gcc.
 #   bench       python (make bench, bench-check, bench-python, bench-estimators)
 #   references  python + R (r-base-core: Rscript for tools/refgen's R
@@ -66,8 +67,9 @@ need() {
     rust)       command -v cargo > /dev/null || add cargo rustc ;;
     go)         command -v go > /dev/null || add golang-go ;;
     mitsuba)    need python; add libllvm19 ;;
+    cxxtest)    add libgtest-dev catch2 ;;
     docs)       need python; need rust; need go; add doxygen ;;
-    test)       need python; need valgrind; need fuzz; need abi; need rust; need go; need mitsuba; need docs; need typing ;;
+    test)       need python; need valgrind; need fuzz; need abi; need rust; need go; need mitsuba; need docs; need typing; need cxxtest ;;
     bench)      need python ;;
     references) need python; add r-base-core ;;
     *) echo "deps-debian.sh: unknown target '$1' (see the top of $0)" >&2; exit 2 ;;

@@ -1,0 +1,82 @@
+// ggx_checks.hpp - what the GoogleTest and Catch2 examples check: the GGX
+// conductor of examples/cpp_bsdf (correct, and with a planted pdf bug), a
+// warp (the cosine-weighted hemisphere) and an estimator's mean.
+#ifndef MCSTAT_EXAMPLE_GGX_CHECKS_HPP
+#define MCSTAT_EXAMPLE_GGX_CHECKS_HPP
+
+#include "../cpp_bsdf/ggx.hpp"
+#include "mcstat_testing.h"
+
+#include <cmath>
+#include <vector>
+
+namespace example {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A BSDF with its callbacks, alive as long as the model handed to mcstat.
+struct Bsdf {
+    ggx::Ggx<double> bsdf;
+    ggx::Callbacks<ggx::Ggx<double>> cb{&bsdf};
+    explicit Bsdf(ggx::Bug bug = ggx::Bug::None) : bsdf(0.3, 0.15, 0.8, bug) {}
+    mcstat_check_model model() { return cb.model(); }
+};
+
+inline const double *incident(int degrees)
+{
+    static double wi[3];
+    double t = degrees * kPi / 180.0;
+    wi[0] = std::sin(t);
+    wi[1] = 0.0;
+    wi[2] = std::cos(t);
+    return wi;
+}
+
+// The cosine-weighted hemisphere (Malley's method) as a warp model.
+inline int cosine_sample(void *, const double *, const double *u, size_t n, double *x, double *w, double *p)
+{
+    for (size_t k = 0; k < n; k++) {
+        double r = std::sqrt(u[2 * k]), phi = 2 * kPi * u[2 * k + 1], z = std::sqrt(1 - u[2 * k]);
+        x[3 * k] = r * std::cos(phi);
+        x[3 * k + 1] = r * std::sin(phi);
+        x[3 * k + 2] = z;
+        w[k] = 1.0;
+        p[k] = z / kPi;
+    }
+    return 0;
+}
+
+inline int cosine_pdf(void *, const double *, const double *x, size_t n, double *out)
+{
+    for (size_t k = 0; k < n; k++)
+        out[k] = x[3 * k + 2] > 0 ? x[3 * k + 2] / kPi : 0.0;
+    return 0;
+}
+
+inline mcstat_check_model cosine_warp()
+{
+    mcstat_check_model m{};
+    m.domain = MCSTAT_DOMAIN_HEMISPHERE;
+    m.n_uniforms = 2;
+    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.sample_reports = 1;
+    m.sample = &cosine_sample;
+    m.pdf = &cosine_pdf;
+    return m;
+}
+
+// n estimates of the integral of cos over the hemisphere (pi) by uniform
+// hemisphere sampling, from a fixed generator (splitmix64 of the index).
+inline std::vector<double> cosine_estimates(size_t n, uint64_t seed)
+{
+    std::vector<double> v(n);
+    for (size_t i = 0; i < n; i++) {
+        double u = (double)(mcstat_testing::splitmix64(seed + i) >> 11) / 9007199254740992.0; // 2^53
+        v[i] = 2 * kPi * u; // cos theta uniform on [0, 1): the estimate f / pdf = cos / (1 / 2 pi)
+    }
+    return v;
+}
+
+} // namespace example
+
+#endif
