@@ -18,6 +18,9 @@ x: _A
 img: _A
 reference_img: _A
 renders: npt.NDArray[np.float32]
+direction: Callable[[float], _A]
+estimates: Callable[[int, int], _A]
+reference: float
 reference_renders: npt.NDArray[np.float32]
 batch: _A
 primary: _A
