@@ -119,6 +119,7 @@ run exr 0 "$mcstat" image-test -r ref?.exr -c cand?.exr --png map-exr.png
 # the testing extra: the pytest plugin from the wheel, inert without its
 # option, then a budgeted suite whose one biased test fails with its seed
 pip_install pip-testing "$whl[testing]"
+printf '[pytest]\n' > pytest.ini  # a project of its own: not the checkout's pyproject.toml above
 cat > test_wheel_suite.py <<'EOF'
 import numpy as np, pytest
 from mcstat.testing import assert_unbiased
