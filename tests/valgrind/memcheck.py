@@ -78,7 +78,7 @@ def run(test):
     rc = p.returncode
     if not (rc == 86 and checked):
         if test["pass_regex"]:
-            rc = 0 if any(re.search(r, p.stdout + p.stderr) for r in test["pass_regex"]) else 1
+            rc = 0 if any(re.search(r, p.stdout + p.stderr, re.DOTALL) for r in test["pass_regex"]) else 1  # CMake: . matches newlines
         elif test["will_fail"]:
             rc = 0 if rc != 0 else 1
     return test["name"], checked, rc, time.monotonic() - t0, p.stdout + p.stderr
