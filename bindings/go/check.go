@@ -19,6 +19,8 @@ package mcstat
 // static int gomcstat_eval(void *user, const double *wi, const double *x, size_t n, double *out) {
 //     return gomcstatEval(user, (double *)wi, (double *)x, n, out);
 // }
+// /* the report's anonymous union, which cgo cannot name */
+// static uint64_t gomcstat_zero_weight(const mcstat_check_report *r) { return r->zero_weight; }
 // static void gomcstat_model_callbacks(mcstat_check_model *m, void *user, int with_eval) {
 //     m->user = user;
 //     m->sample = gomcstat_sample;
@@ -275,6 +277,10 @@ type CheckReport struct {
 	Cells          uint64 // cells of the tree (before pooling)
 	Calls          uint64 // callback calls
 	PDFWithoutEval uint64 // points where pdf > 0 but eval = 0 (wasted samples, not an error)
+	// ZeroWeight counts samples with weight 0 where the reported pdf and eval
+	// are > 0, counted as successes: a sampler that marks a failed sample by
+	// its weight alone shows here (mark it by pdf 0 instead).
+	ZeroWeight uint64
 	Mass           float64
 	MassError      float64
 	MassSampled    float64
@@ -299,6 +305,7 @@ func reportFromC(c *C.struct_mcstat_check_report) *CheckReport {
 		HeavyTailed: c.heavy_tailed != 0, Alpha: float64(c.alpha), PValue: float64(c.p_value),
 		N: uint64(c.n), NFailed: uint64(c.n_failed), NPilot: uint64(c.n_pilot), NEval: uint64(c.n_eval),
 		Cells: uint64(c.cells), Calls: uint64(c.calls), PDFWithoutEval: uint64(c.pdf_without_eval),
+		ZeroWeight: uint64(C.gomcstat_zero_weight(c)),
 		Mass: float64(c.mass), MassError: float64(c.mass_error), MassSampled: float64(c.mass_sampled),
 		MassSampledSE: float64(c.mass_sampled_se), Albedo: float64(c.albedo), AlbedoSE: float64(c.albedo_se),
 		AlbedoEval: float64(c.albedo_eval), AlbedoEvalSE: float64(c.albedo_eval_se),

@@ -204,6 +204,34 @@ func TestCheckBSDF(t *testing.T) {
 	}
 }
 
+// A fifth of the samples "fail" by weight 0 alone, their pdf kept: the
+// weight route rejects and the report counts them and says how to mark one.
+func TestCheckZeroWeight(t *testing.T) {
+	wi := [3]float64{0.5, 0.1, 0.86}
+	m := newLobe(40, wi).model()
+	sample := m.Sample
+	m.Sample = func(wi, u, x, weight, pdf []float64) error {
+		err := sample(wi, u, x, weight, pdf)
+		for k := range weight {
+			if u[3*k+2] < 0.2 {
+				weight[k] = 0
+			}
+		}
+		return err
+	}
+	r, err := CheckBSDF(m, wi, 5000, 1, 0.01, nil)
+	if err != nil || !r.Reject || !r.Routes[RouteWeight].Reject {
+		t.Fatalf("weight-0 failures not caught: %v\n%s", err, r)
+	}
+	if f := float64(r.ZeroWeight) / float64(r.N); f < 0.17 || f > 0.23 || !strings.Contains(r.String(), "must return pdf 0") {
+		t.Errorf("zero_weight %d of %d\n%s", r.ZeroWeight, r.N, r)
+	}
+	r, err = CheckBSDF(newLobe(40, wi).model(), wi, 5000, 1, 0.01, nil)
+	if err != nil || r.ZeroWeight != 0 {
+		t.Errorf("a correct lobe: %v zero_weight %d", err, r.ZeroWeight)
+	}
+}
+
 func TestCheckCallbackFailures(t *testing.T) {
 	sentinel := io.ErrUnexpectedEOF
 	calls := 0

@@ -750,6 +750,23 @@ pub const MCSTAT_CHECK_KIND_BSDF: i32 = 0;
 pub const MCSTAT_CHECK_KIND_EMITTER: i32 = 1;
 pub const MCSTAT_CHECK_KIND_WARP: i32 = 2;
 
+/// The named storage of `mcstat_check_report`'s anonymous union.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_check_report_named {
+    /// Samples with weight 0 where the reported pdf and eval() are > 0.
+    pub zero_weight: u64,
+    pub reserved_rest: [f64; 7],
+}
+
+/// `mcstat_check_report`'s anonymous union: `reserved` is 0.1.0's name of the storage.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub union mcstat_check_report_union {
+    pub reserved: [f64; 8],
+    pub s: mcstat_check_report_named,
+}
+
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct mcstat_check_report {
@@ -776,9 +793,15 @@ pub struct mcstat_check_report {
     pub albedo_eval: f64,
     pub albedo_eval_se: f64,
     pub tail_index: [f64; 2],
-    pub reserved: [f64; 8],
+    pub extra: mcstat_check_report_union,
     pub route: [mcstat_check_route_result; MCSTAT_CHECK_ROUTES],
     pub message: [c_char; 256],
+}
+
+impl mcstat_check_report {
+    pub fn zero_weight(&self) -> u64 {
+        unsafe { self.extra.s.zero_weight }
+    }
 }
 
 impl std::fmt::Debug for mcstat_check_report {
@@ -793,6 +816,7 @@ impl std::fmt::Debug for mcstat_check_report {
             .field("alpha", &self.alpha)
             .field("p_value", &self.p_value)
             .field("n", &self.n)
+            .field("zero_weight", &self.zero_weight())
             .field("route", &self.route)
             .field("message", &String::from_utf8_lossy(&msg))
             .finish()

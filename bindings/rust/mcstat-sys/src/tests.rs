@@ -93,7 +93,7 @@ fn offsets_match_the_c_compiler() {
     assert_eq!(offset!(mcstat_check_report, n), 56);
     assert_eq!(offset!(mcstat_check_report, mass), 112);
     assert_eq!(offset!(mcstat_check_report, tail_index), 176);
-    assert_eq!(offset!(mcstat_check_report, reserved), 192);
+    assert_eq!(offset!(mcstat_check_report, extra), 192);
     assert_eq!(offset!(mcstat_check_report, route), 256);
     assert_eq!(offset!(mcstat_check_report, message), 1624);
     assert_eq!(offset!(mcstat_result, ints.seq.seq_hold), 24);

@@ -690,6 +690,12 @@ impl CheckReport {
     pub fn pdf_without_eval(&self) -> u64 {
         self.raw.pdf_without_eval
     }
+    /// Samples with weight 0 where the reported pdf and eval() are > 0, counted
+    /// as successes: a sampler that marks a failed sample by its weight alone
+    /// shows here (mark it by pdf 0 instead).
+    pub fn zero_weight(&self) -> u64 {
+        self.raw.zero_weight()
+    }
     /// The integral of pdf() over the domain (cubature) and its error estimate.
     pub fn mass(&self) -> Option<(f64, f64)> {
         some(self.raw.mass).map(|m| (m, self.raw.mass_error))

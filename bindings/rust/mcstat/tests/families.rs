@@ -762,6 +762,46 @@ fn lambert<'a>(weight_bug: f64) -> CheckModel<'a> {
 }
 
 #[test]
+fn zero_weights_with_positive_pdf_are_counted() {
+    // a fifth of the samples "fail" by weight 0 alone, their pdf kept
+    let rho = 0.8;
+    let mut m = CheckModel::new(
+        Domain::Hemisphere,
+        2,
+        move |s: Samples<'_>| {
+            for k in 0..s.len() {
+                let (u1, u2) = (s.u[2 * k], s.u[2 * k + 1]);
+                let (r, phi) = (u1.sqrt(), 2.0 * PI * u2);
+                let z = (1.0 - u1).sqrt();
+                s.x[3 * k..3 * k + 3].copy_from_slice(&[r * phi.cos(), r * phi.sin(), z]);
+                s.pdf[k] = z / PI;
+                s.weight[k] = if (u2 * 10.0).fract() < 0.2 { 0.0 } else { rho };
+            }
+            Ok(())
+        },
+        |_wi: Option<&[f64; 3]>, x: &[f64], out: &mut [f64]| {
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = x[3 * k + 2].max(0.0) / PI;
+            }
+            Ok(())
+        },
+    )
+    .eval(move |_wi: Option<&[f64; 3]>, x: &[f64], out: &mut [f64]| {
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = rho * x[3 * k + 2].max(0.0) / PI;
+        }
+        Ok(())
+    });
+    let r = check_bsdf(&mut m, [0.3, 0.1, 0.9], 5000, 3, 0.01, &CheckOptions::default()).unwrap();
+    assert!(r.reject() && r.route(Route::Weight).reject(), "{r}");
+    let frac = r.zero_weight() as f64 / r.n() as f64;
+    assert!(frac > 0.17 && frac < 0.23, "{frac}");
+    assert!(r.to_string().contains("must return pdf 0"), "{r}");
+    let ok = check_bsdf(&mut lambert(1.0), [0.3, 0.1, 0.9], 5000, 3, 0.01, &CheckOptions::default()).unwrap();
+    assert_eq!(ok.zero_weight(), 0);
+}
+
+#[test]
 fn renderer_checks_pass_correct_models_and_catch_bugs() {
     let wi = [0.3, 0.1, 0.9];
     let opt = CheckOptions::default();
