@@ -280,18 +280,18 @@ type CheckReport struct {
 	// ZeroWeight counts samples with weight 0 where the reported pdf and eval
 	// are > 0, counted as successes: a sampler that marks a failed sample by
 	// its weight alone shows here (mark it by pdf 0 instead).
-	ZeroWeight uint64
-	Mass           float64
-	MassError      float64
-	MassSampled    float64
-	MassSampledSE  float64
-	Albedo         float64
-	AlbedoSE       float64
-	AlbedoEval     float64
-	AlbedoEvalSE   float64
-	TailIndex      [2]float64    // of the weights, of the eval-only estimates
-	Routes         []RouteReport // indexed by Route
-	raw            C.struct_mcstat_check_report
+	ZeroWeight    uint64
+	Mass          float64
+	MassError     float64
+	MassSampled   float64
+	MassSampledSE float64
+	Albedo        float64
+	AlbedoSE      float64
+	AlbedoEval    float64
+	AlbedoEvalSE  float64
+	TailIndex     [2]float64    // of the weights, of the eval-only estimates
+	Routes        []RouteReport // indexed by Route
+	raw           C.struct_mcstat_check_report
 }
 
 func (r *CheckReport) String() string {
@@ -306,7 +306,7 @@ func reportFromC(c *C.struct_mcstat_check_report) *CheckReport {
 		N: uint64(c.n), NFailed: uint64(c.n_failed), NPilot: uint64(c.n_pilot), NEval: uint64(c.n_eval),
 		Cells: uint64(c.cells), Calls: uint64(c.calls), PDFWithoutEval: uint64(c.pdf_without_eval),
 		ZeroWeight: uint64(C.gomcstat_zero_weight(c)),
-		Mass: float64(c.mass), MassError: float64(c.mass_error), MassSampled: float64(c.mass_sampled),
+		Mass:       float64(c.mass), MassError: float64(c.mass_error), MassSampled: float64(c.mass_sampled),
 		MassSampledSE: float64(c.mass_sampled_se), Albedo: float64(c.albedo), AlbedoSE: float64(c.albedo_se),
 		AlbedoEval: float64(c.albedo_eval), AlbedoEvalSE: float64(c.albedo_eval_se),
 		TailIndex: [2]float64{float64(c.tail_index[0]), float64(c.tail_index[1])}, raw: *c}
