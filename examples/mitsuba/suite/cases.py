@@ -157,8 +157,9 @@ for _shape in ("rectangle", "sphere"):
 # each failed repeatedly, on stage 2 with overwhelming evidence (a systematic
 # inconsistency of a few tenths of a percent that n = 20000 alone does not
 # show), so they are findings to investigate, not correct components.  Which
-# side is at fault (Mitsuba, or mcstat's cubature of a pdf with a thin
-# support) is not settled.
+# side is at fault is not settled: for the rectangle, a dense grid inside the
+# cubature's regions gives the cubature's deficit, so it is in the values
+# pdf() returns there (RESULTS_suite.md, section 1).
 EXCLUDED = {
     "emitter-rectangle-far4": "mass: all samples succeed, pdf() integrates to 0.996 (5 of 50 seeds)",
     "emitter-rectangle-far6": "cells and mass (5 of 50 seeds)",
