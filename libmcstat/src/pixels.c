@@ -1211,9 +1211,150 @@ DEFINE_MOMENT_TILE(moment_tile_f64, double, 1)
 DEFINE_ROWS_TILES(rows_tiles_f32, moment_tile_f32, float)
 DEFINE_ROWS_TILES(rows_tiles_f64, moment_tile_f64, double)
 
+#if PIX_AVX2
+/* The AVX2 build's rows: eight rows at a time, read four values of four
+ * rows at once and transposed in registers, so that each lane of a vector
+ * is one row and its sums are the tile loop's, addition for addition (the
+ * copy through a buffer was most of the per-row call's time). */
+#define ROWS_LOAD4_F64(r, ps, v0, v1, v2, v3)                                                              \
+    do {                                                                                                   \
+        v0 = _mm256_loadu_pd(r);                                                                           \
+        v1 = _mm256_loadu_pd((r) + (ps));                                                                  \
+        v2 = _mm256_loadu_pd((r) + 2 * (ps));                                                              \
+        v3 = _mm256_loadu_pd((r) + 3 * (ps));                                                              \
+    } while (0)
+#define ROWS_LOAD4_F32(r, ps, v0, v1, v2, v3)                                                              \
+    do {                                                                                                   \
+        v0 = _mm256_cvtps_pd(_mm_loadu_ps(r));                                                             \
+        v1 = _mm256_cvtps_pd(_mm_loadu_ps((r) + (ps)));                                                    \
+        v2 = _mm256_cvtps_pd(_mm_loadu_ps((r) + 2 * (ps)));                                                \
+        v3 = _mm256_cvtps_pd(_mm_loadu_ps((r) + 3 * (ps)));                                                \
+    } while (0)
+/* vj: values s..s+3 of row j -> vj: value s+j of rows 0..3 */
+#define ROWS_T4(v0, v1, v2, v3)                                                                            \
+    do {                                                                                                   \
+        __m256d t0_ = _mm256_unpacklo_pd(v0, v1), t1_ = _mm256_unpackhi_pd(v0, v1);                       \
+        __m256d t2_ = _mm256_unpacklo_pd(v2, v3), t3_ = _mm256_unpackhi_pd(v2, v3);                       \
+        v0 = _mm256_permute2f128_pd(t0_, t2_, 0x20);                                                       \
+        v1 = _mm256_permute2f128_pd(t1_, t3_, 0x20);                                                       \
+        v2 = _mm256_permute2f128_pd(t0_, t2_, 0x31);                                                       \
+        v3 = _mm256_permute2f128_pd(t1_, t3_, 0x31);                                                       \
+    } while (0)
+/* value s of rows r..r+3 (the last values, when n is not a multiple of 4) */
+#define ROWS_COL4(r, ps, s) _mm256_set_pd((r)[3 * (ps) + (s)], (r)[2 * (ps) + (s)], (r)[(ps) + (s)], (r)[s])
+
+#define DEFINE_ROWS_TILE8(NAME, T, LOAD4, RANGE)                                                           \
+    __attribute__((target("avx2"))) static void NAME(const T *x, size_t n, size_t ps, double dn, double inv, \
+                                                     int p2, double *sum, double *s1, double *s2,          \
+                                                     double *amax)                                         \
+    {                                                                                                      \
+        const T *x4 = x + 4 * ps;                                                                          \
+        const __m256d sign = _mm256_set1_pd(-0.0);                                                         \
+        __m256d a0 = _mm256_setzero_pd(), a1 = a0, m0 = a0, m1 = a0;                                       \
+        __m256d u0, u1, u2, u3, w0, w1, w2, w3;                                                            \
+        size_t s = 0;                                                                                      \
+        for (; s + 4 <= n; s += 4) {                                                                       \
+            LOAD4(x + s, ps, u0, u1, u2, u3);                                                              \
+            LOAD4(x4 + s, ps, w0, w1, w2, w3);                                                             \
+            ROWS_T4(u0, u1, u2, u3);                                                                       \
+            ROWS_T4(w0, w1, w2, w3);                                                                       \
+            a0 = _mm256_add_pd(a0, u0);                                                                    \
+            a1 = _mm256_add_pd(a1, w0);                                                                    \
+            a0 = _mm256_add_pd(a0, u1);                                                                    \
+            a1 = _mm256_add_pd(a1, w1);                                                                    \
+            a0 = _mm256_add_pd(a0, u2);                                                                    \
+            a1 = _mm256_add_pd(a1, w2);                                                                    \
+            a0 = _mm256_add_pd(a0, u3);                                                                    \
+            a1 = _mm256_add_pd(a1, w3);                                                                    \
+            if (RANGE) { /* max(|v|, m): |v| > m ? |v| : m, as the tile loop's */                         \
+                m0 = _mm256_max_pd(_mm256_andnot_pd(sign, u0), m0);                                        \
+                m1 = _mm256_max_pd(_mm256_andnot_pd(sign, w0), m1);                                        \
+                m0 = _mm256_max_pd(_mm256_andnot_pd(sign, u1), m0);                                        \
+                m1 = _mm256_max_pd(_mm256_andnot_pd(sign, w1), m1);                                        \
+                m0 = _mm256_max_pd(_mm256_andnot_pd(sign, u2), m0);                                        \
+                m1 = _mm256_max_pd(_mm256_andnot_pd(sign, w2), m1);                                        \
+                m0 = _mm256_max_pd(_mm256_andnot_pd(sign, u3), m0);                                        \
+                m1 = _mm256_max_pd(_mm256_andnot_pd(sign, w3), m1);                                        \
+            }                                                                                              \
+        }                                                                                                  \
+        for (size_t t = s; t < n; t++) {                                                                   \
+            u0 = ROWS_COL4(x, ps, t);                                                                      \
+            w0 = ROWS_COL4(x4, ps, t);                                                                     \
+            a0 = _mm256_add_pd(a0, u0);                                                                    \
+            a1 = _mm256_add_pd(a1, w0);                                                                    \
+            if (RANGE) {                                                                                   \
+                m0 = _mm256_max_pd(_mm256_andnot_pd(sign, u0), m0);                                        \
+                m1 = _mm256_max_pd(_mm256_andnot_pd(sign, w0), m1);                                        \
+            }                                                                                              \
+        }                                                                                                  \
+        if (p2) {                                                                                          \
+            a0 = _mm256_mul_pd(a0, _mm256_set1_pd(inv));                                                   \
+            a1 = _mm256_mul_pd(a1, _mm256_set1_pd(inv));                                                   \
+        } else {                                                                                           \
+            a0 = _mm256_div_pd(a0, _mm256_set1_pd(dn));                                                    \
+            a1 = _mm256_div_pd(a1, _mm256_set1_pd(dn));                                                    \
+        }                                                                                                  \
+        __m256d b0 = _mm256_setzero_pd(), b1 = b0, q0 = b0, q1 = b0;                                       \
+        for (s = 0; s + 4 <= n; s += 4) {                                                                  \
+            LOAD4(x + s, ps, u0, u1, u2, u3);                                                              \
+            LOAD4(x4 + s, ps, w0, w1, w2, w3);                                                             \
+            ROWS_T4(u0, u1, u2, u3);                                                                       \
+            ROWS_T4(w0, w1, w2, w3);                                                                       \
+            ROWS_STEP2(u0, w0);                                                                            \
+            ROWS_STEP2(u1, w1);                                                                            \
+            ROWS_STEP2(u2, w2);                                                                            \
+            ROWS_STEP2(u3, w3);                                                                            \
+        }                                                                                                  \
+        for (size_t t = s; t < n; t++) {                                                                   \
+            u0 = ROWS_COL4(x, ps, t);                                                                      \
+            w0 = ROWS_COL4(x4, ps, t);                                                                     \
+            ROWS_STEP2(u0, w0);                                                                            \
+        }                                                                                                  \
+        _mm256_storeu_pd(sum, a0);                                                                         \
+        _mm256_storeu_pd(sum + 4, a1);                                                                     \
+        _mm256_storeu_pd(s1, b0);                                                                          \
+        _mm256_storeu_pd(s1 + 4, b1);                                                                      \
+        _mm256_storeu_pd(s2, q0);                                                                          \
+        _mm256_storeu_pd(s2 + 4, q1);                                                                      \
+        _mm256_storeu_pd(amax, m0);                                                                        \
+        _mm256_storeu_pd(amax + 4, m1);                                                                    \
+    }
+/* the second pass's step: d = v - mean; s1 += d; s2 += d * d */
+#define ROWS_STEP2(u, w)                                                                                   \
+    do {                                                                                                   \
+        __m256d du_ = _mm256_sub_pd(u, a0), dw_ = _mm256_sub_pd(w, a1);                                    \
+        b0 = _mm256_add_pd(b0, du_);                                                                       \
+        b1 = _mm256_add_pd(b1, dw_);                                                                       \
+        q0 = _mm256_add_pd(q0, _mm256_mul_pd(du_, du_));                                                   \
+        q1 = _mm256_add_pd(q1, _mm256_mul_pd(dw_, dw_));                                                   \
+    } while (0)
+
+DEFINE_ROWS_TILE8(rows_tile8_f32, float, ROWS_LOAD4_F32, 0)
+DEFINE_ROWS_TILE8(rows_tile8_f64, double, ROWS_LOAD4_F64, 1)
+
+#define DEFINE_ROWS_TILES_AVX2(NAME, TILE8, REST, T)                                                       \
+    __attribute__((target("avx2"))) static void NAME(const T *x, size_t n, size_t ps, size_t i0, size_t k,  \
+                                                     double dn, double inv, int p2, double *sum,           \
+                                                     double *s1, double *s2, double *amax)                 \
+    {                                                                                                      \
+        size_t j = 0;                                                                                      \
+        for (; j + MOMENT_TILE <= k; j += MOMENT_TILE)                                                     \
+            TILE8(x + (i0 + j) * ps, n, ps, dn, inv, p2, sum + j, s1 + j, s2 + j, amax + j);               \
+        if (j < k)                                                                                         \
+            REST(x, n, ps, i0 + j, k - j, dn, inv, p2, sum + j, s1 + j, s2 + j, amax + j);                 \
+    }
+
+DEFINE_ROWS_TILES_AVX2(rows_tiles_f32_avx2, rows_tile8_f32, rows_tiles_f32, float)
+DEFINE_ROWS_TILES_AVX2(rows_tiles_f64_avx2, rows_tile8_f64, rows_tiles_f64, double)
+#else
+#define rows_tiles_f32_avx2 rows_tiles_f32
+#define rows_tiles_f64_avx2 rows_tiles_f64
+#endif
+
+/* wide: called from the AVX2 build (a constant once inlined) */
 #define DEFINE_BLOCK_MOMENTS(NAME, TILE, ROWS, T, RANGE)                                                   \
     static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t ps, size_t ch, const double *w,        \
-                                size_t i0, size_t k, mcstat_dd *mean, double *m2, unsigned char *bad)              \
+                                size_t i0, size_t k, mcstat_dd *mean, double *m2, unsigned char *bad, int wide)    \
     {                                                                                                      \
         double sum[PIX_BLOCK], amax[PIX_BLOCK], s1[PIX_BLOCK], s2[PIX_BLOCK];                              \
         const double dn = (double)n, inv = 1.0 / dn;                                                       \
@@ -1225,7 +1366,10 @@ DEFINE_ROWS_TILES(rows_tiles_f64, moment_tile_f64, double)
             for (; j < k; j++)                                                                             \
                 TILE(x + i0, n, stride, j, 1, dn, inv, p2, sum, s1, s2, amax);                             \
         } else if (ch == 1 && !w && stride == 1 && n <= ROWS_TILE_MAX) {                                   \
-            ROWS(x, n, ps, i0, k, dn, inv, p2, sum, s1, s2, amax);                                         \
+            if (wide)                                                                                      \
+                ROWS##_avx2(x, n, ps, i0, k, dn, inv, p2, sum, s1, s2, amax);                              \
+            else                                                                                           \
+                ROWS(x, n, ps, i0, k, dn, inv, p2, sum, s1, s2, amax);                                     \
         } else {                                                                                           \
             for (size_t j = 0; j < k; j++)                                                                 \
                 sum[j] = amax[j] = s1[j] = s2[j] = 0.0;                                                    \
@@ -1275,27 +1419,27 @@ DEFINE_BLOCK_MOMENTS(block_moments_f64, moment_tile_f64, rows_tiles_f64, double,
 /* One side's block moments for the other per-pixel tests (pixels_var.c),
  * in the SSE2 and AVX2 builds: the same numbers as Welch's. */
 static PIX_INLINE void side_moments_body(const mcstat_pixels_in *p, size_t i0, size_t k, mcstat_dd *mean, double *m2,
-                                         unsigned char *bad)
+                                         unsigned char *bad, int wide)
 {
     if (p->type == MCSTAT_VALUE_FLOAT32)
         block_moments_f32(p->data, p->n, p->value_stride, p->pixel_stride, p->channels, p->weights, i0, k, mean, m2,
-                          bad);
+                          bad, wide);
     else
         block_moments_f64(p->data, p->n, p->value_stride, p->pixel_stride, p->channels, p->weights, i0, k, mean, m2,
-                          bad);
+                          bad, wide);
 }
 
 static void side_moments(const mcstat_pixels_in *p, size_t i0, size_t k, mcstat_dd *mean, double *m2,
                          unsigned char *bad)
 {
-    side_moments_body(p, i0, k, mean, m2, bad);
+    side_moments_body(p, i0, k, mean, m2, bad, 0);
 }
 
 #if PIX_AVX2
 __attribute__((target("avx2"))) static void side_moments_avx2(const mcstat_pixels_in *p, size_t i0, size_t k,
                                                                mcstat_dd *mean, double *m2, unsigned char *bad)
 {
-    side_moments_body(p, i0, k, mean, m2, bad);
+    side_moments_body(p, i0, k, mean, m2, bad, 1);
 }
 #endif
 
@@ -1339,6 +1483,15 @@ static int use_avx2(void)
 }
 #endif
 
+int mcstat__pixels_avx2(void)
+{
+#if PIX_AVX2
+    return use_avx2();
+#else
+    return 0;
+#endif
+}
+
 /* One block: both sides' moments, then the statistics. */
 typedef struct {
     mcstat_dd mx[PIX_BLOCK], my[PIX_BLOCK];
@@ -1358,11 +1511,11 @@ typedef struct {
 static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t k, block_work *b, int joint)
 {
     if (in->xf) {
-        block_moments_f32(in->xf, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
-        block_moments_f32(in->yf, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
+        block_moments_f32(in->xf, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx, joint);
+        block_moments_f32(in->yf, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->my, b->m2y, b->by, joint);
     } else {
-        block_moments_f64(in->xd, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx);
-        block_moments_f64(in->yd, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->my, b->m2y, b->by);
+        block_moments_f64(in->xd, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx, joint);
+        block_moments_f64(in->yd, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->my, b->m2y, b->by, joint);
     }
     block_statistics(k, (double)in->nx, b->mx, b->m2x, b->bx, (double)in->ny, b->my, b->m2y, b->by, in->mu0, &b->st);
     unsigned char want[PIX_BLOCK];

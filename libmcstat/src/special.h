@@ -66,6 +66,9 @@ MCSTAT_HIDDEN int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_p
  * (a NaN or Inf, magnitudes outside [2^-200, 2^200], overflow). */
 MCSTAT_HIDDEN void mcstat__pixels_block_moments(const mcstat_pixels_in *p, size_t i0, size_t k, mcstat_dd *mean,
                                                 double *m2, unsigned char *bad);
+/* pixels.c: whether this call's block loops run as AVX2 code (the CPU has
+ * it, and neither MCSTAT_NO_AVX2 nor the tests' baseline switch is set). */
+MCSTAT_HIDDEN int mcstat__pixels_avx2(void);
 /* pixels_var.c: the variance tests on pixels [begin, end) (arguments
  * checked; y NULL for MCSTAT_TEST_VAR_1); pixels its block path does not
  * cover go through the single call's code by single(ctx, i). */

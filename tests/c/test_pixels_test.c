@@ -9,6 +9,7 @@
  */
 #include "harness.h"
 #include "mcstat.h"
+#include "internal.h" /* mcstat__pixels_baseline_only */
 
 #include <float.h>
 #include <stdint.h>
@@ -538,12 +539,105 @@ static void test_layouts_agree(void)
         }
 }
 
+/* Rows of every length the row path treats apart (4 values of 8 rows at a
+ * time, the last n mod 4 one by one, the last k mod 8 rows through the
+ * buffer, rows longer than the buffer) give the bytes of the seeds-major
+ * path on the same values, in the AVX2 and the baseline builds; the
+ * pixels include a NaN and an Inf at the last value, magnitudes outside
+ * the fast range and a constant row. */
+#define PL 53 /* pixels: 6 tiles of 8 and 5 */
+#define NL_MAX 300
+static double ld_s[NL_MAX * PL], ld_r[NL_MAX * PL + PL], ld_y[NL_MAX * PL], ld_yr[NL_MAX * PL + PL];
+static float lf_s[NL_MAX * PL], lf_r[NL_MAX * PL + PL], lf_y[NL_MAX * PL], lf_yr[NL_MAX * PL + PL];
+
+static double row_value(int side, size_t s, size_t n, size_t i)
+{
+    unsigned long long st = (i * 7919u + s * 31u + (unsigned)side * 65537u) * 2654435761u + 3u;
+    double u = urand(&st) - 0.5;
+    switch (i % 13) {
+    case 2: return s == n - 1 && !side ? NAN : u;
+    case 5: return s == n - 1 ? INFINITY : u;
+    case 6: return 1e250 * u; /* above the fast range: the single call's code */
+    case 9: return 1e-250 * u;
+    case 10: return -0.0;
+    default: return (1.0 + (double)(i % 3)) * u + 0.01 * (double)side;
+    }
+}
+
+/* the float rows: the extreme magnitudes brought into float's range */
+static float to_float(double v, size_t i)
+{
+    return (float)(i % 13 == 6 ? v * 1e-220 : i % 13 == 9 ? v * 1e220 : v);
+}
+
+static void test_row_lengths(void)
+{
+    static outs a, b, c;
+    const size_t lens[] = {2, 3, 4, 5, 7, 9, 16, 31, 64, 255, 256, 257, 300};
+    const int tests[] = {MCSTAT_TEST_T_2, MCSTAT_TEST_T_2_POOLED, MCSTAT_TEST_VAR_1, MCSTAT_TEST_VAR_2};
+    for (size_t li = 0; li < sizeof lens / sizeof lens[0]; li++) {
+        const size_t n = lens[li], ps = n + 1; /* odd row starts */
+        for (size_t i = 0; i < PL; i++)
+            for (size_t s = 0; s < n; s++) {
+                double vx = row_value(0, s, n, i), vy = row_value(1, s, n, i);
+                ld_s[s * PL + i] = vx;
+                ld_r[i * ps + s] = vx;
+                ld_y[s * PL + i] = vy;
+                ld_yr[i * ps + s] = vy;
+                lf_s[s * PL + i] = to_float(vx, i);
+                lf_r[i * ps + s] = lf_s[s * PL + i];
+                lf_y[s * PL + i] = to_float(vy, i);
+                lf_yr[i * ps + s] = lf_y[s * PL + i];
+            }
+        for (int f32 = 0; f32 < 2; f32++)
+            for (size_t t = 0; t < sizeof tests / sizeof tests[0]; t++) {
+                const int two = tests[t] != MCSTAT_TEST_VAR_1;
+                mcstat_pixels_in xs = MCSTAT_PIXELS_IN_INIT, ys, xr, yr;
+                xs.type = f32 ? MCSTAT_VALUE_FLOAT32 : MCSTAT_VALUE_FLOAT64;
+                xs.n = n;
+                xs.value_stride = PL;
+                xs.pixel_stride = 1;
+                ys = xs;
+                xs.data = f32 ? (const void *)lf_s : (const void *)ld_s;
+                ys.data = f32 ? (const void *)lf_y : (const void *)ld_y;
+                xr = xs;
+                xr.value_stride = 1;
+                xr.pixel_stride = ps;
+                yr = xr;
+                xr.data = f32 ? (const void *)lf_r : (const void *)ld_r;
+                yr.data = f32 ? (const void *)lf_yr : (const void *)ld_yr;
+                memset(&a, 0, sizeof a);
+                memset(&b, 0, sizeof b);
+                memset(&c, 0, sizeof c);
+                mcstat_pixels_out va = view(&a), vb = view(&b), vc = view(&c);
+                double nv = tests[t] == MCSTAT_TEST_VAR_1 ? 0.1 : tests[t] == MCSTAT_TEST_VAR_2 ? 1.0 : 0.0;
+                int sa = mcstat_pixels_test(tests[t], &xs, two ? &ys : NULL, 0, PL, nv, MCSTAT_TWO_SIDED, 0.05, NULL, &va);
+                int sb = mcstat_pixels_test(tests[t], &xr, two ? &yr : NULL, 0, PL, nv, MCSTAT_TWO_SIDED, 0.05, NULL, &vb);
+                mcstat__pixels_baseline_only(1);
+                int sc = mcstat_pixels_test(tests[t], &xr, two ? &yr : NULL, 0, PL, nv, MCSTAT_TWO_SIDED, 0.05, NULL, &vc);
+                mcstat__pixels_baseline_only(0);
+                CHECK_INT(sb, sa);
+                CHECK_INT(sc, sa);
+                CHECK_MSG(memcmp(&a, &b, sizeof a) == 0, "n %zu test %d f32 %d: rows differ from seeds-major", n,
+                          tests[t], f32);
+                CHECK_MSG(memcmp(&b, &c, sizeof b) == 0, "n %zu test %d f32 %d: AVX2 rows differ from baseline", n,
+                          tests[t], f32);
+                /* most pixels took the block path (the others' kinds are 4 of 13) */
+                size_t ok = 0;
+                for (size_t i = 0; i < PL; i++)
+                    ok += a.st[i] == MCSTAT_OK;
+                CHECK_MSG(ok >= PL / 2, "n %zu: %zu pixels succeeded", n, ok);
+            }
+    }
+}
+
 int main(void)
 {
     fill();
     test_structs();
     test_every_case();
     test_layouts_agree();
+    test_row_lengths();
     test_variance_tails();
     test_threads();
     test_bad_arguments();
