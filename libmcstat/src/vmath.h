@@ -1,11 +1,12 @@
 /*
- * vmath.h - exp and log1p of four doubles at a time, for the per-pixel t
- * tails (pixels.c): straight-line code in GCC's vector extensions (AVX2
+ * vmath.h - exp, log and log1p of four doubles at a time, for the per-pixel
+ * tails (pixels.c, pixels_var.c): straight-line code in GCC's vector extensions (AVX2
  * registers where the caller is compiled for AVX2, two SSE2 halves
  * otherwise), so a block's pixels need not call libm one at a time.
  * Accuracy, measured against libm in tests/c/test_vmath.c: within 2 ulps
- * over the ranges used (exp on [-708, 709], log1p on [0, 1e300]).
- * Included by pixels.c; nothing here is exported.
+ * over the ranges used (exp on [-708, 709], log1p on [0, 1e300], log on
+ * the normal positive doubles).
+ * Included by pixels.c and pixels_var.c; nothing here is exported.
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
@@ -81,19 +82,14 @@ static inline __attribute__((always_inline)) mcs_v4d vm_exp4(mcs_v4d e)
     return p * (mcs_v4d)bits;
 }
 
-/* log1p(x) for 0 <= x <= 1e300: u = 1 + x rounded, c = the rounding
- * (exact: x - (u - 1) for x < 1, 1 - (u - x) above), log1p(x) = log(u) +
- * c/u to far below an ulp.  u = m 2^k with m in [sqrt(1/2), sqrt(2)),
- * f = m - 1 (exact), s = f/(2+f):
+/* log(u) for normal positive u, as a multiple of ln 2 and the rest: u =
+ * m 2^k with m in [sqrt(1/2), sqrt(2)), f = m - 1 (exact), s = f/(2+f):
  *   log(m) = 2 atanh(s) = 2s + 2s z Q(z),  z = s^2 <= 0.0295,
  *   Q(z) = sum_{i<=10} z^i / (2i+3)   (truncation below 1e-18 relative),
  * written f - s (f - 2 z Q) since 2s = f - s f, so that the leading f is
- * exact and the rest small beside it. */
-static inline __attribute__((always_inline)) mcs_v4d vm_log1p4(mcs_v4d x)
+ * exact and the rest small beside it.  *dk = k; returns log(m). */
+static inline __attribute__((always_inline)) mcs_v4d vm_log_parts(mcs_v4d u, mcs_v4d *dk)
 {
-    mcs_v4d u = x + 1.0;
-    mcs_v4d c_small = x - (u - 1.0), c_big = 1.0 - (u - x);
-    mcs_v4d c = vm_select((mcs_v4i)(x < 1.0), c_small, c_big);
     mcs_v4i bits = (mcs_v4i)u;
     mcs_v4i k = (bits >> 52) - 1023;
     mcs_v4d m = (mcs_v4d)((bits & 0x000fffffffffffffLL) | 0x3ff0000000000000LL); /* in [1, 2) */
@@ -106,9 +102,27 @@ static inline __attribute__((always_inline)) mcs_v4d vm_log1p4(mcs_v4d x)
     mcs_v4d q01 = z * (1.0 / 5) + 1.0 / 3, q23 = z * (1.0 / 9) + 1.0 / 7, q45 = z * (1.0 / 13) + 1.0 / 11;
     mcs_v4d q67 = z * (1.0 / 17) + 1.0 / 15, q89 = z * (1.0 / 21) + 1.0 / 19, q10 = vm_splat(1.0 / 23);
     mcs_v4d q = ((q01 + z2 * q23) + z4 * (q45 + z2 * q67)) + z8 * (q89 + z2 * q10);
-    mcs_v4d lm = f - s * (f - 2.0 * z * q);
-    mcs_v4d dk = vm_int_to_double(k);
+    *dk = vm_int_to_double(k);
+    return f - s * (f - 2.0 * z * q);
+}
+
+/* log1p(x) for 0 <= x <= 1e300: u = 1 + x rounded, c = the rounding
+ * (exact: x - (u - 1) for x < 1, 1 - (u - x) above), log1p(x) = log(u) +
+ * c/u to far below an ulp. */
+static inline __attribute__((always_inline)) mcs_v4d vm_log1p4(mcs_v4d x)
+{
+    mcs_v4d u = x + 1.0;
+    mcs_v4d c_small = x - (u - 1.0), c_big = 1.0 - (u - x);
+    mcs_v4d c = vm_select((mcs_v4i)(x < 1.0), c_small, c_big);
+    mcs_v4d dk, lm = vm_log_parts(u, &dk);
     return dk * VM_LN2_HI + (lm + (dk * VM_LN2_LO + c / u));
+}
+
+/* log(x) for normal positive x (DBL_MIN <= x <= DBL_MAX) */
+static inline __attribute__((always_inline)) mcs_v4d vm_log4(mcs_v4d x)
+{
+    mcs_v4d dk, lm = vm_log_parts(x, &dk);
+    return dk * VM_LN2_HI + (lm + dk * VM_LN2_LO);
 }
 
 #endif /* MCSTAT_VMATH_H */

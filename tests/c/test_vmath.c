@@ -2,7 +2,8 @@
  * test_vmath.c - the per-pixel tails' vector exp and log1p (src/vmath.h)
  * against libm's, in ulps, over the ranges pixels.c uses: exp on
  * [-708, 709], log1p on [0, 1e300] (uniform in [0, 2], log-uniform beyond,
- * the tiny arguments where log1p(x) = x, and the edges); also the
+ * the tiny arguments where log1p(x) = x, and the edges), log on the
+ * normal positive doubles (log-uniform, near 1, the edges); also the
  * integer-to-double conversion they rely on.  Under IEEE defaults whatever
  * the caller's mode (FTZ/DAZ in the portability run), as in the library.  glibc's exp and log1p are
  * within an ulp of the truth, so 2 ulps here bound the error at 3.
@@ -14,6 +15,7 @@
 #include "vmath.h"
 
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -81,6 +83,23 @@ static double gen_log1p(long i)
     }
 }
 
+static double gen_log(long i)
+{
+    static const double edge[] = {DBL_MIN, DBL_MAX, 1.0, 0x1p-1, 2.0, 0.70710678118654746, 0.70710678118654757,
+                                  1.4142135623730949, 1.4142135623730951, 0.99999999999999989, 1.0000000000000002,
+                                  7.0, 1e-300, 1e300};
+    if (i < (long)(sizeof edge / sizeof edge[0]))
+        return edge[i];
+    switch (i % 3) {
+    case 0:
+        return 0.5 + 1.5 * urand();
+    case 1:
+        return pow(2.0, -1022.0 + 2046.0 * urand());
+    default:
+        return 1.0 + 1e-6 * (urand() - 0.5);
+    }
+}
+
 /* through memory: a vector passed by value would change the ABI without AVX */
 static void exp4(const double *x, double *y)
 {
@@ -94,6 +113,12 @@ static void log1p4(const double *x, double *y)
     memcpy(y, &r, sizeof r);
 }
 
+static void log4(const double *x, double *y)
+{
+    mcs_v4d v = {x[0], x[1], x[2], x[3]}, r = vm_log4(v);
+    memcpy(y, &r, sizeof r);
+}
+
 int main(void)
 {
     MCSTAT_IEEE_SCOPE(); /* as inside the library, the only caller: libm's results too */
@@ -104,6 +129,9 @@ int main(void)
     double wl = worst(log1p4, log1p, gen_log1p, 2000000, &at);
     printf("vm_log1p4: max %.3g ulps (at %.17g)\n", wl, at);
     CHECK_MSG(wl <= 2.0, "vm_log1p4 off by %.3g ulps at %.17g", wl, at);
+    double wg = worst(log4, log, gen_log, 2000000, &at);
+    printf("vm_log4: max %.3g ulps (at %.17g)\n", wg, at);
+    CHECK_MSG(wg <= 2.0, "vm_log4 off by %.3g ulps at %.17g", wg, at);
     mcs_v4i k = {-1023, -1, 0, 1 << 20};
     mcs_v4d dv = vm_int_to_double(k);
     double d[4];
