@@ -272,14 +272,19 @@ def _make_batch(kind: str, fields: Dict[str, np.ndarray], alternative: int, alph
 
 
 def _make_pixel_batch(kind: str, raw: Dict[str, Any], alternative: int, alpha: float, null_value: float,
-                      errors_as_nan: bool, intervals: bool, nan_rows: Any = None) -> BatchResult:
+                      errors_as_nan: bool, intervals: bool, nan_rows: Any = None,
+                      all_ok: bool = False) -> BatchResult:
     """The BatchResult of mcstat_pixels_test's flat arrays (rows.cpp): the
     fields of pairs (df of F, Welch's estimates, intervals, critical values,
     two-sample sizes), reject and the int8 status are formed on first read.
     raw["n_x"] / raw["n_y"] are arrays with NaN left out, else the common
-    size (n_y None for one-sample tests)."""
+    size (n_y None for one-sample tests).  raw["df"] None: every pixel that
+    succeeded has the df of raw["df_const"]; raw["std_error"] None: NaN
+    (the variance tests).  all_ok: the call returned
+    MCSTAT_OK, so no pixel failed and the status need not be read."""
     status = raw["status"]
-    _raise_failed(status, errors_as_nan, nan_rows)
+    if not all_ok:
+        _raise_failed(status, errors_as_nan, nan_rows)
     shape = status.shape
 
     def pair(a: str, b: str) -> _Lazy:
@@ -293,11 +298,19 @@ def _make_pixel_batch(kind: str, raw: Dict[str, Any], alternative: int, alpha: f
             return v.astype(np.int64)
         return np.where(status == 0, np.int64(v), np.int64(0))
 
+    def constant(v: float) -> Any:  # v where the pixel succeeded, else NaN
+        return np.where(status == 0, v, np.nan)
+
     f = _Fields()
     f["statistic"] = raw["statistic"]
     f["pvalue"] = raw["pvalue"]
-    f["std_error"] = raw["std_error"]
-    f["df"] = pair("df", "df2") if raw["df2"] is not None else raw["df"]
+    f["std_error"] = raw["std_error"] if raw["std_error"] is not None else _Lazy(lambda: np.full(shape, np.nan))
+    if raw["df"] is None:  # the same df for every pixel (raw["df_const"]): formed when read
+        d = raw["df_const"]
+        f["df"] = _Lazy(lambda: constant(d[0]) if len(d) == 1
+                        else np.stack([constant(d[0]), constant(d[1])], axis=-1))
+    else:
+        f["df"] = pair("df", "df2") if raw["df2"] is not None else raw["df"]
     f["estimate"] = pair("estimate", "estimate2") if raw["estimate2"] is not None else raw["estimate"]
     f["conf_int"] = pair("conf_lo", "conf_hi") if intervals else nans()
     f["critical_values"] = pair("critical_lo", "critical_hi") if intervals else nans()

@@ -294,20 +294,32 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
 
     const bool two_out = a.kind == Kind::T2 || a.kind == Kind::V2 || a.kind == Kind::T2P;
     auto arr = [&](auto tag) { return output_array<decltype(tag)>(outer); };
-    py::array_t<double> pv = arr(0.0), stat = arr(0.0), df = arr(0.0), est = arr(0.0), se = arr(0.0);
-    py::array_t<double> df2, est2, lo, hi, c0, c1;
+    // what is the same for every pixel that succeeded is not written by the
+    // kernel but formed on first read (_make_pixel_batch): the degrees of
+    // freedom of all tests but Welch's (without NaN left out), the variance
+    // tests' standard error (NaN)
+    const bool var = a.kind == Kind::V1 || a.kind == Kind::V2;
+    const bool const_df = a.kind != Kind::T2 && !a.omit_nan;
+    py::array_t<double> pv = arr(0.0), stat = arr(0.0), est = arr(0.0);
+    py::array_t<double> df, se, df2, est2, lo, hi, c0, c1;
     py::array_t<int32_t> status = arr(int32_t{0});
     py::array_t<int8_t> decision = arr(int8_t{0});
     py::array_t<uint64_t> n_x, n_y;
     mcstat_pixels_out out = MCSTAT_PIXELS_OUT_INIT;
     out.p_value = pv.mutable_data();
     out.statistic = stat.mutable_data();
-    out.df = df.mutable_data();
+    if (!const_df) {
+        df = arr(0.0);
+        out.df = df.mutable_data();
+    }
     out.estimate = est.mutable_data();
-    out.std_error = se.mutable_data();
+    if (!var) {
+        se = arr(0.0);
+        out.std_error = se.mutable_data();
+    }
     out.status = status.mutable_data();
     out.decision = decision.mutable_data();
-    if (a.kind == Kind::V2) {
+    if (a.kind == Kind::V2 && !const_df) {
         df2 = arr(0.0);
         out.df2 = df2.mutable_data();
     }
@@ -344,17 +356,24 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
         throw_status(st, "mcstat_pixels_test");
     {
         py::gil_scoped_release nogil;
-        mcstat_pixels_test(test, &px, two ? &py_ : nullptr, 0, rows, a.null_value, a.alternative, a.alpha, &opt,
-                           &out);
+        st = mcstat_pixels_test(test, &px, two ? &py_ : nullptr, 0, rows, a.null_value, a.alternative, a.alpha, &opt,
+                                &out);
     }
     py::dict f;
     f["pvalue"] = pv;
     f["statistic"] = stat;
-    f["df"] = df;
-    f["df2"] = a.kind == Kind::V2 ? py::object(df2) : py::none();
+    f["df"] = const_df ? py::none() : py::object(df);
+    f["df2"] = a.kind == Kind::V2 && !const_df ? py::object(df2) : py::none();
+    if (const_df) { // the df of a pixel that succeeded
+        double nx = static_cast<double>(px.n), ny = two ? static_cast<double>(py_.n) : 0.0;
+        if (a.kind == Kind::V2)
+            f["df_const"] = py::make_tuple(nx - 1.0, ny - 1.0);
+        else
+            f["df_const"] = py::make_tuple(a.kind == Kind::T2P ? nx + ny - 2.0 : nx - 1.0);
+    }
+    f["std_error"] = var ? py::none() : py::object(se);
     f["estimate"] = est;
     f["estimate2"] = a.kind == Kind::T2 || a.kind == Kind::T2P ? py::object(est2) : py::none();
-    f["std_error"] = se;
     f["conf_lo"] = a.intervals ? py::object(lo) : py::none();
     f["conf_hi"] = a.intervals ? py::object(hi) : py::none();
     f["critical_lo"] = a.intervals ? py::object(c0) : py::none();
@@ -364,7 +383,7 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
     f["n_x"] = a.omit_nan ? py::object(n_x) : py::int_(px.n);
     f["n_y"] = !two_out ? py::none() : a.omit_nan ? py::object(n_y) : py::int_(py_.n);
     py::object nan_rows = py::none();
-    if (a.propagate_nan) {
+    if (a.propagate_nan && st != MCSTAT_OK) { // only a failed pixel can be a NaN row to excuse
         py::object isnan = np.attr("isnan");
         py::object m = isnan(xv).attr("any")(-1);
         if (two)
@@ -373,7 +392,7 @@ py::object run_rows(const TestArgs &a, py::array x, py::array y, bool two)
     }
     static py::object make = py::module_::import("mcstat._result").attr("_make_pixel_batch");
     return make(kind_name(a.kind), f, a.alternative, a.alpha, a.null_value, a.errors_as_nan, a.intervals,
-                py::arg("nan_rows") = nan_rows);
+                py::arg("nan_rows") = nan_rows, py::arg("all_ok") = st == MCSTAT_OK);
 }
 
 } // namespace mcs
