@@ -549,11 +549,12 @@ struct mcstat_result {
 #define MCSTAT_RESULT_CHISQ_MIN_EXPECTED(r) ((r)->chisq_min_expected)
 #define MCSTAT_RESULT_CHISQ_POOL_BELOW(r) ((r)->chisq_pool_below)
 
-/* The decision rule (ERRATA 6): `reject` is the test against the chosen
- * alternative at level alpha; `decision` is 0 (MCSTAT_DECISION_EQUAL) when
- * H0 is not rejected, else the sign of the estimate's deviation from the
- * null value (MCSTAT_DECISION_LESS or _GREATER).  With the
- * two-sided alternative this is the paper's less / equal / greater outcome. */
+/* The decision rule (the paper's three-way outcome, its figure 4): `reject`
+ * is the test against the chosen alternative at level alpha; `decision` is
+ * 0 (MCSTAT_DECISION_EQUAL) when H0 is not rejected, else the sign of the
+ * estimate's deviation from the null value (MCSTAT_DECISION_LESS or
+ * _GREATER).  With the two-sided alternative this is the paper's less /
+ * equal / greater outcome. */
 
 /* Writes the R-style block (the layout and number formatting of R's
  * print.htest, plus a final "decision at alpha = ...: ..." line) into buf.
@@ -711,7 +712,7 @@ MCSTAT_API int mcstat_efficiency_test(const mcstat_moments *x, const mcstat_mome
                                       double ratio, int alternative, double alpha, mcstat_result *out);
 
 /* ------------------------------------------------------------------------ */
-/* Two-sample Kolmogorov-Smirnov test (section 2.5, ERRATA 1-3, 7).          */
+/* Two-sample Kolmogorov-Smirnov test (the paper's section 2.5).            */
 /* F and G are the empirical CDFs #{x_i <= t}/nx and #{y_j <= t}/ny, z =     */
 /* (nx F + ny G)/(nx + ny) the pooled one.  They are compared at the pooled  */
 /* jump points only, and where values are tied only after the last of a run */
@@ -720,8 +721,9 @@ MCSTAT_API int mcstat_efficiency_test(const mcstat_moments *x, const mcstat_mome
 /*   weight CANNER: D2 = sqrt(nx ny/(nx+ny)) sup |F - G| / sqrt(z (1 - z)),  */
 /*                  the sup over jump points with 0 < z < 1.                 */
 /* Alternatives are claims about the first sample, as for every mcstat test */
-/* (ERRATA 4): MCSTAT_LESS = x tends to be smaller than y, i.e. its CDF lies */
-/* above, sup (F - G); MCSTAT_GREATER = x tends to be larger, sup (G - F).   */
+/* (the paper's section 3 words one of them the other way): MCSTAT_LESS =  */
+/* x tends to be smaller than y, i.e. its CDF lies above, sup (F - G);      */
+/* MCSTAT_GREATER = x tends to be larger, sup (G - F).                      */
 /* NOTE: R's ks.test and SciPy's ks_2samp name one-sided alternatives by the */
 /* CDF, the other way round: mcstat's LESS is their "greater".  The printed */
 /* block uses R's wording ("the CDF of x lies above that of y").  One-sided  */
@@ -744,7 +746,8 @@ MCSTAT_API int mcstat_efficiency_test(const mcstat_moments *x, const mcstat_mome
 /*              nx ny/N), one-sided exp(-2 ne D^2); conservative, p within  */
 /*              2% at 300+300 and beyond (bench/RESULTS_ks.md; Stephens'     */
 /*              correction was measured and is anti-conservative here).      */
-/*              Canner's statistic has no usable limit (ERRATA 3):           */
+/*              Canner's statistic has no usable limit (it grows like       */
+/*              sqrt(2 log log n)):                                          */
 /*              MCSTAT_EINVAL.                                               */
 /*   AUTO       EXACT when (min+1)(N+1) <= MCSTAT_KS_AUTO_EXACT_WORK, else   */
 /*              SIMULATE (Canner, or NONE with ties) or ASYMPTOTIC (NONE     */

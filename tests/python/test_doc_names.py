@@ -1,0 +1,97 @@
+"""The documents name only what exists: every mcstat_* / MCSTAT_* name in the
+tree's Markdown files is declared by a public header (mcstat.h,
+mcstat_check.h, mcstat_testing.h, mcest.h), or is one of the build options,
+environment variables and programs listed here, each of which must itself
+appear in the tree's sources.  A name the header keeps only as deprecated
+(its last section) may be named by the CHANGELOG alone.  A prefix written
+as a family (`mcstat_pixels_*`, `mcstat_seq_push_`) is not a name.  Reads
+the source tree, not the installed package."""
+import pathlib
+import re
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+HEADERS = ["libmcstat/include/mcstat.h", "libmcstat/include/mcstat_check.h",
+           "libmcstat/include/mcstat_testing.h", "estimators/include/mcest.h"]
+DEPRECATED_MARK = "/* 13. Deprecated names."  # mcstat.h's last section
+NAME = re.compile(r"\b(?:mcstat|MCSTAT)_\w*")
+
+# Names that are not C API but are documented: CMake options and targets,
+# environment variables, programs and modules.  Each must appear in a source.
+NOT_API = {
+    "MCSTAT_BUILD_BENCH", "MCSTAT_BUILD_ESTIMATORS", "MCSTAT_BUILD_EXAMPLES", "MCSTAT_BUILD_TESTS",
+    "MCSTAT_INSTALL", "MCSTAT_FUZZ", "MCSTAT_SOURCES", "MCSTAT_TESTS", "mcstat_static",
+    "MCSTAT_NUM_THREADS", "MCSTAT_TEST_SCALE", "MCSTAT_TEST_THREADS", "MCSTAT_TEST_THREADS_REPS",
+    "MCSTAT_TRACEBACK", "MCSTAT_DEMO_PLANT", "MCSTAT_MITSUBA_VARIANT", "MCSTAT_FUZZ_VERBOSE",
+    "mcstat_app", "mcstat_ctypes",
+    "mcstat_name",  # CONTRIBUTING's placeholder in an exemption line's format
+}
+
+
+def tracked():
+    out = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True)
+    if out.returncode != 0:
+        pytest.skip("not a git checkout")
+    return [ROOT / p for p in out.stdout.split()]
+
+
+def header_names():
+    current, deprecated = set(), set()
+    for h in HEADERS:
+        text = (ROOT / h).read_text()
+        cut = text.find(DEPRECATED_MARK)
+        head, tail = (text, "") if cut < 0 else (text[:cut], text[cut:])
+        current |= set(NAME.findall(head))
+        deprecated |= set(NAME.findall(tail))
+    return current, deprecated - current
+
+
+def names_in(path):
+    """(line number, name) of each whole name in a document"""
+    for k, line in enumerate(path.read_text().splitlines(), 1):
+        for m in NAME.finditer(line):
+            name = m.group(0)
+            after = line[m.end():m.end() + 1]
+            if name.endswith("_") or after in ("*", "<", "{"):
+                continue  # a family of names, not one
+            yield k, name
+
+
+def test_documents_name_only_declared_symbols():
+    files = tracked()
+    docs = [p for p in files if p.suffix == ".md"]
+    assert any(p.name == "README.md" for p in docs)
+    current, deprecated = header_names()
+    internal = set()
+    for p in files:
+        if p.suffix in (".c", ".h") and "libmcstat/src" in str(p):
+            internal |= set(re.findall(r"\bmcstat__\w+", p.read_text()))
+    bad = []
+    for p in docs:
+        rel = p.relative_to(ROOT)
+        for k, name in names_in(p):
+            if name in current or name in NOT_API:
+                continue
+            if name.startswith("mcstat__") and name in internal:
+                continue  # the library's hidden helpers, named by the fuzz notes
+            if name in deprecated:
+                if rel.name != "CHANGELOG.md":
+                    bad.append(f"{rel}:{k}: {name} is deprecated (mcstat.h, section 'Deprecated names')")
+                continue
+            bad.append(f"{rel}:{k}: {name} is declared by no public header")
+    assert not bad, "\n".join(bad)
+
+
+def test_listed_names_exist_in_the_sources():
+    sources = [p for p in tracked() if p.suffix not in (".md",) and p.is_file() and p.stat().st_size < 2_000_000]
+    text = []
+    for p in sources:
+        try:
+            text.append(p.read_text())
+        except (UnicodeDecodeError, OSError):
+            continue
+    blob = "\n".join(text)
+    missing = sorted(n for n in NOT_API if n != "mcstat_name" and not re.search(r"\b" + n + r"\b", blob))
+    assert not missing, f"listed in NOT_API but in no source: {missing}"
