@@ -50,11 +50,12 @@ from mcstat.image import (
     Samples,
     Side,
     Summary,
-    _channel_names,
-    _seed_axis_of,
+    Owned,
+    channel_names,
+    seed_axis_of,
     summary_of_moments,
 )
-from mcstat.image import _Owned, compare as _compare
+from mcstat.image import compare as _compare
 
 from . import image_exr
 from .errors import MissingPackageError, OutputError, require
@@ -157,11 +158,11 @@ def _load_stack_npy(path: str) -> np.ndarray:
 def _read_stack_npy(path: str, seed_axis: Optional[int]) -> Samples:
     a = _load_stack_npy(path)
     if seed_axis is None:
-        seed_axis = _seed_axis_of(tuple(a.shape), f"the stack {path}")
+        seed_axis = seed_axis_of(tuple(a.shape), f"the stack {path}")
     a = np.moveaxis(a, seed_axis, 0)
     if a.ndim == 3:
         a = a[..., None]
-    return Samples(a, _channel_names(a.shape[-1]))
+    return Samples(a, channel_names(a.shape[-1]))
 
 
 def _read_moments_npz(path: str, z) -> Summary:
@@ -201,7 +202,7 @@ def _read_summary_npz(path: str) -> Summary:
                 m2 = np.broadcast_to(m2[..., None] if m2.ndim == 2 else m2, mean.shape)
         except ValueError as e:
             raise ImageInputError(f"{path}: the arrays' shapes do not match 'mean' {mean.shape}: {e}") from e
-    return Summary(np.ascontiguousarray(n), mean, np.ascontiguousarray(m2), _channel_names(mean.shape[-1]))
+    return Summary(np.ascontiguousarray(n), mean, np.ascontiguousarray(m2), channel_names(mean.shape[-1]))
 
 
 # Input kinds: a reader per kind, given the side's paths.  A new kind (e.g.
@@ -221,7 +222,7 @@ def _stack_images(paths: Sequence[str]) -> Samples:
     for p, im in zip(paths, imgs):
         if im.shape != imgs[0].shape:
             raise ImageInputError(f"{p}: shape {im.shape} differs from {paths[0]}'s {imgs[0].shape}")
-    return Samples(np.stack(imgs), _channel_names(imgs[0].shape[-1]))
+    return Samples(np.stack(imgs), channel_names(imgs[0].shape[-1]))
 
 
 def _kind_of(paths: Sequence[str]) -> str:
@@ -272,7 +273,7 @@ def compare(reference, candidate, *, seed_axis: Optional[int] = None, spp=None, 
 
 
 def _load(x, seed_axis: Optional[int], spp: Optional[int] = None):
-    """A side given by file paths, loaded and handed over (`_Owned`); any
+    """A side given by file paths, loaded and handed over (`Owned`); any
     other side as it is."""
     if isinstance(x, (str, os.PathLike)) or (isinstance(x, (list, tuple)) and
                                              all(isinstance(p, (str, os.PathLike)) for p in x)):
@@ -280,8 +281,8 @@ def _load(x, seed_axis: Optional[int], spp: Optional[int] = None):
         if seed_axis is None and _kind_of(paths) == "stack":
             # the array as it is: the comparison settles its seeds axis
             # with the other side's shape in view
-            return _Owned(_load_stack_npy(paths[0]))
-        return _Owned(load_side(paths, seed_axis=seed_axis, spp=spp))
+            return Owned(_load_stack_npy(paths[0]))
+        return Owned(load_side(paths, seed_axis=seed_axis, spp=spp))
     return x
 
 

@@ -1,6 +1,8 @@
 """The library (mcstat) and the application (mcstat_app) are separate
-packages: importing the library never imports the application, and the
-old application paths inside the library are deprecated re-exports."""
+packages, in both directions: no library file imports the application,
+the application uses only the library's public names, and the old
+application paths inside the library (removed in 0.2.0) fail saying
+where the name went."""
 import json
 import os
 import re
@@ -8,11 +10,11 @@ import subprocess
 import sys
 
 import mcstat
+import mcstat.image
 from conftest import ROOT
 
 LIB = os.path.join(ROOT, "bindings", "python", "mcstat")
-# The library files allowed to import the application: the deprecated shims only.
-SHIMS = {"cli.py", "reproduce.py", "__main__.py", "image.py"}
+APP = os.path.join(ROOT, "programs", "mcstat_app")
 
 
 def _python(code):
@@ -30,58 +32,77 @@ def test_import_mcstat_does_not_import_the_application():
     assert app == []
 
 
-def test_library_imports_the_application_only_in_its_shims():
-    for name in sorted(os.listdir(LIB)):
-        if name.endswith((".py", ".pyi")) and name not in SHIMS:
-            with open(os.path.join(LIB, name), encoding="utf-8") as f:
-                text = f.read()
-            assert not re.search(r"(?m)^\s*(from|import)\s+mcstat_app\b|import_module\(\S*mcstat_app", text), name
+def _sources(top):
+    for d, _, files in os.walk(top):
+        for name in sorted(files):
+            if name.endswith((".py", ".pyi")):
+                with open(os.path.join(d, name), encoding="utf-8") as f:
+                    yield os.path.relpath(os.path.join(d, name), ROOT), f.read()
 
 
-def test_deprecated_paths_warn_and_reexport():
-    code = r"""
-import warnings, json
-out = {}
-with warnings.catch_warnings(record=True) as w:
-    warnings.simplefilter("always")
-    import mcstat.cli, mcstat_app.cli
-    out["cli"] = [mcstat.cli.main is mcstat_app.cli.main, any(issubclass(x.category, DeprecationWarning) for x in w)]
-with warnings.catch_warnings(record=True) as w:
-    warnings.simplefilter("always")
-    from mcstat.reproduce.scene import load_scene
-    import mcstat.reproduce, mcstat_app.reproduce.scene, mcstat_app.reproduce.run
-    out["reproduce"] = [load_scene is mcstat_app.reproduce.scene.load_scene,
-                        mcstat.reproduce.run is mcstat_app.reproduce.run,
-                        mcstat.reproduce.PAPER_SCENE is mcstat_app.reproduce.PAPER_SCENE,
-                        any(issubclass(x.category, DeprecationWarning) for x in w)]
-with warnings.catch_warnings(record=True) as w:
-    warnings.simplefilter("always")
-    import mcstat.image, mcstat_app.image
-    out["image"] = [mcstat.image.read_image is mcstat_app.image.read_image,
-                    any(issubclass(x.category, DeprecationWarning) for x in w)]
-print(json.dumps(out))
-"""
-    out = json.loads(_python(code))
-    assert out == {"cli": [True, True], "reproduce": [True, True, True, True], "image": [True, True]}
+def test_library_never_imports_the_application():
+    files = list(_sources(LIB))
+    assert any(p.endswith("image.py") for p, _ in files)
+    for path, text in files:
+        assert not re.search(r"(?m)^\s*(from|import)\s+mcstat_app\b|import_module\(\S*mcstat_app", text), path
 
 
-def test_compare_reading_files_is_deprecated_and_unchanged(tmp_path, rng):
+def _private(name):
+    return name.startswith("_") and not name.startswith("__")
+
+
+def test_application_uses_only_public_library_names():
+    # `from mcstat[.mod] import _x`, a private module `mcstat._mod`, `mcstat[.mod]._x`
+    import ast
+
+    files = list(_sources(APP))
+    assert len(files) > 5
+    bad = []
+    for path, text in files:
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.ImportFrom) and node.level == 0 and node.module and \
+                    node.module.split(".")[0] == "mcstat":
+                if any(_private(p) for p in node.module.split(".")):
+                    bad.append(f"{path}:{node.lineno}: from {node.module}")
+                bad += [f"{path}:{node.lineno}: {node.module}.{a.name}" for a in node.names if _private(a.name)]
+            elif isinstance(node, ast.Import):
+                bad += [f"{path}:{node.lineno}: import {a.name}" for a in node.names
+                        if a.name.split(".")[0] == "mcstat" and any(_private(p) for p in a.name.split("."))]
+            elif isinstance(node, ast.Attribute) and _private(node.attr):
+                base = node.value
+                while isinstance(base, ast.Attribute):
+                    base = base.value
+                if isinstance(base, ast.Name) and base.id == "mcstat":
+                    bad.append(f"{path}:{node.lineno}: mcstat....{node.attr}")
+    assert bad == []
+
+
+def test_removed_paths_say_where_they_went(tmp_path, rng):
+    import importlib
+
+    import numpy as np
     import pytest
+
+    for old in ("mcstat.cli", "mcstat.reproduce", "mcstat.__main__"):
+        with pytest.raises(ModuleNotFoundError):
+            importlib.import_module(old)
+    for name in ("load_side", "read_image", "map_rgb", "write_map", "run"):
+        with pytest.raises(AttributeError, match=f"mcstat_app.image.{name}"):
+            getattr(mcstat.image, name)
+    np.save(tmp_path / "r.npy", rng.normal(size=(4, 6, 5)))
+    with pytest.raises(mcstat.image.ImageInputError, match="mcstat_app.image.compare"):
+        mcstat.image.compare(str(tmp_path / "r.npy"), str(tmp_path / "r.npy"))
+    with pytest.raises(mcstat.image.ImageInputError, match="got dict"):
+        mcstat.image.compare({}, rng.normal(size=(4, 6, 5)))
+    # the application's own paths, which replaced them
     from mcstat_app import image as app_image
+    from mcstat_app.cli import main  # noqa: F401
 
     ref = rng.normal(size=(4, 6, 5))  # (seeds, H, W): clear from the shape
-    cand = rng.normal(size=(4, 6, 5)) + 0.5
-    np_save = __import__("numpy").save
-    np_save(tmp_path / "r.npy", ref)
-    np_save(tmp_path / "c.npy", cand)
-    want = mcstat.image.compare(ref, cand)
-    with pytest.warns(DeprecationWarning, match="mcstat_app.image"):
-        old = mcstat.image.compare(str(tmp_path / "r.npy"), str(tmp_path / "c.npy"))
-    new = app_image.compare(str(tmp_path / "r.npy"), str(tmp_path / "c.npy"))
-    for r in (old, new):
-        assert r.pvalue.tobytes() == want.pvalue.tobytes()
-    with pytest.raises(mcstat.image.ImageInputError, match="got dict"):
-        mcstat.image.compare({}, cand)
+    np.save(tmp_path / "c.npy", ref + 0.5)
+    np.save(tmp_path / "r.npy", ref)
+    got = app_image.compare(str(tmp_path / "r.npy"), str(tmp_path / "c.npy"))
+    assert got.pvalue.tobytes() == mcstat.image.compare(ref, ref + 0.5).pvalue.tobytes()
 
 
 def test_reproduce_imports_only_declared_packages(tmp_path):

@@ -166,7 +166,7 @@ def test_compare_omit_nan_and_luminance(rng):
 
 
 def test_handed_over_sides_are_released_after_the_tests(rng, monkeypatch):
-    """mcstat_app hands its loaded renders over (_Owned): compare gives the
+    """mcstat_app hands its loaded renders over (Owned): compare gives the
     same results and holds no reference to them by the time it adjusts
     the p-values, so their memory is gone before the adjustment's."""
     import gc
@@ -175,7 +175,7 @@ def test_handed_over_sides_are_released_after_the_tests(rng, monkeypatch):
     x = rng.normal(1.0, 0.1, (6, 20, 30, 3)).astype(np.float32)
     y = rng.normal(1.0, 0.1, (6, 20, 30, 3)).astype(np.float32)
     kept = mi.compare(y, x)
-    bx, by = mi._Owned(x.copy()), mi._Owned(y.copy())
+    bx, by = mi.Owned(x.copy()), mi.Owned(y.copy())
     gone = [weakref.ref(bx.value), weakref.ref(by.value)]
     alive_at_adjust = []
     adjust = _core.p_adjust

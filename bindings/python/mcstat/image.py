@@ -72,7 +72,6 @@ from __future__ import annotations
 import dataclasses
 import os
 import time
-import warnings
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, cast
 
@@ -95,6 +94,9 @@ __all__ = [
     "detectable_bias",
     "equivalence",
     "ImageEquivalence",
+    "Owned",
+    "channel_names",
+    "seed_axis_of",
 ]
 
 # ImageComparison.verdict's values
@@ -170,7 +172,9 @@ class Summary:
 Side = Union[Samples, Summary]
 
 
-def _channel_names(c: int) -> List[str]:
+def channel_names(c: int) -> List[str]:
+    """The names of `c` channels as the reports print them: R, G, B[, A]
+    for 3 or 4 channels, else c0, c1, ..."""
     return ["R", "G", "B", "A"][:c] if c in (3, 4) else [f"c{i}" for i in range(c)]
 
 
@@ -186,7 +190,7 @@ def summary_of_moments(acc: "MomentsArray") -> Summary:
     if acc.ndim == 2:
         n, mean, m2 = n[..., None], mean[..., None], m2[..., None]
     return Summary(np.ascontiguousarray(n), np.ascontiguousarray(mean), np.ascontiguousarray(m2),
-                   _channel_names(mean.shape[-1]))
+                   channel_names(mean.shape[-1]))
 
 
 def save_moments(path: str, acc: "MomentsArray") -> None:
@@ -226,7 +230,7 @@ def _ambiguous(shape: Tuple[int, ...], what: str) -> ImageInputError:
         "is square" + (", with at most 4 channels last" if nd == 4 else "") + ")")
 
 
-def _seed_axis_of(shape: Tuple[int, ...], what: str = "an image stack") -> int:
+def seed_axis_of(shape: Tuple[int, ...], what: str = "an image stack") -> int:
     """The seeds axis of one stack of `shape` when ``seed_axis`` was not
     given: 0 when `_seeds_first_is_clear`, else ImageInputError saying how
     to pass seed_axis."""
@@ -279,7 +283,7 @@ def _infer_seed_axis(reference: Any, candidate: Any) -> Optional[int]:
 
 
 def _known_shape(x: Any) -> Any:
-    """What `_seed_axis_of` can use of a side: ``("stack", shape)`` of an
+    """What `seed_axis_of` can use of a side: ``("stack", shape)`` of an
     array, ``("image", (H, W, C))`` of the other inputs, or None."""
     from ._core import MomentsArray
 
@@ -303,7 +307,7 @@ def _as_side(x: Union[Side, np.ndarray, str, Sequence[str]], seed_axis: Optional
         if x.ndim not in (3, 4):
             raise ImageInputError(f"an image stack must be (seeds, H, W) or (seeds, H, W, C), got shape {x.shape}")
         if seed_axis is None:
-            seed_axis = _seed_axis_of(tuple(x.shape))
+            seed_axis = seed_axis_of(tuple(x.shape))
         elif not -x.ndim <= seed_axis < x.ndim:
             raise ImageInputError(f"seed_axis {seed_axis} is out of range for a stack of shape {x.shape}")
         a = np.moveaxis(x, seed_axis, 0)
@@ -311,16 +315,12 @@ def _as_side(x: Union[Side, np.ndarray, str, Sequence[str]], seed_axis: Optional
             a = a[..., None]
         if a.ndim != 4:
             raise ImageInputError(f"an image stack must be (seeds, H, W) or (seeds, H, W, C), got shape {x.shape}")
-        return Samples(a, _channel_names(a.shape[-1]))
+        return Samples(a, channel_names(a.shape[-1]))
     if isinstance(x, (str, os.PathLike)) or (isinstance(x, Sequence) and x and
                                              all(isinstance(p, (str, os.PathLike)) for p in x)):
-        # Files are the application's; reading them here is kept for one release.
-        warnings.warn("mcstat.image.compare reading files is deprecated: read them with "
-                      "mcstat_app.image.load_side, or call mcstat_app.image.compare", DeprecationWarning,
-                      stacklevel=3)
-        from mcstat_app.image import load_side
-
-        return load_side(x, seed_axis=seed_axis)
+        # files are the application's (mcstat 0.2.0 removed reading them here)
+        raise ImageInputError("mcstat.image.compare takes arrays; to compare files, read them with "
+                              "mcstat_app.image.load_side or call mcstat_app.image.compare")
     raise ImageInputError(f"a side must be an array (seeds, H, W[, C]), Samples, Summary or a MomentsArray, "
                           f"got {type(x).__name__}")
 
@@ -737,7 +737,7 @@ def _block_means(s: Samples, n: int, nan_policy: str, name: str) -> Samples:
         bad = ~fin.all(axis=0)
         if nan_policy == "raise":
             y, x, ch = np.unravel_index(int(np.argmax(bad)), bad.shape)
-            chname = s.channel_names[ch] if ch < len(s.channel_names) else _channel_names(c)[ch]
+            chname = s.channel_names[ch] if ch < len(s.channel_names) else channel_names(c)[ch]
             raise NonFiniteError(f"{int(bad.sum())} pixel(s) of the {name} hold NaN or infinite values, the first at "
                                  f"x={x}, y={y} ({chname}); pass nan_policy='omit' (--nan omit) to leave "
                                  "the blocks holding them untested")
@@ -767,11 +767,12 @@ def _luminance_of_means(mean: np.ndarray) -> np.ndarray:
     return mean[..., 0]
 
 
-class _Owned:
+class Owned:
     """A side handed over to `compare` by a caller that keeps no other
-    reference to it (mcstat_app's loaded renders): `compare` drops its
-    arrays once the tests have read them, so that the peak memory is the
-    input or the outputs, not both."""
+    reference to it (as mcstat_app hands over the renders it loaded):
+    ``compare(Owned(a), Owned(b))`` drops the arrays once the tests have
+    read them, so that the peak memory is the input or the outputs, not
+    both.  The results are those of ``compare(a, b)``."""
 
     __slots__ = ("value",)
 
@@ -851,7 +852,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     """
     t0 = time.perf_counter()
     scratch = None  # a handed-over render's memory, reused by the adjustment
-    own_r, own_c = isinstance(reference, _Owned), isinstance(candidate, _Owned)
+    own_r, own_c = isinstance(reference, Owned), isinstance(candidate, Owned)
     if own_r:
         reference = reference.take()
     if own_c:
@@ -913,7 +914,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         r = _core._t_test_2_pixels(xc, yr, weights, _core._alternative_code(alternative), alpha,
                                    omit_nan=nan_policy == "omit")
         shp = cand.shape
-        # the handed-over renders have been read (see _Owned); a side not
+        # the handed-over renders have been read (see Owned); a side not
         # handed over is the caller's and stays as it is
         scratch = _scratch_for_adjust(r["pvalue"].size, method, [a for a, own in ((xc, own_c), (yr, own_r)) if own])
         if own_r:
@@ -1014,16 +1015,12 @@ def _fmt_shape(s: Tuple[int, int, int]) -> str:
 from ._image_equivalence import ImageEquivalence, equivalence  # noqa: E402
 
 
-# The file readers, the map writer and the command moved to the application
-# (mcstat_app.image); these names resolve there for one release.
+# The file readers, the map writer and the command are the application's
+# (mcstat_app.image; mcstat 0.2.0 removed their aliases here): say where.
 _MOVED = ("load_side", "read_image", "map_rgb", "write_map", "run")
 
 
 def __getattr__(name: str) -> Any:
     if name in _MOVED:
-        warnings.warn(f"mcstat.image.{name} is deprecated: use mcstat_app.image.{name}", DeprecationWarning,
-                      stacklevel=2)
-        import mcstat_app.image
-
-        return getattr(mcstat_app.image, name)
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}: it is mcstat_app.image.{name}")
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
