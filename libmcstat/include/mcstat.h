@@ -52,8 +52,10 @@
  *     MCSTAT_E* codes below; mcstat_strerror() gives a sentence for it.
  *     Outputs are written through the pointer given last, and only on success.
  *   - Nothing here calls abort() or exit(), nothing touches GSL's process-wide
- *     error handler (see mcstat_gsl_handler_off), there is no global state:
- *     every function is thread-safe on distinct objects.
+ *     error handler (see mcstat_gsl_handler_off), and no call changes any
+ *     global state: every function is thread-safe on distinct objects.  (The
+ *     one process-wide value, whether the per-pixel loops may use AVX2, is
+ *     read once, at the first per-pixel call: the CPU and MCSTAT_NO_AVX2.)
  *   - No function allocates on the accumulator path.
  *   - Results do not depend on the caller's floating-point environment:
  *     each call computes with IEEE defaults (round to nearest, subnormals

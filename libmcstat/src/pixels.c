@@ -36,6 +36,7 @@
 #include "vmath.h"
 
 #include <float.h>
+#include <pthread.h>
 #include <stdlib.h>
 
 #define PIX_BLOCK 256     /* pixels per block: their sums stay in L1 */
@@ -1459,16 +1460,9 @@ void mcstat__pixels_block_moments(const mcstat_pixels_in *p, size_t i0, size_t k
     side_moments(p, i0, k, mean, m2, bad);
 }
 
-/* MCSTAT_NO_AVX2 set (and not "0") in the environment: the baseline loops
- * only (mcstat.h: for valgrind 3.19, which stops at some AVX2 encodings). */
-static int no_avx2_requested(void)
-{
-    const char *e = getenv("MCSTAT_NO_AVX2");
-    return e && *e && strcmp(e, "0") != 0;
-}
-
-/* Set by the tests to compare the baseline loops with the AVX2 ones. */
-static int pixels_baseline_only;
+/* Set by the tests, on their own thread, to compare the baseline loops
+ * with the AVX2 ones (thread-local: no other thread's calls see it). */
+static _Thread_local int pixels_baseline_only;
 
 void mcstat__pixels_baseline_only(int on)
 {
@@ -1476,10 +1470,25 @@ void mcstat__pixels_baseline_only(int on)
 }
 
 #if PIX_AVX2
+/* Whether the AVX2 loops may run: the CPU has AVX2 and MCSTAT_NO_AVX2 is
+ * not set (or "0") in the environment (mcstat.h: for valgrind 3.19, which
+ * stops at some AVX2 encodings).  Read once, at the first call that asks,
+ * and never written again: the library's only process-wide value. */
+static pthread_once_t avx2_once = PTHREAD_ONCE_INIT;
+static int avx2_allowed;
+
+static void avx2_probe(void)
+{
+    const char *e = getenv("MCSTAT_NO_AVX2");
+    int no = e && *e && strcmp(e, "0") != 0;
+    avx2_allowed = !no && __builtin_cpu_supports("avx2");
+}
+
 /* Whether this call runs the AVX2 loops (per pixel and per quantile). */
 static int use_avx2(void)
 {
-    return !pixels_baseline_only && !no_avx2_requested() && __builtin_cpu_supports("avx2");
+    pthread_once(&avx2_once, avx2_probe);
+    return avx2_allowed && !pixels_baseline_only;
 }
 #endif
 
