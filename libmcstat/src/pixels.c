@@ -2,7 +2,8 @@
  * pixels.c - Welch's test per pixel on image stacks of any layout (float32
  * or double, optionally a weighted sum of channels), with a Student t tail
  * specialised to the t distribution; pixels_test.c checks the arguments,
- * splits the pixels over threads and calls mcstat__pixels_welch per range.
+ * splits the pixels over threads and each thread runs mcstat__pixels_welch
+ * on the chunks it takes.
  *
  * The row-wise tests (rows.c) run every pixel through the single call:
  * an accumulator per sample, the general incomplete beta, a full
@@ -358,6 +359,7 @@ typedef struct {
     mcstat_qcache qc; /* the slow path's */
     uint64_t nx, ny;  /* the sample sizes of the fast path */
     int first;        /* status of the first failing pixel */
+    size_t first_i;   /* and its index */
 } pix_ctx;
 
 static void put(const pix_ctx *c, size_t i, int st, double p, double t, double df, double se, double mx,
@@ -399,8 +401,10 @@ static void put(const pix_ctx *c, size_t i, int st, double p, double t, double d
 static void fail(pix_ctx *c, size_t i, int st)
 {
     put(c, i, st, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN, 0, 0, 0);
-    if (c->first == MCSTAT_OK)
+    if (c->first == MCSTAT_OK) {
         c->first = st;
+        c->first_i = i;
+    }
 }
 
 /* ---- the slow path: the single call's code ---------------------------------- */
@@ -1550,8 +1554,8 @@ __attribute__((target("avx2"))) static void block_pass_avx2(const block_input *i
 /* Welch's test for pixels [begin, end) of x and y (pixels_test.c has
  * checked the arguments; x and y are of one type and channel weighting).
  * Returns the status of the first pixel that failed. */
-int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin, size_t end, double mu0,
-                         int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
+int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, mcstat__work *wk, size_t *first_index,
+                         double mu0, int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
 {
     const int f32 = x->type == MCSTAT_VALUE_FLOAT32;
     const float *xf = f32 ? x->data : NULL, *yf = f32 ? y->data : NULL;
@@ -1574,6 +1578,7 @@ int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, s
         qt_table_init(&c, c.qt_p, qt, QT_NODES);
     mcstat__qcache_init(&c.qc);
     c.first = MCSTAT_OK;
+    c.first_i = 0;
     plane px = {xf, xd, x->value_stride, x->pixel_stride, channels, w},
           py = {yf, yd, y->value_stride, y->pixel_stride, channels, w};
     block_input in = {xf, yf, xd, yd, w, nx, x->value_stride, x->pixel_stride, ny, y->value_stride, y->pixel_stride,
@@ -1583,6 +1588,8 @@ int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, s
 #if PIX_AVX2
     int avx2 = use_avx2();
 #endif
+    size_t begin, end;
+    while (mcstat__work_take(wk, &begin, &end))
     for (size_t i0 = begin; i0 < end; i0 += PIX_BLOCK) {
         size_t k = end - i0 < PIX_BLOCK ? end - i0 : PIX_BLOCK;
         if (fast_ok) {
@@ -1615,6 +1622,7 @@ int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, s
         }
     }
     free(b);
+    *first_index = c.first_i;
     return c.first;
 }
 

@@ -36,6 +36,9 @@ _Static_assert(sizeof(mcstat_pixels_out) == MCSTAT_PIXELS_OUT_SIZE_0_2,
 #define MAX_THREADS 64
 /* Below this many pixels a thread costs more than it saves. */
 #define MIN_PIXELS_PER_THREAD 4096
+/* the threads take the pixels by chunks of a multiple of this many: the
+ * block paths' blocks */
+#define PIXEL_GRANULE 256
 
 size_t mcstat_sizeof_pixels_in(void)
 {
@@ -236,9 +239,10 @@ static int single_pixel(void *vctx, size_t i)
     return st;
 }
 
-/* The tests but Welch's on [begin, end): the variance tests by blocks
- * (pixels_var.c), the others pixel by pixel through the single call. */
-static int single_call_range(const job *jb, size_t begin, size_t end)
+/* The tests but Welch's on the chunks this thread takes: the variance tests
+ * by blocks (pixels_var.c), the others pixel by pixel through the single
+ * call. */
+static int single_call_work(const job *jb, mcstat__work *wk, size_t *first_index)
 {
     const int two = two_sample(jb->test);
     const size_t nx = jb->x.n, ny = two ? jb->y.n : 0;
@@ -248,33 +252,42 @@ static int single_call_range(const job *jb, size_t begin, size_t end)
     sc.by = two ? malloc((ny ? ny : 1) * sizeof *sc.by) : NULL;
     mcstat__qcache_init(&sc.qc);
     int first = MCSTAT_OK;
+    size_t begin, end;
     if (!sc.bx || (two && !sc.by)) {
-        for (size_t i = begin; i < end; i++)
-            put(jb, i, MCSTAT_ENOMEM, NULL);
-        first = end > begin ? MCSTAT_ENOMEM : MCSTAT_OK;
+        while (mcstat__work_take(wk, &begin, &end))
+            for (size_t i = begin; i < end; i++) {
+                put(jb, i, MCSTAT_ENOMEM, NULL);
+                if (first == MCSTAT_OK) {
+                    first = MCSTAT_ENOMEM;
+                    *first_index = i;
+                }
+            }
     } else if (jb->test == MCSTAT_TEST_VAR_1 || jb->test == MCSTAT_TEST_VAR_2) {
-        first = mcstat__pixels_var(jb->test, &jb->x, two ? &jb->y : NULL, begin, end, jb->null_value,
+        first = mcstat__pixels_var(jb->test, &jb->x, two ? &jb->y : NULL, wk, first_index, jb->null_value,
                                    jb->alternative, jb->alpha, jb->flags, &jb->out, single_pixel, &sc);
     } else {
-        for (size_t i = begin; i < end; i++) {
-            int st = single_pixel(&sc, i);
-            if (st && first == MCSTAT_OK)
-                first = st;
-        }
+        while (mcstat__work_take(wk, &begin, &end))
+            for (size_t i = begin; i < end; i++) {
+                int st = single_pixel(&sc, i);
+                if (st && first == MCSTAT_OK) {
+                    first = st;
+                    *first_index = i;
+                }
+            }
     }
     free(sc.bx);
     free(sc.by);
     return first;
 }
 
-static int run_range(void *ctx, size_t begin, size_t end)
+static int run_work(void *ctx, mcstat__work *wk, size_t *first_index)
 {
     MCSTAT_IEEE_SCOPE(); /* a started thread's environment is the process default */
     const job *jb = ctx;
     if (jb->test == MCSTAT_TEST_T_2)
-        return mcstat__pixels_welch(&jb->x, &jb->y, begin, end, jb->null_value, jb->alternative, jb->alpha,
+        return mcstat__pixels_welch(&jb->x, &jb->y, wk, first_index, jb->null_value, jb->alternative, jb->alpha,
                                     jb->flags, &jb->out);
-    return single_call_range(jb, begin, end);
+    return single_call_work(jb, wk, first_index);
 }
 
 /* ---- the entry point ---------------------------------------------------------- */
@@ -327,7 +340,7 @@ int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_
     jb.flags = o.flags;
     if (!po->conf_lo && !po->conf_hi && !po->critical_lo && !po->critical_hi)
         jb.flags |= MCSTAT_ROWS_NO_INTERVALS; /* nothing asks for them */
-    return mcstat__run_ranges(begin, end, o.threads, MIN_PIXELS_PER_THREAD, run_range, &jb);
+    return mcstat__run_work(begin, end, o.threads, MIN_PIXELS_PER_THREAD, PIXEL_GRANULE, run_work, &jb);
 }
 
 /* ---- the seeds-major Welch calls ---------------------------------------------- */

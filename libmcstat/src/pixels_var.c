@@ -235,15 +235,16 @@ static int well_spread(double m2, mcstat_dd mean, size_t n)
     return m2 > 0.0 && m2 * 0x1p50 >= dn * dn * dn * mean.hi * mean.hi;
 }
 
-int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin, size_t end,
-                       double null_value, int alternative, double alpha, unsigned flags,
+int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y, mcstat__work *wk,
+                       size_t *first_index, double null_value, int alternative, double alpha, unsigned flags,
                        const mcstat_pixels_out *out, mcstat__pixel_fn single, void *ctx)
 {
     const int two = test == MCSTAT_TEST_VAR_2, intervals = !(flags & MCSTAT_ROWS_NO_INTERVALS);
     const size_t nx = x->n, ny = two ? y->n : 0;
     const double df1 = (double)nx - 1.0, df2 = two ? (double)ny - 1.0 : 0.0;
     int first = MCSTAT_OK;
-    int fast = nx >= 2 && (!two || ny >= 2) && df1 <= MAX_DF && df2 <= MAX_DF && end > begin;
+    size_t first_i = 0;
+    int fast = nx >= 2 && (!two || ny >= 2) && df1 <= MAX_DF && df2 <= MAX_DF;
     double c0 = NAN, c1 = NAN;
     if (fast && intervals) { /* the single call's critical values, once */
         mcstat_qcache qc;
@@ -275,6 +276,8 @@ int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_
     }
     const var_consts vc = {tb.centre, tb.inv_h, (double)(nx + ny + 4) * DBL_EPSILON, alternative, tb.lt};
     const mcstat_pixels_out *o = out;
+    size_t begin, end;
+    while (mcstat__work_take(wk, &begin, &end))
     for (size_t i0 = begin; i0 < end; i0 += VBLOCK) {
         size_t k = end - i0 < VBLOCK ? end - i0 : VBLOCK;
         var_block *bk = w ? &w->bk : NULL;
@@ -364,10 +367,13 @@ int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_
         for (size_t j = 0; j < k; j++)
             if (!bk || !bk->ok[j]) {
                 int st = single(ctx, i0 + j);
-                if (st && first == MCSTAT_OK)
+                if (st && first == MCSTAT_OK) {
                     first = st;
+                    first_i = i0 + j;
+                }
             }
     }
     free(w);
+    *first_index = first_i;
     return first;
 }

@@ -55,10 +55,13 @@ MCSTAT_HIDDEN int mcstat__t_upper_quantile_fast(double p, double df, double *q);
 /* pixels.c: nonzero runs the per-block loops' baseline (SSE2) code even
  * where AVX2 is there; for the tests, which compare the two bit for bit. */
 MCSTAT_HIDDEN void mcstat__pixels_baseline_only(int on);
-/* pixels.c: Welch's test on pixels [begin, end) of arguments pixels_test.c
- * has checked (x and y of one type and weighting). */
-MCSTAT_HIDDEN int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin,
-                                       size_t end, double mu0, int alternative, double alpha, unsigned flags,
+/* threads.c's queue of chunks (below) */
+typedef struct mcstat__work mcstat__work;
+/* pixels.c: Welch's test on the chunks of wk this thread takes, for
+ * arguments pixels_test.c has checked (x and y of one type and weighting);
+ * the status of its first failed pixel, that pixel's index in *first_index. */
+MCSTAT_HIDDEN int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, mcstat__work *wk,
+                                       size_t *first_index, double mu0, int alternative, double alpha, unsigned flags,
                                        const mcstat_pixels_out *out);
 /* pixels.c: the two-pass moments of pixels i0..i0+k-1 (k <= 256) of one
  * side, as Welch's block path forms them: mean[j] a double-double, m2[j]
@@ -69,21 +72,29 @@ MCSTAT_HIDDEN void mcstat__pixels_block_moments(const mcstat_pixels_in *p, size_
 /* pixels.c: whether this call's block loops run as AVX2 code (the CPU has
  * it, and neither MCSTAT_NO_AVX2 nor the tests' baseline switch is set). */
 MCSTAT_HIDDEN int mcstat__pixels_avx2(void);
-/* pixels_var.c: the variance tests on pixels [begin, end) (arguments
- * checked; y NULL for MCSTAT_TEST_VAR_1); pixels its block path does not
- * cover go through the single call's code by single(ctx, i). */
+/* pixels_var.c: the variance tests on the chunks of wk this thread takes
+ * (arguments checked; y NULL for MCSTAT_TEST_VAR_1), as Welch's above;
+ * pixels its block path does not cover go through the single call's code
+ * by single(ctx, i). */
 typedef int (*mcstat__pixel_fn)(void *ctx, size_t i); /* returns the pixel's status */
-MCSTAT_HIDDEN int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin,
-                                     size_t end, double null_value, int alternative, double alpha, unsigned flags,
-                                     const mcstat_pixels_out *out, mcstat__pixel_fn single, void *ctx);
-/* threads.c: f(ctx, b, e) over [begin, end) split into at most `threads`
- * contiguous ranges of at least min_per_thread items, the first on the
- * calling thread; a thread that cannot start runs its range on the caller's
- * afterwards.  Returns the status of the first range (in index order) that
- * failed. */
-typedef int (*mcstat__range_fn)(void *ctx, size_t begin, size_t end);
-MCSTAT_HIDDEN int mcstat__run_ranges(size_t begin, size_t end, int threads, size_t min_per_thread,
-                                     mcstat__range_fn f, void *ctx);
+MCSTAT_HIDDEN int mcstat__pixels_var(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y,
+                                     mcstat__work *wk, size_t *first_index, double null_value, int alternative,
+                                     double alpha, unsigned flags, const mcstat_pixels_out *out,
+                                     mcstat__pixel_fn single, void *ctx);
+/* threads.c: [begin, end) as a queue of chunks that threads take in turn,
+ * so that a thread slowed by the machine takes fewer (the split never
+ * changes a result: each item's work is a function of its own index).  A
+ * worker keeps its state across the chunks it takes. */
+/* The next chunk [*b, *e), in increasing order; 0 when none is left. */
+MCSTAT_HIDDEN int mcstat__work_take(mcstat__work *w, size_t *b, size_t *e);
+/* A worker: takes chunks until none is left; returns the status of the
+ * first item it failed, that item's index in *first_index. */
+typedef int (*mcstat__work_fn)(void *ctx, mcstat__work *w, size_t *first_index);
+/* f on up to `threads` threads (at most one per min_per_thread items; the
+ * first is the caller's), in chunks of a multiple of `granule` items.
+ * Returns the status of the failed item of lowest index, MCSTAT_OK if none. */
+MCSTAT_HIDDEN int mcstat__run_work(size_t begin, size_t end, int threads, size_t min_per_thread, size_t granule,
+                                   mcstat__work_fn f, void *ctx);
 /* pixels.c: the per-pixel path's block tails (vector exp and log1p, the
  * central series eight at a time) for n pairs; done[i] where they answered. */
 MCSTAT_HIDDEN int mcstat__t_tails_block(size_t n, const double *t, const double *df, double *lower, double *upper,

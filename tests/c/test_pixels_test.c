@@ -287,30 +287,49 @@ static void test_threads(void)
         bx[k] = urand(&st);
         by[k] = urand(&st) * 1.1;
     }
-    bx[5 * 4 + 1] = NAN; /* pixel 5 fails */
     const int tests[] = {MCSTAT_TEST_T_2, MCSTAT_TEST_VAR_2, MCSTAT_TEST_T_PAIRED};
-    for (size_t t = 0; t < 3; t++) {
-        mcstat_pixels_in x = MCSTAT_PIXELS_IN_INIT, y = MCSTAT_PIXELS_IN_INIT;
-        x.data = bx;
-        y.data = by;
-        x.n = y.n = 4;
-        x.value_stride = y.value_stride = 1;
-        x.pixel_stride = y.pixel_stride = 4;
-        mcstat_pixels_options o1 = MCSTAT_PIXELS_OPTIONS_INIT, o3 = MCSTAT_PIXELS_OPTIONS_INIT;
-        o3.threads = 2;
-        mcstat_pixels_out v1 = MCSTAT_PIXELS_OUT_INIT, v3 = MCSTAT_PIXELS_OUT_INIT;
-        v1.p_value = r1[0];
-        v1.conf_lo = r1[1];
-        v1.status = s1;
-        v3.p_value = r3[0];
-        v3.conf_lo = r3[1];
-        v3.status = s3;
-        double nv = tests[t] == MCSTAT_TEST_VAR_2 ? 1.0 : 0.0;
-        int a = mcstat_pixels_test(tests[t], &x, &y, 0, P2, nv, MCSTAT_TWO_SIDED, 0.05, &o1, &v1);
-        int b = mcstat_pixels_test(tests[t], &x, &y, 0, P2, nv, MCSTAT_TWO_SIDED, 0.05, &o3, &v3);
-        CHECK_INT(a, MCSTAT_ENONFINITE);
-        CHECK_INT(b, a);
-        CHECK(memcmp(r1, r3, sizeof r1) == 0 && memcmp(s1, s3, sizeof s1) == 0);
+    /* round 0: pixel 5 fails (a NaN); round 1: pixels 21000 (constant on
+     * both sides) and 35000 (a NaN) fail, in different chunks: the call
+     * returns the status of the lower index whichever thread took it */
+    for (int round = 0; round < 2; round++) {
+        if (round == 0) {
+            bx[5 * 4 + 1] = NAN;
+        } else {
+            bx[5 * 4 + 1] = 0.5;
+            for (size_t s = 0; s < 4; s++) {
+                bx[21000 * 4 + s] = 1.0;
+                by[21000 * 4 + s] = 2.0;
+            }
+            by[35000 * 4 + 2] = NAN;
+        }
+        const int want = round == 0 ? MCSTAT_ENONFINITE : MCSTAT_EDEGENERATE;
+        for (size_t t = 0; t < 3; t++)
+            for (int threads = 2; threads <= 8; threads *= 4) {
+                mcstat_pixels_in x = MCSTAT_PIXELS_IN_INIT, y = MCSTAT_PIXELS_IN_INIT;
+                x.data = bx;
+                y.data = by;
+                x.n = y.n = 4;
+                x.value_stride = y.value_stride = 1;
+                x.pixel_stride = y.pixel_stride = 4;
+                mcstat_pixels_options o1 = MCSTAT_PIXELS_OPTIONS_INIT, o3 = MCSTAT_PIXELS_OPTIONS_INIT;
+                o3.threads = threads;
+                mcstat_pixels_out v1 = MCSTAT_PIXELS_OUT_INIT, v3 = MCSTAT_PIXELS_OUT_INIT;
+                memset(r3, 0, sizeof r3);
+                memset(s3, 0, sizeof s3);
+                v1.p_value = r1[0];
+                v1.conf_lo = r1[1];
+                v1.status = s1;
+                v3.p_value = r3[0];
+                v3.conf_lo = r3[1];
+                v3.status = s3;
+                double nv = tests[t] == MCSTAT_TEST_VAR_2 ? 1.0 : 0.0;
+                int a = mcstat_pixels_test(tests[t], &x, &y, 0, P2, nv, MCSTAT_TWO_SIDED, 0.05, &o1, &v1);
+                int b = mcstat_pixels_test(tests[t], &x, &y, 0, P2, nv, MCSTAT_TWO_SIDED, 0.05, &o3, &v3);
+                CHECK_MSG(a == want, "test %d round %d: status %d, want %d", tests[t], round, a, want);
+                CHECK_INT(b, a);
+                CHECK(memcmp(r1, r3, sizeof r1) == 0 && memcmp(s1, s3, sizeof s1) == 0);
+                CHECK(s1[round == 0 ? 5 : 35000] == MCSTAT_ENONFINITE && (round == 0 || s1[21000] == MCSTAT_EDEGENERATE));
+            }
     }
 }
 
