@@ -293,16 +293,16 @@ func twoRows(x, y *MomentsRows) error {
 	return nil
 }
 
-// TTest1Rows is TTest1Moments on every accumulator of x.
-func TTest1Rows(x *MomentsRows, mu0 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
+// TTest1MomentsRows (mcstat_t_test_1_moments_rows) is TTest1Moments on every accumulator of x.
+func TTest1MomentsRows(x *MomentsRows, mu0 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
 	return runRows(x.Len(), func(o *C.struct_mcstat_result, st *C.int32_t) C.int {
 		return C.mcstat_t_test_1_moments_rows(x.first(), sz(x.Len()), C.double(mu0), C.int(alt), C.double(alpha),
 			C.uint(flags), o, st)
 	})
 }
 
-// TTest2Rows is TTest2Moments on every pair of accumulators of x and y.
-func TTest2Rows(x, y *MomentsRows, mu0 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
+// TTest2MomentsRows (mcstat_t_test_2_moments_rows) is TTest2Moments on every pair of accumulators of x and y.
+func TTest2MomentsRows(x, y *MomentsRows, mu0 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
 	if err := twoRows(x, y); err != nil {
 		return nil, err
 	}
@@ -312,16 +312,16 @@ func TTest2Rows(x, y *MomentsRows, mu0 float64, alt Alternative, alpha float64, 
 	})
 }
 
-// VarTest1Rows is VarTest1Moments on every accumulator of x.
-func VarTest1Rows(x *MomentsRows, sigma2 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
+// VarTest1MomentsRows (mcstat_var_test_1_moments_rows) is VarTest1Moments on every accumulator of x.
+func VarTest1MomentsRows(x *MomentsRows, sigma2 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
 	return runRows(x.Len(), func(o *C.struct_mcstat_result, st *C.int32_t) C.int {
 		return C.mcstat_var_test_1_moments_rows(x.first(), sz(x.Len()), C.double(sigma2), C.int(alt),
 			C.double(alpha), C.uint(flags), o, st)
 	})
 }
 
-// VarTest2Rows is VarTest2Moments on every pair of accumulators of x and y.
-func VarTest2Rows(x, y *MomentsRows, ratio float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
+// VarTest2MomentsRows (mcstat_var_test_2_moments_rows) is VarTest2Moments on every pair of accumulators of x and y.
+func VarTest2MomentsRows(x, y *MomentsRows, ratio float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
 	if err := twoRows(x, y); err != nil {
 		return nil, err
 	}
@@ -329,4 +329,35 @@ func VarTest2Rows(x, y *MomentsRows, ratio float64, alt Alternative, alpha float
 		return C.mcstat_var_test_2_moments_rows(x.first(), y.first(), sz(x.Len()), C.double(ratio), C.int(alt),
 			C.double(alpha), C.uint(flags), o, st)
 	})
+}
+
+// The names before 0.2.0, which read like the C library's deprecated
+// mcstat_*_rows (matrix) calls: these are the _moments_rows ones.
+
+// TTest1Rows is TTest1MomentsRows.
+//
+// Deprecated: use TTest1MomentsRows.
+func TTest1Rows(x *MomentsRows, mu0 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
+	return TTest1MomentsRows(x, mu0, alt, alpha, flags)
+}
+
+// TTest2Rows is TTest2MomentsRows.
+//
+// Deprecated: use TTest2MomentsRows.
+func TTest2Rows(x, y *MomentsRows, mu0 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
+	return TTest2MomentsRows(x, y, mu0, alt, alpha, flags)
+}
+
+// VarTest1Rows is VarTest1MomentsRows.
+//
+// Deprecated: use VarTest1MomentsRows.
+func VarTest1Rows(x *MomentsRows, sigma2 float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
+	return VarTest1MomentsRows(x, sigma2, alt, alpha, flags)
+}
+
+// VarTest2Rows is VarTest2MomentsRows.
+//
+// Deprecated: use VarTest2MomentsRows.
+func VarTest2Rows(x, y *MomentsRows, ratio float64, alt Alternative, alpha float64, flags RowFlags) ([]RowResult, error) {
+	return VarTest2MomentsRows(x, y, ratio, alt, alpha, flags)
 }

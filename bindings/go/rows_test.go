@@ -194,13 +194,13 @@ func TestMomentsRows(t *testing.T) {
 		rows func() ([]RowResult, error)
 		one  func(i int) (*Result, error)
 	}{
-		{"t1", func() ([]RowResult, error) { return TTest1Rows(a, -2, TwoSided, 0.05, 0) },
+		{"t1", func() ([]RowResult, error) { return TTest1MomentsRows(a, -2, TwoSided, 0.05, 0) },
 			func(i int) (*Result, error) { return TTest1Moments(a.At(i), -2, TwoSided, 0.05) }},
-		{"t2", func() ([]RowResult, error) { return TTest2Rows(a, ya, 0, Greater, 0.05, 0) },
+		{"t2", func() ([]RowResult, error) { return TTest2MomentsRows(a, ya, 0, Greater, 0.05, 0) },
 			func(i int) (*Result, error) { return TTest2Moments(a.At(i), ya.At(i), 0, Greater, 0.05) }},
-		{"var1", func() ([]RowResult, error) { return VarTest1Rows(a, 200, Less, 0.05, 0) },
+		{"var1", func() ([]RowResult, error) { return VarTest1MomentsRows(a, 200, Less, 0.05, 0) },
 			func(i int) (*Result, error) { return VarTest1Moments(a.At(i), 200, Less, 0.05) }},
-		{"var2", func() ([]RowResult, error) { return VarTest2Rows(a, ya, 0.5, TwoSided, 0.05, 0) },
+		{"var2", func() ([]RowResult, error) { return VarTest2MomentsRows(a, ya, 0.5, TwoSided, 0.05, 0) },
 			func(i int) (*Result, error) { return VarTest2Moments(a.At(i), ya.At(i), 0.5, TwoSided, 0.05) }},
 	}
 	for _, c := range checks {
@@ -224,11 +224,11 @@ func TestMomentsRows(t *testing.T) {
 		a.At(6).N() != 20 || a.At(1).N() != before+2 {
 		t.Errorf("failing row: %v %v", err, rowErr)
 	}
-	if _, err := TTest2Rows(a, c, 0, TwoSided, 0.05, 0); err != nil {
+	if _, err := TTest2MomentsRows(a, c, 0, TwoSided, 0.05, 0); err != nil {
 		t.Errorf("equal lengths: %v", err)
 	}
 	short, _ := NewMomentsRows(3)
-	if _, err := TTest2Rows(a, short, 0, TwoSided, 0.05, 0); !errors.Is(err, ErrInvalidArgument) {
+	if _, err := TTest2MomentsRows(a, short, 0, TwoSided, 0.05, 0); !errors.Is(err, ErrInvalidArgument) {
 		t.Errorf("lengths differ: %v", err)
 	}
 	if err := a.Merge(short); !errors.Is(err, ErrInvalidArgument) {
@@ -237,14 +237,14 @@ func TestMomentsRows(t *testing.T) {
 	if _, err := a.Add(Matrix{Data: x.Data, Rows: 3, Cols: 1}, 0); !errors.Is(err, ErrInvalidArgument) {
 		t.Errorf("add rows differ: %v", err)
 	}
-	if _, err := TTest1Rows(a, 0, TwoSided, 0.05, OmitNaN); !errors.Is(err, ErrInvalidArgument) {
+	if _, err := TTest1MomentsRows(a, 0, TwoSided, 0.05, OmitNaN); !errors.Is(err, ErrInvalidArgument) {
 		t.Errorf("OmitNaN on accumulators: %v", err)
 	}
 	if _, err := NewMomentsRows(-1); !errors.Is(err, ErrInvalidArgument) {
 		t.Errorf("-1 rows: %v", err)
 	}
 	var zero MomentsRows // the zero value is an empty array
-	if r, err := TTest1Rows(&zero, 0, TwoSided, 0.05, 0); err != nil || len(r) != 0 {
+	if r, err := TTest1MomentsRows(&zero, 0, TwoSided, 0.05, 0); err != nil || len(r) != 0 {
 		t.Errorf("empty array: %v", err)
 	}
 }
@@ -299,7 +299,7 @@ func TestMomentsOmitNaNAndSummary(t *testing.T) {
 		t.Errorf("merging nil: %v", err)
 	}
 	var rows *MomentsRows
-	if r, err := TTest1Rows(rows, 0, TwoSided, 0.05, 0); err != nil || len(r) != 0 || rows.At(0) != nil {
+	if r, err := TTest1MomentsRows(rows, 0, TwoSided, 0.05, 0); err != nil || len(r) != 0 || rows.At(0) != nil {
 		t.Errorf("nil rows: %v", err)
 	}
 	if err := rows.UnmarshalBinary(zb); !errors.Is(err, ErrInvalidArgument) {
@@ -405,5 +405,40 @@ func TestStream(t *testing.T) {
 	}
 	if err := s.Merge(none); !errors.Is(err, ErrInvalidArgument) {
 		t.Errorf("merging a nil stream: %v", err)
+	}
+}
+
+// The names before 0.2.0 give the same results as the ones they became.
+func TestDeprecatedRowsNames(t *testing.T) {
+	a, _ := NewMomentsRows(3)
+	b, _ := NewMomentsRows(3)
+	if _, err := a.Add(Matrix{Data: []float64{1, 2, 4, 0, 3, 1, 5, 2, 2, 7, 1, 4}, Rows: 3, Cols: 4, Stride: 4}, 0); err != nil {
+		t.Fatal(err)
+	}
+	if _, err := b.Add(Matrix{Data: []float64{2, 3, 1, 5, 0, 1, 8, 2, 2, 6, 3, 3, 9, 1, 0}, Rows: 3, Cols: 5, Stride: 5}, 0); err != nil {
+		t.Fatal(err)
+	}
+	type call func() ([]RowResult, error)
+	pairs := [][2]call{
+		{func() ([]RowResult, error) { return TTest1Rows(a, 1, TwoSided, 0.05, 0) },
+			func() ([]RowResult, error) { return TTest1MomentsRows(a, 1, TwoSided, 0.05, 0) }},
+		{func() ([]RowResult, error) { return TTest2Rows(a, b, 0, Less, 0.05, 0) },
+			func() ([]RowResult, error) { return TTest2MomentsRows(a, b, 0, Less, 0.05, 0) }},
+		{func() ([]RowResult, error) { return VarTest1Rows(a, 2, Greater, 0.05, 0) },
+			func() ([]RowResult, error) { return VarTest1MomentsRows(a, 2, Greater, 0.05, 0) }},
+		{func() ([]RowResult, error) { return VarTest2Rows(a, b, 1, TwoSided, 0.05, 0) },
+			func() ([]RowResult, error) { return VarTest2MomentsRows(a, b, 1, TwoSided, 0.05, 0) }},
+	}
+	for k, p := range pairs {
+		old, err1 := p[0]()
+		cur, err2 := p[1]()
+		if err1 != nil || err2 != nil || len(old) != 3 || len(cur) != 3 {
+			t.Fatalf("pair %d: %v %v", k, err1, err2)
+		}
+		for i := range old {
+			if old[i].Err != nil || cur[i].Err != nil || !sameBits(old[i].Result, cur[i].Result) {
+				t.Errorf("pair %d row %d differs", k, i)
+			}
+		}
 	}
 }
