@@ -36,83 +36,154 @@ fn sizes_match_the_library() {
     }
 }
 
-/// The offsets are those of the C compiler on mcstat.h (offsetof, LP64),
-/// for the fields after each change of alignment or union.
-#[cfg(target_pointer_width = "64")]
+/// Every listed field's offset (and the listed structs' sizes) as Rust lays
+/// them out, against the C compiler's offsetof / sizeof on the
+/// repository's mcstat.h: a program compiled and run by this test ($CC, or
+/// cc).  The fields are those after each change of alignment or union; in C
+/// the unions and their structs are anonymous, so a field is its last name.
+macro_rules! layout {
+    ($( $item:tt $( = $c:literal )? ),* $(,)?) => {{
+        let mut v: Vec<(String, String, usize)> = Vec::new();
+        $( layout!(@one v, $item $( = $c )?); )*
+        v
+    }};
+    (@one $v:ident, ($t:ident, $($f:tt)+) = $c:literal) => {
+        $v.push((stringify!($t).to_string(), format!("offsetof({}, {})", stringify!($t), $c), offset!($t, $($f)+)))
+    };
+}
+
+macro_rules! sizes {
+    ($v:ident, $($t:ident),* $(,)?) => {
+        $( $v.push((stringify!($t).to_string(), format!("sizeof({})", stringify!($t)), size_of::<$t>())); )*
+    };
+}
+
+fn c_compiler_layout(exprs: &[String]) -> Vec<usize> {
+    let dir = std::env::temp_dir().join(format!("mcstat-sys-layout-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let src = dir.join("layout.c");
+    let mut c = String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"mcstat.h\"\nint main(void)\n{\n");
+    for e in exprs {
+        c += &format!("    printf(\"%zu\\n\", (size_t){e});\n");
+    }
+    c += "    return 0;\n}\n";
+    std::fs::write(&src, c).unwrap();
+    let include = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../libmcstat/include");
+    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".to_string());
+    let exe = dir.join("layout");
+    let built = std::process::Command::new(&cc)
+        .args(["-std=c11", "-I", include, "-o"])
+        .arg(&exe)
+        .arg(&src)
+        .output()
+        .unwrap_or_else(|e| panic!("the C compiler {cc}: {e}"));
+    assert!(
+        built.status.success(),
+        "{cc} failed on {}:\n{}",
+        src.display(),
+        String::from_utf8_lossy(&built.stderr)
+    );
+    let out = std::process::Command::new(&exe).output().unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    String::from_utf8(out.stdout).unwrap().lines().map(|l| l.parse().unwrap()).collect()
+}
+
 #[test]
-fn offsets_match_the_c_compiler() {
-    assert_eq!(offset!(mcstat_moments, mean), 16);
-    assert_eq!(offset!(mcstat_moments, reserved), 72);
-    assert_eq!(offset!(mcstat_stream, count), 128);
-    assert_eq!(offset!(mcstat_stream, n_nonfinite), 136);
-    assert_eq!(offset!(mcstat_stream, u.s.n_overflow), 144);
-    assert_eq!(offset!(mcstat_stream, buf), 160);
-    assert_eq!(offset!(mcstat_result, ints.s.ks_weight), 20);
-    assert_eq!(offset!(mcstat_result, ints.s.chisq_n_estimated), 28);
-    assert_eq!(offset!(mcstat_result, n), 32);
-    assert_eq!(offset!(mcstat_result, statistic), 48);
-    assert_eq!(offset!(mcstat_result, std_error), 152);
-    assert_eq!(offset!(mcstat_result, per_test.ks.ks_critical_se), 160);
-    assert_eq!(offset!(mcstat_result, per_test.tost.tost_upper), 200);
-    assert_eq!(offset!(mcstat_result, per_test.binom.binom_log_p_value), 176);
-    assert_eq!(offset!(mcstat_result, per_test.chisq.chisq_pool_below), 192);
-    assert_eq!(offset!(mcstat_ks_options, cache), 32);
-    assert_eq!(offset!(mcstat_ks_options, critical), 40);
-    assert_eq!(offset!(mcstat_power_options, n), 16);
-    assert_eq!(offset!(mcstat_power_options, power), 56);
-    assert_eq!(offset!(mcstat_power_options, reserved), 64);
-    assert_eq!(offset!(mcstat_diag_options, k), 8);
-    assert_eq!(offset!(mcstat_diag_options, alpha), 32);
-    assert_eq!(offset!(mcstat_diag_options, tail_threshold), 48);
-    assert_eq!(size_of::<mcstat_diagnostics>(), 200);
-    assert_eq!(offset!(mcstat_diagnostics, heavy_tail), 40);
-    assert_eq!(offset!(mcstat_diagnostics, mean), 48);
-    assert_eq!(offset!(mcstat_diagnostics, tail_index), 96);
-    assert_eq!(offset!(mcstat_diagnostics, t_size), 136);
-    assert_eq!(offset!(mcstat_diagnostics, reserved), 168);
-    assert_eq!(offset!(mcstat_gof_options, min_expected), 16);
-    assert_eq!(offset!(mcstat_gof_options, n_estimated), 24);
-    assert_eq!(size_of::<mcstat_check_model>(), 80);
-    assert_eq!(offset!(mcstat_check_model, user), 16);
-    assert_eq!(offset!(mcstat_check_model, sample), 24);
-    assert_eq!(offset!(mcstat_check_model, eval), 40);
-    assert_eq!(offset!(mcstat_check_model, reserved), 48);
-    assert_eq!(offset!(mcstat_check_options, n_pilot), 24);
-    assert_eq!(offset!(mcstat_check_options, batch), 40);
-    assert_eq!(offset!(mcstat_check_options, rtol), 48);
-    assert_eq!(offset!(mcstat_check_options, reserved), 64);
-    assert_eq!(size_of::<mcstat_check_route_result>(), 152);
-    assert_eq!(offset!(mcstat_check_route_result, statistic), 16);
-    assert_eq!(offset!(mcstat_check_route_result, checked), 72);
-    assert_eq!(offset!(mcstat_check_route_result, r#where), 88);
-    assert_eq!(offset!(mcstat_check_route_result, value), 112);
-    assert_eq!(offset!(mcstat_check_route_result, reserved), 128);
-    assert_eq!(size_of::<mcstat_check_report>(), 1880);
-    assert_eq!(offset!(mcstat_check_report, alpha), 16);
-    assert_eq!(offset!(mcstat_check_report, wi), 32);
-    assert_eq!(offset!(mcstat_check_report, n), 56);
-    assert_eq!(offset!(mcstat_check_report, mass), 112);
-    assert_eq!(offset!(mcstat_check_report, tail_index), 176);
-    assert_eq!(offset!(mcstat_check_report, extra), 192);
-    assert_eq!(offset!(mcstat_check_report, route), 256);
-    assert_eq!(offset!(mcstat_check_report, message), 1624);
-    assert_eq!(offset!(mcstat_result, ints.seq.seq_hold), 24);
-    assert_eq!(offset!(mcstat_result, per_test.seq.seq_looks), 160);
-    assert_eq!(offset!(mcstat_result, per_test.seq.seq_n_gate), 208);
-    assert_eq!(offset!(mcstat_seq_options, alpha), 8);
-    assert_eq!(offset!(mcstat_seq_options, min_n), 48);
-    assert_eq!(size_of::<mcstat_seq>(), 448);
-    assert_eq!(offset!(mcstat_seq, x), 24);
-    assert_eq!(offset!(mcstat_seq, y), 152);
-    assert_eq!(offset!(mcstat_seq, null_value), 280);
-    assert_eq!(offset!(mcstat_seq, min_n), 328);
-    assert_eq!(offset!(mcstat_seq, log_e), 352);
-    assert_eq!(offset!(mcstat_seq, cs), 368);
-    assert_eq!(offset!(mcstat_seq, reserved), 384);
-    assert_eq!(size_of::<mcstat_escalation>(), 32);
-    assert_eq!(offset!(mcstat_escalation, alpha1), 8);
-    assert_eq!(offset!(mcstat_escalation, alpha0), 16);
-    assert_eq!(offset!(mcstat_escalation, c), 24);
+fn layout_matches_the_c_compiler() {
+    let mut v = layout![
+        (mcstat_moments, mean) = "mean",
+        (mcstat_moments, reserved) = "reserved",
+        (mcstat_stream, count) = "count",
+        (mcstat_stream, n_nonfinite) = "n_nonfinite",
+        (mcstat_stream, u.s.n_overflow) = "n_overflow",
+        (mcstat_stream, buf) = "buf",
+        (mcstat_result, ints.s.ks_weight) = "ks_weight",
+        (mcstat_result, ints.s.chisq_n_estimated) = "chisq_n_estimated",
+        (mcstat_result, n) = "n",
+        (mcstat_result, statistic) = "statistic",
+        (mcstat_result, std_error) = "std_error",
+        (mcstat_result, per_test.ks.ks_critical_se) = "ks_critical_se",
+        (mcstat_result, per_test.tost.tost_upper) = "tost_upper",
+        (mcstat_result, per_test.binom.binom_log_p_value) = "binom_log_p_value",
+        (mcstat_result, per_test.chisq.chisq_pool_below) = "chisq_pool_below",
+        (mcstat_ks_options, cache) = "cache",
+        (mcstat_ks_options, critical) = "critical",
+        (mcstat_power_options, n) = "n",
+        (mcstat_power_options, power) = "power",
+        (mcstat_power_options, reserved) = "reserved",
+        (mcstat_diag_options, k) = "k",
+        (mcstat_diag_options, alpha) = "alpha",
+        (mcstat_diag_options, tail_threshold) = "tail_threshold",
+        (mcstat_diagnostics, heavy_tail) = "heavy_tail",
+        (mcstat_diagnostics, mean) = "mean",
+        (mcstat_diagnostics, tail_index) = "tail_index",
+        (mcstat_diagnostics, t_size) = "t_size",
+        (mcstat_diagnostics, reserved) = "reserved",
+        (mcstat_gof_options, min_expected) = "min_expected",
+        (mcstat_gof_options, n_estimated) = "n_estimated",
+        (mcstat_check_model, user) = "user",
+        (mcstat_check_model, sample) = "sample",
+        (mcstat_check_model, eval) = "eval",
+        (mcstat_check_model, reserved) = "reserved",
+        (mcstat_check_options, n_pilot) = "n_pilot",
+        (mcstat_check_options, batch) = "batch",
+        (mcstat_check_options, rtol) = "rtol",
+        (mcstat_check_options, reserved) = "reserved",
+        (mcstat_check_route_result, statistic) = "statistic",
+        (mcstat_check_route_result, checked) = "checked",
+        (mcstat_check_route_result, r#where) = "where",
+        (mcstat_check_route_result, value) = "value",
+        (mcstat_check_route_result, reserved) = "reserved",
+        (mcstat_check_report, alpha) = "alpha",
+        (mcstat_check_report, wi) = "wi",
+        (mcstat_check_report, n) = "n",
+        (mcstat_check_report, mass) = "mass",
+        (mcstat_check_report, tail_index) = "tail_index",
+        (mcstat_check_report, extra) = "reserved", // the anonymous union's first member
+        (mcstat_check_report, route) = "route",
+        (mcstat_check_report, message) = "message",
+        (mcstat_result, ints.seq.seq_hold) = "seq_hold",
+        (mcstat_result, per_test.seq.seq_looks) = "seq_looks",
+        (mcstat_result, per_test.seq.seq_n_gate) = "seq_n_gate",
+        (mcstat_seq_options, alpha) = "alpha",
+        (mcstat_seq_options, min_n) = "min_n",
+        (mcstat_seq, x) = "x",
+        (mcstat_seq, y) = "y",
+        (mcstat_seq, null_value) = "null_value",
+        (mcstat_seq, min_n) = "min_n",
+        (mcstat_seq, log_e) = "log_e",
+        (mcstat_seq, cs) = "cs",
+        (mcstat_seq, reserved) = "reserved",
+        (mcstat_escalation, alpha1) = "alpha1",
+        (mcstat_escalation, alpha0) = "alpha0",
+        (mcstat_escalation, c) = "c",
+        (mcstat_result, ints.eff.eff_batches_y) = "eff_batches_y",
+        (mcstat_result, per_test.eff.eff_se_log_time_y) = "eff_se_log_time_y",
+        (mcstat_check_report, extra.s.zero_weight) = "zero_weight",
+        (mcstat_pixels_in, data) = "data",
+        (mcstat_pixels_in, weights) = "weights",
+        (mcstat_pixels_options, threads) = "threads",
+        (mcstat_pixels_out, p_value) = "p_value",
+        (mcstat_pixels_out, status) = "status",
+        (mcstat_pixels_out, decision) = "decision",
+        (mcstat_pixels_out, n_y) = "n_y",
+    ];
+    sizes!(
+        v, mcstat_moments, mcstat_result, mcstat_stream, mcstat_ks_options, mcstat_power_options,
+        mcstat_diag_options, mcstat_diagnostics, mcstat_gof_options, mcstat_check_model, mcstat_check_options,
+        mcstat_check_route_result, mcstat_check_report, mcstat_seq_options, mcstat_seq, mcstat_escalation,
+        mcstat_pixels_in, mcstat_pixels_options, mcstat_pixels_out
+    );
+    let exprs: Vec<String> = v.iter().map(|e| e.1.clone()).collect();
+    let c = c_compiler_layout(&exprs);
+    assert_eq!(c.len(), v.len());
+    let bad: Vec<String> = v
+        .iter()
+        .zip(&c)
+        .filter(|((_, _, rust), c)| rust != *c)
+        .map(|((_, e, rust), c)| format!("{e}: Rust {rust}, C {c}"))
+        .collect();
+    assert!(bad.is_empty(), "layouts differ: {bad:?}");
 }
 
 /// MAJOR.MINOR.PATCH of the repository's mcstat.h, the one source of
