@@ -292,8 +292,8 @@ func (p Pixels) cIn(n int) (in C.struct_mcstat_pixels_in, free func(), err error
 // two-sample tests; nil for PixelT1 and PixelVar1): libmcstat's
 // mcstat_pixels_test.  Each pixel's results are the single call's on its
 // values (bit for bit but for Welch's and the variance tests, within the
-// bounds of mcstat.h).  threads (1..64) splits the pixels into contiguous
-// ranges, one per thread; results do not depend on it.  The values are
+// bounds of mcstat.h).  threads (1..64) threads take the pixels by chunks
+// in turn; results do not depend on it.  The values are
 // copied into C memory for the call.  The error is the first failing
 // pixel's (its status is in Status); bad arguments give nil results.
 func PixelsTest(test PixelTest, x Pixels, y *Pixels, pixels int, nullValue float64, alt Alternative, alpha float64,

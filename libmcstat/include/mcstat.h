@@ -322,7 +322,7 @@ MCSTAT_API int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t s
 /* mcstat_stream_add (inline, below) stores the value and bumps a counter;   */
 /* when the buffer is full it is flushed into the moments with               */
 /* mcstat_moments_add_array, so the moments are exactly what add_array      */
-/* gives on the same values (about 0.5 ns per value; bench/RESULTS_check.md)*/
+/* gives on the same values (O(1) per value; bench/RESULTS_check.md).      */
 /* No allocation, no lock, no global state: one stream per thread, merged   */
 /* (mcstat_stream_merge) by one thread at the end of a frame, then checked. */
 /* NaN and +-Inf values are not added: they are counted in n_nonfinite, and */
@@ -685,13 +685,13 @@ MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_m
 /* referred to a t on Satterthwaite's df (k - 1 per time part, 2/Var per     */
 /* variance part). Assumptions: independent samples and batches, finite      */
 /* fourth moments; asymptotic in the samples and the batches.                */
-/* Rejection rates under H0 measured at alpha = 0.05, two-sided, 2000        */
-/* replications each (tests/c/test_efficiency.c; two seeds): exponential     */
-/* data, n = 1000, 10 batches at 10% noise 0.063 and 0.061, 5 batches at 30% */
-/* 0.051 and 0.053; 99%-zero data with ~500 non-zero values per sample 0.064 */
-/* and 0.068; with ~20 non-zero 0.088 and 0.10 (the sample kurtosis then     */
-/* underestimates the tail): a claim needs hundreds of non-zero samples, and */
-/* a p-value near alpha is weaker evidence than it reads.                    */
+/* Calibration (tests/c/test_efficiency.c holds it to binomial bounds): the */
+/* rejection rate under H0 is alpha for exponential data (n = 1000, 5 or 10  */
+/* timed batches) and for 99%-zero data with ~500 non-zero values per        */
+/* sample; with ~20 non-zero values the sample kurtosis underestimates the   */
+/* tail and the rate is up to twice alpha: a claim needs hundreds of         */
+/* non-zero samples, and a p-value near alpha is weaker evidence than it     */
+/* reads.                                                                    */
 /* Result: test MCSTAT_TEST_EFFICIENCY, method MCSTAT_METHOD_ASYMPTOTIC;     */
 /* statistic and critical values on the t scale, df[0]; conf_int the         */
 /* interval for rho (exp of the log interval; 0 and +Inf the open ends);     */
@@ -742,8 +742,8 @@ MCSTAT_API int mcstat_efficiency_test(const mcstat_moments *x, const mcstat_mome
 /*              p = (1 + #{D* >= D})/(n_sim + 1), p_value_se its Monte Carlo */
 /*              standard error sqrt(p(1-p)/n_sim); bit-identical for any     */
 /*              number of threads and with or without AVX2 (8 replicates    */
-/*              per AVX2 kernel step: ~0.55 us per replicate at 1000 + 1000 */
-/*              on 2 threads); optionally cached (mcstat_ks_cache).          */
+/*              per AVX2 kernel step; O(N) per replicate, costs in          */
+/*              bench/RESULTS_ks.md); optionally cached (mcstat_ks_cache).   */
 /*   ASYMPTOTIC weight NONE only: Kolmogorov's limit at sqrt(ne) D (ne =    */
 /*              nx ny/N), one-sided exp(-2 ne D^2); conservative, p within  */
 /*              2% at 300+300 and beyond (bench/RESULTS_ks.md; Stephens'     */
@@ -772,11 +772,10 @@ enum mcstat_ks_weight {
 /* Size limits of the exact method, in lattice cells (min(nx,ny)+1)(nx+ny+1).
  * The recursion only visits the band of points that the threshold has not
  * absorbed and whose probability is above 2^-1000, O(sqrt(N)) wide, so its
- * time grows like N^1.5: 0.16 ms for a Canner p-value at 1000 + 1000, 0.8 ms
- * at 4000 + 4000; the critical value (a search) costs 10-40 p-values
- * (bench/RESULTS_ks.md). */
+ * time grows like N^1.5; the critical value (a search) costs 10-40
+ * p-values (figures: bench/RESULTS_ks.md). */
 #define MCSTAT_KS_EXACT_MAX_WORK 2e11  /* ~3.2e5 + 3.2e5, seconds: beyond, MCSTAT_ETOOBIG */
-#define MCSTAT_KS_AUTO_EXACT_WORK 1.6e7 /* ~2800 + 2800: p-value ~0.5 ms, critical value ~20 ms */
+#define MCSTAT_KS_AUTO_EXACT_WORK 1.6e7 /* ~2800 + 2800 (costs: bench/RESULTS_ks.md) */
 #define MCSTAT_KS_DEFAULT_N_SIM 10000
 
 /* A cache of simulated null distributions, owned by the caller and shared by
@@ -989,9 +988,10 @@ MCSTAT_API int mcstat_pixels_out_init_size(mcstat_pixels_out *out, size_t size);
  * allocated every pixel takes the single call's code, with the same
  * results, slower); the single call's code takes a buffer of n values a
  * thread (MCSTAT_ENOMEM for the pixels of a thread that could not have
- * it).  opt->threads > 1 splits the
- * pixels into that many contiguous ranges, one per thread (at least 4096
- * pixels each); the first runs on the caller's thread.  On x86-64 the
+ * it).  opt->threads > 1 runs that many threads (at most one per 4096
+ * pixels), the first the caller's, which take the pixels by chunks in
+ * turn, so that a core the machine slows down holds up no more than its
+ * last chunk.  On x86-64 the
  * block loops run as AVX2 code where the CPU has it (bit for bit the
  * results of the SSE2 code); MCSTAT_NO_AVX2=1 in the environment when the
  * library first runs them keeps them to SSE2 (for tools that do not decode
@@ -1589,8 +1589,7 @@ MCSTAT_API int mcstat_gof_chisq_test(const double *observed, const double *expec
 /* Statuses: MCSTAT_EINVAL (out NULL, bad enum, alpha outside (0,1), p      */
 /* outside [0,1] or NaN, x > n), MCSTAT_ETOOFEW (n == 0), MCSTAT_ETOOBIG     */
 /* (n > 2^53), MCSTAT_ENUMERIC.  Cost: O(log^2 n) incomplete-beta and       */
-/* density evaluations (the critical counts are bisections): measured       */
-/* 0.02 ms at n = 1e3, 0.1-0.8 ms at n = 1e9 (through Python).              */
+/* density evaluations (the critical counts are bisections).                */
 /* ------------------------------------------------------------------------ */
 MCSTAT_API int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha,
                                  mcstat_result *out);
@@ -1918,8 +1917,8 @@ typedef struct mcstat_check_report {
 /*                         sample_reports).                                  */
 /* Cost: the callbacks are called about n + n_pilot times for samples,      */
 /* n + n_eval times each for eval and pdf, and pdf 17 times per cubature    */
-/* rectangle (2 to 40 per cell); the check's own work is about 300 ns per   */
-/* sample (bench/RESULTS.md).                                                */
+/* rectangle (2 to 40 per cell); the check's own work is O(1) per sample   */
+/* besides sorting for KS (figures: bench/RESULTS.md).                      */
 /* Statuses: MCSTAT_EINVAL (NULL model, callbacks or out, a bad domain,      */
 /* n_uniforms or weight, a BSDF or emitter without eval or with             */
 /* sample_reports 0, n < 1000, alpha outside (0, 1), an options size        */
@@ -2168,9 +2167,8 @@ MCSTAT_API int mcstat_t_quantile(double p, double df, int upper, double *x);
 /* differ (critical values or detectable differences per pixel): for p in   */
 /* [1e-100, 1/4] a per-call table of quantiles in 1/df (denser as p is     */
 /* smaller: 1024 to 65536 nodes), interpolated where that is good to        */
-/* rounding and finished by Halley's method elsewhere (14 ns a value        */
-/* against 330-430 ns a single call at df in [7, 14] and p from 0.025 to    */
-/* 1e-12, one x86-64 core).                                                 */
+/* rounding and finished by Halley's method elsewhere: O(1) a value, far   */
+/* below a single call's solve (figures: bench/RESULTS.md).                 */
 /* Where an element fails (df NaN or not positive) x[i] is NaN and the      */
 /* others are still computed; the status is that of the first failing      */
 /* element, MCSTAT_OK if none.                                              */

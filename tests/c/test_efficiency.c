@@ -197,7 +197,7 @@ static int rejections(int kind, size_t n, size_t k, double noise, double var_rat
 
 static void test_calibration(void)
 {
-    rng_state = 20261203; /* the rates mcstat.h quotes, whatever ran before */
+    rng_state = 20261203; /* a fixed seed, whatever ran before: the rates are the same every run */
     const int reps = (int)h_scaled(2000, 200);
     /* 2000 tests at alpha = 0.05: mean 100, sd 9.7; 3.5 sd either side */
     const double mean = 0.05 * reps, sd = sqrt(reps * 0.05 * 0.95);
@@ -218,10 +218,13 @@ static void test_calibration(void)
         printf("H0, %s: %d / %d rejected (%.4f)\n", c[i].what, rej, reps, (double)rej / reps);
         CHECK_MSG(rej >= lo && rej <= hi, "%s: %d rejections of %d, want [%d, %d]", c[i].what, rej, reps, lo, hi);
     }
-    /* few non-zero values: the sample kurtosis is too small; measured, not a promise */
+    /* few non-zero values: the sample kurtosis is too small, the test
+     * anti-conservative; mcstat.h promises at most twice alpha */
     int rej = rejections(MOSTLY_ZERO, 2000, 10, 0.1, 1.0, MCSTAT_TWO_SIDED, reps, v);
-    printf("H0, 99%% zeros, n = 2000 (~20 non-zero): %d / %d rejected (%.4f), not within alpha's bounds\n", rej,
-           reps, (double)rej / reps);
+    printf("H0, 99%% zeros, n = 2000 (~20 non-zero): %d / %d rejected (%.4f), at most 2 alpha\n", rej, reps,
+           (double)rej / reps);
+    const int hi2 = (int)ceil(0.1 * reps + 3.5 * sqrt(reps * 0.1 * 0.9));
+    CHECK_MSG(rej <= hi2, "~20 non-zero: %d rejections of %d, above twice alpha's bound %d", rej, reps, hi2);
     /* one-sided: half the two-sided level in each direction */
     rej = rejections(EXPONENTIAL, 1000, 10, 0.1, 1.0, MCSTAT_GREATER, reps, v);
     printf("H0 greater, exponential, n = 1000: %d / %d rejected\n", rej, reps);

@@ -671,8 +671,8 @@ pub struct PixelTestResults {
 /// tests; `None` for `T1` and `Var1`), libmcstat's `mcstat_pixels_test`:
 /// each pixel's results are the single call's on its values (bit for bit
 /// but for Welch's and the variance tests, within the bounds of mcstat.h).
-/// `threads` (1..64) splits the pixels into contiguous ranges, one per
-/// thread; results do not depend on it.  `Err` only for bad arguments
+/// `threads` (1..64) threads take the pixels by chunks in turn; results do
+/// not depend on it.  `Err` only for bad arguments
 /// (slices too short for the strides, weights that do not match the
 /// channels, the arguments mcstat_pixels_test refuses); a pixel's failure
 /// is its `status`.
