@@ -65,15 +65,15 @@ pytest: python
 # The binary wheel as another Linux machine gets it: built from the same
 # CMake directory as make python, repaired by auditwheel (GSL and libRmath
 # bundled, a manylinux tag), installed with its extras into a bare venv and
-# run there with LD_LIBRARY_PATH empty (tests/wheel/test_wheel.sh).  About
-# 45 s after make pytest on 2 cores (pip's cache warm; no recompilation).
+# run there with LD_LIBRARY_PATH empty (tests/wheel/test_wheel.sh).  Each
+# step's cost: bench/RESULTS_gate.md.
 wheel-test: python
 	JOBS=$(JOBS) tests/wheel/test_wheel.sh $(BUILD) $(PY)
 
 # The sdist builds a wheel as pip builds it on a user's machine (isolated,
 # from a read-only unpacked tree) with the files of the checkout's wheel
-# (tests/wheel/test_sdist.sh): a full build, 3.7 min measured at load ~5 on
-# 2 cores without ccache.
+# (tests/wheel/test_sdist.sh): a full build without ccache, the longest
+# build of make test.
 sdist-test: python-deps
 	JOBS=$(JOBS) tests/wheel/test_sdist.sh $(BUILD) $(PY)
 
@@ -88,7 +88,7 @@ install-test: build
 
 # mcstat vendored into a parent project by add_subdirectory and by FetchContent
 # (tests/vendor): libraries only, no tests or install rules of its own, the
-# parent's build type untouched.  About 20 s on 2 cores with a warm ccache.
+# parent's build type untouched.
 vendor-test:
 	tests/vendor/test_vendor.sh $(BUILD)
 
@@ -188,8 +188,7 @@ docs-go: go-deps
 # The shared library built with debug information (Release flags plus -g) in
 # $(BUILD)-abi, its ABI compared by abidiff with the baseline of the first
 # release of this SOVERSION (libmcstat/abi/README.md; MCSTAT_SOVERSION in
-# mcstat.h names the file): any change other than an addition fails.  About
-# 20 s on 2 cores.
+# mcstat.h names the file): any change other than an addition fails.
 MCSTAT_SOVERSION := $(shell sed -n 's/^\#define MCSTAT_SOVERSION \([0-9]*\)$$/\1/p' libmcstat/include/mcstat.h)
 ABI_BASELINE := libmcstat/abi/libmcstat.so.$(MCSTAT_SOVERSION).abi
 abi-check:
@@ -206,9 +205,8 @@ abi-check:
 # valgrind-test: memcheck over every ctest test of the normal build
 #   (tests/valgrind/memcheck.py); errors and definite leaks fail.
 # SAN_SIZE shrinks the slowest tests under these runs (they do the same work
-# on smaller sizes; see each test's header).  Measured on 2 shared cores
-# (load ~3.5), sanitizer builds included: asan-test 60 s, tsan-test 17 s,
-# valgrind-test 124 s (over the existing build/): 3.4 min more for make test.
+# on smaller sizes; see each test's header).  Their costs, sanitizer builds
+# included: bench/RESULTS_gate.md.
 SAN_SIZE := MCSTAT_TEST_SCALE=20 MCSTAT_TEST_THREADS=3 MCSTAT_TEST_THREADS_REPS=1
 SAN_CMAKE := -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMCSTAT_BUILD_EXAMPLES=ON
 ASAN_ENV := ASAN_OPTIONS=halt_on_error=1:abort_on_error=0:detect_leaks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1 \
@@ -247,11 +245,10 @@ valgrind-test: build
 #       LD_PRELOAD; test_fpenv checks that the mode is really on).
 # SAN_SIZE shrinks test_bad_input and test_threads as for the sanitizers; left
 # out, as from valgrind-test, libmcest's statistical tests (test_brdf,
-# test_radiance, test_sampler_gof: 1.5 min on 2 cores at full size, which
-# their assertions need; nothing in them depends on long double, and they
-# passed under FTZ/DAZ when this target was written).  Measured on 2 shared
-# cores: 42 s with a warm ccache, 1.4 min at load ~10; building build-ld64
-# without ccache adds about 30 s.
+# test_radiance, test_sampler_gof: minutes at the full size their
+# assertions need; nothing in them depends on long double, and they passed
+# under FTZ/DAZ when this target was written).  Its cost:
+# bench/RESULTS_gate.md.
 PORT_EXCLUDE := test_brdf|test_radiance|test_sampler_gof
 portability-test: build
 	@if [ "$$(uname -m)" = x86_64 ]; then \

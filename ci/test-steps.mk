@@ -14,7 +14,7 @@ TEST_STEPS += pytest
 # bundled), installed into a bare venv with its extras and run (tests/wheel)
 TEST_STEPS += wheel-test
 # the sdist builds, isolated and read-only, the checkout's wheel (tests/wheel;
-# a full build without ccache: 3.7 min measured at load ~5 on 2 cores)
+# a full build without ccache; each step's cost: bench/RESULTS_gate.md)
 TEST_STEPS += sdist-test
 # cmake --install into build/stage, and CMake and pkg-config consumers of it,
 # shared and static (tests/install)
