@@ -18,7 +18,7 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
 .PHONY: docs docs-c docs-python docs-rust docs-go binding-coverage
-.PHONY: all deps python-deps build test ctest python pytest wheel-test sdist-test install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps python-deps build test ctest python pytest wheel-test sdist-test install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test quickstart-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -117,6 +117,12 @@ rust-test: install-test rust-deps
 go-test: install-test go-deps
 	cd bindings/go && PATH="$(TOOL_PATH)" PKG_CONFIG_PATH=$(STAGE_PC) \
 	  go test -count=1 -v .
+
+# The README's quickstarts (C, C++, Python, Rust, Go), built and run as a
+# new user would, against the staged install (tests/quickstart).
+quickstart-test: install-test python rust-deps go-deps
+	PATH="$(TOOL_PATH)" python3 tests/quickstart/run_quickstarts.py --stage $(STAGE) \
+	  --python $(PY) --cargo-target-dir $(BUILD)/quickstart-cargo
 
 # Mitsuba 3 from PyPI (examples/mitsuba/requirements.txt).  Only when pip
 # cannot install the wheel do the tests skip, and they say pip's reason.

@@ -25,6 +25,8 @@ TEST_STEPS += vendor-test
 TEST_STEPS += ctypes-test
 # the Rust and Go bindings against the installed library (bindings/rust, bindings/go)
 TEST_STEPS += rust-test go-test
+# the README's quickstarts, built and run as a new user would (tests/quickstart)
+TEST_STEPS += quickstart-test
 # a real renderer, Mitsuba 3 from PyPI (examples/mitsuba)
 TEST_STEPS += mitsuba-test
 # the shared library's ABI against the baseline of its SOVERSION (libmcstat/abi)

@@ -95,3 +95,13 @@ def test_listed_names_exist_in_the_sources():
     blob = "\n".join(text)
     missing = sorted(n for n in NOT_API if n != "mcstat_name" and not re.search(r"\b" + n + r"\b", blob))
     assert not missing, f"listed in NOT_API but in no source: {missing}"
+
+
+def test_readme_is_a_front_page():
+    """The README says what mcstat is, how to install it and the quickstarts;
+    the reference is in docs/ (a guide per concern), which it links."""
+    readme = (ROOT / "README.md").read_text()
+    assert len(readme.splitlines()) <= 300, "README.md over 300 lines: move the detail into docs/"
+    for guide in sorted((ROOT / "docs").glob("*.md")):
+        if guide.name != "README.md":
+            assert guide.name in (ROOT / "docs" / "README.md").read_text(), f"docs/README.md does not list {guide.name}"

@@ -1,4 +1,4 @@
-"""README.md's Python examples type-check (mypy --strict, pyright --strict
+"""The Python examples of README.md and docs/*.md type-check (mypy --strict, pyright --strict
 but for unused expressions and imports) against the installed package, and the self-contained
 ones run; typing_prelude/check_overloads.py pins the result types of the
 overloaded calls (assert_type) under both checkers.
@@ -23,8 +23,14 @@ ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 
 
 def readme_blocks():
-    with open(os.path.join(ROOT, "README.md"), encoding="utf-8") as f:
-        return re.findall(r"^```python\n(.*?)^```", f.read(), flags=re.S | re.M)
+    """(document, block) for each ```python block of the README and the guides"""
+    docs = os.path.join(ROOT, "docs")
+    paths = ["README.md"] + sorted(os.path.join("docs", f) for f in os.listdir(docs) if f.endswith(".md"))
+    out = []
+    for rel in paths:
+        with open(os.path.join(ROOT, rel), encoding="utf-8") as f:
+            out += [(rel, b) for b in re.findall(r"^```python\n(.*?)^```", f.read(), flags=re.S | re.M)]
+    return out
 
 
 def test_readme_has_python_examples():
@@ -40,7 +46,7 @@ def examples(tmp_path_factory):
     prelude = ast.parse((d / "readme_names.pyi").read_text())
     given = {t.target.id for t in prelude.body if isinstance(t, ast.AnnAssign) and isinstance(t.target, ast.Name)}
     given.add("mcstat")
-    for i, block in enumerate(readme_blocks(), 1):
+    for i, (_, block) in enumerate(readme_blocks(), 1):
         tree = ast.parse(block)
         stored = {n.id for n in ast.walk(tree) if isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store)}
         stored |= {(a.asname or a.name).split(".")[0] for n in ast.walk(tree)
@@ -101,13 +107,13 @@ def test_readme_examples_run(examples):
     }
     blocks = readme_blocks()
     ran = 0
-    for i, block in enumerate(blocks, 1):
+    for i, (doc, block) in enumerate(blocks, 1):
         if "check_bsdf" in block or "MomentsArray((1080, 1920))" in block:
             continue
         if "img" in block:  # block 1's per-pixel lines need a full image; run the rest of it
             block = "\n".join(line for line in block.splitlines() if "img" not in line and "b." not in line
                               and "b[" not in line)
         ns = dict(data, mcstat=mcstat)
-        exec(compile(block, f"README.md python block {i}", "exec"), ns)
+        exec(compile(block, f"{doc} python block {i}", "exec"), ns)
         ran += 1
     assert ran >= 4
