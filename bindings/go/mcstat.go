@@ -103,7 +103,7 @@ var (
 	ErrBufferSize      = newError(C.MCSTAT_EBUFSIZE)
 	ErrCorrupt         = newError(C.MCSTAT_ECORRUPT)
 	ErrTooBig          = newError(C.MCSTAT_ETOOBIG)
-	ErrCallback        = newError(C.MCSTAT_ECALLBACK) // a renderer check's callback failed (mcstat.h section 10)
+	ErrCallback        = newError(C.MCSTAT_ECALLBACK) // a renderer check's callback failed (mcstat.h section "Renderer checks")
 	// ErrHeavyTail: a sequential test ended with its kurtosis gate closed
 	// (Sequential.Finish returns it as a *HeavyTailError).
 	ErrHeavyTail = newError(C.MCSTAT_EHEAVYTAIL)

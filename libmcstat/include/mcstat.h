@@ -90,7 +90,7 @@ extern "C" {
 #else
 #  define MCSTAT_API
 #endif
-/* MCSTAT_DEPRECATED marks a name this release replaced (section 13): it
+/* MCSTAT_DEPRECATED marks a name this release replaced (section "Deprecated names"): it
  * still links and gives the same results, and the compiler names the
  * replacement.  Define MCSTAT_DISABLE_DEPRECATE_WARNINGS before including
  * this header to silence the warnings. */
@@ -147,9 +147,9 @@ enum mcstat_status {
     MCSTAT_ETOOBIG = 9,     /* the sizes are too large for the requested method (e.g. an exact
                                K-S p-value whose lattice would not fit): choose another method;
                                also an observation count that would pass 2^64 - 1 */
-    MCSTAT_ECALLBACK = 10,  /* a caller's callback failed or returned invalid values (section 10) */
+    MCSTAT_ECALLBACK = 10,  /* a caller's callback failed or returned invalid values (section "Renderer checks") */
     MCSTAT_EHEAVYTAIL = 11  /* the data's tails are too heavy for the method within the samples
-                               seen (section 10b: a sequential test never allowed to decide) */
+                               seen (section "Sequential, anytime-valid tests": a sequential test never allowed to decide) */
 };
 
 /* A sentence describing status (static storage; never NULL). */
@@ -172,8 +172,8 @@ MCSTAT_API int mcstat_alternative_parse(const char *name, int *alternative);
 /* "two-sided", "less", "greater", or NULL for an invalid value. */
 MCSTAT_API const char *mcstat_alternative_name(int alternative);
 
-/* Every test writes an mcstat_result (section 3); the stream checks of
- * section 2 do too. */
+/* Every test writes an mcstat_result ("The tests and their result"); the stream checks of
+ * "Accumulators" do too. */
 typedef struct mcstat_result mcstat_result;
 
 /* ======================================================================== */
@@ -429,7 +429,7 @@ enum mcstat_test {
     MCSTAT_TEST_T_2_POOLED = 10, /* Student's two-sample t, pooled variance */
     MCSTAT_TEST_T_PAIRED = 11,   /* paired t (one-sample t on the differences) */
     MCSTAT_TEST_EFFICIENCY = 12, /* ratio of two estimators' efficiencies, mcstat_efficiency_test */
-    MCSTAT_TEST_SEQ_MEAN_1 = 13, /* sequential (anytime-valid) tests, section 10b */
+    MCSTAT_TEST_SEQ_MEAN_1 = 13, /* sequential (anytime-valid) tests, section "Sequential, anytime-valid tests" */
     MCSTAT_TEST_SEQ_MEAN_2 = 14,
     MCSTAT_TEST_SEQ_VAR_1 = 15,
     MCSTAT_TEST_SEQ_VAR_2 = 16
@@ -507,7 +507,7 @@ struct mcstat_result {
             double chisq_min_expected; /* smallest expected count after pooling */
             double chisq_pool_below;   /* min_expected, 0 when pooling was off */
         };
-        struct {                       /* SEQ_* (section 10b) */
+        struct {                       /* SEQ_* (section "Sequential, anytime-valid tests") */
             double seq_looks;          /* pushes so far */
             double seq_n_decided;      /* n (of x) at the look that decided; 0 while continuing */
             double seq_log_e;          /* log of the e-value (test martingale) at the last look */
@@ -792,7 +792,7 @@ MCSTAT_API void mcstat_ks_cache_free(mcstat_ks_cache *cache);
 MCSTAT_API int mcstat_ks_cache_stats(const mcstat_ks_cache *cache, uint64_t *hits,
                                      uint64_t *misses, uint64_t *entries);
 
-/* Options; grows by appending fields (section 1, compatibility), so
+/* Options; grows by appending fields ("Conventions", compatibility), so
  * always start from the initialiser. */
 typedef struct mcstat_ks_options {
     uint32_t size;          /* sizeof(mcstat_ks_options): set by the initialiser */
@@ -840,7 +840,7 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
 
 /* ======================================================================== */
 /* 4. Per-pixel tests.                                                      */
-/* The tests of section 3 once per pixel of an image stack:                 */
+/* The tests of "The tests and their result" once per pixel of a stack:    */
 /* mcstat_pixels_test takes any layout (seeds-major stacks as renderers     */
 /* write them, or rows of values per pixel), float32 or double, channels    */
 /* weighted into one value, and writes arrays; the _matrix calls take rows  */
@@ -871,7 +871,7 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
 /* channels]) is value_stride = height * width * channels, pixel_stride =   */
 /* channels; rows of values per pixel (height, width, seeds) are            */
 /* value_stride = 1, pixel_stride = seeds.                                  */
-/* The input grows by appending fields (section 1): start from              */
+/* The input grows by appending fields ("Conventions"): start from          */
 /* MCSTAT_PIXELS_IN_INIT, which sets size.                                   */
 /* ------------------------------------------------------------------------ */
 enum mcstat_value_type {
@@ -892,7 +892,7 @@ typedef struct mcstat_pixels_in {
 
 #define MCSTAT_PIXELS_IN_INIT {sizeof(mcstat_pixels_in), MCSTAT_VALUE_FLOAT64, NULL, 0, 0, 0, 1, NULL}
 
-/* Options of mcstat_pixels_test; grows by appending fields (section 1):
+/* Options of mcstat_pixels_test; grows by appending fields ("Conventions"):
  * start from MCSTAT_PIXELS_OPTIONS_INIT. */
 typedef struct mcstat_pixels_options {
     uint32_t size;    /* sizeof(mcstat_pixels_options): set by the initialiser */
@@ -907,7 +907,7 @@ typedef struct mcstat_pixels_options {
 
 /* Per-pixel results: arrays of the caller's, indexed by pixel (element i is
  * pixel i, whatever range was asked for); any may be NULL, and only what is
- * not NULL is computed and written.  Grows by appending fields (section 1):
+ * not NULL is computed and written.  Grows by appending fields ("Conventions"):
  * start from MCSTAT_PIXELS_OUT_INIT (size set, every array NULL). */
 typedef struct mcstat_pixels_out {
     uint32_t size;       /* sizeof(mcstat_pixels_out): set by the initialiser */
@@ -1019,8 +1019,9 @@ MCSTAT_API int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_se
 /* contiguous values; row i of y pairs with row i of x.  Arguments in one    */
 /* order: each matrix as (data, n, stride), then the number of rows (0.1.0's */
 /* *_rows names put rows second in the one-sample calls, seventh in the     */
-/* two-sample ones: section 13).  out[i] receives row i's result, bit for   */
-/* bit the single call on that row, and status[i] (may be NULL) its status; */
+/* two-sample ones: section "Deprecated names").  out[i] receives row i's   */
+/* result, bit for bit the single call on that row, and status[i] (may be   */
+/* NULL) its status;                                                        */
 /* a row that fails gets NaN fields and the other rows are still computed.  */
 /* Critical values are solved once for rows of equal degrees of freedom.    */
 /* flags: MCSTAT_ROWS_*.  Returns MCSTAT_OK when every row succeeded, else  */
@@ -1190,7 +1191,7 @@ MCSTAT_API int mcstat_escalation_decide(const mcstat_escalation *design, double 
 /* ======================================================================== */
 /* 6. Equivalence.                                                          */
 /* Not "is it different?" but "is the difference below eps?": the TOST      */
-/* fills an mcstat_result like the tests of section 3.                      */
+/* fills an mcstat_result like those of "The tests and their result".       */
 /* ======================================================================== */
 
 /* ------------------------------------------------------------------------ */
@@ -1239,14 +1240,14 @@ MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const 
                                                  mcstat_result *out);
 
 /* ======================================================================== */
-/* EXPERIMENTAL: sections 7-10 (power, diagnostics, fit, renderer checks). */
+/* EXPERIMENTAL: the sections "Power and sample size" to "Renderer checks" */
 /* The newest families: tested and held to the ABI like the rest, but       */
 /* their names and options may change before 1.0 (a renamed function        */
-/* stays one release as a deprecated alias, as in section 13).              */
+/* stays one release as a deprecated alias, as in "Deprecated names").     */
 /* ======================================================================== */
 /* Compiled in by default.  A program that wants to be sure it uses no
  * experimental name defines MCSTAT_NO_EXPERIMENTAL before including this
- * header: sections 7-10 (and the deprecated names of their families) are
+ * header: the experimental sections (and the deprecated names of their families) are
  * then left out, and any use is a compile error.  The library exports them
  * either way. */
 #ifndef MCSTAT_NO_EXPERIMENTAL
@@ -1309,7 +1310,7 @@ enum mcstat_power_unknown {
     MCSTAT_POWER_SOLVE_N_EXACT = 4
 };
 
-/* Grows by appending fields (section 1, compatibility): always start
+/* Grows by appending fields ("Conventions", compatibility): always start
  * from the initialiser (n, effect and power start at 0: unset, invalid
  * until given). */
 typedef struct mcstat_power_options {
@@ -1398,7 +1399,7 @@ MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, siz
 /* ------------------------------------------------------------------------ */
 #define MCSTAT_DIAG_DEFAULT_M 30u /* batch means when neither k nor m is given */
 
-/* Options; grows by appending fields (section 1, compatibility), so
+/* Options; grows by appending fields ("Conventions", compatibility), so
  * always start from the initialiser. */
 typedef struct mcstat_diag_options {
     uint32_t size;         /* sizeof(mcstat_diag_options): set by the initialiser */
@@ -1532,7 +1533,7 @@ enum mcstat_gof_expected {
 
 #define MCSTAT_GOF_DEFAULT_MIN_EXPECTED 5.0
 
-/* Options; grows by appending fields (section 1, compatibility), so
+/* Options; grows by appending fields ("Conventions", compatibility), so
  * always start from the initialiser. */
 /* (The struct keeps 0.1.0's tag, mcstat_chisq_options, for the ABI.) */
 typedef struct mcstat_chisq_options {
@@ -1779,8 +1780,8 @@ enum mcstat_check_state {
 };
 
 /* ------------------------------------------------------------------------ */
-/* Options; grows by appending fields (section 1), so always start from the  */
-/* initialiser.                                                              */
+/* Options; grows by appending fields ("Conventions"), so always start     */
+/* from the initialiser.                                                    */
 /* ------------------------------------------------------------------------ */
 typedef struct mcstat_check_options {
     uint32_t size;         /* sizeof(mcstat_check_options): set by the initialiser */
@@ -2039,7 +2040,7 @@ enum mcstat_seq_kind {
 #define MCSTAT_SEQ_HOLD_DEGENERATE 2u /* a sample has no spread yet (M2 == 0) */
 #define MCSTAT_SEQ_HOLD_KURTOSIS 4u   /* n < kurtosis_gate * b2 (b2^2 for VAR_*) (a sample) */
 
-/* Grows by appending fields (section 1, compatibility). */
+/* Grows by appending fields ("Conventions", compatibility). */
 typedef struct mcstat_seq_options {
     uint32_t size;         /* sizeof(mcstat_seq_options): set by the initialiser */
     int32_t alternative;   /* enum mcstat_alternative; default TWO_SIDED */

@@ -34,7 +34,7 @@
  * that frame alone; tested again every frame, a fixed-n test raises false
  * alarms far more often than alpha.  The sequential check instead keeps an
  * anytime-valid test of the mean over every frame so far (an mcstat_seq,
- * 448 bytes of plain data, mcstat.h section 10b): it may be looked at after
+ * 448 bytes of plain data, mcstat.h section "Sequential, anytime-valid tests"): it may be looked at after
  * every frame, its false-alarm rate over the whole run stays at most alpha,
  * and it reports as soon as a bias is certain:
  *
@@ -74,7 +74,7 @@
  * data that allowed a decision, it evaluates to 0: no bias was found (none
  * larger than the sequence's width, mcstat_seq_result's conf_int).
  *
- * The sequential mode uses mcstat.h's experimental section 10b: with
+ * The sequential mode uses mcstat.h's experimental section "Sequential, anytime-valid tests": with
  * MCSTAT_NO_EXPERIMENTAL and checks on, its macros are not defined.
  *
  * The functions behind the macros (mcstat_stream_*, mcstat_seq_*) are in
@@ -151,7 +151,7 @@ static inline int mcstat_check_var_at_(const mcstat_stream *s, double bound, dou
     return 1;
 }
 
-/* ---- the sequential mode (mcstat.h section 10b: experimental, gone
+/* ---- the sequential mode (mcstat.h section "Sequential, anytime-valid tests": experimental, gone
  * with MCSTAT_NO_EXPERIMENTAL) ---- */
 #ifndef MCSTAT_NO_EXPERIMENTAL
 

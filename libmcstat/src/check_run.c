@@ -1,7 +1,7 @@
 /*
  * check_run.c - the renderer checks: drive the caller's sample, pdf and eval
  * callbacks, validate what they return, and run the routes of mcstat.h's
- * section 10 on it.
+ * section "Renderer checks" on it.
  *
  * The order of a check:
  *   1. pilot: n_pilot samples (stream 1) give the cells (check_cells.c);

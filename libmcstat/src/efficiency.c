@@ -32,7 +32,7 @@
 #include <float.h>
 
 /* Above this the t is the normal to the last digit; the distributions'
- * promised range ends at 1e15 (mcstat.h, section 11). */
+ * promised range ends at 1e15 (mcstat.h, section "Distributions"). */
 #define DF_MAX 1e15
 
 /* log s^2 and the delta method's Var(log s^2) of an accumulator that passed

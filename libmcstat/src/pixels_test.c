@@ -1,6 +1,6 @@
 /*
  * pixels_test.c - mcstat_pixels_test: one test per pixel of an image stack
- * (mcstat.h, section 4), its structs' sizes and initialisers, and the 0.2
+ * (mcstat.h, section "Per-pixel tests"), its structs' sizes and initialisers, and the 0.2
  * seeds-major Welch calls on top of it.
  *
  * The arguments are checked here, once; the pixels are then split into

@@ -1,5 +1,5 @@
 /*
- * sequential.c - anytime-valid sequential tests (mcstat.h, section 10b):
+ * sequential.c - anytime-valid sequential tests (mcstat.h, section "Sequential, anytime-valid tests"):
  * the asymptotic Gaussian-mixture confidence sequence on a working
  * parameter, with the hold that keeps small heavy-tailed samples from
  * deciding.

@@ -1,5 +1,5 @@
 /*
- * test_sequential.c - the sequential tests of section 10b: every look of
+ * test_sequential.c - the sequential tests of section "Sequential, anytime-valid tests": every look of
  * the scenarios in tests/data/seq_ref.tsv (50-digit values from an
  * independent implementation of the header's formulas, written by
  * tools/refgen/make_seq_ref.py), the boundary against published values,

@@ -10,7 +10,7 @@
  * mcstat_moments_add_array of the same data (they are documented as the same
  * test), a failed call leaves *out untouched, and NULL data are refused.
  * Flags bit 2: the same data through the sequential test of the same kind
- * (section 10b), pushed 8 values at a time.
+ * (section "Sequential, anytime-valid tests"), pushed 8 values at a time.
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */

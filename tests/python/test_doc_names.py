@@ -105,3 +105,24 @@ def test_readme_is_a_front_page():
     for guide in sorted((ROOT / "docs").glob("*.md")):
         if guide.name != "README.md":
             assert guide.name in (ROOT / "docs" / "README.md").read_text(), f"docs/README.md does not list {guide.name}"
+
+
+SECTION_NUMBER = re.compile(r"mcstat\.h`?'?(?:,|'s)? (?:experimental )?sections? \d")
+HEADER_SECTION_NUMBER = re.compile(r"(?<!paper's )\bsections? \d+b?\b(?!\.\d)")
+
+
+def test_header_sections_are_named_by_title():
+    """Other files name mcstat.h's sections by title, never by number (the
+    numbers change when a section moves); inside the public headers, a
+    number is a section of the paper ("the paper's section 3", "2.1")."""
+    bad = []
+    for p in tracked():
+        if p.suffix not in (".md", ".py", ".c", ".h", ".rs", ".go", ".cpp", ".hpp") or p.name == "CHANGELOG.md":
+            continue
+        rel = str(p.relative_to(ROOT))
+        for k, line in enumerate(p.read_text().splitlines(), 1):
+            if SECTION_NUMBER.search(line):
+                bad.append(f"{rel}:{k}: {line.strip()}")
+            elif rel in HEADERS[:3] and HEADER_SECTION_NUMBER.search(line) and not re.match(r"/\* \d+b?\. ", line):
+                bad.append(f"{rel}:{k}: {line.strip()}")
+    assert not bad, "sections named by number:\n" + "\n".join(bad)

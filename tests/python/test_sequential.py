@@ -1,7 +1,7 @@
 """mcstat.SequentialTest and run_until_decided.
 
 The numbers are checked against an independent implementation of mcstat.h's
-section 10b written here from the raw values with NumPy and SciPy (two-pass
+section "Sequential, anytime-valid tests" written here from the raw values with NumPy and SciPy (two-pass
 moments, SciPy's normal log cdf and brentq for the one-sided boundary), at
 every look of runs of each kind; then the hold, merges, errors naming
 their argument, and the driver.  Calibration (the error rate under H0 over

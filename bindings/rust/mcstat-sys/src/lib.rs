@@ -2,7 +2,7 @@
 //! header, section by section: the plain structs mirrored field by field
 //! (`#[repr(C)]`, the header's anonymous unions as named Rust unions), the
 //! enums and macros as integer constants, every exported function as
-//! declared (the deprecated names of section 13 too, marked
+//! declared (those of section "Deprecated names" too, marked
 //! `#[deprecated]`).  The safe API is the `mcstat` crate.
 //!
 //! Layout: the sizes are asserted at compile time against the header's own
@@ -31,7 +31,7 @@ pub const MCSTAT_EBUFSIZE: c_int = 7;
 pub const MCSTAT_ECORRUPT: c_int = 8;
 pub const MCSTAT_ETOOBIG: c_int = 9;
 pub const MCSTAT_ECALLBACK: c_int = 10;
-/// A sequential test's kurtosis gate was still closed at its end (section 10b).
+/// A sequential test's kurtosis gate was still closed at its end (section "Sequential, anytime-valid tests").
 pub const MCSTAT_EHEAVYTAIL: c_int = 11;
 
 pub const MCSTAT_TWO_SIDED: c_int = 0;
@@ -275,7 +275,7 @@ pub struct mcstat_result_ints_named {
     pub chisq_n_estimated: i32,
 }
 
-/// The sequential tests' integer outputs (SEQ_*, section 10b).
+/// The sequential tests' integer outputs (SEQ_*, section "Sequential, anytime-valid tests").
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct mcstat_result_ints_seq {
@@ -343,7 +343,7 @@ pub struct mcstat_result_chisq {
     pub chisq_pool_below: f64,
 }
 
-/// The sequential tests' per-test outputs (SEQ_*, section 10b).
+/// The sequential tests' per-test outputs (SEQ_*, section "Sequential, anytime-valid tests").
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct mcstat_result_seq {

@@ -1,4 +1,4 @@
-//! Sequential, anytime-valid tests (`mcstat.h` section 10b, experimental).
+//! Sequential, anytime-valid tests (`mcstat.h` section "Sequential, anytime-valid tests", experimental).
 use std::fmt;
 use std::mem::{size_of, MaybeUninit};
 
