@@ -102,9 +102,10 @@ def test_readme_is_a_front_page():
     the reference is in docs/ (a guide per concern), which it links."""
     readme = (ROOT / "README.md").read_text()
     assert len(readme.splitlines()) <= 300, "README.md over 300 lines: move the detail into docs/"
+    index = (ROOT / "docs" / "README.md").read_text()
     for guide in sorted((ROOT / "docs").glob("*.md")):
         if guide.name != "README.md":
-            assert guide.name in (ROOT / "docs" / "README.md").read_text(), f"docs/README.md does not list {guide.name}"
+            assert guide.name in index, f"docs/README.md does not list {guide.name}"
 
 
 SECTION_NUMBER = re.compile(r"mcstat\.h`?'?(?:,|'s)? (?:experimental )?sections? \d")
@@ -123,6 +124,6 @@ def test_header_sections_are_named_by_title():
         for k, line in enumerate(p.read_text().splitlines(), 1):
             if SECTION_NUMBER.search(line):
                 bad.append(f"{rel}:{k}: {line.strip()}")
-            elif rel in HEADERS[:3] and HEADER_SECTION_NUMBER.search(line) and not re.match(r"/\* \d+b?\. ", line):
+            elif rel.startswith("libmcstat/include/") and HEADER_SECTION_NUMBER.search(line) and not re.match(r"/\* \d+b?\. ", line):
                 bad.append(f"{rel}:{k}: {line.strip()}")
     assert not bad, "sections named by number:\n" + "\n".join(bad)

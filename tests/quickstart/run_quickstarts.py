@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Builds and runs the README's quickstarts as a new user would: each block
 marked `<!-- quickstart: LANG -->` is written to a fresh folder and built
-with the command the README gives, against the staged install (the
+with the README's command (plus warnings as errors), against the staged install (the
 `cmake --install` of `make install-test`), the Python one with the package
 installed in .venv.  Each program must exit 0 and print the decisions the
 README's example leads to: the importance-sampled estimator's mean "equal"
@@ -39,7 +39,7 @@ def blocks():
         if name in found:
             sys.exit(f"README.md: two quickstart blocks named {name!r}")
         found[name] = body.replace("/path/to/mcstat", str(ROOT))
-    missing = {"c", "cpp", "python", "rust", "rust-toml", "go", "go-mod"} - found.keys()
+    missing = (EXPECTED.keys() | {"rust-toml", "go-mod"}) - found.keys()
     if missing:
         sys.exit(f"README.md: no quickstart block for {', '.join(sorted(missing))}")
     return found
@@ -58,9 +58,9 @@ def decisions(output):
 
 
 def run(cmd, cwd, env):
-    r = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True, shell=isinstance(cmd, str))
+    r = subprocess.run(cmd, cwd=cwd, env=env, capture_output=True, text=True)
     if r.returncode != 0:
-        raise RuntimeError(f"`{cmd if isinstance(cmd, str) else ' '.join(cmd)}` exited {r.returncode}:\n"
+        raise RuntimeError(f"`{' '.join(cmd)}` exited {r.returncode}:\n"
                            + r.stdout[-3000:] + r.stderr[-3000:])
     return r.stdout
 
@@ -77,7 +77,7 @@ def main():
     code = blocks()
     env = dict(os.environ, PKG_CONFIG_PATH=str(stage / "lib" / "pkgconfig"))
     env.pop("LD_LIBRARY_PATH", None)  # the README's programs find the library by their run path
-    pc = run("pkg-config --cflags --libs mcstat-rpath", ROOT, env).split()
+    pc = run(["pkg-config", "--cflags", "--libs", "mcstat-rpath"], ROOT, env).split()
     failed = 0
     for lang in args.langs:
         d = pathlib.Path(tempfile.mkdtemp(prefix=f"quickstart-{lang}-"))
