@@ -14,7 +14,29 @@
  * Hypothesis Testing for Assessing Monte Carlo Estimators"; the text blocks
  * they print are R's.
  *
- * The header reads in the order a user meets things:
+ * Example: is an estimator of the integral of 3x^2 over [0, 1], which is 1,
+ * unbiased?  (cc example.c $(pkg-config --cflags --libs mcstat))
+ *
+ *     #include <stdio.h>
+ *     #include <stdlib.h>
+ *     #include <mcstat.h>
+ *     int main(void)
+ *     {
+ *         mcstat_moments m;
+ *         mcstat_result r;
+ *         char text[2048];
+ *         mcstat_moments_init(&m);
+ *         for (int i = 0; i < 100000; i++) {
+ *             double u = (rand() + 0.5) / ((double)RAND_MAX + 1.0);
+ *             mcstat_moments_add(&m, 3 * u * u);
+ *         }
+ *         if (mcstat_t_test_1_moments(&m, 1.0, MCSTAT_TWO_SIDED, 0.05, &r) != MCSTAT_OK) return 1;
+ *         mcstat_result_format(&r, "estimates", NULL, text, sizeof text, NULL);
+ *         fputs(text, stdout);  // R's block: statistic, p-value, interval, decision
+ *         return 0;
+ *     }
+ *
+ * The header reads in the order a user meets things, the stable API first:
  *   1. Conventions: statuses, alternatives, options that grow.
  *   2. Accumulators: mcstat_moments (one sample, streaming and mergeable),
  *      its serialized bytes, arrays of accumulators (one per pixel), and
@@ -22,35 +44,48 @@
  *   3. The tests and their result: mcstat_result, then t, chi-squared, F
  *      (each on arrays and on accumulators), the efficiency ratio of two
  *      estimators and Kolmogorov-Smirnov.
- *   4. Per-pixel rows: the same tests once per row of a matrix or of an
- *      array of accumulators.
+ *   4. Per-pixel tests: the same tests once per pixel of an image stack
+ *      (mcstat_pixels_test), per row of a matrix or of an array of
+ *      accumulators.
  *   5. Multiple testing: adjusted p-values (R's p.adjust) for the millions
  *      of per-pixel tests.
  *   6. Equivalence: TOST, "the bias is below eps".
- *   7. Power and sample size (experimental).
- *   8. Estimator diagnostics: shape, tails, batch size (experimental).
- *   9. Goodness of fit: chi-squared GOF of cell counts, the exact binomial
- *      test and the battery meta-test (experimental).
- *  10. Renderer checks: do a BSDF's, an emitter's or a warp's sample(),
- *      pdf(), eval() and sample weight agree? (experimental)
- *  10b. Sequential tests: look after every batch, stop as soon as the
- *      evidence decides, the error rate still alpha (experimental).
- *  11. Distributions: t, chi-squared and F tails and quantiles.
- *  12. Sizes, versions and GSL's handler.
- *  13. Deprecated names, kept so that older code still builds and links.
+ *   7. Distributions: t, chi-squared and F tails and quantiles.
+ *   8. Sizes, versions and GSL's handler.
+ * then, in one block, the experimental sections:
+ *   9. Power and sample size.
+ *  10. Estimator diagnostics: shape, tails, batch size.
+ *  11. Goodness of fit: chi-squared GOF of cell counts, the exact binomial
+ *      test and the battery meta-test.
+ *  12. Renderer checks: do a BSDF's, an emitter's or a warp's sample(),
+ *      pdf(), eval() and sample weight agree?
+ *  13. Sequential tests: look after every batch, stop as soon as the
+ *      evidence decides, the error rate still alpha.
+ * and last
+ *  14. Deprecated names, kept so that older code still builds and links.
  * Where a new function goes: in the section of its concept, named
  * mcstat_<family>_<verb> (mcstat_moments_add, mcstat_diag_compute) or
  * mcstat_<test>_test_<k>[_moments|_matrix|_moments_rows] for the tests.
  *
- * Experimental sections (7-10) are as tested and as ABI-stable as the rest,
+ * Experimental sections (9-13) are as tested and as ABI-stable as the rest,
  * but their names and options may change before 1.0; a renamed function
- * stays as a deprecated alias for one release.  They are compiled in by
- * default; define MCSTAT_NO_EXPERIMENTAL to leave them out.
+ * stays as a deprecated alias for the next release (and its symbol for as
+ * long as the SOVERSION).  They are compiled in by default; define
+ * MCSTAT_NO_EXPERIMENTAL to leave them out.
  *
  * Conventions, for every function in this header:
  *   - Fallible calls return an int status: MCSTAT_OK (0) or one of the
  *     MCSTAT_E* codes below; mcstat_strerror() gives a sentence for it.
- *     Outputs are written through the pointer given last, and only on success.
+ *     Outputs are written through the pointers given last.  A call that
+ *     gives one answer (a result, a value, a struct, an accumulator it adds
+ *     to) writes it only on success: on failure its outputs keep their bytes
+ *     (tests/c/test_outputs_on_failure.c holds every such call to it).  The
+ *     exceptions, each stated at its call: the element-wise calls (the
+ *     _matrix, _moments_rows and per-pixel tests, mcstat_t_quantiles) write
+ *     every element, failed ones marked by a status or NaN; the text calls
+ *     (*_format) write a NUL-terminated prefix with MCSTAT_EBUFSIZE and the
+ *     full length through *length; a renderer check's report carries its
+ *     message with MCSTAT_ECALLBACK.
  *   - Nothing here calls abort() or exit(), nothing touches GSL's process-wide
  *     error handler (see mcstat_gsl_handler_off), and no call changes any
  *     global state: every function is thread-safe on distinct objects.  (The
@@ -1240,20 +1275,137 @@ MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const 
                                                  mcstat_result *out);
 
 /* ======================================================================== */
-/* EXPERIMENTAL: the sections "Power and sample size" to "Renderer checks" */
-/* The newest families: tested and held to the ABI like the rest, but       */
-/* their names and options may change before 1.0 (a renamed function        */
-/* stays one release as a deprecated alias, as in "Deprecated names").     */
+/* 7. Distributions.                                                        */
+/* The t, chi-squared and F distributions the tests use, as functions.      */
+/* ======================================================================== */
+
+/* ------------------------------------------------------------------------ */
+/* Distributions.                                                           */
+/* Tail probabilities are computed from whichever tail is small (never as   */
+/* 1 - P); log versions stay finite where the probability underflows.       */
+/* Quantiles invert these by safeguarded Newton iteration.  `upper`        */
+/* selects the tail: 0 gives P[X <= x], 1 gives P[X > x]; a quantile solves */
+/* that tail's probability = p.                                             */
+/* Accuracy: relative error against 50-digit references, the bounds the     */
+/* tests enforce (2-3 times the measured peak; per-domain tables, rms and   */
+/* worst cases in libmcstat/ACCURACY.md), by tail probability p:            */
+/*                                      p >= 1e-30   1e-300 <= p < 1e-30    */
+/*   t cdf, df in [1e-3, 1e13]             3e-14          6e-13             */
+/*   chi^2 cdf, df in [1e-3, 1e9]        1.5e-13          5e-13             */
+/*   F cdf, df1, df2 in [1e-3, 1e9]        4e-14          6e-13             */
+/*   quantiles                             3e-13          3e-13             */
+/*   p-values of the t, Welch, chi^2 tests 1e-13          4e-13             */
+/*   p-values of the F test                1e-13          3e-12             */
+/*   log cdf where p < 1e-30: 8e-16 (t), 5e-15 (chi^2), 8e-15 (F) relative  */
+/*   error of log p.  Where p >= 1e-30 the log cdf carries the cdf's error: */
+/*   an absolute error of log p within the cdf's bound above (the relative  */
+/*   error of p; |log p| times less relative to log p).                     */
+/*   chi^2 beyond df 1e9: cdf 4e-13, log 2e-13.                             */
+/* Small p lose more because p = exp(log p) inherits |log p| times the      */
+/* rounding of log p.  The range promised: df in [1e-3, 1e15] (F: both),    */
+/* x anywhere (F with one df in [1e-4, 1e-3) too: ACCURACY.md's rows).      */
+/* Statuses: MCSTAT_EINVAL for NaN or out-of-domain arguments,               */
+/* MCSTAT_ENUMERIC if an iteration fails (never in the range above: the      */
+/* fuzz harness treats it as a failure there).                               */
+/* ------------------------------------------------------------------------ */
+MCSTAT_API int mcstat_t_cdf(double x, double df, int upper, double *p);
+MCSTAT_API int mcstat_t_logcdf(double x, double df, int upper, double *logp);
+MCSTAT_API int mcstat_t_quantile(double p, double df, int upper, double *x);
+/* ------------------------------------------------------------------------ */
+/* mcstat_t_quantiles: x[i] = mcstat_t_quantile(p, df[i], upper, ...) for   */
+/* n values of df at one level, to the same accuracy, fast where many df    */
+/* differ (critical values or detectable differences per pixel): for p in   */
+/* [1e-100, 1/4] a per-call table of quantiles in 1/df (denser as p is     */
+/* smaller: 1024 to 65536 nodes), interpolated where that is good to        */
+/* rounding and finished by Halley's method elsewhere: O(1) a value, far   */
+/* below a single call's solve (figures: bench/RESULTS.md).                 */
+/* Where an element fails (df NaN or not positive) x[i] is NaN and the      */
+/* others are still computed; the status is that of the first failing      */
+/* element, MCSTAT_OK if none.                                              */
+/* MCSTAT_EINVAL for p NaN or outside [0, 1], or NULL arrays with n > 0.    */
+/* Reentrant: callers split large arrays over their own threads.            */
+/* ------------------------------------------------------------------------ */
+MCSTAT_API int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *x);
+MCSTAT_API int mcstat_chisq_cdf(double x, double df, int upper, double *p);
+MCSTAT_API int mcstat_chisq_logcdf(double x, double df, int upper, double *logp);
+MCSTAT_API int mcstat_chisq_quantile(double p, double df, int upper, double *x);
+MCSTAT_API int mcstat_f_cdf(double x, double df1, double df2, int upper, double *p);
+MCSTAT_API int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *logp);
+MCSTAT_API int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x);
+
+/* ======================================================================== */
+/* 8. Sizes, versions and GSL's handler.                                    */
+/* Constants as functions for FFI callers (every size is                    */
+/* mcstat_sizeof_<thing>), the release and ABI numbers, and the opt-in to   */
+/* GSL's error handler off.                                                 */
+/* ======================================================================== */
+
+/* ------------------------------------------------------------------------ */
+/* Sizes and constants as functions, for FFI callers that cannot read       */
+/* macros or sizeof.  (Each options struct's size sits beside it.)          */
+/* ------------------------------------------------------------------------ */
+MCSTAT_API size_t mcstat_sizeof_moments(void);
+MCSTAT_API size_t mcstat_sizeof_result(void);
+/* MCSTAT_MOMENTS_BYTES: the size of the serialized form of one accumulator. */
+MCSTAT_API size_t mcstat_sizeof_moments_bytes(void);
+
+/* ------------------------------------------------------------------------ */
+/* Versions.                                                                 */
+/* MCSTAT_VERSION_MAJOR/MINOR/PATCH is the release, written here only: the   */
+/* build (CMakeLists.txt), the Python package (pyproject.toml) read it from  */
+/* this header, and the Rust and Go bindings' tests check theirs against it. */
+/* MCSTAT_SOVERSION is the ABI: the shared library is libmcstat.so.N.  It    */
+/* changes only with an incompatible change, one that breaks a binary built  */
+/* against an earlier release with this SOVERSION (a function removed or its */
+/* signature changed, a public struct's size or layout changed, an enum     */
+/* value renumbered), never with the release number alone; additions keep   */
+/* it.  libmcstat/abi/ holds the ABI (abidw) of the first release of this   */
+/* SOVERSION and `make abi-check` compares every build against it.          */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_VERSION_MAJOR 0
+#define MCSTAT_VERSION_MINOR 1
+#define MCSTAT_VERSION_PATCH 0
+/* The shared library's ABI version (its SOVERSION; see above). */
+#define MCSTAT_SOVERSION 0
+#define MCSTAT_VERSION_NUMBER \
+    (MCSTAT_VERSION_MAJOR * 10000 + MCSTAT_VERSION_MINOR * 100 + MCSTAT_VERSION_PATCH)
+
+/* MCSTAT_VERSION_NUMBER of the library actually linked. */
+MCSTAT_API unsigned mcstat_version_number(void);
+/* "MAJOR.MINOR.PATCH" of the library actually linked (static storage). */
+MCSTAT_API const char *mcstat_version(void);
+
+/* ------------------------------------------------------------------------ */
+/* GSL's error handler.                                                      */
+/* GSL's default handler aborts the process.  mcstat validates every         */
+/* argument before calling GSL, so the handler is never reached through      */
+/* mcstat, and mcstat never changes it: it is one global shared by every     */
+/* library in the process.  A program that wants GSL's own calls to return   */
+/* error codes instead of aborting may opt in here.                          */
+/* ------------------------------------------------------------------------ */
+/* Turns GSL's error handler off (gsl_set_error_handler_off). */
+MCSTAT_API void mcstat_gsl_handler_off(void);
+/* Turns it off only if no handler has been installed (GSL's default is in
+ * force); returns 1 if it did so, 0 if a caller's handler was left alone. */
+MCSTAT_API int mcstat_gsl_handler_off_if_default(void);
+
+/* ======================================================================== */
+/* EXPERIMENTAL: every section from here to "Deprecated names".             */
+/* Power and sample size, estimator diagnostics, goodness of fit, the       */
+/* renderer checks and the sequential tests: tested and held to the ABI     */
+/* like the rest, but their names and options may change before 1.0 (a      */
+/* renamed function stays as a deprecated alias for the next release, as    */
+/* in "Deprecated names").                                                  */
 /* ======================================================================== */
 /* Compiled in by default.  A program that wants to be sure it uses no
  * experimental name defines MCSTAT_NO_EXPERIMENTAL before including this
- * header: the experimental sections (and the deprecated names of their families) are
- * then left out, and any use is a compile error.  The library exports them
+ * header: the experimental sections (and the deprecated names of their
+ * families) are then left out, and any use is a compile error.  The library exports them
  * either way. */
 #ifndef MCSTAT_NO_EXPERIMENTAL
 
 /* ------------------------------------------------------------------------ */
-/* 7. Power and sample size.                          (experimental)      */
+/* 9. Power and sample size.                                 (experimental) */
 /* Given all but one of n, effect, alpha and power, mcstat_power_solve finds */
 /* the missing one (as R's power.t.test and statsmodels' solve_power); n is */
 /* the smallest integer whose power reaches the target.  The tests and what */
@@ -1365,7 +1517,7 @@ MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, siz
                                    size_t *length);
 
 /* ------------------------------------------------------------------------ */
-/* 8. Estimator diagnostics, mcstat_diag_*.           (experimental)      */
+/* 10. Estimator diagnostics, mcstat_diag_*.                 (experimental) */
 /* Before testing, look at the primary estimates themselves:                 */
 /*   shape   skewness g1 and excess kurtosis g2 (mcstat_moments) with their  */
 /*           standard errors under normality;                               */
@@ -1480,7 +1632,7 @@ MCSTAT_API int mcstat_diag_batch_size(double skewness, double kurtosis, uint64_t
                                       double tolerance, uint64_t *k);
 
 /* ======================================================================== */
-/* 9. Goodness of fit.                                  (experimental)      */
+/* 11. Goodness of fit.                                      (experimental) */
 /* Are counts consistent with expected probabilities?  Pearson's            */
 /* chi-squared test of cell counts (mcstat_gof_*), and the exact binomial   */
 /* test of a count, with the battery meta-test built on it: does a battery  */
@@ -1609,7 +1761,7 @@ MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, dou
 
 
 /* ======================================================================== */
-/* 10. Renderer checks.                                  (experimental)      */
+/* 12. Renderer checks.                                      (experimental) */
 /* Do a BSDF's sample(), pdf(), eval() and sample weight agree?  The        */
 /* renderer hands over its routines as callbacks; mcstat feeds them its own  */
 /* uniform numbers, runs a battery of checks ("routes") and controls the     */
@@ -1957,7 +2109,7 @@ MCSTAT_API const char *mcstat_check_route_meaning(int route);
 MCSTAT_API const char *mcstat_check_route_blind_spot(int route);
 
 /* ======================================================================== */
-/* 10b. Sequential, anytime-valid tests.                 (experimental)      */
+/* 13. Sequential, anytime-valid tests.                      (experimental) */
 /* A fixed-n test looked at after every batch, stopped when its p-value is  */
 /* small, rejects a true H0 far more often than alpha (0.5-0.8 at alpha =   */
 /* 0.05 over 1000 looks).  These tests may be looked at after every batch   */
@@ -2126,122 +2278,7 @@ MCSTAT_API size_t mcstat_sizeof_seq(void);
 #endif /* MCSTAT_NO_EXPERIMENTAL */
 
 /* ======================================================================== */
-/* 11. Distributions.                                                       */
-/* The t, chi-squared and F distributions the tests use, as functions.      */
-/* ======================================================================== */
-
-/* ------------------------------------------------------------------------ */
-/* Distributions.                                                           */
-/* Tail probabilities are computed from whichever tail is small (never as   */
-/* 1 - P); log versions stay finite where the probability underflows.       */
-/* Quantiles invert these by safeguarded Newton iteration.  `upper`        */
-/* selects the tail: 0 gives P[X <= x], 1 gives P[X > x]; a quantile solves */
-/* that tail's probability = p.                                             */
-/* Accuracy: relative error against 50-digit references, the bounds the     */
-/* tests enforce (2-3 times the measured peak; per-domain tables, rms and   */
-/* worst cases in libmcstat/ACCURACY.md), by tail probability p:            */
-/*                                      p >= 1e-30   1e-300 <= p < 1e-30    */
-/*   t cdf, df in [1e-3, 1e13]             3e-14          6e-13             */
-/*   chi^2 cdf, df in [1e-3, 1e9]        1.5e-13          5e-13             */
-/*   F cdf, df1, df2 in [1e-3, 1e9]        4e-14          6e-13             */
-/*   quantiles                             3e-13          3e-13             */
-/*   p-values of the t, Welch, chi^2 tests 1e-13          4e-13             */
-/*   p-values of the F test                1e-13          3e-12             */
-/*   log cdf where p < 1e-30: 8e-16 (t), 5e-15 (chi^2), 8e-15 (F) relative  */
-/*   error of log p.  Where p >= 1e-30 the log cdf carries the cdf's error: */
-/*   an absolute error of log p within the cdf's bound above (the relative  */
-/*   error of p; |log p| times less relative to log p).                     */
-/*   chi^2 beyond df 1e9: cdf 4e-13, log 2e-13.                             */
-/* Small p lose more because p = exp(log p) inherits |log p| times the      */
-/* rounding of log p.  The range promised: df in [1e-3, 1e15] (F: both),    */
-/* x anywhere (F with one df in [1e-4, 1e-3) too: ACCURACY.md's rows).      */
-/* Statuses: MCSTAT_EINVAL for NaN or out-of-domain arguments,               */
-/* MCSTAT_ENUMERIC if an iteration fails (never in the range above: the      */
-/* fuzz harness treats it as a failure there).                               */
-/* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_t_cdf(double x, double df, int upper, double *p);
-MCSTAT_API int mcstat_t_logcdf(double x, double df, int upper, double *logp);
-MCSTAT_API int mcstat_t_quantile(double p, double df, int upper, double *x);
-/* ------------------------------------------------------------------------ */
-/* mcstat_t_quantiles: x[i] = mcstat_t_quantile(p, df[i], upper, ...) for   */
-/* n values of df at one level, to the same accuracy, fast where many df    */
-/* differ (critical values or detectable differences per pixel): for p in   */
-/* [1e-100, 1/4] a per-call table of quantiles in 1/df (denser as p is     */
-/* smaller: 1024 to 65536 nodes), interpolated where that is good to        */
-/* rounding and finished by Halley's method elsewhere: O(1) a value, far   */
-/* below a single call's solve (figures: bench/RESULTS.md).                 */
-/* Where an element fails (df NaN or not positive) x[i] is NaN and the      */
-/* others are still computed; the status is that of the first failing      */
-/* element, MCSTAT_OK if none.                                              */
-/* MCSTAT_EINVAL for p NaN or outside [0, 1], or NULL arrays with n > 0.    */
-/* Reentrant: callers split large arrays over their own threads.            */
-/* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *x);
-MCSTAT_API int mcstat_chisq_cdf(double x, double df, int upper, double *p);
-MCSTAT_API int mcstat_chisq_logcdf(double x, double df, int upper, double *logp);
-MCSTAT_API int mcstat_chisq_quantile(double p, double df, int upper, double *x);
-MCSTAT_API int mcstat_f_cdf(double x, double df1, double df2, int upper, double *p);
-MCSTAT_API int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *logp);
-MCSTAT_API int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x);
-
-/* ======================================================================== */
-/* 12. Sizes, versions and GSL's handler.                                   */
-/* Constants as functions for FFI callers (every size is                    */
-/* mcstat_sizeof_<thing>), the release and ABI numbers, and the opt-in to   */
-/* GSL's error handler off.                                                 */
-/* ======================================================================== */
-
-/* ------------------------------------------------------------------------ */
-/* Sizes and constants as functions, for FFI callers that cannot read       */
-/* macros or sizeof.  (Each options struct's size sits beside it.)          */
-/* ------------------------------------------------------------------------ */
-MCSTAT_API size_t mcstat_sizeof_moments(void);
-MCSTAT_API size_t mcstat_sizeof_result(void);
-/* MCSTAT_MOMENTS_BYTES: the size of the serialized form of one accumulator. */
-MCSTAT_API size_t mcstat_sizeof_moments_bytes(void);
-
-/* ------------------------------------------------------------------------ */
-/* Versions.                                                                 */
-/* MCSTAT_VERSION_MAJOR/MINOR/PATCH is the release, written here only: the   */
-/* build (CMakeLists.txt), the Python package (pyproject.toml) read it from  */
-/* this header, and the Rust and Go bindings' tests check theirs against it. */
-/* MCSTAT_SOVERSION is the ABI: the shared library is libmcstat.so.N.  It    */
-/* changes only with an incompatible change, one that breaks a binary built  */
-/* against an earlier release with this SOVERSION (a function removed or its */
-/* signature changed, a public struct's size or layout changed, an enum     */
-/* value renumbered), never with the release number alone; additions keep   */
-/* it.  libmcstat/abi/ holds the ABI (abidw) of the first release of this   */
-/* SOVERSION and `make abi-check` compares every build against it.          */
-/* ------------------------------------------------------------------------ */
-#define MCSTAT_VERSION_MAJOR 0
-#define MCSTAT_VERSION_MINOR 1
-#define MCSTAT_VERSION_PATCH 0
-/* The shared library's ABI version (its SOVERSION; see above). */
-#define MCSTAT_SOVERSION 0
-#define MCSTAT_VERSION_NUMBER \
-    (MCSTAT_VERSION_MAJOR * 10000 + MCSTAT_VERSION_MINOR * 100 + MCSTAT_VERSION_PATCH)
-
-/* MCSTAT_VERSION_NUMBER of the library actually linked. */
-MCSTAT_API unsigned mcstat_version_number(void);
-/* "MAJOR.MINOR.PATCH" of the library actually linked (static storage). */
-MCSTAT_API const char *mcstat_version(void);
-
-/* ------------------------------------------------------------------------ */
-/* GSL's error handler.                                                      */
-/* GSL's default handler aborts the process.  mcstat validates every         */
-/* argument before calling GSL, so the handler is never reached through      */
-/* mcstat, and mcstat never changes it: it is one global shared by every     */
-/* library in the process.  A program that wants GSL's own calls to return   */
-/* error codes instead of aborting may opt in here.                          */
-/* ------------------------------------------------------------------------ */
-/* Turns GSL's error handler off (gsl_set_error_handler_off). */
-MCSTAT_API void mcstat_gsl_handler_off(void);
-/* Turns it off only if no handler has been installed (GSL's default is in
- * force); returns 1 if it did so, 0 if a caller's handler was left alone. */
-MCSTAT_API int mcstat_gsl_handler_off_if_default(void);
-
-/* ======================================================================== */
-/* 13. Deprecated names.                                                    */
+/* 14. Deprecated names.                                                    */
 /* The names this release replaced, one form per family: old -> new.        */
 /* They still link (the ABI keeps every exported symbol of its SOVERSION)   */
 /* and give bit-identical results; MCSTAT_DEPRECATED names the replacement. */

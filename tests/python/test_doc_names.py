@@ -15,7 +15,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 HEADERS = ["libmcstat/include/mcstat.h", "libmcstat/include/mcstat_check.h",
            "libmcstat/include/mcstat_testing.h", "estimators/include/mcest.h"]
-DEPRECATED_MARK = "/* 13. Deprecated names."  # mcstat.h's last section
+DEPRECATED_MARK = "/* 14. Deprecated names."  # mcstat.h's last section
 NAME = re.compile(r"\b(?:mcstat|MCSTAT)_\w*")
 
 # Names that are not C API but are documented: CMake options and targets,

@@ -29,7 +29,22 @@ EXPECTED = {
     "python": ["importance: equal", "importance and uniform: less"],
     "rust": ["importance: equal", "importance and uniform: less"],
     "go": ["importance: equal", "importance and uniform: less"],
+    "header": ["estimates: equal"],
 }
+HEADER = ROOT / "libmcstat" / "include" / "mcstat.h"
+
+
+def header_example():
+    """the program in mcstat.h's introduction: the lines indented under ' * Example:'"""
+    lines = HEADER.read_text(encoding="utf-8").splitlines()
+    start = next(i for i, line in enumerate(lines) if line.startswith(" * Example:"))
+    body, i = [], start + 1
+    while not lines[i].startswith(" *     "):
+        i += 1
+    while lines[i].startswith(" *     ") or lines[i] == " *" and lines[i + 1].startswith(" *     "):
+        body.append(lines[i][len(" *     "):])
+        i += 1
+    return "\n".join(body) + "\n"
 
 
 def blocks():
@@ -39,6 +54,7 @@ def blocks():
         if name in found:
             sys.exit(f"README.md: two quickstart blocks named {name!r}")
         found[name] = body.replace("/path/to/mcstat", str(ROOT))
+    found["header"] = header_example()
     missing = (EXPECTED.keys() | {"rust-toml", "go-mod"}) - found.keys()
     if missing:
         sys.exit(f"README.md: no quickstart block for {', '.join(sorted(missing))}")
@@ -85,6 +101,10 @@ def main():
             if lang == "c":
                 (d / "quickstart.c").write_text(code["c"])
                 run(["cc", "-std=c11", "-Wall", "-Wextra", "-Werror", "quickstart.c", *pc, "-lm"], d, env)
+                out = run(["./a.out"], d, env)
+            elif lang == "header":
+                (d / "example.c").write_text(code["header"])
+                run(["cc", "-std=c11", "-Wall", "-Wextra", "-Werror", "example.c", *pc, "-lm"], d, env)
                 out = run(["./a.out"], d, env)
             elif lang == "cpp":
                 (d / "quickstart.cpp").write_text(code["cpp"])

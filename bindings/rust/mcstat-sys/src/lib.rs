@@ -17,7 +17,7 @@
 use std::os::raw::{c_char, c_int, c_uint, c_void};
 
 // ============================================================================
-// 1. Conventions: statuses, alternatives.
+// Conventions: statuses, alternatives.
 // ============================================================================
 
 pub const MCSTAT_OK: c_int = 0;
@@ -39,7 +39,7 @@ pub const MCSTAT_LESS: c_int = 1;
 pub const MCSTAT_GREATER: c_int = 2;
 
 // ============================================================================
-// 2. Accumulators.
+// Accumulators.
 // ============================================================================
 
 pub const MCSTAT_MOMENTS_VERSION: u32 = 1;
@@ -233,7 +233,7 @@ pub unsafe fn mcstat_stream_add(s: *mut mcstat_stream, x: f64) {
 }
 
 // ============================================================================
-// 3. The tests and their result.
+// The tests and their result.
 // ============================================================================
 
 pub const MCSTAT_TEST_T_1: i32 = 1;
@@ -506,14 +506,14 @@ pub struct mcstat_ks_options {
 pub const MCSTAT_KS_OPTIONS_SIZE_0_1: usize = 48;
 
 // ============================================================================
-// 4. Per-pixel rows.
+// Per-pixel rows.
 // ============================================================================
 
 pub const MCSTAT_ROWS_NO_INTERVALS: c_uint = 1;
 pub const MCSTAT_ROWS_OMIT_NAN: c_uint = 2;
 
 // ============================================================================
-// 5. Multiple testing.
+// Multiple testing.
 // ============================================================================
 
 pub const MCSTAT_P_ADJUST_NONE: c_int = 0;
@@ -542,7 +542,7 @@ pub const MCSTAT_ESCALATION_REJECT: c_int = 1;
 pub const MCSTAT_ESCALATION_CONTINUE: c_int = 2;
 
 // ============================================================================
-// 7. Power and sample size (experimental).
+// Power and sample size (experimental).
 // ============================================================================
 
 pub const MCSTAT_POWER_T_1: i32 = 1;
@@ -575,7 +575,7 @@ pub struct mcstat_power_options {
 pub const MCSTAT_POWER_OPTIONS_SIZE_0_1: usize = 96;
 
 // ============================================================================
-// 8. Estimator diagnostics (experimental).
+// Estimator diagnostics (experimental).
 // ============================================================================
 
 pub const MCSTAT_DIAG_DEFAULT_M: u64 = 30;
@@ -622,7 +622,7 @@ pub struct mcstat_diagnostics {
 }
 
 // ============================================================================
-// 9. Goodness of fit (experimental).
+// Goodness of fit (experimental).
 // ============================================================================
 
 pub const MCSTAT_GOF_PROBABILITIES: i32 = 0;
@@ -645,7 +645,7 @@ pub struct mcstat_gof_options {
 pub const MCSTAT_GOF_OPTIONS_SIZE_0_1: usize = 32;
 
 // ============================================================================
-// 10. Renderer checks (experimental).
+// Renderer checks (experimental).
 // ============================================================================
 
 pub const MCSTAT_DOMAIN_SPHERE: i32 = 0;
@@ -824,7 +824,7 @@ impl std::fmt::Debug for mcstat_check_report {
 }
 
 // ============================================================================
-// 10b. Sequential, anytime-valid tests (experimental).
+// Sequential, anytime-valid tests (experimental).
 // ============================================================================
 
 pub const MCSTAT_SEQ_MEAN_1: c_int = 1;
@@ -888,7 +888,7 @@ pub struct mcstat_seq {
 }
 
 // ============================================================================
-// 12. Versions.
+// Versions.
 // ============================================================================
 
 pub const MCSTAT_VERSION_MAJOR: u32 = 0;
@@ -899,7 +899,7 @@ pub const MCSTAT_VERSION_NUMBER: u32 =
     MCSTAT_VERSION_MAJOR * 10000 + MCSTAT_VERSION_MINOR * 100 + MCSTAT_VERSION_PATCH;
 
 // ============================================================================
-// 13. Deprecated names (types and constants; the functions are below).
+// Deprecated names (types and constants; the functions are below).
 // ============================================================================
 
 #[deprecated(note = "use mcstat_gof_options")]
@@ -935,12 +935,12 @@ const _: () = {
 };
 
 extern "C" {
-    // ---- 1. conventions ------------------------------------------------------
+    // ---- conventions ------------------------------------------------------
     pub fn mcstat_strerror(status: c_int) -> *const c_char;
     pub fn mcstat_alternative_parse(name: *const c_char, alternative: *mut c_int) -> c_int;
     pub fn mcstat_alternative_name(alternative: c_int) -> *const c_char;
 
-    // ---- 2. accumulators -----------------------------------------------------
+    // ---- accumulators -----------------------------------------------------
     pub fn mcstat_moments_init(m: *mut mcstat_moments) -> c_int;
     pub fn mcstat_moments_add(m: *mut mcstat_moments, x: f64) -> c_int;
     pub fn mcstat_moments_add_array(m: *mut mcstat_moments, x: *const f64, n: usize) -> c_int;
@@ -988,7 +988,7 @@ extern "C" {
     pub fn mcstat_stream_check_var(s: *const mcstat_stream, bound: f64, alpha: f64, out: *mut mcstat_result) -> c_int;
     pub fn mcstat_sizeof_stream() -> usize;
 
-    // ---- 3. the tests and their result -------------------------------------
+    // ---- the tests and their result -------------------------------------
     pub fn mcstat_result_format(
         r: *const mcstat_result,
         x_name: *const c_char,
@@ -1122,7 +1122,7 @@ extern "C" {
         out: *mut mcstat_result,
     ) -> c_int;
 
-    // ---- 4. per-pixel rows ---------------------------------------------------
+    // ---- per-pixel rows ---------------------------------------------------
     pub fn mcstat_t_test_1_matrix(
         x: *const f64,
         n: usize,
@@ -1272,7 +1272,7 @@ extern "C" {
         status: *mut i32,
     ) -> c_int;
 
-    // ---- 5. multiple testing -------------------------------------------------
+    // ---- multiple testing -------------------------------------------------
     pub fn mcstat_p_adjust_method_parse(name: *const c_char, method: *mut c_int) -> c_int;
     pub fn mcstat_p_adjust_method_name(method: c_int) -> *const c_char;
     pub fn mcstat_p_adjust_work_size(n: usize, method: c_int, bytes: *mut usize) -> c_int;
@@ -1288,7 +1288,7 @@ extern "C" {
     pub fn mcstat_escalation_design(alpha: f64, share1: f64, alpha0: f64, out: *mut mcstat_escalation) -> c_int;
     pub fn mcstat_escalation_decide(design: *const mcstat_escalation, p1: f64, p2: f64, decision: *mut c_int) -> c_int;
 
-    // ---- 6. equivalence ------------------------------------------------------
+    // ---- equivalence ------------------------------------------------------
     pub fn mcstat_equivalence_test_1(
         x: *const f64,
         n: usize,
@@ -1325,7 +1325,7 @@ extern "C" {
         out: *mut mcstat_result,
     ) -> c_int;
 
-    // ---- 7. power (experimental) ---------------------------------------------
+    // ---- power (experimental) ---------------------------------------------
     pub fn mcstat_power_options_init_size(o: *mut mcstat_power_options, size: usize) -> c_int;
     /// 0.1.0's initialiser: writes `MCSTAT_POWER_OPTIONS_SIZE_0_1` bytes.
     pub fn mcstat_power_options_init(o: *mut mcstat_power_options) -> c_int;
@@ -1334,7 +1334,7 @@ extern "C" {
     pub fn mcstat_power_solve(o: *const mcstat_power_options, unknown: c_int, out: *mut mcstat_power_options) -> c_int;
     pub fn mcstat_power_format(o: *const mcstat_power_options, buf: *mut c_char, size: usize, length: *mut usize) -> c_int;
 
-    // ---- 8. diagnostics (experimental) ---------------------------------------
+    // ---- diagnostics (experimental) ---------------------------------------
     pub fn mcstat_diag_options_init_size(opt: *mut mcstat_diag_options, size: usize) -> c_int;
     /// 0.1.0's initialiser: writes `MCSTAT_DIAG_OPTIONS_SIZE_0_1` bytes.
     pub fn mcstat_diag_options_init(opt: *mut mcstat_diag_options) -> c_int;
@@ -1357,7 +1357,7 @@ extern "C" {
         k: *mut u64,
     ) -> c_int;
 
-    // ---- 9. goodness of fit (experimental) -----------------------------------
+    // ---- goodness of fit (experimental) -----------------------------------
     pub fn mcstat_gof_options_init_size(opt: *mut mcstat_gof_options, size: usize) -> c_int;
     pub fn mcstat_sizeof_gof_options() -> usize;
     pub fn mcstat_gof_default_min_expected() -> f64;
@@ -1387,7 +1387,7 @@ extern "C" {
         out: *mut mcstat_result,
     ) -> c_int;
 
-    // ---- 10. renderer checks (experimental) ----------------------------------
+    // ---- renderer checks (experimental) ----------------------------------
     pub fn mcstat_check_domain_dims(domain: c_int) -> c_int;
     pub fn mcstat_check_domain_parse(name: *const c_char, domain: *mut c_int) -> c_int;
     pub fn mcstat_check_domain_name(domain: c_int) -> *const c_char;
@@ -1438,7 +1438,7 @@ extern "C" {
     pub fn mcstat_check_route_meaning(route: c_int) -> *const c_char;
     pub fn mcstat_check_route_blind_spot(route: c_int) -> *const c_char;
 
-    // ---- 10b. sequential tests (experimental) ---------------------------------
+    // ---- sequential tests (experimental) ---------------------------------
     pub fn mcstat_seq_options_init_size(opt: *mut mcstat_seq_options, size: usize) -> c_int;
     pub fn mcstat_sizeof_seq_options() -> usize;
     pub fn mcstat_seq_init(s: *mut mcstat_seq, kind: c_int, null_value: f64, opt: *const mcstat_seq_options) -> c_int;
@@ -1452,7 +1452,7 @@ extern "C" {
     pub fn mcstat_seq_kind_name(kind: c_int) -> *const c_char;
     pub fn mcstat_sizeof_seq() -> usize;
 
-    // ---- 11. distributions ---------------------------------------------------
+    // ---- distributions ---------------------------------------------------
     pub fn mcstat_t_cdf(x: f64, df: f64, upper: c_int, p: *mut f64) -> c_int;
     pub fn mcstat_t_logcdf(x: f64, df: f64, upper: c_int, logp: *mut f64) -> c_int;
     pub fn mcstat_t_quantile(p: f64, df: f64, upper: c_int, x: *mut f64) -> c_int;
@@ -1464,7 +1464,7 @@ extern "C" {
     pub fn mcstat_f_logcdf(x: f64, df1: f64, df2: f64, upper: c_int, logp: *mut f64) -> c_int;
     pub fn mcstat_f_quantile(p: f64, df1: f64, df2: f64, upper: c_int, x: *mut f64) -> c_int;
 
-    // ---- 12. sizes, versions, GSL's handler ----------------------------------
+    // ---- sizes, versions, GSL's handler ----------------------------------
     pub fn mcstat_sizeof_moments() -> usize;
     pub fn mcstat_sizeof_result() -> usize;
     pub fn mcstat_sizeof_moments_bytes() -> usize;
@@ -1473,7 +1473,7 @@ extern "C" {
     pub fn mcstat_gsl_handler_off();
     pub fn mcstat_gsl_handler_off_if_default() -> c_int;
 
-    // ---- 13. deprecated names ------------------------------------------------
+    // ---- deprecated names ------------------------------------------------
     #[deprecated(note = "use mcstat_sizeof_moments_bytes")]
     pub fn mcstat_moments_bytes() -> usize;
     #[deprecated(note = "use mcstat_sizeof_gof_options")]
