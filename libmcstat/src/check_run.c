@@ -12,34 +12,29 @@
  *      deterministic comparisons;
  *   4. the eval-only estimator: n_eval points (stream 3) from the cells'
  *      table, eval() and pdf() there;
- *   5. reciprocity, then the routes' statistics, Holm across them.
+ *   5. reciprocity, then the routes' statistics (check_routes.c), Holm
+ *      across them.
  * Every uniform is a pure function of (seed, stream, index): the results
  * do not depend on the batch size.
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
-#include "check.h"
+#include "check_run.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #define LEAF_POINTS 32
-#define MAX_GROUPS 16
 #define RECIPROCITY_POINTS 1000
 #define DEFENSIVE 0.1   /* share of uniform points in the eval-only estimator's table */
 #define CUBATURE_SHARE 0.05 /* cubature error target, in sampling sd of a cell's count */
-#define POWER_Z 0.8416212335729143 /* z of power 0.8 */
 
 enum { STREAM_PILOT = 1, STREAM_TEST = 2, STREAM_EVAL = 3, STREAM_KEEP_SAMPLE = 4, STREAM_KEEP_EVAL = 5 };
 /* The KS route's envelopes: twice the largest ratio seen.  A ratio with
  * tail index 4 (eval/table, measured) exceeds 1.25 times the largest of
  * an independent half in about 30% of runs, twice it in about 6%. */
 #define ENVELOPE_MARGIN 2.0
-/* Points per side of the KS route: its exact p-value costs O(N^1.5) (9 ms
- * at 20000 + 20000, 17 ms at 40000 + 45000, most of a check with cheap
- * callbacks); the kept points are i.i.d., so the first KS_MAX are a sample. */
-#define KS_MAX 20000
 
 static const uint32_t known_sizes[] = {MCSTAT_CHECK_OPTIONS_SIZE_0_2};
 
@@ -55,31 +50,7 @@ size_t mcstat_sizeof_check_options(void) { return sizeof(mcstat_check_options); 
 size_t mcstat_sizeof_check_model(void) { return sizeof(mcstat_check_model); }
 size_t mcstat_sizeof_check_report(void) { return sizeof(mcstat_check_report); }
 
-/* ---- the plan: sizes, and the scratch carved from one block --------------- */
-
-typedef struct plan {
-    mcstat__domain d;
-    int kind, nu, reports, has_eval;
-    uint64_t n, n_pilot, n_eval, cells_target;
-    size_t batch, max_cells, max_rects;
-} plan;
-
-typedef struct scratch {
-    double *u, *x, *w, *p, *xs, *ws, *ps, *f, *p2; /* one batch each */
-    double *sb;                                    /* (s, t) of a batch's points: 2 per point */
-    int32_t *cellb;                                /* the cell of each compacted point */
-    double *st;                                    /* pilot (s, t): 2 n_pilot */
-    double *wsave, *vsave;                         /* weights and eval-only values: n, n_eval */
-    double *rsave;                                 /* pdf/table at the table points: n_eval */
-    double *keys_a, *keys_b;                       /* KS: kept sampled points' keys (n), eval's (n_eval/2) */
-    double *recip;                                 /* reciprocity points: 4 each */
-    double *counts;                                /* per cell */
-    double *cell_r, *cell_r2;                      /* per cell: sums of pdf/table at the table points */
-    double *cdf;                                   /* per cubature rectangle */
-    mcstat__node *nodes;
-    mcstat__cell *cells;
-    mcstat__rect *rects;
-} scratch;
+/* ---- the plan: sizes, and the scratch carved from one block (check_run.h) -- */
 
 /* Carves the scratch from base (NULL: only sizes it); *bytes the total. */
 static int carve(const plan *pl, char *base, scratch *s, size_t *bytes)
@@ -232,30 +203,6 @@ int mcstat_check_work_size(const mcstat_check_model *model, size_t n, const mcst
 
 /* ---- the run --------------------------------------------------------------- */
 
-typedef struct run {
-    const mcstat_check_model *m;
-    const double *wi;
-    plan pl;
-    mcstat_check_options o;
-    scratch s;
-    mcstat__tree tr;
-    mcstat_check_report *out;
-    uint64_t key_pilot, key_test, key_eval, key_keep_sample, key_keep_eval;
-    /* KS: envelopes, their breaches, the points kept */
-    double w_envelope, v_largest, v_envelope;
-    int w_breach, v_breach;
-    double breach_x[3], breach_v[2];
-    uint64_t n_keys_a, n_keys_b;
-    double rtol;
-    /* deterministic comparisons: points beyond tolerance and the worst */
-    uint64_t bad[MCSTAT_CHECK_ROUTES], checked[MCSTAT_CHECK_ROUTES];
-    double worst[MCSTAT_CHECK_ROUTES], worst_x[MCSTAT_CHECK_ROUTES][3], worst_v[MCSTAT_CHECK_ROUTES][2];
-    uint64_t pdf_without_eval; /* pdf > 0 where eval = 0 (counted, not a failure) */
-    uint64_t zero_weight;      /* successes (pdf > 0) whose weight is 0 where eval() > 0 */
-    size_t n_rects;            /* cubature rectangles: a fine partition of the domain */
-    uint64_t seed;
-} run;
-
 static void format_point(const run *r, const double *x, char *buf, size_t size)
 {
     if (r->pl.d.dims == 3)
@@ -385,19 +332,6 @@ static void compare(run *r, int route, const double *x, double a, double b)
     }
 }
 
-/* Regions of the integrals route: up to 16, with about 500 samples each at
- * least (a Wald test with an estimated covariance is liberal when its
- * regions hold few samples). */
-static int region_count(const run *r)
-{
-    uint64_t g = r->pl.n / 500;
-    if (g > MAX_GROUPS)
-        g = MAX_GROUPS;
-    if (g > (uint64_t)r->tr.n_cells)
-        g = (uint64_t)r->tr.n_cells;
-    return g < 2 ? (r->tr.n_cells < 2 ? 1 : 2) : (int)g;
-}
-
 /* ---- stage 1: pilot and cells -------------------------------------------- */
 
 static int pilot_and_cells(run *r)
@@ -450,14 +384,6 @@ static int pilot_and_cells(run *r)
 }
 
 /* ---- stage 2: the tested sample ------------------------------------------ */
-
-typedef struct sums {
-    double a[MAX_GROUPS], a2[MAX_GROUPS]; /* sampler: sums of weights and squares per region */
-    double b[MAX_GROUPS], b2[MAX_GROUPS]; /* eval-only */
-    double r, r2;                         /* pdf/table at the table points: the mass, sampled */
-    mcstat_moments all;                  /* every weight (0 for failed samples) */
-    uint64_t n_succ, n_w, n_v, n_recip;
-} sums;
 
 static int tested_sample(run *r, sums *sm)
 {
@@ -677,455 +603,6 @@ static int reciprocity(run *r, const sums *sm)
     return MCSTAT_OK;
 }
 
-/* ---- the routes' statistics ----------------------------------------------- */
-
-/* Moves the k + 1 largest of x[0..n) to the front (three-way quickselect:
- * equal weights, common for good samplers, cost nothing). */
-static void select_largest(double *x, uint64_t n, uint64_t k)
-{
-    uint64_t lo = 0, hi = n;
-    while (hi - lo > 1) {
-        double pivot = x[lo + (hi - lo) / 2];
-        uint64_t gt = lo, i = lo, lt = hi; /* [lo, gt) > pivot, [gt, i) == pivot, [lt, hi) < pivot */
-        while (i < lt) {
-            double v = x[i];
-            if (v > pivot) {
-                x[i] = x[gt];
-                x[gt++] = v;
-                i++;
-            } else if (v < pivot) {
-                x[i] = x[--lt];
-                x[lt] = v;
-            } else {
-                i++;
-            }
-        }
-        if (k < gt)
-            hi = gt;
-        else if (k >= lt)
-            lo = lt;
-        else
-            return;
-    }
-}
-
-/* Hill's estimate of the upper tail index from the largest sqrt(n) values
- * (clamped to [10, 1000]) of x[0..n) (reordered); +Inf when the tail is not
- * Pareto-like (fewer positive values than the estimate needs, or ties). */
-static double hill_upper(double *x, uint64_t n)
-{
-    if (n < 100)
-        return NAN;
-    uint64_t k = (uint64_t)sqrt((double)n);
-    k = k < 10 ? 10 : (k > 1000 ? 1000 : k);
-    select_largest(x, n, k);
-    double threshold = x[k];
-    if (!(threshold > 0.0))
-        return INFINITY;
-    double sum = 0.0;
-    for (uint64_t i = 0; i < k; i++)
-        sum += log(x[i] / threshold);
-    return sum > 0.0 ? (double)k / sum : INFINITY;
-}
-
-static void route_init(mcstat_check_route_result *rr)
-{
-    memset(rr, 0, sizeof *rr);
-    rr->state = MCSTAT_ROUTE_SKIPPED;
-    rr->statistic = rr->df = rr->p_value = rr->p_adjusted = NAN;
-    rr->effect = rr->detectable = rr->n_for_1pct = NAN;
-    rr->where[0] = rr->where[1] = rr->where[2] = NAN;
-    rr->value[0] = rr->value[1] = NAN;
-}
-
-static void finish_deterministic(run *r, int route)
-{
-    mcstat_check_route_result *rr = &r->out->route[route];
-    rr->state = MCSTAT_ROUTE_RAN;
-    rr->deterministic = 1;
-    rr->checked = r->checked[route];
-    rr->count = r->bad[route];
-    double n = (double)r->checked[route], tau = r->o.tolerated;
-    rr->reject = (double)r->bad[route] > floor(tau * n);
-    rr->effect = r->worst[route];
-    /* a wrong region of probability q gives about n q points beyond rtol:
-     * seen with probability ~0.8 once n q exceeds the tolerated count by
-     * 0.84 of its Poisson sd, and at least -ln(0.2) points are expected */
-    rr->detectable = n > 0 ? fmax(tau + POWER_Z * sqrt(tau / n), 0.0) + -log(0.2) / n : NAN;
-    /* a region of 1%: hit -ln(0.2) times; with tau >= 1%, never */
-    rr->n_for_1pct = tau < 0.01 ? -log(0.2) / (0.01 - tau) : INFINITY;
-    for (int c = 0; c < 3; c++)
-        rr->where[c] = r->worst_x[route][c];
-    rr->value[0] = r->worst_v[route][0];
-    rr->value[1] = r->worst_v[route][1];
-    if (r->checked[route] == 0)
-        rr->state = MCSTAT_ROUTE_INVALID;
-}
-
-/* Noncentrality at which chi^2(df) beyond its upper level-a quantile has
- * probability 0.8 (normal approximation: mean df + l, variance 2(df + 2l)). */
-static double detectable_noncentrality(double df, double a)
-{
-    double crit;
-    if (mcstat_chisq_quantile(a, df, 1, &crit) != MCSTAT_OK)
-        return NAN;
-    double z2 = POWER_Z * POWER_Z, c0 = df - crit, b = c0 - 2 * z2;
-    double disc = b * b - c0 * c0 + 2 * z2 * df;
-    return disc > 0 ? -b + sqrt(disc) : NAN;
-}
-
-/* A route whose statistic is chi-squared with df degrees of freedom under
- * H0: its upper tail as the p-value; 0 (the route INVALID) if that fails. */
-static int ran_chisq(mcstat_check_route_result *rr, double statistic, double df)
-{
-    double p;
-    if (mcstat_chisq_cdf(statistic, df, 1, &p) != MCSTAT_OK) {
-        rr->state = MCSTAT_ROUTE_INVALID;
-        return 0;
-    }
-    rr->state = MCSTAT_ROUTE_RAN;
-    rr->statistic = statistic;
-    rr->df = df;
-    rr->p_value = p;
-    return 1;
-}
-
-static void route_cells(run *r, const sums *sm, double level)
-{
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_CELLS];
-    double mass = 0.0;
-    for (int32_t c = 0; c < r->tr.n_cells; c++)
-        mass += fmax(r->tr.cells[c].prob, 0.0);
-    double N = (double)sm->n_succ;
-    if (!(mass > 0.0) || sm->n_succ < 2) {
-        rr->state = MCSTAT_ROUTE_INVALID;
-        return;
-    }
-    /* pool consecutive cells to an expected count of 5; each pooled cell's
-     * variance grows by the square of its expectation's cubature error */
-    double x2 = 0.0, O = 0.0, E = 0.0, V = 0.0, lastO = 0, lastE = 0, lastV = 0;
-    int groups = 0, have_last = 0;
-    double m_eval = (double)r->pl.n_eval;
-    for (int32_t c = 0; c < r->tr.n_cells; c++) {
-        /* The cubature's error estimate can fall short (a feature its points
-         * miss, a singular point): the table points give an unbiased
-         * estimate of the cell's probability; where the two differ by more
-         * than 3 of its standard errors, the difference is the error. */
-        double err = 2.0 * r->tr.cells[c].err; /* the estimate can be short near singular points */
-        double p_mc = r->s.cell_r[c] / m_eval;
-        double se = sqrt(fmax(r->s.cell_r2[c] / m_eval - p_mc * p_mc, 0.0) / m_eval);
-        double diff = fabs(r->tr.cells[c].prob - p_mc);
-        if (diff > 3.0 * se && diff > err)
-            err = diff;
-        O += r->s.counts[c];
-        E += N * fmax(r->tr.cells[c].prob, 0.0) / mass;
-        V += N * err / mass;
-        if (E >= 5.0) {
-            if (have_last) {
-                x2 += (lastO - lastE) * (lastO - lastE) / (lastE + lastV * lastV);
-                groups++;
-            }
-            lastO = O, lastE = E, lastV = V, have_last = 1;
-            O = E = V = 0.0;
-        }
-    }
-    if (have_last) { /* a short tail joins the last group */
-        lastO += O, lastE += E, lastV += V;
-        x2 += (lastO - lastE) * (lastO - lastE) / (lastE + lastV * lastV);
-        groups++;
-    } else if (E > 0.0) {
-        x2 += (O - E) * (O - E) / (E + V * V);
-        groups++;
-    }
-    rr->checked = sm->n_succ;
-    rr->count = (uint64_t)groups;
-    if (groups < 2) {
-        rr->state = MCSTAT_ROUTE_INVALID;
-        return;
-    }
-    double df = groups - 1;
-    if (!ran_chisq(rr, x2, df))
-        return;
-    rr->effect = sqrt(x2 / N);
-    double lambda = detectable_noncentrality(df, level);
-    rr->detectable = sqrt(lambda / N);
-    rr->n_for_1pct = lambda / 1e-4;
-}
-
-/* The mass route: the share of samples that succeed, x/n, against the mass
- * of pdf().  Two estimates of the mass: the cubature's (precise, but its
- * error estimate can fall short where a rule's points miss a feature) and
- * the Monte Carlo mean of pdf/table at the table points (unbiased whatever
- * the cubature did, but noisier).  When they agree (within 3 standard
- * errors of the second plus 4 times the cubature's error estimate), the
- * exact binomial test against the cubature's mass, conservative over 4
- * times its error; when they do not, and pdf/table is not heavy-tailed
- * (tail index >= 2.5, so that its variance can be trusted), the two-sample
- * z test against the Monte Carlo mass m,
- *   z = (x/n - m) / sqrt(m (1 - m)/n + var(pdf/table)/n_eval),
- * m clipped to [1/n, 1 - 1/n] in the binomial variance; otherwise the
- * binomial test as above.  "pdf() integrates above 1" (p = 0) needs both
- * estimates above 1. */
-static void route_mass(run *r, const sums *sm, double level)
-{
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_MASS];
-    uint64_t n = r->pl.n, x = sm->n_succ;
-    double m_eval = (double)r->pl.n_eval;
-    double mhat = sm->r / m_eval, var_m = fmax(sm->r2 / m_eval - mhat * mhat, 0.0) / m_eval;
-    double tail = hill_upper(r->s.rsave, r->pl.n_eval);
-    r->out->mass_sampled = mhat;
-    r->out->mass_sampled_se = sqrt(var_m);
-    double phat = (double)x / (double)n, p;
-    double z = mcstat__norm_quantile(level / 2, 1) + POWER_Z;
-    rr->checked = n;
-    rr->count = x;
-    rr->state = MCSTAT_ROUTE_RAN;
-    rr->statistic = phat;
-    int agree = fabs(r->out->mass - mhat) <= 3.0 * sqrt(var_m) + 4.0 * r->out->mass_error;
-    if (!isfinite(r->out->mass) || !isfinite(mhat)) {
-        /* pdf() so large that its integral overflowed: no sampler can match it */
-        rr->p_value = 0.0;
-        rr->effect = rr->detectable = rr->n_for_1pct = NAN;
-        return;
-    }
-    if (!agree && tail >= 2.5) {
-        double mc = fmin(fmax(mhat, 1.0 / (double)n), 1.0 - 1.0 / (double)n);
-        double sd = sqrt(mc * (1.0 - mc) / (double)n + var_m);
-        double d = phat - mhat;
-        p = sd > 0.0 ? erfc(fabs(d) / sd / sqrt(2.0)) : (fabs(d) <= 1e-12 ? 1.0 : 0.0);
-        rr->effect = mhat > 0.0 ? d / mhat : NAN;
-        rr->detectable = mhat > 0.0 ? z * sd / mhat : NAN;
-        double room = 0.01 * mhat - z * sqrt(var_m * m_eval / (double)n); /* n_eval grows with n */
-        rr->n_for_1pct = room > 0.0 ? z * z * (mc * (1.0 - mc) + var_m * m_eval) / (0.01 * mhat * 0.01 * mhat)
-                                    : INFINITY;
-    } else {
-        double mass = r->out->mass, err = 4.0 * r->out->mass_error;
-        /* The cubature above 1 beyond its error while the unbiased estimate is
-         * not significantly above 1: the error estimate fell short (a density
-         * with a sharp edge, such as a cone's rim), not pdf().  Widen it to
-         * the two estimates' disagreement before judging. */
-        if (mass - err > 1.0 && !(mhat - 3.0 * sqrt(var_m) > 1.0))
-            err = fmax(err, fabs(mass - mhat) + 3.0 * sqrt(var_m));
-        double p_lo = fmin(fmax(mass - err, 0.0), 1.0), p_hi = fmin(fmax(mass + err, 0.0), 1.0);
-        rr->effect = mass > 0.0 ? (phat - mass) / mass : NAN;
-        if (mass - err > 1.0) {
-            p = 0.0; /* pdf() integrates above 1 by both estimates: no sampler can match it */
-        } else if (phat >= p_lo && phat <= p_hi) {
-            p = 1.0;
-        } else {
-            mcstat_result res;
-            if (mcstat_binom_test(x, n, phat < p_lo ? p_lo : p_hi, MCSTAT_TWO_SIDED, 0.5, &res) != MCSTAT_OK) {
-                rr->state = MCSTAT_ROUTE_INVALID;
-                return;
-            }
-            p = res.p_value;
-        }
-        double mm = fmin(fmax(mass, 1e-300), 1.0);
-        rr->detectable = (z * sqrt(mm * (1.0 - mm) / (double)n) + err) / mm;
-        double room = 0.01 * mm - err;
-        rr->n_for_1pct = room > 0.0 ? fmax(z * z * mm * (1.0 - mm) / (room * room), -log(0.2) / 0.01) : INFINITY;
-    }
-    rr->p_value = p;
-}
-
-/* Solves the Wald statistic d' S^-1 d by Cholesky, dropping regions whose
- * pivot vanishes (no mass on either side); *df the regions kept. */
-static double wald(const double *d, double S[MAX_GROUPS][MAX_GROUPS], int g, int *df)
-{
-    int keep[MAX_GROUPS], nk = 0;
-    double L[MAX_GROUPS][MAX_GROUPS];
-    for (int i = 0; i < g; i++) {
-        keep[nk] = i;
-        /* try adding region i */
-        int k = nk;
-        int ok = 1;
-        for (int j = 0; j <= k; j++) {
-            double sum = S[keep[k]][keep[j]];
-            for (int q = 0; q < j; q++)
-                sum -= L[k][q] * L[j][q];
-            if (j == k) {
-                if (!(sum > 1e-12 * S[keep[k]][keep[k]]) || !(S[keep[k]][keep[k]] > 0.0)) {
-                    ok = 0;
-                    break;
-                }
-                L[k][k] = sqrt(sum);
-            } else {
-                L[k][j] = sum / L[j][j];
-            }
-        }
-        if (ok)
-            nk++;
-    }
-    double y[MAX_GROUPS], t = 0.0;
-    for (int i = 0; i < nk; i++) {
-        double sum = d[keep[i]];
-        for (int q = 0; q < i; q++)
-            sum -= L[i][q] * y[q];
-        y[i] = sum / L[i][i];
-        t += y[i] * y[i];
-    }
-    *df = nk;
-    return t;
-}
-
-/* The regions' integrals of eval from the sampler (A) and from the
- * eval-only estimator (B), their difference D and its covariance S, and
- * the totals with their variances; returns the number of regions. */
-static int region_integrals(const run *r, const sums *sm, double A[MAX_GROUPS], double B[MAX_GROUPS],
-                            double D[MAX_GROUPS], double S[MAX_GROUPS][MAX_GROUPS], double tot[2], double var[2])
-{
-    int g = region_count(r);
-    double n = (double)r->pl.n, m = (double)r->pl.n_eval;
-    double ta = 0.0, tb = 0.0;
-    for (int i = 0; i < g; i++) {
-        A[i] = sm->a[i] / n;
-        B[i] = sm->b[i] / m;
-        D[i] = A[i] - B[i];
-        ta += A[i];
-        tb += B[i];
-    }
-    /* region indicators are disjoint: Cov(w 1_i, w 1_j) = E[w^2 1_i] delta_ij - mu_i mu_j */
-    double va = 0.0, vb = 0.0;
-    for (int i = 0; i < g; i++)
-        for (int j = 0; j < g; j++) {
-            double ca = (i == j ? sm->a2[i] / n : 0.0) - A[i] * A[j];
-            double cb = (i == j ? sm->b2[i] / m : 0.0) - B[i] * B[j];
-            S[i][j] = ca / n + cb / m;
-            va += ca / n;
-            vb += cb / m;
-        }
-    tot[0] = ta, tot[1] = tb, var[0] = va, var[1] = vb;
-    return g;
-}
-
-/* The integral of eval from the weights and from eval alone, reported
- * whether or not the integrals route runs. */
-static void report_albedos(run *r, const sums *sm)
-{
-    double A[MAX_GROUPS], B[MAX_GROUPS], D[MAX_GROUPS], S[MAX_GROUPS][MAX_GROUPS], tot[2], var[2];
-    region_integrals(r, sm, A, B, D, S, tot, var);
-    r->out->albedo = tot[0];
-    r->out->albedo_se = sqrt(fmax(var[0], 0.0));
-    r->out->albedo_eval = tot[1];
-    r->out->albedo_eval_se = sqrt(fmax(var[1], 0.0));
-}
-
-static void route_integrals(run *r, const sums *sm, double level)
-{
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_INTEGRALS];
-    double n = (double)r->pl.n, m = (double)r->pl.n_eval;
-    double A[MAX_GROUPS], B[MAX_GROUPS], D[MAX_GROUPS], S[MAX_GROUPS][MAX_GROUPS], tot[2], var[2];
-    int g = region_integrals(r, sm, A, B, D, S, tot, var);
-    double ta = tot[0], tb = tot[1], va = var[0], vb = var[1];
-    if (r->out->heavy_tailed) {
-        rr->state = MCSTAT_ROUTE_INVALID;
-        return;
-    }
-    int df = 0;
-    double t = wald(D, S, g, &df);
-    rr->checked = (uint64_t)(n + m);
-    rr->count = (uint64_t)df;
-    if (df < 1) {
-        rr->state = MCSTAT_ROUTE_INVALID; /* eval is zero wherever either estimator looked */
-        return;
-    }
-    if (!ran_chisq(rr, t, df))
-        return;
-    rr->effect = tb != 0.0 ? (ta - tb) / tb : NAN;
-    double z = mcstat__norm_quantile(level / 2, 1) + POWER_Z;
-    double se = sqrt(fmax(va + vb, 0.0));
-    rr->detectable = tb > 0.0 ? z * se / tb : NAN;
-    rr->n_for_1pct = tb > 0.0 ? n * (z * se / tb / 0.01) * (z * se / tb / 0.01) : NAN;
-}
-
-static void route_energy(run *r, const sums *sm, double level)
-{
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ENERGY];
-    if (r->out->tail_index[0] < 2.0) { /* it reads the weights only */
-        rr->state = MCSTAT_ROUTE_INVALID;
-        return;
-    }
-    mcstat_result res;
-    double mean = mcstat_moments_mean(&sm->all), sd = mcstat_moments_sd(&sm->all);
-    rr->checked = sm->all.n;
-    rr->effect = mean - 1.0;
-    int st = mcstat_t_test_1_moments(&sm->all, 1.0, MCSTAT_GREATER, 0.5, &res);
-    rr->state = MCSTAT_ROUTE_RAN;
-    if (st == MCSTAT_EDEGENERATE) {
-        /* constant weights (a sampler proportional to eval): no spread to test */
-        rr->deterministic = 1;
-        rr->reject = mean > 1.0 + r->rtol;
-        rr->count = rr->reject;
-        rr->value[0] = mean;
-        rr->value[1] = 1.0;
-        return;
-    }
-    if (st != MCSTAT_OK) {
-        rr->state = MCSTAT_ROUTE_INVALID;
-        return;
-    }
-    rr->statistic = res.statistic;
-    rr->df = res.df[0];
-    rr->p_value = res.p_value;
-    double z = mcstat__norm_quantile(level, 1) + POWER_Z;
-    double se = sd / sqrt((double)sm->all.n);
-    rr->detectable = z * se;
-    rr->n_for_1pct = (z * sd / 0.01) * (z * sd / 0.01);
-}
-
-static void route_ks(run *r, double level)
-{
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_KS];
-    uint64_t na = r->n_keys_a, nb = r->n_keys_b;
-    rr->checked = na + nb;
-    if (r->w_breach || r->v_breach) {
-        /* an envelope was exceeded: the kept points do not follow what they should */
-        rr->state = MCSTAT_ROUTE_INVALID;
-        for (int c = 0; c < 3; c++)
-            rr->where[c] = c < r->pl.d.dims ? r->breach_x[c] : NAN;
-        rr->value[0] = r->breach_v[0];
-        rr->value[1] = r->breach_v[1];
-        rr->count = (uint64_t)(r->w_breach ? 1 : 2);
-        return;
-    }
-    if (na < 50 || nb < 50) {
-        rr->state = MCSTAT_ROUTE_INVALID;
-        return;
-    }
-    mcstat_ks_options ko;
-    mcstat_ks_options_init(&ko);
-    ko.weight = MCSTAT_KS_WEIGHT_CANNER;
-    ko.critical = 0;
-    uint64_t small = na < nb ? na : nb;
-    if ((double)(small + 1) * (double)(na + nb + 1) <= 4e10) {
-        ko.method = MCSTAT_METHOD_EXACT;
-    } else {
-        ko.method = MCSTAT_METHOD_SIMULATE;
-        ko.n_sim = 2000;
-        ko.seed = r->seed;
-    }
-    mcstat_result res;
-    int st = mcstat_ks_test_2(r->s.keys_a, na, r->s.keys_b, nb, MCSTAT_TWO_SIDED, 0.5, &ko, &res);
-    if (st != MCSTAT_OK) {
-        rr->state = MCSTAT_ROUTE_INVALID;
-        return;
-    }
-    rr->state = MCSTAT_ROUTE_RAN;
-    rr->count = na;
-    rr->statistic = res.statistic;
-    rr->p_value = res.p_value;
-    double ne = (double)na * (double)nb / (double)(na + nb);
-    rr->effect = res.statistic / sqrt(ne); /* Canner-weighted sup distance of the two CDFs */
-    /* about: the unweighted statistic's critical distance at this level
-     * (Kolmogorov's limit), what is detected with probability ~0.5 */
-    double c = sqrt(-0.5 * log(level / 2));
-    rr->detectable = c / sqrt(ne);
-    /* ne grows with n until a side reaches KS_MAX; a 1% distance needs
-     * ne = 2 (c/0.01)^2, beyond what the cap allows */
-    double need = 2.0 * (c / 0.01) * (c / 0.01), kept = (double)na / (double)r->pl.n;
-    rr->n_for_1pct = need <= KS_MAX / 2.0 ? need / (kept > 0.0 ? kept : NAN) : INFINITY;
-}
-
 /* ---- the check ---------------------------------------------------------------- */
 
 static int run_check(int kind, const mcstat_check_model *model, const double *wi_in, size_t n, uint64_t seed,
@@ -1186,7 +663,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     out->n = n;
     out->n_eval = r.pl.n_eval;
     for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
-        route_init(&out->route[i]);
+        mcstat__check_route_init(&out->route[i]);
 
     sums sm;
     memset(&sm, 0, sizeof sm);
@@ -1218,8 +695,8 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     /* heavy tails first: they decide which mean-based routes can answer */
     out->tail_index[0] = out->tail_index[1] = NAN;
     if (r.pl.has_eval) {
-        out->tail_index[0] = hill_upper(r.s.wsave, sm.n_w);
-        out->tail_index[1] = hill_upper(r.s.vsave, sm.n_v);
+        out->tail_index[0] = mcstat__check_hill_upper(r.s.wsave, sm.n_w);
+        out->tail_index[1] = mcstat__check_hill_upper(r.s.vsave, sm.n_v);
         out->heavy_tailed = out->tail_index[0] < 2.0 || out->tail_index[1] < 2.0;
     }
 
@@ -1247,17 +724,10 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++) {
         if (!applies[i] || !(want & (1u << i)))
             continue;
-        switch (i) {
-        case MCSTAT_CHECK_CELLS: route_cells(&r, &sm, level); break;
-        case MCSTAT_CHECK_MASS: route_mass(&r, &sm, level); break;
-        case MCSTAT_CHECK_INTEGRALS: route_integrals(&r, &sm, level); break;
-        case MCSTAT_CHECK_ENERGY: route_energy(&r, &sm, level); break;
-        case MCSTAT_CHECK_KS: route_ks(&r, level); break;
-        default: finish_deterministic(&r, i); break;
-        }
+        mcstat__check_route(&r, &sm, i, level);
     }
     if (r.pl.has_eval)
-        report_albedos(&r, &sm);
+        mcstat__check_report_albedos(&r, &sm);
 
     /* Holm across the statistical routes that ran */
     double p[N_STATISTICAL], adj[N_STATISTICAL];

@@ -15,15 +15,15 @@
  *     1e8 + small noise keeps its digits as in moments.c;
  *   - t, df, the standard errors and the t prefactors in branch-free loops
  *     over the block;
- *   - the tails (t_tail_core's series, specialised to b = 1/2: the cost
- *     does not depend on the variety of df) for the whole block: exp and
- *     log1p four pixels at a time (vmath.h), the central series eight
- *     pixels a step;
+ *   - the tails (mcstat__t_tail_core's series, specialised to b = 1/2: the
+ *     cost does not depend on the variety of df) for the whole block: exp
+ *     and log1p four pixels at a time (vmath.h), the central series eight
+ *     pixels a step (pixels_dist.c);
  *   - the critical values from a per-call table of t quantiles in 1/df
- *     (solved lazily, the same whichever pixels ask), interpolated, and the
- *     intervals' bounds, again for the whole block; where the interpolation
- *     is not good to rounding, Halley's method in log t on the fast tail
- *     finishes that pixel's.
+ *     (t_quantiles.c: solved lazily, the same whichever pixels ask),
+ *     interpolated, and the intervals' bounds, again for the whole block;
+ *     where the interpolation is not good to rounding, Halley's method in
+ *     log t on the fast tail finishes that pixel's.
  * The block loops are compiled for SSE2 and for AVX2 (chosen at run time,
  * the same results bit for bit).
  * A pixel outside the fast path's proven ground (a NaN or Inf, extreme
@@ -33,329 +33,24 @@
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
-#include "internal.h"
-#include "vmath.h"
+#include "pixels.h"
 
 #include <float.h>
 #include <pthread.h>
 #include <stdlib.h>
 
-#define PIX_BLOCK 256     /* pixels per block: their sums stay in L1 */
 #define GATHER 256        /* the slow path's bounce buffer (2 KiB of stack) */
 /* (PIX_BLOCK and GATHER are also pixels_test.c's) */
 #define FAST_LO 0x1p-200  /* moments.c's unscaled range */
 #define FAST_HI 0x1p+200
-#define QT_NODES 1024      /* the critical values' table: u = 1/df in steps of 1/1024 */
-#define LOG_2PI_HALF 0.91893853320467274178 /* log(2 pi) / 2 */
-
-/* The per-block loops (moments, statistics, prefactors) are compiled twice
- * on x86-64, for the baseline (SSE2: two doubles a vector) and for AVX2
- * (four), and chosen at run time.  Each pixel's arithmetic is the same
- * sequence of IEEE operations in both (no FMA: -ffp-contract=off, and AVX2
- * does not imply FMA), so the results are bit for bit the same. */
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define PIX_AVX2 1
-#define PIX_INLINE inline __attribute__((always_inline))
-#else
-#define PIX_AVX2 0
-#define PIX_INLINE inline
-#endif
-
-/* ---- the t tail with b = 1/2 --------------------------------------------
- * a = df/2, r = t^2/df, x = 1/(1+r), y = r/(1+r).  The prefactor
- *   K = x^a y^(1/2) / B(a, 1/2) = |t| f(t)
- *     = |t| / sqrt(2) (1+r)^-(a+1/2) Gamma(a+1/2) / (Gamma(a) sqrt(pi) sqrt(a)),
- * with Gamma(a+1/2)/(Gamma(a) sqrt(a)) = exp(L(z)) sqrt(z/a) prod_{i<k} (a+i)/(a+i+1/2)
- * for z = a + k >= 10 (L below), so
- *   K = |t| f exp(e),  f = sqrt(z/a) prod (a+i)/(a+i+1/2),
- *                      e = L(z) - log(2 pi)/2 - (a+1/2) log1p(r).
- * Nothing there cancels beyond the size of the result, and e's rounding,
- * relative to K, is that of log p, not of log |t|.  Then
- *   r >= 1: P[T > |t|] = I_x(a, 1/2)/2 = K/(2a) sum_j c_j,
- *           c_{j+1} = c_j (a+1/2+j)/(a+1+j) x, ratio below x <= 1/2;
- *   r < 1:  P[|T| <= |t|] = I_y(1/2, a) = 2K sum_j c_j,
- *           c_{j+1} = c_j (a+1/2+j)/(3/2+j) y (dist.c's t_central),
- *           used while that central probability is at most 0.96, so the
- *           upper tail (1 - c)/2 carries at most 24 times its error.
- * Both sums have positive terms (a few ulps each).  Outside (df beyond
- * [1, 1000], the centre of a large df, |t| >= 1e100) it returns 0 and the
- * caller uses mcstat__t_tails. */
-/* L(z) = log Gamma(z+1/2) - log Gamma(z) - log(z)/2 for z >= 10: the
- * asymptotic series sum_{n even} (2^(1-n) - 2) B_n / (n (n-1) z^(n-1)),
- * n = 2..16; the first term left out is below 4e-18 at z = 10 (mpmath). */
-static PIX_INLINE double gamma_half_ratio(double z)
-{
-    double w = 1.0 / z, w2 = w * w;
-    return w * (-1.0 / 8 + w2 * (1.0 / 192 + w2 * (-1.0 / 640 + w2 * (17.0 / 14336 +
-           w2 * (-31.0 / 18432 + w2 * (691.0 / 180224 + w2 * (-5461.0 / 425984 +
-           w2 * (929569.0 / 15728640))))))));
-}
-
-/* The df-dependent part of K: with a = df/2 shifted to z = a + k >= 10,
- *   Gamma(a+1/2)/(Gamma(a) sqrt(a)) = exp(L(z)) sqrt(z/a) prod_{i<k} (a+i)/(a+i+1/2),
- * kept as lc = L(z) - log(2 pi)/2 (for the exponent) and the factor f
- * (multiplying |t|), so K = |t| f exp(lc - (a+1/2) log1p(r)). */
-typedef struct {
-    double a, A, lc, f;
-} t_prefactor;
-
-/* f and lc at a = df/2 >= 1/2, with a fixed trip count and no branches, so
- * that a loop over pixels calling it vectorises: below 10, a is shifted by
- * k = 10 whatever it is (z in [10.5, 20): the series only gains), the
- * product taken unconditionally and chosen at the end, which costs fewer
- * operations than testing z < 10 at each of ten steps. */
-static PIX_INLINE void t_prefactor_parts(double a, double *f, double *lc)
-{
-    double z = a, num = 1.0, den = 1.0;
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC unroll 10
-#endif
-    for (int i = 0; i < 10; i++) {
-        num *= z;
-        den *= z + 0.5;
-        z += 1.0;
-    }
-    int below = isless(a, 10.0); /* quiet: a trapping compare would not vectorise */
-    z = below ? z : a;
-    num = below ? num : 1.0;
-    den = below ? den : 1.0;
-    *f = sqrt((z * num * num) / (a * den * den));
-    *lc = gamma_half_ratio(z) - LOG_2PI_HALF;
-}
-
-static void t_prefactor_init(double df, t_prefactor *pf)
-{
-    pf->a = 0.5 * df;
-    pf->A = pf->a + 0.5;
-    t_prefactor_parts(pf->a, &pf->f, &pf->lc);
-}
-
-/* 1/(3/2 + j): the central series' divisors, so its terms need no division. */
-#define RCP1(j) 1.0 / (1.5 + (j))
-#define RCP4(j) RCP1(j), RCP1((j) + 1), RCP1((j) + 2), RCP1((j) + 3)
-#define RCP16(j) RCP4(j), RCP4((j) + 4), RCP4((j) + 8), RCP4((j) + 12)
-#define RCP64(j) RCP16(j), RCP16((j) + 16), RCP16((j) + 32), RCP16((j) + 48)
-#define CENTRAL_TERMS 448
-static const double rcp_central[CENTRAL_TERMS] = {
-    RCP64(0), RCP64(64), RCP64(128), RCP64(192), RCP64(256), RCP64(320), RCP64(384),
-};
-
-/* The upper tail's series sum_j c_j (c_0 = 1, ratio below x <= 1/2);
- * 0 if it has not converged in 200 terms. */
-static PIX_INLINE int upper_series(double a, double A, double x, double *sum)
-{
-    double term = 1.0, s = 1.0;
-    for (int j = 0;; j++) {
-        if (j == 200)
-            return 0;
-        term *= (A + j) / (a + 1.0 + j) * x;
-        s += term;
-        if (term <= 1e-17 * s)
-            break;
-    }
-    *sum = s;
-    return 1;
-}
-
-/* The upper tail K h / (2a) where the central probability c is too close
- * to 1 for (1 - c)/2 (c > 0.96, |t| below sqrt(df)): h the continued
- * fraction of I_x(a, 1/2) = K h / a (DLMF 8.17.22, a + 1 > (a + 5/2) x
- * for the x = 1/(1+r) in (1/2, 1) met here at df >= 1: it converges),
- * evaluated by Lentz's method.  Its terms d_{2m} = m (1/2 - m) x /
- * ((a + 2m - 1)(a + 2m)), d_{2m+1} = -(a + m)(a + 1/2 + m) x / ((a + 2m)
- * (a + 2m + 1)).  The ratio of successive values goes to 1 within
- * DBL_EPSILON in 10 to 30 steps at the per-pixel df; each step's rounding
- * adds up, so beyond CF_STEPS (large df, x near 1) it returns 0 and the
- * general routine answers. */
-#define CF_STEPS 40
-/* h of four pixels (a[l], x[l]) at once; ok[l] = 0 where a lane has not
- * converged in CF_STEPS.  A lane's h stops changing when it converges, so
- * every lane gets what it would alone, bit for bit. */
-static PIX_INLINE void upper_cf4(const double *a4, const double *x4, double *h4, int *ok)
-{
-    const mcs_v4d tiny = vm_splat(0x1p-1000), one = vm_splat(1.0);
-    mcs_v4d a = {a4[0], a4[1], a4[2], a4[3]}, x = {x4[0], x4[1], x4[2], x4[3]};
-    mcs_v4d c = one, d = one - (a + 0.5) * x / (a + 1.0);
-    d = one / vm_select((mcs_v4i)(vm_fabs(d) < tiny), tiny, d);
-    mcs_v4d h = d;
-    mcs_v4i live = {-1, -1, -1, -1};
-    for (int m = 1; m <= CF_STEPS; m++) {
-        double m2 = 2.0 * m;
-        for (int odd = 0; odd < 2; odd++) {
-            mcs_v4d dm = odd ? -(a + (double)m) * (a + 0.5 + (double)m) * x / ((a + m2) * (a + 1.0 + m2))
-                             : (double)m * (0.5 - m) * x / ((a - 1.0 + m2) * (a + m2));
-            d = one + dm * d;
-            c = one + dm / c;
-            d = one / vm_select((mcs_v4i)(vm_fabs(d) < tiny), tiny, d);
-            c = vm_select((mcs_v4i)(vm_fabs(c) < tiny), tiny, c);
-            mcs_v4d step = c * d;
-            h = vm_select(live, h * step, h);
-            if (odd)
-                live &= ~(mcs_v4i)(vm_fabs(step - 1.0) <= DBL_EPSILON);
-        }
-        if (!(live[0] | live[1] | live[2] | live[3]))
-            break;
-    }
-    for (int l = 0; l < 4; l++) {
-        h4[l] = h[l];
-        ok[l] = !live[l];
-    }
-}
-
-static int upper_cf(double a, double x, double k, double *upper)
-{
-    double a4[4] = {a, a, a, a}, x4[4] = {x, x, x, x}, h[4];
-    int ok[4];
-    upper_cf4(a4, x4, h, ok);
-    if (!ok[0])
-        return 0;
-    *upper = k * h[0] / (2.0 * a);
-    return 1;
-}
-
-/* The tails at |t| = at; *kk = K.  Returns 0 where the caller must use
- * mcstat__t_tails. */
-static int t_tail_core(double at, const t_prefactor *pf, double *upper, double *other, double *kk)
-{
-    double a = pf->a, A = pf->A, df = 2.0 * a;
-    double r = at * at / df;
-    double y = r / (1.0 + r), x = 1.0 / (1.0 + r);
-    if (r < 1.0 && A * y > 40.0) /* the central series would be long and c near 1 */
-        return 0;
-    /* |t| f exp(e), not exp(log(|t| f) + e): one logarithm fewer, and
-     * the exponent's rounding (relative to K) does not grow with log |t| */
-    double e = pf->lc - A * log1p(r);
-    double k = e > -700.0 ? at * pf->f * exp(e) : exp(log(at * pf->f) + e);
-    double term = 1.0, sum = 1.0;
-    if (r >= 1.0) {
-        if (!upper_series(a, A, x, &sum))
-            return 0;
-        double u = k * sum / (2.0 * a);
-        *upper = u;
-        *other = 1.0 - u;
-    } else {
-        /* two terms a step: the second from the first term's predecessor,
-         * so the loop-carried chain is one multiplication per two terms */
-        for (int j = 0;; j += 2) {
-            if (j == CENTRAL_TERMS)
-                return 0;
-            double q0 = (A + j) * rcp_central[j] * y, q1 = (A + (j + 1)) * rcp_central[j + 1] * y;
-            double t1 = term * q0;
-            term *= q0 * q1;
-            sum += t1 + term;
-            if (term <= 0.25 * DBL_EPSILON * sum)
-                break;
-        }
-        double c = 2.0 * k * sum, u;
-        if (c <= 0.96) {
-            *upper = 0.5 - 0.5 * c;
-            *other = 0.5 + 0.5 * c;
-        } else if (upper_cf(a, x, k, &u)) {
-            *upper = u;
-            *other = 1.0 - u;
-        } else {
-            return 0;
-        }
-    }
-    *kk = k;
-    return 1;
-}
-
-static int fast_range(double at, double df)
-{
-    return df >= 1.0 && df <= 1000.0 && at >= 1e-100 && at < 1e100;
-}
-
-int mcstat__t_tail_fast(double t, double df, double *upper, double *other, double *logk)
-{
-    double at = fabs(t);
-    if (!fast_range(at, df))
-        return 0;
-    t_prefactor pf;
-    double k;
-    t_prefactor_init(df, &pf);
-    if (!t_tail_core(at, &pf, upper, other, &k))
-        return 0;
-    *logk = log(at * pf.f) + pf.lc - pf.A * log1p(at * at / df); /* finite where K underflows */
-    return 1;
-}
-
-/* The upper p-quantile of t(df) (0 < p < 1/2) by Halley's method in
- * z = log t on the fast tail: with g = log P[T > t] - log p,
- *   g' = -K/P,  g'' = g' (1 - (df+1) y + K/P),  y = t^2/(df+t^2),
- * (K = t f(t), d log K/dz = 1 - (df+1) y).  Started from Cornish-Fisher
- * (A&S 26.7.5, three terms), whose error of 1e-3..1e-5 at df >= 3 the cubic
- * convergence takes to rounding in two steps; it stops after a step below
- * 1e-6 (the error left is of the order of its cube).  pf is df's prefactor,
- * NULL to compute it.  Falls back to mcstat_t_quantile where the fast tail
- * does not apply or the iteration wanders. */
-/* Near the centre (p -> 1/2) the quantile is the tail's absolute error
- * over the density, no longer small relative to itself: there, and for
- * p below 1e-100, mcstat_t_quantile answers. */
-static int quantile_ok(double p, double df)
-{
-    return p >= 1e-100 && p <= 0.25 && df >= 1.0 && df <= 1000.0;
-}
-
-/* start: a starting value, NaN for Cornish-Fisher's. */
-static int t_upper_quantile(double p, double df, const t_prefactor *pf, double start, double *q)
-{
-    if (quantile_ok(p, df)) {
-        t_prefactor own;
-        if (!pf) {
-            t_prefactor_init(df, &own);
-            pf = &own;
-        }
-        double t = start;
-        if (!(t > 0.0)) {
-            double g = mcstat__norm_quantile(p, 1), g2 = g * g, v = 1.0 / df;
-            t = g + v * (g * (g2 + 1.0) / 4.0 +
-                         v * (g * ((5.0 * g2 + 16.0) * g2 + 3.0) / 96.0 +
-                              v * (g * (((3.0 * g2 + 19.0) * g2 + 17.0) * g2 - 15.0) / 384.0)));
-        }
-        double lp = log(p);
-        if (t > 0.0 && isfinite(t)) {
-            double z = log(t);
-            for (int it = 0; it < 30; it++) {
-                double u, o, k, at = exp(z);
-                if (!fast_range(at, df) || !t_tail_core(at, pf, &u, &o, &k) || !(u > 0.0))
-                    break;
-                double h = log(u) - lp, kp = k / u, y = at * at / (df + at * at);
-                double d1 = -kp, d2 = d1 * (1.0 - (df + 1.0) * y + kp);
-                double step = -h / d1;
-                double den = 1.0 + 0.5 * step * d2 / d1; /* Halley: -h / (d1 - h d2 / (2 d1)) */
-                if (den > 0.5)
-                    step /= den;
-                if (!isfinite(step))
-                    break;
-                step = fmax(-2.0, fmin(2.0, step));
-                z += step;
-                if (fabs(step) < 1e-6) {
-                    *q = exp(z);
-                    return MCSTAT_OK;
-                }
-            }
-        }
-    }
-    return mcstat_t_quantile(p, df, 1, q);
-}
-
-int mcstat__t_upper_quantile_fast(double p, double df, double *q)
-{
-    return t_upper_quantile(p, df, NULL, NAN, q);
-}
 
 /* ---- one pixel's outputs --------------------------------------------------- */
 
 typedef struct {
+    mcstat__qt_table tab; /* the critical values (t_quantiles.c) */
     const mcstat_pixels_out *out;
     int alternative, intervals;
     double mu0, alpha;
-    double crit_two; /* the two-sided critical value at the last df, and that df */
-    double crit_df;
-    double qt_p; /* the level of the critical values: alpha/2 or alpha */
-    double *qt;  /* their quantiles at df = qt_n / j, j = 0..qt_n, NaN until needed */
-    int qt_n;
     mcstat_qcache qc; /* the slow path's */
     uint64_t nx, ny;  /* the sample sizes of the fast path */
     int first;        /* status of the first failing pixel */
@@ -464,107 +159,6 @@ static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, 
 
 /* ---- the fast path ------------------------------------------------------------ */
 
-/* Lagrange's values through nodes 0..4 (v5) and 0..5 (v6) at s: the
- * weights prod_{m != i} (s - m) / prod_{m != i} (i - m), their numerators
- * from prefix and suffix products, their denominators constants (six
- * nodes: -+120, 24, 12; five: 24, 6, 4): no division, no branch. */
-static PIX_INLINE void lagrange56(const double *q, double s, double *v5, double *v6)
-{
-    double d0 = s, d1 = s - 1.0, d2 = s - 2.0, d3 = s - 3.0, d4 = s - 4.0, d5 = s - 5.0;
-    double p01 = d0 * d1, p012 = p01 * d2, p0123 = p012 * d3;
-    double s45 = d4 * d5, s345 = d3 * s45, s2345 = d2 * s345;
-    double s34 = d3 * d4, s234 = d2 * s34;
-    *v6 = d1 * s2345 * (-1.0 / 120) * q[0] + d0 * s2345 * (1.0 / 24) * q[1] + p01 * s345 * (-1.0 / 12) * q[2] +
-          p012 * s45 * (1.0 / 12) * q[3] + p0123 * d5 * (-1.0 / 24) * q[4] + p0123 * d4 * (1.0 / 120) * q[5];
-    *v5 = d1 * s234 * (1.0 / 24) * q[0] + d0 * s234 * (-1.0 / 6) * q[1] + p01 * s34 * (1.0 / 4) * q[2] +
-          p012 * d4 * (-1.0 / 6) * q[3] + p0123 * (1.0 / 24) * q[4];
-}
-
-/* The per-call table of critical values at level p in qt[0..n], empty
- * (NaN: solved when first needed). */
-static void qt_table_init(pix_ctx *c, double p, double *qt, int n)
-{
-    c->qt_p = p;
-    c->qt = qt;
-    c->qt_n = n;
-    for (int j = 0; j <= n; j++)
-        qt[j] = NAN;
-}
-
-/* Node j of the table: the quantile at df = qt_n / j, solved once per
- * call when first needed (node 0 is df = Inf, the normal quantile); the
- * same numbers whichever pixels ask, so pixel ranges do not change results. */
-static double qt_node(pix_ctx *c, int j)
-{
-    if (isnan(c->qt[j])) {
-        double q = NAN;
-        if (j == 0)
-            q = mcstat__norm_quantile(c->qt_p, 1);
-        else if (t_upper_quantile(c->qt_p, (double)c->qt_n / j, NULL, NAN, &q))
-            q = NAN;
-        c->qt[j] = q;
-    }
-    return c->qt[j];
-}
-
-/* The quantile at df from the table: Lagrange through the six nearest
- * nodes in u = qt_n/df (the quantile is smooth in 1/df: its
- * Cornish-Fisher series is one in 1/df).  *exact is set where the five- and
- * six-point values agree to 1e-13, i.e. where the six-point one is good to
- * rounding (measured against SciPy over df in [1, 1000]: within 1.4e-15 at
- * p = 0.025, 0.005, 1e-4, 5e-7); elsewhere it is only Halley's starting
- * value.  NaN where a node failed (Cornish-Fisher starts then). */
-static double qt_interp(pix_ctx *c, double df, int *exact)
-{
-    *exact = 0;
-    if (!quantile_ok(c->qt_p, df))
-        return NAN;
-    const int n = c->qt_n;
-    double u = n / df;
-    int k = (int)u - 2;
-    k = k < 0 ? 0 : k > n - 5 ? n - 5 : k;
-    double q[6], v5, v6;
-    for (int i = 0; i < 6; i++)
-        q[i] = qt_node(c, k + i);
-    lagrange56(q, u - k, &v5, &v6);
-    *exact = fabs(v6 - v5) < 1e-13 * fabs(v6);
-    return v6;
-}
-
-/* The critical values (c0, c1) of t(df) for the alternative, as
- * mcstat__finish asks them: two-sided -+q(alpha/2); "less" -q(alpha), +Inf;
- * "greater" -Inf, q(alpha). */
-static int criticals(pix_ctx *c, double df, const t_prefactor *pf, double *c0, double *c1)
-{
-    double q;
-    int st;
-    if (c->alternative == MCSTAT_TWO_SIDED) {
-        if (df != c->crit_df) { /* equal df (equal variances' ratio) repeat in flat regions */
-            int exact;
-            q = qt_interp(c, df, &exact);
-            if (!exact && (st = t_upper_quantile(c->qt_p, df, pf, q, &q)))
-                return st;
-            c->crit_two = q;
-            c->crit_df = df;
-        }
-        *c0 = -c->crit_two;
-        *c1 = c->crit_two;
-        return MCSTAT_OK;
-    }
-    int exact;
-    q = qt_interp(c, df, &exact);
-    if (!exact && (st = t_upper_quantile(c->qt_p, df, pf, q, &q)))
-        return st;
-    if (c->alternative == MCSTAT_LESS) {
-        *c0 = -q;
-        *c1 = INFINITY;
-    } else {
-        *c0 = -INFINITY;
-        *c1 = q;
-    }
-    return MCSTAT_OK;
-}
-
 /* fmin/fmax are library calls without -ffinite-math-only; nothing here is NaN */
 static inline double dmin(double u, double v) { return u < v ? u : v; }
 static inline double dmax(double u, double v) { return u > v ? u : v; }
@@ -648,340 +242,20 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
     }
 }
 
-/* ---- the tails of a block ----------------------------------------------
- * t_tail_core for many pixels: the prefactors four pixels at a time, the
- * upper series pixel by pixel (few pixels), the central series (most
- * pixels under the null) eight at a time, so its loop runs as long as the
- * slowest of eight and its exit is taken once per eight pixels instead of
- * mispredicted once per pixel; the continued fraction four at a time.  A
- * lane that has converged goes on adding terms below its rounding; the
- * sums are those of t_tail_core to a few ulps. */
-/* Two terms of the central series of four pixels: term <- term q0 q1 and
- * s <- s + term q0 + term q0 q1, q_i = (A + j + i) / (3/2 + j + i) y; the
- * loop-carried chain is one multiplication per two terms. */
-#define CENTRAL_STEP2(va, vy, j, term, s)                                                                   \
-    do {                                                                                                     \
-        mcs_v4d q0_ = ((va) + (double)(j)) * rcp_central[j] * (vy);                                          \
-        mcs_v4d q1_ = ((va) + (double)((j) + 1)) * rcp_central[(j) + 1] * (vy);                              \
-        mcs_v4d t1_ = (term) * q0_;                                                                          \
-        (term) = (term) * (q0_ * q1_);                                                                       \
-        (s) = (s) + (t1_ + (term));                                                                          \
-    } while (0)
-
-/* Four pixels' central series from term j on, four terms a step, until
- * all four have converged (until_done) or up to term jend; returns the
- * term it stopped at.  A converged lane stays converged (its terms only
- * fall from there on). */
-static PIX_INLINE int central_run4(mcs_v4d va, mcs_v4d vy, mcs_v4d *term, mcs_v4d *s, int j, int jend, int until_done)
-{
-    for (; j < jend; j += 4) { /* four terms between the tests of convergence */
-        CENTRAL_STEP2(va, vy, j, *term, *s);
-        CENTRAL_STEP2(va, vy, j + 2, *term, *s);
-        if (until_done) {
-            mcs_v4i done = (mcs_v4i)(*term <= 0.25 * DBL_EPSILON * *s);
-            if (done[0] & done[1] & done[2] & done[3])
-                return j + 4;
-        }
-    }
-    return j;
-}
-
-#if PIX_AVX2
-#include <immintrin.h>
-/* central_series8's AVX2 loop: both vectors of four side by side, the
- * test of convergence of all eight lanes by one movemask (extracting the
- * lanes took 5% of the kernel).  Pointers in and out, and the step as a
- * macro: no 32-byte vector crosses a call between AVX2 and baseline code
- * (clang refuses that ABI change even where the call is never taken). */
-__attribute__((target("avx2"))) static inline int central_joint8(const double *A, const double *y, double *sum)
-{
-    mcs_v4d va0 = {A[0], A[1], A[2], A[3]}, vy0 = {y[0], y[1], y[2], y[3]};
-    mcs_v4d va1 = {A[4], A[5], A[6], A[7]}, vy1 = {y[4], y[5], y[6], y[7]};
-    mcs_v4d t0 = {1.0, 1.0, 1.0, 1.0}, s0 = t0, t1 = t0, s1 = t0;
-    for (int j = 0; j < CENTRAL_TERMS; j += 4) { /* four terms between the tests of convergence */
-        CENTRAL_STEP2(va0, vy0, j, t0, s0);
-        CENTRAL_STEP2(va1, vy1, j, t1, s1);
-        CENTRAL_STEP2(va0, vy0, j + 2, t0, s0);
-        CENTRAL_STEP2(va1, vy1, j + 2, t1, s1);
-        mcs_v4i done = (mcs_v4i)(t0 <= 0.25 * DBL_EPSILON * s0) & (mcs_v4i)(t1 <= 0.25 * DBL_EPSILON * s1);
-        if (_mm256_movemask_pd((__m256d)done) == 15) {
-            for (int l = 0; l < 4; l++) {
-                sum[l] = s0[l];
-                sum[l + 4] = s1[l];
-            }
-            return 1;
-        }
-    }
-    return 0;
-}
-#endif
-
-/* The central sums of eight pixels (A = a + 1/2, y), as many terms for all
- * eight as the slowest needs; 0 if one has not converged in CENTRAL_TERMS
- * terms.  joint (AVX2): the two vectors of four side by side, so that
- * their chains overlap in the pipeline; else (SSE2, whose sixteen
- * registers the side-by-side loop overflows) one after the other, the one
- * that stopped first taken on to where the other stopped: the same terms,
- * the same sums, bit for bit. */
-static PIX_INLINE int central_series8(const double *A, const double *y, double *sum, int joint)
-{
-#if PIX_AVX2
-    if (joint)
-        return central_joint8(A, y, sum);
-#endif
-    (void)joint;
-    mcs_v4d va0 = {A[0], A[1], A[2], A[3]}, vy0 = {y[0], y[1], y[2], y[3]};
-    mcs_v4d va1 = {A[4], A[5], A[6], A[7]}, vy1 = {y[4], y[5], y[6], y[7]};
-    mcs_v4d t0 = vm_splat(1.0), s0 = t0, t1 = t0, s1 = t0;
-    int j0 = central_run4(va0, vy0, &t0, &s0, 0, CENTRAL_TERMS, 1);
-    int j1 = central_run4(va1, vy1, &t1, &s1, 0, CENTRAL_TERMS, 1);
-    mcs_v4i done = (mcs_v4i)(t0 <= 0.25 * DBL_EPSILON * s0) & (mcs_v4i)(t1 <= 0.25 * DBL_EPSILON * s1);
-    int ok = done[0] & done[1] & done[2] & done[3] ? 1 : 0;
-    if (j0 < j1)
-        central_run4(va0, vy0, &t0, &s0, j0, j1, 0);
-    else if (j1 < j0)
-        central_run4(va1, vy1, &t1, &s1, j1, j0, 0);
-    if (!ok)
-        return 0;
-    for (int l = 0; l < 4; l++) {
-        sum[l] = s0[l];
-        sum[l + 4] = s1[l];
-    }
-    return 1;
-}
-
-/* Both tails of t(df) at t[j] for the k pixels with want[j] (prefactors
- * pa, pf, plc as block_statistics leaves them): lower[j], upper[j] where
- * ok[j] = TAIL_DONE; TAIL_GENERAL where t_tail_core would return 0 too (the
- * general mcstat__t_tails answers), TAIL_SCALAR where the scalar path
- * decides (K underflows, df or t outside the fast range). */
-enum { TAIL_SCALAR, TAIL_DONE, TAIL_GENERAL };
-
-/* Four pixels' e = lc - A log1p(r), K = |t| f exp(e) and y = r/(1+r) from
- * r, a, lc, f and t (vmath.h); lanes with r = 0 (no fast tail) compute
- * with harmless stand-ins, and K only where exp(e) stays normal. */
-static PIX_INLINE void tails_k4(mcs_v4d r, mcs_v4d a, mcs_v4d lc, mcs_v4d f, mcs_v4d t, double *e4, double *k4,
-                                double *y4)
-{
-    mcs_v4i pos = (mcs_v4i)(r > 0.0);
-    a = vm_select(pos, a, vm_splat(1.0));
-    lc = vm_select(pos, lc, vm_splat(0.0));
-    f = vm_select(pos, f, vm_splat(1.0));
-    mcs_v4d at = vm_fabs(t);
-    mcs_v4d e = lc - (a + 0.5) * vm_log1p4(r);
-    mcs_v4i low = (mcs_v4i)(e < -700.0);
-    mcs_v4d x = vm_exp4(vm_select(low, vm_splat(-700.0), e));
-    mcs_v4d kv = at * f * x, y = r / (1.0 + r);
-    memcpy(e4, &e, sizeof e);
-    memcpy(k4, &kv, sizeof kv);
-    memcpy(y4, &y, sizeof y);
-}
-static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, const double *pa, const double *pf,
-                                   const double *plc, const unsigned char *want, double *lower, double *upper,
-                                   unsigned char *ok, int joint)
-{
-    size_t idx[PIX_BLOCK + 3], nc = 0;
-    double cA[PIX_BLOCK + 3], cy[PIX_BLOCK + 3], ck[PIX_BLOCK + 3], cs[8];
-    /* Four lanes of the central series run as long as the slowest: grouped
-     * by the binary exponent of y (which sets the series' length), lanes of
-     * a kind run together.  A counting sort, into sidx, sA, sy, sk; the
-     * bins counted as the lanes are found. */
-    enum { Y_BINS = 8 };
-    size_t cnt[Y_BINS + 1] = {0}, sidx[PIX_BLOCK + 7];
-    double sA[PIX_BLOCK + 7], sy[PIX_BLOCK + 7], sk[PIX_BLOCK + 7];
-    unsigned char bin[PIX_BLOCK];
-    double rr[PIX_BLOCK], ee[PIX_BLOCK], kk[PIX_BLOCK], yy[PIX_BLOCK];
-    double uu[PIX_BLOCK]; /* the upper tail at |t| where ok = TAIL_DONE */
-    /* r, then e, K and y four pixels at a time (tails_k4); r = 0 where the
-     * fast tail has nothing to do */
-    for (size_t j = 0; j < k; j++) {
-        double at = fabs(t[j]);
-        rr[j] = want[j] && t[j] != 0.0 && fast_range(at, df[j]) ? at * at / df[j] : 0.0;
-        uu[j] = 0.5; /* t = 0's */
-    }
-    size_t j = 0;
-    for (; j + 4 <= k; j += 4) {
-        mcs_v4d r, a, lc, f, at;
-        memcpy(&r, rr + j, sizeof r);
-        memcpy(&a, pa + j, sizeof a);
-        memcpy(&lc, plc + j, sizeof lc);
-        memcpy(&f, pf + j, sizeof f);
-        memcpy(&at, t + j, sizeof at);
-        tails_k4(r, a, lc, f, at, ee + j, kk + j, yy + j);
-    }
-    if (j < k) {
-        mcs_v4d r, a, lc, f, at;
-        double e4[4], k4[4], y4[4];
-        for (int l = 0; l < 4; l++) {
-            size_t i = j + l < k ? j + l : j; /* past k: a copy of pixel j */
-            r[l] = rr[i];
-            a[l] = pa[i];
-            lc[l] = plc[i];
-            f[l] = pf[i];
-            at[l] = t[i];
-        }
-        tails_k4(r, a, lc, f, at, e4, k4, y4);
-        for (int l = 0; j + l < k; l++) {
-            ee[j + l] = e4[l];
-            kk[j + l] = k4[l];
-            yy[j + l] = y4[l];
-        }
-    }
-    for (size_t j = 0; j < k; j++) {
-        double tj = t[j];
-        ok[j] = TAIL_SCALAR;
-        if (!want[j])
-            continue;
-        if (tj == 0.0) {
-            ok[j] = TAIL_DONE;
-            continue;
-        }
-        if (!(rr[j] > 0.0)) /* outside the fast range (rr's first loop) */
-            continue;
-        ok[j] = TAIL_GENERAL; /* unless answered below, as for t_tail_core */
-        double a = pa[j], A = a + 0.5, r = rr[j], y = yy[j];
-        if (r < 1.0 && A * y > 40.0)
-            continue;
-        if (!(ee[j] > -700.0)) {
-            ok[j] = TAIL_SCALAR; /* K underflows here: t_tail_core's logarithmic form */
-            continue;
-        }
-        double kj = kk[j];
-        if (r >= 1.0) {
-            double sum;
-            if (!upper_series(a, A, 1.0 / (1.0 + r), &sum))
-                continue;
-            uu[j] = kj * sum / (2.0 * a);
-            ok[j] = TAIL_DONE;
-        } else {
-            uint64_t bits;
-            memcpy(&bits, &y, sizeof bits);
-            int e = 1021 - (int)(bits >> 52); /* y in [2^-(e+2), 2^-(e+1)), as 0 < y < 1/2 here */
-            bin[nc] = (unsigned char)(e < Y_BINS - 1 ? e : Y_BINS - 1);
-            cnt[bin[nc] + 1]++;
-            idx[nc] = j;
-            cA[nc] = A;
-            cy[nc] = y;
-            ck[nc] = kj;
-            nc++;
-        }
-    }
-    /* the counting sort: bin b's lanes to sidx[cnt[b]] on, in their order */
-    for (int b = 0; b < Y_BINS; b++)
-        cnt[b + 1] += cnt[b];
-    for (size_t g = 0; g < nc; g++) {
-        size_t o = cnt[bin[g]]++;
-        sidx[o] = idx[g];
-        sA[o] = cA[g];
-        sy[o] = cy[g];
-        sk[o] = ck[g];
-    }
-    for (size_t g = nc; g % 8; g++) { /* padding lanes: converged at once */
-        sA[g] = 1.0;
-        sy[g] = 0.0;
-    }
-    /* the pixels whose central probability is too close to 1 wait for the
-     * continued fraction, four at a time too (a, x, K in cA, cy, ck; their
-     * index in idx) */
-    size_t nf = 0;
-    for (size_t g = 0; g < nc; g += 8) {
-        if (!central_series8(sA + g, sy + g, cs, joint))
-            continue;
-        for (size_t l = 0; l < 8 && g + l < nc; l++) {
-            size_t j = sidx[g + l];
-            double c = 2.0 * sk[g + l] * cs[l], u = 0.5 - 0.5 * c;
-            if (!(c <= 0.96)) {
-                idx[nf] = j;
-                cA[nf] = sA[g + l] - 0.5; /* a */
-                cy[nf] = 1.0 / (1.0 + rr[j]); /* x */
-                ck[nf] = sk[g + l];
-                nf++;
-                continue;
-            }
-            uu[j] = u;
-            ok[j] = TAIL_DONE;
-        }
-    }
-    for (size_t g = nf; g % 4; g++) { /* padding lanes: converge at once */
-        cA[g] = 1.0;
-        cy[g] = 0.0;
-    }
-    for (size_t g = 0; g < nf; g += 4) {
-        double h[4];
-        int hok[4];
-        upper_cf4(cA + g, cy + g, h, hok);
-        for (size_t l = 0; l < 4 && g + l < nf; l++) {
-            if (!hok[l])
-                continue;
-            size_t j = idx[g + l];
-            uu[j] = ck[g + l] * h[l] / (2.0 * cA[g + l]);
-            ok[j] = TAIL_DONE;
-        }
-    }
-    /* lower, upper <- 1 - u, u for t > 0, else u, 1 - u, in a loop that
-     * vectorises (a branch on t's sign, a coin toss under the null, was
-     * mispredicted for every other pixel; and the lanes' scattered stores
-     * were twice as many) */
-    for (size_t j = 0; j < k; j++) {
-        double u = uu[j], v = 1.0 - u;
-        int pos = t[j] > 0.0;
-        lower[j] = pos ? v : u;
-        upper[j] = pos ? u : v;
-    }
-}
-
-/* Both tails for n (t, df) pairs through block_tails, PIX_BLOCK at a time;
- * done[i] = 1 where it answered (elsewhere the pixels take the scalar
- * path).  For the tests, which hold it to the same reference as the
- * scalar tail. */
-int mcstat__t_tails_block(size_t n, const double *t, const double *df, double *lower, double *upper,
-                          unsigned char *done)
-{
-    MCSTAT_IEEE_SCOPE();
-    double pa[PIX_BLOCK], pf[PIX_BLOCK], plc[PIX_BLOCK];
-    unsigned char want[PIX_BLOCK], ok[PIX_BLOCK];
-    for (size_t i0 = 0; i0 < n; i0 += PIX_BLOCK) {
-        size_t k = n - i0 < PIX_BLOCK ? n - i0 : PIX_BLOCK;
-        for (size_t j = 0; j < k; j++) {
-            double d = df[i0 + j];
-            want[j] = d >= 1.0 && d <= 1000.0;
-            pa[j] = 0.5 * (want[j] ? d : 1.0);
-            t_prefactor_parts(pa[j], &pf[j], &plc[j]);
-        }
-        block_tails(k, t + i0, df + i0, pa, pf, plc, want, lower + i0, upper + i0, ok, 0);
-        for (size_t j = 0; j < k; j++)
-            done[i0 + j] = ok[j] == TAIL_DONE;
-    }
-    return MCSTAT_OK;
-}
-
 /* ---- the intervals of a block -------------------------------------------
- * The critical values by qt_interp's table and weights and the bounds by
- * mcstat__ci_bound's double-double arithmetic, for all pixels of a block in
- * one branch-free loop; where the interpolation is not good to rounding, or
+ * The critical values by the table's weights (t_quantiles.c) and the bounds
+ * by mcstat__ci_bound's double-double arithmetic, for all pixels of a block
+ * in one branch-free loop; where the interpolation is not good to rounding, or
  * a bound needs ci_bound's guard against overflow, bound_ok is 0 and the
- * pixel's own path (criticals, Halley, ci_bound) decides.  First the
- * table's nodes each pixel needs (solved lazily, one pixel at a time). */
-static void table_nodes(pix_ctx *c, size_t k, const double *df, const unsigned char *want, double (*qn)[PIX_BLOCK],
-                        double *qs)
-{
-    const int n = c->qt_n;
-    for (size_t j = 0; j < k; j++) {
-        int have = (!want || want[j]) && quantile_ok(c->qt_p, df[j]);
-        int n0 = have ? (int)(n / df[j]) - 2 : 0;
-        n0 = n0 < 0 ? 0 : n0 > n - 5 ? n - 5 : n0;
-        for (int i = 0; i < 6; i++)
-            qn[i][j] = have ? qt_node(c, n0 + i) : NAN; /* NaN: no value here */
-        qs[j] = have ? n / df[j] - n0 : 0.0;
-    }
-}
-
+ * pixel's own path (mcstat__qt_criticals, Halley, ci_bound) decides.  First
+ * the table's nodes each pixel needs (mcstat__qt_table_nodes: solved
+ * lazily, one pixel at a time). */
 static void block_nodes(pix_ctx *c, size_t k, block_stats *st)
 {
     unsigned char fast[PIX_BLOCK];
     for (size_t j = 0; j < k; j++)
         fast[j] = st->kind[j] == PIX_FAST;
-    table_nodes(c, k, st->df, fast, st->qn, st->qs);
+    mcstat__qt_table_nodes(&c->tab, k, st->df, fast, st->qn, st->qs);
 }
 
 static PIX_INLINE void block_bounds(size_t k, int alternative, block_stats *st)
@@ -1036,7 +310,7 @@ static int fast_values(pix_ctx *c, block_stats *bs, size_t j)
     } else if (t == 0.0) {
         lo_tail = hi_tail = 0.5;
     } else if (bs->tail_ok[j] == TAIL_SCALAR && ppf && fast_range(fabs(t), df) &&
-               t_tail_core(fabs(t), ppf, &up, &other, &kk)) {
+               mcstat__t_tail_core(fabs(t), ppf, &up, &other, &kk)) {
         lo_tail = t > 0.0 ? other : up;
         hi_tail = t > 0.0 ? up : other;
     } else {
@@ -1056,7 +330,7 @@ static int fast_values(pix_ctx *c, block_stats *bs, size_t j)
         c0 = bs->crit_lo[j];
         c1 = bs->crit_hi[j];
     } else if (c->intervals) {
-        if (criticals(c, df, ppf, &c0, &c1))
+        if (mcstat__qt_criticals(&c->tab, df, ppf, &c0, &c1))
             return 0;
         mcstat_dd diff = {bs->dhi[j], bs->dlo[j]};
         lo = mcstat__ci_bound(diff, c1, se, 0);
@@ -1534,8 +808,14 @@ static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t 
     unsigned char want[PIX_BLOCK];
     for (size_t j = 0; j < k; j++)
         want[j] = b->st.kind[j] == PIX_FAST;
-    block_tails(k, b->st.t, b->st.df, b->st.pa, b->st.pf, b->st.plc, want, b->st.lower, b->st.upper, b->st.tail_ok,
-                joint);
+#if PIX_AVX2
+    if (joint)
+        mcstat__t_block_tails_avx2(k, b->st.t, b->st.df, b->st.pa, b->st.pf, b->st.plc, want, b->st.lower,
+                                   b->st.upper, b->st.tail_ok);
+    else
+#endif
+        mcstat__t_block_tails(k, b->st.t, b->st.df, b->st.pa, b->st.pf, b->st.plc, want, b->st.lower,
+                              b->st.upper, b->st.tail_ok);
 }
 
 static void block_pass(const block_input *in, size_t i0, size_t k, block_work *b)
@@ -1568,14 +848,15 @@ int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, m
     c.intervals = !(flags & MCSTAT_ROWS_NO_INTERVALS);
     c.mu0 = mu0;
     c.alpha = alpha;
-    c.crit_two = NAN;
-    c.crit_df = NAN;
-    c.qt_p = alternative == MCSTAT_TWO_SIDED ? 0.5 * alpha : alpha;
+    c.tab.alternative = alternative;
+    c.tab.crit_two = NAN;
+    c.tab.crit_df = NAN;
+    c.tab.qt_p = alternative == MCSTAT_TWO_SIDED ? 0.5 * alpha : alpha;
     c.nx = nx;
     c.ny = ny;
     double qt[QT_NODES + 1];
     if (c.intervals)
-        qt_table_init(&c, c.qt_p, qt, QT_NODES);
+        mcstat__qt_table_init(&c.tab, c.tab.qt_p, qt, QT_NODES);
     mcstat__qcache_init(&c.qc);
     c.first = MCSTAT_OK;
     c.first_i = 0;
@@ -1626,111 +907,3 @@ int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, m
     return c.first;
 }
 
-/* ---- t quantiles for many df ------------------------------------------
- * The pixel path's critical values as a function of their own: the same
- * kind of per-call table (criticals with the alternative "greater" gives
- * the upper p-quantile), interpolated PIX_BLOCK values at a time in a loop
- * that vectorises, Halley (criticals) where the five- and six-point values
- * disagree; levels outside the table's range go to mcstat_t_quantile one
- * value at a time.
- *
- * The table's density follows the level: the quantile grows like
- * p^(-1/df), so its derivatives in u = 1/df grow with a = log(1/p), and the
- * interpolation holds to rounding while the step h keeps h a below ~0.005
- * (measured against mcstat_t_quantile over df in [1, 1000]: at 1024 nodes
- * every df interpolates at p = 0.025 but 37-80% of df below 30 need Halley
- * at 1e-4 and all do at 3e-9; at 4096 none do at 3e-9, at 8192 none at
- * 1e-20).  So: the power of two >= 200 a, at least QT_NODES. */
-#define QT_MANY_MAX 65536 /* a = 327: p = 1e-142, below quantile_ok's 1e-100 */
-
-static int many_nodes(double p)
-{
-    double a = -log(p);
-    int n = QT_NODES;
-    while (n < QT_MANY_MAX && n < 200.0 * a)
-        n *= 2;
-    return n;
-}
-
-typedef struct {
-    pix_ctx c;
-    double qn[6][PIX_BLOCK], qs[PIX_BLOCK], v[PIX_BLOCK];
-    long long exact[PIX_BLOCK]; /* 64 bits, as the doubles: the loop vectorises */
-    double qt[];
-} many_work;
-
-static PIX_INLINE void many_interp(size_t k, many_work *w)
-{
-    for (size_t j = 0; j < k; j++) {
-        double q[6], v5, v6;
-        for (int i = 0; i < 6; i++)
-            q[i] = w->qn[i][j];
-        lagrange56(q, w->qs[j], &v5, &v6);
-        w->v[j] = v6;
-        w->exact[j] = fabs(v6 - v5) < 1e-13 * fabs(v6); /* false where a node is NaN */
-    }
-}
-
-static void many_interp_pass(size_t k, many_work *w)
-{
-    many_interp(k, w);
-}
-
-#if PIX_AVX2
-__attribute__((target("avx2"))) static void many_interp_pass_avx2(size_t k, many_work *w)
-{
-    many_interp(k, w);
-}
-#endif
-
-int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *x)
-{
-    MCSTAT_IEEE_SCOPE();
-    if (!(p >= 0.0 && p <= 1.0) || (n > 0 && (!df || !x)))
-        return MCSTAT_EINVAL;
-    many_work *w = NULL;
-    if (quantile_ok(p, 1.0) && n > 16) { /* a short array does not pay for the table */
-        int nodes = many_nodes(p);
-        w = malloc(sizeof *w + (size_t)(nodes + 1) * sizeof(double));
-        if (w) {
-            w->c.alternative = MCSTAT_GREATER;
-            qt_table_init(&w->c, p, w->qt, nodes);
-        }
-    }
-#if PIX_AVX2
-    int avx2 = use_avx2();
-#endif
-    int first = MCSTAT_OK;
-    for (size_t i0 = 0; i0 < n; i0 += PIX_BLOCK) {
-        size_t k = n - i0 < PIX_BLOCK ? n - i0 : PIX_BLOCK;
-        if (w) {
-            table_nodes(&w->c, k, df + i0, NULL, w->qn, w->qs);
-#if PIX_AVX2
-            if (avx2)
-                many_interp_pass_avx2(k, w);
-            else
-#endif
-                many_interp_pass(k, w);
-        }
-        for (size_t j = 0; j < k; j++) {
-            double q = NAN, c0, c1;
-            int st = MCSTAT_OK;
-            if (w && w->exact[j]) {
-                q = upper ? w->v[j] : -w->v[j];
-            } else if (w) {
-                st = criticals(&w->c, df[i0 + j], NULL, &c0, &c1);
-                q = upper ? c1 : -c1; /* t is symmetric: the lower p-quantile is minus the upper */
-            } else {
-                st = mcstat_t_quantile(p, df[i0 + j], upper, &q);
-            }
-            if (st) {
-                q = NAN;
-                if (first == MCSTAT_OK)
-                    first = st;
-            }
-            x[i0 + j] = q;
-        }
-    }
-    free(w);
-    return first;
-}

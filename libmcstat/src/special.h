@@ -45,11 +45,11 @@ MCSTAT_HIDDEN double mcstat__norm_quantile(double p, int upper);
 
 /* ---- distributions (dist.c), with validated arguments ------------------- */
 MCSTAT_HIDDEN int mcstat__t_tails(double x, double df, mcstat_tails *t);
-/* The t tails specialised to the incomplete beta's b = 1/2 (pixels.c): the
+/* The t tails specialised to the incomplete beta's b = 1/2 (pixels_dist.c): the
  * upper tail P[T > |t|], the other one and log(|t| f(t)); 0 (nothing
  * written) outside its range, 1 <= df <= 1000 and 0 < |t| < 1e100. */
 MCSTAT_HIDDEN int mcstat__t_tail_fast(double t, double df, double *upper, double *other, double *logk);
-/* The upper p-quantile of t(df) by Newton's method on that tail (pixels.c),
+/* The upper p-quantile of t(df) by Newton's method on that tail (t_quantiles.c),
  * mcstat_t_quantile where it does not apply; 0 < p < 1. */
 MCSTAT_HIDDEN int mcstat__t_upper_quantile_fast(double p, double df, double *q);
 /* pixels.c: nonzero runs the per-block loops' baseline (SSE2) code even
@@ -95,7 +95,7 @@ typedef int (*mcstat__work_fn)(void *ctx, mcstat__work *w, size_t *first_index);
  * Returns the status of the failed item of lowest index, MCSTAT_OK if none. */
 MCSTAT_HIDDEN int mcstat__run_work(size_t begin, size_t end, int threads, size_t min_per_thread, size_t granule,
                                    mcstat__work_fn f, void *ctx);
-/* pixels.c: the per-pixel path's block tails (vector exp and log1p, the
+/* pixels_dist.c: the per-pixel path's block tails (vector exp and log1p, the
  * central series eight at a time) for n pairs; done[i] where they answered. */
 MCSTAT_HIDDEN int mcstat__t_tails_block(size_t n, const double *t, const double *df, double *lower, double *upper,
                                         unsigned char *done);

@@ -1,12 +1,12 @@
 /*
  * vmath.h - exp, log and log1p of four doubles at a time, for the per-pixel
- * tails (pixels.c, pixels_var.c): straight-line code in GCC's vector extensions (AVX2
+ * tails (pixels_dist.c, pixels_var.c): straight-line code in GCC's vector extensions (AVX2
  * registers where the caller is compiled for AVX2, two SSE2 halves
  * otherwise), so a block's pixels need not call libm one at a time.
  * Accuracy, measured against libm in tests/c/test_vmath.c: within 2 ulps
  * over the ranges used (exp on [-708, 709], log1p on [0, 1e300], log on
  * the normal positive doubles).
- * Included by pixels.c and pixels_var.c; nothing here is exported.
+ * Included by pixels_dist.c and pixels_var.c; nothing here is exported.
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
@@ -17,8 +17,8 @@
 
 /* Vectors pass by value only into these always-inlined functions, so the
  * warning that a 32-byte vector's calling convention differs without AVX
- * does not apply; off for the files that include this one (pixels.c and
- * its test), which pass them so throughout. */
+ * does not apply; off for the files that include this one (pixels_dist.c,
+ * pixels_var.c and the test), which pass them so throughout. */
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 typedef double mcs_v4d __attribute__((vector_size(32)));

@@ -1,6 +1,7 @@
 /*
  * test_pixels.c - Welch's test per pixel on seeds-major images
- * (mcstat_t_test_2_pixels, pixels.c): its fast t tail and quantile against
+ * (mcstat_t_test_2_pixels, pixels.c): its fast t tail and quantile
+ * (pixels_dist.c, t_quantiles.c) against
  * mpmath (tests/data/t_tail_ref.tsv, tools/refgen/make_t_tail_ref.py),
  * every pixel against mcstat_t_test_2 on its two samples, float32 and
  * double, channel weights, degenerate pixels, NaN omission, pixel ranges,

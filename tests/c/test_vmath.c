@@ -1,6 +1,6 @@
 /*
  * test_vmath.c - the per-pixel tails' vector exp and log1p (src/vmath.h)
- * against libm's, in ulps, over the ranges pixels.c uses: exp on
+ * against libm's, in ulps, over the ranges pixels_dist.c uses: exp on
  * [-708, 709], log1p on [0, 1e300] (uniform in [0, 2], log-uniform beyond,
  * the tiny arguments where log1p(x) = x, and the edges), log on the
  * normal positive doubles (log-uniform, near 1, the edges); also the

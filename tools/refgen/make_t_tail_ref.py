@@ -5,7 +5,7 @@
 # the t quantiles at the usual levels), and the upper quantiles at
 # p = 0.025, 0.005 and 5e-7.  The t and df are exact doubles (written with
 # 17 digits).  Read by tests/c/test_pixels.c (the fast tail and quantile of
-# libmcstat/src/pixels.c).  Run from the repository root:
+# libmcstat/src/pixels_dist.c and t_quantiles.c).  Run from the repository root:
 #   .venv/bin/python tools/refgen/make_t_tail_ref.py
 import mpmath as mp
 import math

@@ -35,8 +35,8 @@ from typing import Any, List, Optional, Tuple
 
 import numpy as np
 
-from . import _core
-from ._errors import InvalidArgumentError
+from .. import _core
+from .._errors import InvalidArgumentError
 
 __all__ = ["ImageEquivalence", "equivalence"]
 
@@ -128,7 +128,7 @@ class ImageEquivalence:
 
 
 def _stack(x: Any, seed_axis: Optional[int], channels: str, name: str) -> Tuple[np.ndarray, List[str]]:
-    from .image import LUMINANCE_WEIGHTS, Samples, _as_side
+    from ._inputs import LUMINANCE_WEIGHTS, Samples, _as_side
 
     side = _as_side(x, seed_axis)
     if not isinstance(side, Samples):
