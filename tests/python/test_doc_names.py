@@ -15,7 +15,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 HEADERS = ["libmcstat/include/mcstat.h", "libmcstat/include/mcstat_check.h",
            "libmcstat/include/mcstat_testing.h", "estimators/include/mcest.h"]
-DEPRECATED_MARK = "/* 14. Deprecated names."  # mcstat.h's last section
+DEPRECATED_MARK = re.compile(r"^/\* \d+\. Deprecated names\.", re.M)  # mcstat.h's last section
 NAME = re.compile(r"\b(?:mcstat|MCSTAT)_\w*")
 
 # Names that are not C API but are documented: CMake options and targets,
@@ -41,7 +41,8 @@ def header_names():
     current, deprecated = set(), set()
     for h in HEADERS:
         text = (ROOT / h).read_text()
-        cut = text.find(DEPRECATED_MARK)
+        found = DEPRECATED_MARK.search(text)
+        cut = found.start() if found else -1
         head, tail = (text, "") if cut < 0 else (text[:cut], text[cut:])
         current |= set(NAME.findall(head))
         deprecated |= set(NAME.findall(tail))
