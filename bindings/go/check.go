@@ -81,16 +81,16 @@ const (
 type Route int
 
 const (
-	RouteCells       Route = C.MCSTAT_CHECK_CELLS       // sample() draws from pdf(): chi-squared on cells
-	RouteMass        Route = C.MCSTAT_CHECK_MASS        // the fraction of successful samples is pdf()'s integral
-	RoutePDFValue    Route = C.MCSTAT_CHECK_PDF_VALUE   // the pdf sample() reports is pdf()'s
-	RouteWeight      Route = C.MCSTAT_CHECK_WEIGHT      // the weight is eval/pdf
-	RouteSupport     Route = C.MCSTAT_CHECK_SUPPORT     // eval > 0 only where pdf > 0
-	RouteIntegrals   Route = C.MCSTAT_CHECK_INTEGRALS   // eval's integrals by the sampler and by eval alone agree
-	RouteEnergy      Route = C.MCSTAT_CHECK_ENERGY      // albedo <= 1 (BSDFs)
-	RouteReciprocity Route = C.MCSTAT_CHECK_RECIPROCITY // eval is reciprocal (only when asked)
-	RouteKS          Route = C.MCSTAT_CHECK_KS          // the weighted samples against eval, point by point
-	NumRoutes              = int(C.MCSTAT_CHECK_ROUTES)
+	RouteCells       Route = C.MCSTAT_CHECK_ROUTE_CELLS       // sample() draws from pdf(): chi-squared on cells
+	RouteMass        Route = C.MCSTAT_CHECK_ROUTE_MASS        // the fraction of successful samples is pdf()'s integral
+	RoutePDFValue    Route = C.MCSTAT_CHECK_ROUTE_PDF_VALUE   // the pdf sample() reports is pdf()'s
+	RouteWeight      Route = C.MCSTAT_CHECK_ROUTE_WEIGHT      // the weight is eval/pdf
+	RouteSupport     Route = C.MCSTAT_CHECK_ROUTE_SUPPORT     // eval > 0 only where pdf > 0
+	RouteIntegrals   Route = C.MCSTAT_CHECK_ROUTE_INTEGRALS   // eval's integrals by the sampler and by eval alone agree
+	RouteEnergy      Route = C.MCSTAT_CHECK_ROUTE_ENERGY      // albedo <= 1 (BSDFs)
+	RouteReciprocity Route = C.MCSTAT_CHECK_ROUTE_RECIPROCITY // eval is reciprocal (only when asked)
+	RouteKS          Route = C.MCSTAT_CHECK_ROUTE_KS          // the weighted samples against eval, point by point
+	NumRoutes              = int(C.MCSTAT_CHECK_ROUTE_COUNT)
 )
 
 func (r Route) String() string {
@@ -128,7 +128,7 @@ func goStringOrEmpty(s *C.char) string {
 type RouteSet uint32
 
 // AllRoutes runs every route that applies to the model.
-const AllRoutes RouteSet = (1 << C.MCSTAT_CHECK_ROUTES) - 1
+const AllRoutes RouteSet = (1 << C.MCSTAT_CHECK_ROUTE_COUNT) - 1
 
 // Routes is the set of the routes given.
 func Routes(rs ...Route) RouteSet {

@@ -307,7 +307,7 @@ func (s *Sequential) Push2(x, y []float64) error {
 	if err != nil {
 		return err
 	}
-	return check(C.mcstat_seq_push_array_2(c, ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y))))
+	return check(C.mcstat_seq_push_2_array(c, ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y))))
 }
 
 // PushMoments2 is Push2 on accumulators.
@@ -316,7 +316,7 @@ func (s *Sequential) PushMoments2(x, y *Moments) error {
 	if err != nil {
 		return err
 	}
-	return check(C.mcstat_seq_push_moments_2(c, x.c(), y.c()))
+	return check(C.mcstat_seq_push_2_moments(c, x.c(), y.c()))
 }
 
 // Result is the test at the last look: PValue the anytime p-value, ConfInt

@@ -85,7 +85,7 @@ std::string format(const mcstat_check_report &r)
 std::string rejecting_routes(const mcstat_check_report &r)
 {
     std::string s;
-    for (int k = 0; k < MCSTAT_CHECK_ROUTES; k++)
+    for (int k = 0; k < MCSTAT_CHECK_ROUTE_COUNT; k++)
         if (r.route[k].state == MCSTAT_ROUTE_RAN && r.route[k].reject) {
             if (!s.empty())
                 s += ",";
@@ -130,10 +130,10 @@ int main(int argc, char **argv)
     const Case cases[] = {
         {"float", ggx::Bug::None, EXPECT_PASS},
         {"double", ggx::Bug::None, EXPECT_PASS},
-        {"float", ggx::Bug::Sampler, MCSTAT_CHECK_CELLS},
-        {"float", ggx::Bug::Pdf, MCSTAT_CHECK_PDF_VALUE},
-        {"float", ggx::Bug::Eval, MCSTAT_CHECK_WEIGHT},
-        {"float", ggx::Bug::Weight, MCSTAT_CHECK_WEIGHT},
+        {"float", ggx::Bug::Sampler, MCSTAT_CHECK_ROUTE_CELLS},
+        {"float", ggx::Bug::Pdf, MCSTAT_CHECK_ROUTE_PDF_VALUE},
+        {"float", ggx::Bug::Eval, MCSTAT_CHECK_ROUTE_WEIGHT},
+        {"float", ggx::Bug::Weight, MCSTAT_CHECK_ROUTE_WEIGHT},
         {"float", ggx::Bug::Throws, EXPECT_ECALLBACK},
     };
     int failures = 0;

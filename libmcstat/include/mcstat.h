@@ -86,6 +86,11 @@
  *     (*_format) write a NUL-terminated prefix with MCSTAT_EBUFSIZE and the
  *     full length through *length; a renderer check's report carries its
  *     message with MCSTAT_ECALLBACK.
+ *   - Arguments come in one order: the data (arrays and their sizes),
+ *     the null value, the alternative, alpha, an options struct (NULL for
+ *     the defaults), scratch memory, then the outputs.  One call breaks it,
+ *     mcstat_gof_chisq_test (options before alpha, as 0.1.0's
+ *     mcstat_chisq_gof it replaced): a swap there does not compile.
  *   - Nothing here calls abort() or exit(), nothing touches GSL's process-wide
  *     error handler (see mcstat_gsl_handler_off), and no call changes any
  *     global state: every function is thread-safe on distinct objects.  (The
@@ -1908,16 +1913,16 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /* test_check_calibration.py and bench/).                                   */
 /* ------------------------------------------------------------------------ */
 enum mcstat_check_route {
-    MCSTAT_CHECK_CELLS = 0,
-    MCSTAT_CHECK_MASS = 1,
-    MCSTAT_CHECK_PDF_VALUE = 2,
-    MCSTAT_CHECK_WEIGHT = 3,
-    MCSTAT_CHECK_SUPPORT = 4,
-    MCSTAT_CHECK_INTEGRALS = 5,
-    MCSTAT_CHECK_ENERGY = 6,
-    MCSTAT_CHECK_RECIPROCITY = 7,
-    MCSTAT_CHECK_KS = 8,
-    MCSTAT_CHECK_ROUTES = 9 /* number of routes */
+    MCSTAT_CHECK_ROUTE_CELLS = 0,
+    MCSTAT_CHECK_ROUTE_MASS = 1,
+    MCSTAT_CHECK_ROUTE_PDF_VALUE = 2,
+    MCSTAT_CHECK_ROUTE_WEIGHT = 3,
+    MCSTAT_CHECK_ROUTE_SUPPORT = 4,
+    MCSTAT_CHECK_ROUTE_INTEGRALS = 5,
+    MCSTAT_CHECK_ROUTE_ENERGY = 6,
+    MCSTAT_CHECK_ROUTE_RECIPROCITY = 7,
+    MCSTAT_CHECK_ROUTE_KS = 8,
+    MCSTAT_CHECK_ROUTE_COUNT = 9 /* number of routes */
 };
 
 /* "cells", "mass", "pdf_value", "weight", "support", "integrals", "energy",
@@ -1961,9 +1966,9 @@ typedef struct mcstat_check_options {
      * (later releases may give them a meaning): MCSTAT_EINVAL otherwise. */
 } mcstat_check_options;
 
-#define MCSTAT_CHECK_ALL_ROUTES ((1u << MCSTAT_CHECK_ROUTES) - 1u)
+#define MCSTAT_CHECK_ROUTE_ALL ((1u << MCSTAT_CHECK_ROUTE_COUNT) - 1u)
 #define MCSTAT_CHECK_OPTIONS_INIT \
-    {sizeof(mcstat_check_options), MCSTAT_CHECK_ALL_ROUTES, 0, 0, 0, 0, 0, 0, 65536, 1e-3, 1e-4, {0, 0, 0, 0}}
+    {sizeof(mcstat_check_options), MCSTAT_CHECK_ROUTE_ALL, 0, 0, 0, 0, 0, 0, 65536, 1e-3, 1e-4, {0, 0, 0, 0}}
 
 /* sizeof(mcstat_check_options) in each release that changed it. */
 #define MCSTAT_CHECK_OPTIONS_SIZE_0_2 96u
@@ -2045,7 +2050,7 @@ typedef struct mcstat_check_report {
             double reserved_rest[7];
         };
     };
-    mcstat_check_route_result route[MCSTAT_CHECK_ROUTES];
+    mcstat_check_route_result route[MCSTAT_CHECK_ROUTE_COUNT];
     char message[256];     /* MCSTAT_ECALLBACK: what went wrong, naming the callback, the point
                               and the value; otherwise empty */
 } mcstat_check_report;
@@ -2251,8 +2256,8 @@ MCSTAT_API int mcstat_seq_init(mcstat_seq *s, int kind, double null_value, const
 MCSTAT_API int mcstat_seq_push_moments(mcstat_seq *s, const mcstat_moments *batch);
 MCSTAT_API int mcstat_seq_push_array(mcstat_seq *s, const double *x, size_t n);
 MCSTAT_API int mcstat_seq_push_stream(mcstat_seq *s, const mcstat_stream *frame);
-MCSTAT_API int mcstat_seq_push_moments_2(mcstat_seq *s, const mcstat_moments *bx, const mcstat_moments *by);
-MCSTAT_API int mcstat_seq_push_array_2(mcstat_seq *s, const double *x, size_t nx, const double *y, size_t ny);
+MCSTAT_API int mcstat_seq_push_2_moments(mcstat_seq *s, const mcstat_moments *bx, const mcstat_moments *by);
+MCSTAT_API int mcstat_seq_push_2_array(mcstat_seq *s, const double *x, size_t nx, const double *y, size_t ny);
 /* *out <- the test at the last look (test MCSTAT_TEST_SEQ_*, method
  * MCSTAT_METHOD_ASYMPTOTIC): statistic the z of the last look, p_value the
  * anytime p-value, conf_int the confidence sequence (on the parameter's
@@ -2320,6 +2325,13 @@ MCSTAT_DEPRECATED("mcstat_gof_default_min_expected") MCSTAT_API double mcstat_ch
 MCSTAT_DEPRECATED("mcstat_gof_chisq_test")
 MCSTAT_API int mcstat_chisq_gof(const double *observed, const double *expected, size_t k,
                                 const mcstat_chisq_options *opt, double alpha, mcstat_result *out);
+
+/* sequential tests, two samples: mcstat_seq_push_2_<form>, as the tests'
+ * mcstat_<test>_test_2_<form> */
+MCSTAT_DEPRECATED("mcstat_seq_push_2_moments")
+MCSTAT_API int mcstat_seq_push_moments_2(mcstat_seq *s, const mcstat_moments *bx, const mcstat_moments *by);
+MCSTAT_DEPRECATED("mcstat_seq_push_2_array")
+MCSTAT_API int mcstat_seq_push_array_2(mcstat_seq *s, const double *x, size_t nx, const double *y, size_t ny);
 #endif /* MCSTAT_NO_EXPERIMENTAL */
 
 /* row-wise tests: mcstat_<test>_test_<k>_matrix, each matrix (x, n, stride)

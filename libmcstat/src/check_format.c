@@ -10,10 +10,10 @@
 #include <stdarg.h>
 #include <stdio.h>
 
-static const char *const route_names[MCSTAT_CHECK_ROUTES] = {
+static const char *const route_names[MCSTAT_CHECK_ROUTE_COUNT] = {
     "cells", "mass", "pdf_value", "weight", "support", "integrals", "energy", "reciprocity", "ks"};
 
-static const char *const route_meanings[MCSTAT_CHECK_ROUTES] = {
+static const char *const route_meanings[MCSTAT_CHECK_ROUTE_COUNT] = {
     "sample() draws from the density pdf() claims (chi-squared on cells of equal probability)",
     "the share of samples that succeed is the integral of pdf() (exact binomial test)",
     "the pdf sample() reports equals pdf() at the sampled point",
@@ -24,7 +24,7 @@ static const char *const route_meanings[MCSTAT_CHECK_ROUTES] = {
     "eval(wi, wo)/|cos wo| equals eval(wo, wi)/|cos wi|",
     "the sampled points, resampled by their weights, follow eval() (K-S with Canner's weight on Morton keys)"};
 
-static const char *const route_blind_spots[MCSTAT_CHECK_ROUTES] = {
+static const char *const route_blind_spots[MCSTAT_CHECK_ROUTE_COUNT] = {
     "a pdf() off by a constant factor; anything about eval() and the weights",
     "errors that move probability within the domain without changing its total",
     "a sampler and a pdf() that are wrong together",
@@ -37,24 +37,24 @@ static const char *const route_blind_spots[MCSTAT_CHECK_ROUTES] = {
 
 const char *mcstat_check_route_name(int route)
 {
-    return route >= 0 && route < MCSTAT_CHECK_ROUTES ? route_names[route] : NULL;
+    return route >= 0 && route < MCSTAT_CHECK_ROUTE_COUNT ? route_names[route] : NULL;
 }
 
 const char *mcstat_check_route_meaning(int route)
 {
-    return route >= 0 && route < MCSTAT_CHECK_ROUTES ? route_meanings[route] : NULL;
+    return route >= 0 && route < MCSTAT_CHECK_ROUTE_COUNT ? route_meanings[route] : NULL;
 }
 
 const char *mcstat_check_route_blind_spot(int route)
 {
-    return route >= 0 && route < MCSTAT_CHECK_ROUTES ? route_blind_spots[route] : NULL;
+    return route >= 0 && route < MCSTAT_CHECK_ROUTE_COUNT ? route_blind_spots[route] : NULL;
 }
 
 int mcstat_check_route_parse(const char *name, int *route)
 {
     if (!name || !route)
         return MCSTAT_EINVAL;
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         if (strcmp(name, route_names[i]) == 0) {
             *route = i;
             return MCSTAT_OK;
@@ -117,12 +117,12 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
     }
     if (rr->state == MCSTAT_ROUTE_INVALID) {
         int heavy_w = r->tail_index[0] < 2.0, heavy_v = r->tail_index[1] < 2.0;
-        if ((i == MCSTAT_CHECK_ENERGY && heavy_w) || (i == MCSTAT_CHECK_INTEGRALS && (heavy_w || heavy_v))) {
+        if ((i == MCSTAT_CHECK_ROUTE_ENERGY && heavy_w) || (i == MCSTAT_CHECK_ROUTE_INTEGRALS && (heavy_w || heavy_v))) {
             put(t, "no answer: %s heavy-tailed (tail index below 2: infinite variance), a mean test would be "
                    "invalid\n",
                 heavy_w && heavy_v ? "the weights and the eval-only estimates are"
                                    : (heavy_w ? "the weights are" : "the eval-only estimates are"));
-        } else if (i == MCSTAT_CHECK_KS && rr->count > 0) {
+        } else if (i == MCSTAT_CHECK_ROUTE_KS && rr->count > 0) {
             put(t, "no answer: %s exceeded its envelope at ", rr->count == 1 ? "a weight" : "eval/table");
             put_point(t, rr->where, dims);
             put(t, " (%.6g > %.6g), so the kept points would not follow eval\n", rr->value[0], rr->value[1]);
@@ -131,7 +131,7 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
         }
         return;
     }
-    if (rr->deterministic && i != MCSTAT_CHECK_ENERGY) {
+    if (rr->deterministic && i != MCSTAT_CHECK_ROUTE_ENERGY) {
         put(t, "%-6s %llu of %llu points beyond tolerance", rr->reject ? "FAIL" : "pass",
             (unsigned long long)rr->count, (unsigned long long)rr->checked);
         put(t, "; largest relative difference ");
@@ -150,10 +150,10 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
     }
     put(t, "%-6s ", rr->reject ? "FAIL" : "pass");
     switch (i) {
-    case MCSTAT_CHECK_CELLS: put(t, "X-squared = %.4g, df = %.0f", rr->statistic, rr->df); break;
-    case MCSTAT_CHECK_MASS: put(t, "success share %.6g vs mass %.6g", rr->statistic, r->mass); break;
-    case MCSTAT_CHECK_INTEGRALS: put(t, "W = %.4g, df = %.0f", rr->statistic, rr->df); break;
-    case MCSTAT_CHECK_KS:
+    case MCSTAT_CHECK_ROUTE_CELLS: put(t, "X-squared = %.4g, df = %.0f", rr->statistic, rr->df); break;
+    case MCSTAT_CHECK_ROUTE_MASS: put(t, "success share %.6g vs mass %.6g", rr->statistic, r->mass); break;
+    case MCSTAT_CHECK_ROUTE_INTEGRALS: put(t, "W = %.4g, df = %.0f", rr->statistic, rr->df); break;
+    case MCSTAT_CHECK_ROUTE_KS:
         put(t, "D2 = %.4g (Canner), %llu resampled points vs %llu from eval", rr->statistic,
             (unsigned long long)rr->count, (unsigned long long)(rr->checked - rr->count));
         break;
@@ -169,11 +169,11 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
 static void put_budget(text *t, const mcstat_check_report *r, int i)
 {
     const mcstat_check_route_result *rr = &r->route[i];
-    if (rr->state != MCSTAT_ROUTE_RAN || (rr->deterministic && i == MCSTAT_CHECK_ENERGY))
+    if (rr->state != MCSTAT_ROUTE_RAN || (rr->deterministic && i == MCSTAT_CHECK_ROUTE_ENERGY))
         return;
     put(t, "  %-12s", route_names[i]);
     switch (i) {
-    case MCSTAT_CHECK_CELLS:
+    case MCSTAT_CHECK_ROUTE_CELLS:
         put(t, "Cohen's w ");
         put_g(t, "%.3g", rr->detectable);
         put(t, " (measured ");
@@ -182,8 +182,8 @@ static void put_budget(text *t, const mcstat_check_report *r, int i)
         put_g(t, "%.3g", rr->n_for_1pct);
         put(t, " samples\n");
         break;
-    case MCSTAT_CHECK_MASS:
-    case MCSTAT_CHECK_INTEGRALS:
+    case MCSTAT_CHECK_ROUTE_MASS:
+    case MCSTAT_CHECK_ROUTE_INTEGRALS:
         put(t, "relative ");
         put_g(t, "%.3g", rr->detectable);
         put(t, " (measured ");
@@ -192,14 +192,14 @@ static void put_budget(text *t, const mcstat_check_report *r, int i)
         put_g(t, "%.3g", rr->n_for_1pct);
         put(t, " samples\n");
         break;
-    case MCSTAT_CHECK_KS:
+    case MCSTAT_CHECK_ROUTE_KS:
         put(t, "a sup distance of about ");
         put_g(t, "%.3g", rr->detectable);
         put(t, " between the CDFs (probability ~0.5); 0.01 needs ");
         put_g(t, "%.3g", rr->n_for_1pct);
         put(t, " samples\n");
         break;
-    case MCSTAT_CHECK_ENERGY:
+    case MCSTAT_CHECK_ROUTE_ENERGY:
         put(t, "albedo above 1 by ");
         put_g(t, "%.3g", rr->detectable);
         put(t, "; 0.01 needs ");
@@ -220,7 +220,7 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
     if (!r || (!buf && size > 0) || r->kind < 0 || r->kind > MCSTAT_CHECK_KIND_WARP ||
         mcstat_check_domain_dims(r->domain) == 0)
         return MCSTAT_EINVAL;
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         if (r->route[i].state < MCSTAT_ROUTE_RAN || r->route[i].state > MCSTAT_ROUTE_INVALID)
             return MCSTAT_EINVAL;
     text t = {buf, size, 0};
@@ -253,17 +253,17 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
         put(&t, "pdf() > 0 where eval() = 0 at %llu points (samples wasted there; not an error)\n",
             (unsigned long long)r->pdf_without_eval);
     put(&t, "routes:\n");
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         put_route(&t, r, i);
     put(&t, "smallest departure each route detects with probability 0.8 at this budget:\n");
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         put_budget(&t, r, i);
     put(&t, "decision at alpha = %g: ", r->alpha);
     if (!r->reject) {
         put(&t, "consistent (no route rejected; the battery's error rate is at most alpha)\n");
     } else {
         put(&t, "INCONSISTENT:");
-        for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+        for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
             if (r->route[i].state == MCSTAT_ROUTE_RAN && r->route[i].reject)
                 put(&t, " %s", route_names[i]);
         put(&t, " rejected\n");

@@ -126,7 +126,7 @@ static int ran_chisq(mcstat_check_route_result *rr, double statistic, double df)
 
 static void route_cells(run *r, const sums *sm, double level)
 {
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_CELLS];
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_CELLS];
     double mass = 0.0;
     for (int32_t c = 0; c < r->tr.n_cells; c++)
         mass += fmax(r->tr.cells[c].prob, 0.0);
@@ -202,7 +202,7 @@ static void route_cells(run *r, const sums *sm, double level)
  * estimates above 1. */
 static void route_mass(run *r, const sums *sm, double level)
 {
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_MASS];
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_MASS];
     uint64_t n = r->pl.n, x = sm->n_succ;
     double m_eval = (double)r->pl.n_eval;
     double mhat = sm->r / m_eval, var_m = fmax(sm->r2 / m_eval - mhat * mhat, 0.0) / m_eval;
@@ -345,7 +345,7 @@ void mcstat__check_report_albedos(run *r, const sums *sm)
 
 static void route_integrals(run *r, const sums *sm, double level)
 {
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_INTEGRALS];
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_INTEGRALS];
     double n = (double)r->pl.n, m = (double)r->pl.n_eval;
     double A[MAX_GROUPS], B[MAX_GROUPS], D[MAX_GROUPS], S[MAX_GROUPS][MAX_GROUPS], tot[2], var[2];
     int g = region_integrals(r, sm, A, B, D, S, tot, var);
@@ -373,7 +373,7 @@ static void route_integrals(run *r, const sums *sm, double level)
 
 static void route_energy(run *r, const sums *sm, double level)
 {
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ENERGY];
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_ENERGY];
     if (r->out->tail_index[0] < 2.0) { /* it reads the weights only */
         rr->state = MCSTAT_ROUTE_INVALID;
         return;
@@ -408,7 +408,7 @@ static void route_energy(run *r, const sums *sm, double level)
 
 static void route_ks(run *r, double level)
 {
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_KS];
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_KS];
     uint64_t na = r->n_keys_a, nb = r->n_keys_b;
     rr->checked = na + nb;
     if (r->w_breach || r->v_breach) {
@@ -462,11 +462,11 @@ static void route_ks(run *r, double level)
 void mcstat__check_route(run *r, const sums *sm, int route, double level)
 {
     switch (route) {
-    case MCSTAT_CHECK_CELLS: route_cells(r, sm, level); break;
-    case MCSTAT_CHECK_MASS: route_mass(r, sm, level); break;
-    case MCSTAT_CHECK_INTEGRALS: route_integrals(r, sm, level); break;
-    case MCSTAT_CHECK_ENERGY: route_energy(r, sm, level); break;
-    case MCSTAT_CHECK_KS: route_ks(r, level); break;
+    case MCSTAT_CHECK_ROUTE_CELLS: route_cells(r, sm, level); break;
+    case MCSTAT_CHECK_ROUTE_MASS: route_mass(r, sm, level); break;
+    case MCSTAT_CHECK_ROUTE_INTEGRALS: route_integrals(r, sm, level); break;
+    case MCSTAT_CHECK_ROUTE_ENERGY: route_energy(r, sm, level); break;
+    case MCSTAT_CHECK_ROUTE_KS: route_ks(r, level); break;
     default: finish_deterministic(r, route); break;
     }
 }

@@ -124,7 +124,7 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
         return MCSTAT_EINVAL;
     if ((uint64_t)n > (1ull << 48))
         return MCSTAT_ETOOBIG;
-    if (o->routes == 0 || (o->routes & ~MCSTAT_CHECK_ALL_ROUTES))
+    if (o->routes == 0 || (o->routes & ~MCSTAT_CHECK_ROUTE_ALL))
         return MCSTAT_EINVAL;
     for (int i = 0; i < 4; i++)
         if (m->reserved[i] != 0.0 || o->reserved[i] != 0.0)
@@ -402,7 +402,7 @@ static int tested_sample(run *r, sums *sm)
             if (pl->reports && p == 0.0) {
                 /* a failed sample contributes a zero weight */
                 if (w != 0.0 && deterministic)
-                    compare(r, MCSTAT_CHECK_WEIGHT, x, w, 0.0);
+                    compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, 0.0);
                 continue;
             }
             int32_t c = mcstat__tree_locate(&r->tr, r->s.sb[2 * i], r->s.sb[2 * i + 1]);
@@ -440,14 +440,14 @@ static int tested_sample(run *r, sums *sm)
             const double *x = r->s.xs + i * dims;
             double w = r->s.ws[i], ps = r->s.ps[i], p = r->s.p2[i];
             if (pl->reports && deterministic)
-                compare(r, MCSTAT_CHECK_PDF_VALUE, x, ps, p);
+                compare(r, MCSTAT_CHECK_ROUTE_PDF_VALUE, x, ps, p);
             if (!pl->has_eval)
                 continue;
             double f = r->s.f[i];
             if (deterministic)
-                compare(r, MCSTAT_CHECK_WEIGHT, x, w, f / ps);
+                compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, f / ps);
             r->zero_weight += w == 0.0 && f > 0.0;
-            compare(r, MCSTAT_CHECK_SUPPORT, x, f > 0.0 && p == 0.0 ? f : 0.0, 0.0);
+            compare(r, MCSTAT_CHECK_ROUTE_SUPPORT, x, f > 0.0 && p == 0.0 ? f : 0.0, 0.0);
             if (p > 0.0 && f == 0.0)
                 r->pdf_without_eval++;
             int g = r->tr.cells[r->s.cellb[i]].group;
@@ -573,7 +573,7 @@ static int eval_only(run *r, sums *sm)
                         (double)(mcstat__domain_key(&pl->d, r->s.sb[2 * i], r->s.sb[2 * i + 1]) >> 11);
             }
             r->s.vsave[sm->n_v++] = v;
-            compare(r, MCSTAT_CHECK_SUPPORT, r->s.xs + i * dims, f > 0.0 && r->s.p2[i] == 0.0 ? f : 0.0, 0.0);
+            compare(r, MCSTAT_CHECK_ROUTE_SUPPORT, r->s.xs + i * dims, f > 0.0 && r->s.p2[i] == 0.0 ? f : 0.0, 0.0);
             if (r->s.p2[i] > 0.0 && f == 0.0)
                 r->pdf_without_eval++;
         }
@@ -598,7 +598,7 @@ static int reciprocity(run *r, const sums *sm)
         if (!isfinite(back) || back < 0.0)
             return fail(r, "eval() returned %.17g with wi = (%.9g, %.9g, %.9g) and the point wi of the check: "
                         "the integrand must be finite and >= 0", back, q[0], q[1], q[2]);
-        compare(r, MCSTAT_CHECK_RECIPROCITY, q, q[3] / fabs(q[2]), back / wi_z);
+        compare(r, MCSTAT_CHECK_ROUTE_RECIPROCITY, q, q[3] / fabs(q[2]), back / wi_z);
     }
     return MCSTAT_OK;
 }
@@ -662,7 +662,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
         out->wi[c] = wi[c];
     out->n = n;
     out->n_eval = r.pl.n_eval;
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         mcstat__check_route_init(&out->route[i]);
 
     sums sm;
@@ -679,7 +679,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
         st = eval_only(&r, &sm);
     uint32_t want = r.o.routes;
     int bsdf = kind == MCSTAT_CHECK_KIND_BSDF;
-    if (st == MCSTAT_OK && bsdf && r.o.reciprocal && (want & (1u << MCSTAT_CHECK_RECIPROCITY)))
+    if (st == MCSTAT_OK && bsdf && r.o.reciprocal && (want & (1u << MCSTAT_CHECK_ROUTE_RECIPROCITY)))
         st = reciprocity(&r, &sm);
     if (st != MCSTAT_OK) {
         char keep[sizeof out->message];
@@ -701,19 +701,19 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     }
 
     /* which routes apply */
-    int applies[MCSTAT_CHECK_ROUTES] = {0};
-    applies[MCSTAT_CHECK_CELLS] = 1;
-    applies[MCSTAT_CHECK_MASS] = 1;
-    applies[MCSTAT_CHECK_PDF_VALUE] = r.pl.reports && !r.o.stochastic;
-    applies[MCSTAT_CHECK_WEIGHT] = r.pl.has_eval && !r.o.stochastic;
-    applies[MCSTAT_CHECK_SUPPORT] = r.pl.has_eval;
-    applies[MCSTAT_CHECK_INTEGRALS] = r.pl.has_eval;
-    applies[MCSTAT_CHECK_ENERGY] = bsdf;
-    applies[MCSTAT_CHECK_RECIPROCITY] = bsdf && r.o.reciprocal;
-    applies[MCSTAT_CHECK_KS] = r.pl.has_eval;
+    int applies[MCSTAT_CHECK_ROUTE_COUNT] = {0};
+    applies[MCSTAT_CHECK_ROUTE_CELLS] = 1;
+    applies[MCSTAT_CHECK_ROUTE_MASS] = 1;
+    applies[MCSTAT_CHECK_ROUTE_PDF_VALUE] = r.pl.reports && !r.o.stochastic;
+    applies[MCSTAT_CHECK_ROUTE_WEIGHT] = r.pl.has_eval && !r.o.stochastic;
+    applies[MCSTAT_CHECK_ROUTE_SUPPORT] = r.pl.has_eval;
+    applies[MCSTAT_CHECK_ROUTE_INTEGRALS] = r.pl.has_eval;
+    applies[MCSTAT_CHECK_ROUTE_ENERGY] = bsdf;
+    applies[MCSTAT_CHECK_ROUTE_RECIPROCITY] = bsdf && r.o.reciprocal;
+    applies[MCSTAT_CHECK_ROUTE_KS] = r.pl.has_eval;
     enum { N_STATISTICAL = 5 };
-    int statistical[N_STATISTICAL] = {MCSTAT_CHECK_CELLS, MCSTAT_CHECK_MASS, MCSTAT_CHECK_INTEGRALS,
-                                      MCSTAT_CHECK_ENERGY, MCSTAT_CHECK_KS};
+    int statistical[N_STATISTICAL] = {MCSTAT_CHECK_ROUTE_CELLS, MCSTAT_CHECK_ROUTE_MASS, MCSTAT_CHECK_ROUTE_INTEGRALS,
+                                      MCSTAT_CHECK_ROUTE_ENERGY, MCSTAT_CHECK_ROUTE_KS};
     int n_stat = 0;
     for (int i = 0; i < N_STATISTICAL; i++)
         if (applies[statistical[i]] && (want & (1u << statistical[i])))
@@ -721,7 +721,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     /* the level each statistical route is held to in the worst case of
      * Holm's procedure: what `detectable` is computed at */
     double level = alpha / (n_stat > 0 ? n_stat : 1);
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++) {
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++) {
         if (!applies[i] || !(want & (1u << i)))
             continue;
         mcstat__check_route(&r, &sm, i, level);
@@ -755,7 +755,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
                 out->p_value = adj[i];
         }
     }
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         if (out->route[i].state == MCSTAT_ROUTE_RAN && out->route[i].reject) {
             out->reject = 1;
             if (out->route[i].deterministic)

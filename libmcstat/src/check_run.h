@@ -59,8 +59,8 @@ typedef struct run {
     uint64_t n_keys_a, n_keys_b;
     double rtol;
     /* deterministic comparisons: points beyond tolerance and the worst */
-    uint64_t bad[MCSTAT_CHECK_ROUTES], checked[MCSTAT_CHECK_ROUTES];
-    double worst[MCSTAT_CHECK_ROUTES], worst_x[MCSTAT_CHECK_ROUTES][3], worst_v[MCSTAT_CHECK_ROUTES][2];
+    uint64_t bad[MCSTAT_CHECK_ROUTE_COUNT], checked[MCSTAT_CHECK_ROUTE_COUNT];
+    double worst[MCSTAT_CHECK_ROUTE_COUNT], worst_x[MCSTAT_CHECK_ROUTE_COUNT][3], worst_v[MCSTAT_CHECK_ROUTE_COUNT][2];
     uint64_t pdf_without_eval; /* pdf > 0 where eval = 0 (counted, not a failure) */
     uint64_t zero_weight;      /* successes (pdf > 0) whose weight is 0 where eval() > 0 */
     size_t n_rects;            /* cubature rectangles: a fine partition of the domain */

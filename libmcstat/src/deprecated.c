@@ -25,6 +25,17 @@ int(mcstat_chisq_options_init)(mcstat_chisq_options *opt)
     return mcstat_gof_options_init_size(opt, MCSTAT_GOF_OPTIONS_SIZE_0_1);
 }
 
+/* ---- sequential tests, two samples: mcstat_seq_push_2_<form> ----------- */
+int mcstat_seq_push_moments_2(mcstat_seq *s, const mcstat_moments *bx, const mcstat_moments *by)
+{
+    return mcstat_seq_push_2_moments(s, bx, by);
+}
+
+int mcstat_seq_push_array_2(mcstat_seq *s, const double *x, size_t nx, const double *y, size_t ny)
+{
+    return mcstat_seq_push_2_array(s, x, nx, y, ny);
+}
+
 /* ---- goodness of fit: the mcstat_gof_ stem ------------------------------ */
 int mcstat_chisq_options_init_size(mcstat_chisq_options *opt, size_t size)
 {

@@ -347,7 +347,7 @@ int mcstat_seq_push_moments(mcstat_seq *s, const mcstat_moments *batch)
     return push(s, batch, NULL);
 }
 
-int mcstat_seq_push_moments_2(mcstat_seq *s, const mcstat_moments *bx, const mcstat_moments *by)
+int mcstat_seq_push_2_moments(mcstat_seq *s, const mcstat_moments *bx, const mcstat_moments *by)
 {
     MCSTAT_IEEE_SCOPE();
     if (!seq_valid(s) || !two_sample(s->kind) || !batch_valid(bx) || !batch_valid(by))
@@ -366,7 +366,7 @@ int mcstat_seq_push_array(mcstat_seq *s, const double *x, size_t n)
     return st ? st : push(s, &b, NULL);
 }
 
-int mcstat_seq_push_array_2(mcstat_seq *s, const double *x, size_t nx, const double *y, size_t ny)
+int mcstat_seq_push_2_array(mcstat_seq *s, const double *x, size_t nx, const double *y, size_t ny)
 {
     MCSTAT_IEEE_SCOPE();
     if (!seq_valid(s) || !two_sample(s->kind) || (!x && nx > 0) || (!y && ny > 0))

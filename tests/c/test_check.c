@@ -252,12 +252,12 @@ static void test_lobe_bugs(void)
         int stochastic;
     } cases[] = {
         {NONE, -1, 0},
-        {SAMPLER, MCSTAT_CHECK_CELLS, 0},
-        {PDF, MCSTAT_CHECK_PDF_VALUE, 0},
-        {EVAL, MCSTAT_CHECK_WEIGHT, 0},
-        {WEIGHT, MCSTAT_CHECK_WEIGHT, 0},
+        {SAMPLER, MCSTAT_CHECK_ROUTE_CELLS, 0},
+        {PDF, MCSTAT_CHECK_ROUTE_PDF_VALUE, 0},
+        {EVAL, MCSTAT_CHECK_ROUTE_WEIGHT, 0},
+        {WEIGHT, MCSTAT_CHECK_ROUTE_WEIGHT, 0},
         {NOISY, -1, 1},
-        {NOISY_BIASED, MCSTAT_CHECK_INTEGRALS, 1},
+        {NOISY_BIASED, MCSTAT_CHECK_ROUTE_INTEGRALS, 1},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         lobe L = make_lobe(40.0, wi, cases[i].bug);
@@ -371,12 +371,12 @@ static void test_warps(void)
             CHECK_MSG(fabs(r.mass - 1.0) <= r.mass_error && r.mass_error < 1e-3,
                       "singular pdf integrates to %.12g, error estimate %g", r.mass, r.mass_error);
         if (st == MCSTAT_OK && bug)
-            CHECK(r.route[MCSTAT_CHECK_MASS].reject);
+            CHECK(r.route[MCSTAT_CHECK_ROUTE_MASS].reject);
         m = warp_model(MCSTAT_DOMAIN_DISK, 2, warp_disk_sample, warp_disk_pdf, &bug);
         st = mcstat_check_warp(&m, 20000, 3, 0.01, NULL, NULL, 0, &r);
         CHECK_MSG(st == MCSTAT_OK && r.reject == bug, "disk warp bug %d: status %d reject %d", bug, st, r.reject);
         if (st == MCSTAT_OK && bug)
-            CHECK(r.route[MCSTAT_CHECK_CELLS].reject);
+            CHECK(r.route[MCSTAT_CHECK_ROUTE_CELLS].reject);
         if (st == MCSTAT_OK && !bug)
             CHECK_MSG(fabs(r.mass - 1.0) < 1e-9, "disk mass %.15g", r.mass);
     }
@@ -389,7 +389,7 @@ static void test_warps(void)
  * binom.test(41, 500, 0.05, "greater")$p.value = 0.0015, 42: 0.00086). */
 static void calibrate(const char *what, mcstat_check_model *m, const double *wi, int kind, size_t n)
 {
-    int rejections = 0, per_route[MCSTAT_CHECK_ROUTES] = {0};
+    int rejections = 0, per_route[MCSTAT_CHECK_ROUTE_COUNT] = {0};
     uint64_t runs = h_scaled(500, 25); /* fewer under the sanitizers: the meta-test stays valid */
     for (uint64_t seed = 1000; seed < 1000 + runs; seed++) {
         mcstat_check_report r;
@@ -400,12 +400,12 @@ static void calibrate(const char *what, mcstat_check_model *m, const double *wi,
             return;
         }
         rejections += r.reject;
-        for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+        for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
             per_route[i] += r.route[i].reject;
     }
     fprintf(stderr, "calibration %s: %d of %llu rejected at alpha 0.05 (routes:", what, rejections,
             (unsigned long long)runs);
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         fprintf(stderr, " %s %d", mcstat_check_route_name(i), per_route[i]);
     fprintf(stderr, ")\n");
     /* the meta-test: too many rejections for the level? (one-sided: a

@@ -365,7 +365,7 @@ static void test_einval_options_and_work(void)
     o.cells = -1;
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "cells < 0");
     o = opt;
-    o.routes = 1u << MCSTAT_CHECK_ROUTES;
+    o.routes = 1u << MCSTAT_CHECK_ROUTE_COUNT;
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "an unknown route bit");
     o = opt;
     o.routes = 0;

@@ -77,6 +77,28 @@ static void test_gof(void)
     CHECK(a.test == MCSTAT_TEST_CHISQ_GOF && a.p_value > 0.0 && a.p_value < 1.0);
 }
 
+static void test_seq(void)
+{
+    const double x[5] = {1.0, 2.5, 3.0, 4.5, 2.0}, y[4] = {0.5, 1.5, 1.0, 2.0};
+    mcstat_seq a, b;
+    mcstat_result ra, rb;
+    mcstat_moments mx, my;
+    mcstat_moments_init(&mx);
+    mcstat_moments_init(&my);
+    mcstat_moments_add_array(&mx, x, 5);
+    mcstat_moments_add_array(&my, y, 4);
+    CHECK_INT(mcstat_seq_init(&a, MCSTAT_SEQ_MEAN_2, 0.0, NULL), MCSTAT_OK);
+    b = a;
+    CHECK_INT(mcstat_seq_push_array_2(&a, x, 5, y, 4), MCSTAT_OK);
+    CHECK_INT(mcstat_seq_push_2_array(&b, x, 5, y, 4), MCSTAT_OK);
+    CHECK_INT(mcstat_seq_push_moments_2(&a, &mx, &my), MCSTAT_OK);
+    CHECK_INT(mcstat_seq_push_2_moments(&b, &mx, &my), MCSTAT_OK);
+    CHECK_INT(mcstat_seq_result(&a, &ra), MCSTAT_OK);
+    CHECK_INT(mcstat_seq_result(&b, &rb), MCSTAT_OK);
+    CHECK(same_results(&ra, &rb, 1) && ra.n[0] == 10 && ra.n[1] == 8);
+    CHECK_INT(mcstat_seq_push_moments_2(&a, &mx, NULL), MCSTAT_EINVAL);
+}
+
 static void test_rows(void)
 {
     static double x[ROWS * STRIDE], y[ROWS * STRIDE];
@@ -116,6 +138,7 @@ int main(void)
     test_sizes();
     test_diag();
     test_gof();
+    test_seq();
     test_rows();
     return h_report("test_deprecated");
 }

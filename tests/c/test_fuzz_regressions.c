@@ -511,7 +511,7 @@ static void test_check_reciprocity_wi_below_hemisphere(void)
     mcstat_check_report r;
     CHECK_INT(mcstat_check_bsdf(&m, wi, 1000, 1, 0.05, &o, NULL, 0, &r), MCSTAT_OK);
     CHECK_MSG(hm.off_domain == 0, "eval() got %d points below the horizon", hm.off_domain);
-    CHECK(r.route[MCSTAT_CHECK_RECIPROCITY].state == MCSTAT_ROUTE_INVALID);
+    CHECK(r.route[MCSTAT_CHECK_ROUTE_RECIPROCITY].state == MCSTAT_ROUTE_INVALID);
 }
 
 /* fuzz_checks: pdf() finite but near DBL_MAX (valid by the contract: the
@@ -545,10 +545,10 @@ static void test_check_mass_pdf_integral_overflows(void)
                             square_pdf_huge, NULL, {0, 0, 0, 0}};
     mcstat_check_options o;
     mcstat_check_options_init(&o);
-    o.routes = 1u << MCSTAT_CHECK_MASS;
+    o.routes = 1u << MCSTAT_CHECK_ROUTE_MASS;
     mcstat_check_report r;
     CHECK_INT(mcstat_check_warp(&m, 1000, 1, 0.05, &o, NULL, 0, &r), MCSTAT_OK);
-    const mcstat_check_route_result *rr = &r.route[MCSTAT_CHECK_MASS];
+    const mcstat_check_route_result *rr = &r.route[MCSTAT_CHECK_ROUTE_MASS];
     CHECK_INT(rr->state, MCSTAT_ROUTE_RAN);
     CHECK_MSG(rr->p_value >= 0.0 && rr->p_value <= 1.0, "MASS p-value %g", rr->p_value);
     CHECK(rr->reject == 1 && r.reject == 1);

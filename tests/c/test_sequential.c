@@ -97,7 +97,7 @@ static void row(char **f, int nf, void *ctx)
     r->nx += bx;
     r->ny += by;
     int st = kind == MCSTAT_SEQ_MEAN_2 || kind == MCSTAT_SEQ_VAR_2
-                 ? mcstat_seq_push_array_2(&r->s, x, (size_t)bx, y, (size_t)by)
+                 ? mcstat_seq_push_2_array(&r->s, x, (size_t)bx, y, (size_t)by)
                  : mcstat_seq_push_array(&r->s, x, (size_t)bx);
     CHECK_INT(st, MCSTAT_OK);
     mcstat_result res;
@@ -337,7 +337,7 @@ static void test_bad_input(void)
     double x[3] = {1.0, NAN, 2.0};
     CHECK_INT(mcstat_seq_push_array(&s, x, 3), MCSTAT_ENONFINITE);
     CHECK_INT(mcstat_seq_push_array(&s, NULL, 3), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_seq_push_array_2(&s, x, 1, x, 1), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_seq_push_2_array(&s, x, 1, x, 1), MCSTAT_EINVAL);
     CHECK_INT(mcstat_seq_push_moments(&s, NULL), MCSTAT_EINVAL);
     mcstat_moments m;
     memset(&m, 0, sizeof m);
@@ -366,7 +366,7 @@ static void test_bad_input(void)
     CHECK_INT(mcstat_seq_result(&s, NULL), MCSTAT_EINVAL);
     CHECK_INT(mcstat_seq_init(&s, MCSTAT_SEQ_MEAN_2, 0.0, NULL), MCSTAT_OK);
     CHECK_INT(mcstat_seq_push_array(&s, x, 1), MCSTAT_EINVAL);
-    CHECK_INT(mcstat_seq_push_moments_2(&s, &m, NULL), MCSTAT_EINVAL);
+    CHECK_INT(mcstat_seq_push_2_moments(&s, &m, NULL), MCSTAT_EINVAL);
     /* a sequence exists only at its own level */
     double ci[2];
     CHECK_INT(mcstat_seq_result(&s, &r), MCSTAT_OK);

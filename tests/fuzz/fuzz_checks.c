@@ -415,9 +415,9 @@ static void decode(fz_input *in, decoded *d, model_state *m)
     if (r16 & 0x8000)
         o->routes = fz_u32(in);
     else if (r16 & 0x4000)
-        o->routes = MCSTAT_CHECK_ALL_ROUTES;
+        o->routes = MCSTAT_CHECK_ROUTE_ALL;
     else
-        o->routes = r16 & MCSTAT_CHECK_ALL_ROUTES;
+        o->routes = r16 & MCSTAT_CHECK_ROUTE_ALL;
     b = fz_u8(in);
     o->stochastic = b < 250 ? b & 1 : (int32_t)fz_u32(in);
     b = fz_u8(in);
@@ -554,10 +554,10 @@ static void check_report(int st, const decoded *d, const model_state *m, const m
     else
         FZ_ASSERT(isnan(r->wi[0]) && isnan(r->wi[1]) && isnan(r->wi[2]), "wi set for kind %d", m->kind);
 
-    uint32_t want = d->opt_null ? MCSTAT_CHECK_ALL_ROUTES : d->opt.routes;
+    uint32_t want = d->opt_null ? MCSTAT_CHECK_ROUTE_ALL : d->opt.routes;
     int any_reject = 0, det_reject = 0;
     double min_adj = 1.0;
-    for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++) {
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++) {
         const mcstat_check_route_result *rr = &r->route[i];
         FZ_ASSERT(rr->state == MCSTAT_ROUTE_RAN || rr->state == MCSTAT_ROUTE_SKIPPED ||
                       rr->state == MCSTAT_ROUTE_INVALID,
@@ -572,7 +572,7 @@ static void check_report(int st, const decoded *d, const model_state *m, const m
             continue;
         }
         if (rr->deterministic) {
-            if (i != MCSTAT_CHECK_ENERGY)
+            if (i != MCSTAT_CHECK_ROUTE_ENERGY)
                 FZ_ASSERT(rr->reject == (rr->count > 0) && rr->count <= rr->checked,
                           "route %d: reject %d with %llu of %llu beyond tolerance", i, rr->reject,
                           (unsigned long long)rr->count, (unsigned long long)rr->checked);
@@ -598,7 +598,7 @@ static void check_report(int st, const decoded *d, const model_state *m, const m
 static void check_names(int v)
 {
     const char *s = mcstat_check_route_name(v);
-    int valid = v >= 0 && v < MCSTAT_CHECK_ROUTES, back = -1;
+    int valid = v >= 0 && v < MCSTAT_CHECK_ROUTE_COUNT, back = -1;
     FZ_ASSERT((s != NULL) == valid, "route_name(%d)", v);
     FZ_ASSERT((mcstat_check_route_meaning(v) != NULL) == valid && (mcstat_check_route_blind_spot(v) != NULL) == valid,
               "route_meaning/blind_spot(%d)", v);

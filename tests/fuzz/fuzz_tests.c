@@ -151,7 +151,7 @@ static void sequential(int which, const double *x, size_t nx, const double *y, s
     for (size_t i = 0; i < (nx > ny ? nx : ny); i += 8) {
         size_t kx = i < nx ? (nx - i < 8 ? nx - i : 8) : 0, ky = i < ny ? (ny - i < 8 ? ny - i : 8) : 0;
         mcstat_seq before = s;
-        st = two ? mcstat_seq_push_array_2(&s, x + (i < nx ? i : 0), kx, y + (i < ny ? i : 0), ky)
+        st = two ? mcstat_seq_push_2_array(&s, x + (i < nx ? i : 0), kx, y + (i < ny ? i : 0), ky)
                  : mcstat_seq_push_array(&s, x + (i < nx ? i : 0), kx);
         fz_check_status(st);
         if (st != MCSTAT_OK) {

@@ -299,18 +299,18 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
         }
     }
     if (!py::bool_(get("energy", py::bool_(true))))
-        o.routes &= ~(1u << MCSTAT_CHECK_ENERGY);
+        o.routes &= ~(1u << MCSTAT_CHECK_ROUTE_ENERGY);
     o.stochastic = py::bool_(get("stochastic", py::bool_(false))) ? 1 : 0;
     o.reciprocal = py::bool_(get("reciprocal", py::bool_(false))) ? 1 : 0;
     // A route asked for by its flag but left out of `routes` would silently
     // not run: refused instead.
     if (!routes.is_none()) {
-        if (o.reciprocal && !(o.routes & (1u << MCSTAT_CHECK_RECIPROCITY)))
+        if (o.reciprocal && !(o.routes & (1u << MCSTAT_CHECK_ROUTE_RECIPROCITY)))
             throw_invalid(std::string("reciprocal=True asks for the '") +
-                          mcstat_check_route_name(MCSTAT_CHECK_RECIPROCITY) + "' route, which routes leaves out");
+                          mcstat_check_route_name(MCSTAT_CHECK_ROUTE_RECIPROCITY) + "' route, which routes leaves out");
         if (kind == MCSTAT_CHECK_KIND_BSDF && kw.contains("energy") && py::bool_(kw["energy"]) &&
-            !(o.routes & (1u << MCSTAT_CHECK_ENERGY)))
-            throw_invalid(std::string("energy=True asks for the '") + mcstat_check_route_name(MCSTAT_CHECK_ENERGY) +
+            !(o.routes & (1u << MCSTAT_CHECK_ROUTE_ENERGY)))
+            throw_invalid(std::string("energy=True asks for the '") + mcstat_check_route_name(MCSTAT_CHECK_ROUTE_ENERGY) +
                           "' route, which routes leaves out");
     }
     uint64_t cells = get_count(get("cells", py::int_(0)), "cells");
@@ -561,7 +561,7 @@ void register_check(py::module_ &mod)
         .def_property_readonly("heavy_tailed", [](const Report &r) { return r.r.heavy_tailed != 0; })
         .def_property_readonly("routes", [](const Report &r) {
             py::list l;
-            for (int i = 0; i < MCSTAT_CHECK_ROUTES; i++)
+            for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
                 l.append(py::cast(Route{r.r.route[i], i}));
             return l;
         })

@@ -100,10 +100,10 @@ void push(Sequential &q, py::handle x, py::handle y)
             throw_invalid(std::string("kind \"") + mcstat_seq_kind_name(q.s.kind) + "\" pushes two batches: push(x, y)");
         if (as_moments(x) || as_moments(y)) {
             mcstat_moments bx = batch_of(x, "x"), by = batch_of(y, "y");
-            st = mcstat_seq_push_moments_2(&q.s, &bx, &by);
+            st = mcstat_seq_push_2_moments(&q.s, &bx, &by);
         } else {
             py::array ax = as_contiguous_array(x, "x"), ay = as_contiguous_array(y, "y");
-            st = mcstat_seq_push_array_2(&q.s, static_cast<const double *>(ax.data()), static_cast<size_t>(ax.size()),
+            st = mcstat_seq_push_2_array(&q.s, static_cast<const double *>(ax.data()), static_cast<size_t>(ax.size()),
                                          static_cast<const double *>(ay.data()), static_cast<size_t>(ay.size()));
             if (st == MCSTAT_ENONFINITE)
                 what = batch_has_nonfinite(ax) ? "x contains NaN or infinite values" : "y contains NaN or infinite values";

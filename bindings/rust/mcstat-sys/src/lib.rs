@@ -689,22 +689,22 @@ pub struct mcstat_check_model {
     pub reserved: [f64; 4],
 }
 
-pub const MCSTAT_CHECK_CELLS: i32 = 0;
-pub const MCSTAT_CHECK_MASS: i32 = 1;
-pub const MCSTAT_CHECK_PDF_VALUE: i32 = 2;
-pub const MCSTAT_CHECK_WEIGHT: i32 = 3;
-pub const MCSTAT_CHECK_SUPPORT: i32 = 4;
-pub const MCSTAT_CHECK_INTEGRALS: i32 = 5;
-pub const MCSTAT_CHECK_ENERGY: i32 = 6;
-pub const MCSTAT_CHECK_RECIPROCITY: i32 = 7;
-pub const MCSTAT_CHECK_KS: i32 = 8;
-pub const MCSTAT_CHECK_ROUTES: usize = 9;
+pub const MCSTAT_CHECK_ROUTE_CELLS: i32 = 0;
+pub const MCSTAT_CHECK_ROUTE_MASS: i32 = 1;
+pub const MCSTAT_CHECK_ROUTE_PDF_VALUE: i32 = 2;
+pub const MCSTAT_CHECK_ROUTE_WEIGHT: i32 = 3;
+pub const MCSTAT_CHECK_ROUTE_SUPPORT: i32 = 4;
+pub const MCSTAT_CHECK_ROUTE_INTEGRALS: i32 = 5;
+pub const MCSTAT_CHECK_ROUTE_ENERGY: i32 = 6;
+pub const MCSTAT_CHECK_ROUTE_RECIPROCITY: i32 = 7;
+pub const MCSTAT_CHECK_ROUTE_KS: i32 = 8;
+pub const MCSTAT_CHECK_ROUTE_COUNT: usize = 9;
 
 pub const MCSTAT_ROUTE_RAN: i32 = 0;
 pub const MCSTAT_ROUTE_SKIPPED: i32 = 1;
 pub const MCSTAT_ROUTE_INVALID: i32 = 2;
 
-pub const MCSTAT_CHECK_ALL_ROUTES: u32 = (1u32 << MCSTAT_CHECK_ROUTES) - 1;
+pub const MCSTAT_CHECK_ROUTE_ALL: u32 = (1u32 << MCSTAT_CHECK_ROUTE_COUNT) - 1;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
@@ -794,7 +794,7 @@ pub struct mcstat_check_report {
     pub albedo_eval_se: f64,
     pub tail_index: [f64; 2],
     pub extra: mcstat_check_report_union,
-    pub route: [mcstat_check_route_result; MCSTAT_CHECK_ROUTES],
+    pub route: [mcstat_check_route_result; MCSTAT_CHECK_ROUTE_COUNT],
     pub message: [c_char; 256],
 }
 
@@ -1445,8 +1445,8 @@ extern "C" {
     pub fn mcstat_seq_push_moments(s: *mut mcstat_seq, batch: *const mcstat_moments) -> c_int;
     pub fn mcstat_seq_push_array(s: *mut mcstat_seq, x: *const f64, n: usize) -> c_int;
     pub fn mcstat_seq_push_stream(s: *mut mcstat_seq, frame: *const mcstat_stream) -> c_int;
-    pub fn mcstat_seq_push_moments_2(s: *mut mcstat_seq, bx: *const mcstat_moments, by: *const mcstat_moments) -> c_int;
-    pub fn mcstat_seq_push_array_2(s: *mut mcstat_seq, x: *const f64, nx: usize, y: *const f64, ny: usize) -> c_int;
+    pub fn mcstat_seq_push_2_moments(s: *mut mcstat_seq, bx: *const mcstat_moments, by: *const mcstat_moments) -> c_int;
+    pub fn mcstat_seq_push_2_array(s: *mut mcstat_seq, x: *const f64, nx: usize, y: *const f64, ny: usize) -> c_int;
     pub fn mcstat_seq_result(s: *const mcstat_seq, out: *mut mcstat_result) -> c_int;
     pub fn mcstat_seq_finish(s: *const mcstat_seq, out: *mut mcstat_result) -> c_int;
     pub fn mcstat_seq_kind_name(kind: c_int) -> *const c_char;
@@ -1509,6 +1509,10 @@ extern "C" {
         alpha: f64,
         out: *mut mcstat_result,
     ) -> c_int;
+    #[deprecated(note = "use mcstat_seq_push_2_moments")]
+    pub fn mcstat_seq_push_moments_2(s: *mut mcstat_seq, bx: *const mcstat_moments, by: *const mcstat_moments) -> c_int;
+    #[deprecated(note = "use mcstat_seq_push_2_array")]
+    pub fn mcstat_seq_push_array_2(s: *mut mcstat_seq, x: *const f64, nx: usize, y: *const f64, ny: usize) -> c_int;
     /// 0.1.0's order: `rows` before `n`.
     #[deprecated(note = "use mcstat_t_test_1_matrix (rows moves after x_stride)")]
     pub fn mcstat_t_test_1_rows(

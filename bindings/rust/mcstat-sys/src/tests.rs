@@ -247,7 +247,7 @@ fn old_initialisers_equal_the_sized_ones() {
         assert_eq!((d.size, d.alpha, d.tolerance, d.tail_threshold), (e.size, 0.05, 0.2, 2.2));
         let mut c = MaybeUninit::<mcstat_check_options>::zeroed().assume_init();
         assert_eq!(mcstat_check_options_init_size(&mut c, size_of::<mcstat_check_options>()), MCSTAT_OK);
-        assert_eq!((c.routes, c.batch, c.rtol), (MCSTAT_CHECK_ALL_ROUTES, 65536, 1e-3));
+        assert_eq!((c.routes, c.batch, c.rtol), (MCSTAT_CHECK_ROUTE_ALL, 65536, 1e-3));
     }
 }
 
@@ -400,10 +400,10 @@ fn seq_defaults_and_pushes() {
         assert!((ra.statistic - rc.statistic).abs() <= 1e-12 * ra.statistic.abs());
         assert_eq!((rc.n[0], rc.seq().seq_looks), (700, 1.0));
         // the wrong kind for the call, and a two-sample push
-        assert_eq!(mcstat_seq_push_array_2(&mut a, x.as_ptr(), 1, x.as_ptr(), 1), MCSTAT_EINVAL);
+        assert_eq!(mcstat_seq_push_2_array(&mut a, x.as_ptr(), 1, x.as_ptr(), 1), MCSTAT_EINVAL);
         let mut t = MaybeUninit::<mcstat_seq>::zeroed().assume_init();
         assert_eq!(mcstat_seq_init(&mut t, MCSTAT_SEQ_VAR_2, 1.0, &o), MCSTAT_OK);
-        assert_eq!(mcstat_seq_push_moments_2(&mut t, &m, &m), MCSTAT_OK);
+        assert_eq!(mcstat_seq_push_2_moments(&mut t, &m, &m), MCSTAT_OK);
         assert_eq!(mcstat_seq_push_moments(&mut t, &m), MCSTAT_EINVAL);
         assert_eq!(mcstat_seq_init(&mut t, 9, 1.0, &o), MCSTAT_EINVAL);
         let name = std::ffi::CStr::from_ptr(mcstat_seq_kind_name(MCSTAT_SEQ_VAR_2));

@@ -122,7 +122,7 @@ pub enum Route {
 }
 
 impl Route {
-    pub const ALL: [Route; sys::MCSTAT_CHECK_ROUTES] = [
+    pub const ALL: [Route; sys::MCSTAT_CHECK_ROUTE_COUNT] = [
         Route::Cells,
         Route::Mass,
         Route::PdfValue,
@@ -135,15 +135,15 @@ impl Route {
     ];
     fn raw(self) -> c_int {
         match self {
-            Route::Cells => sys::MCSTAT_CHECK_CELLS,
-            Route::Mass => sys::MCSTAT_CHECK_MASS,
-            Route::PdfValue => sys::MCSTAT_CHECK_PDF_VALUE,
-            Route::Weight => sys::MCSTAT_CHECK_WEIGHT,
-            Route::Support => sys::MCSTAT_CHECK_SUPPORT,
-            Route::Integrals => sys::MCSTAT_CHECK_INTEGRALS,
-            Route::Energy => sys::MCSTAT_CHECK_ENERGY,
-            Route::Reciprocity => sys::MCSTAT_CHECK_RECIPROCITY,
-            Route::Ks => sys::MCSTAT_CHECK_KS,
+            Route::Cells => sys::MCSTAT_CHECK_ROUTE_CELLS,
+            Route::Mass => sys::MCSTAT_CHECK_ROUTE_MASS,
+            Route::PdfValue => sys::MCSTAT_CHECK_ROUTE_PDF_VALUE,
+            Route::Weight => sys::MCSTAT_CHECK_ROUTE_WEIGHT,
+            Route::Support => sys::MCSTAT_CHECK_ROUTE_SUPPORT,
+            Route::Integrals => sys::MCSTAT_CHECK_ROUTE_INTEGRALS,
+            Route::Energy => sys::MCSTAT_CHECK_ROUTE_ENERGY,
+            Route::Reciprocity => sys::MCSTAT_CHECK_ROUTE_RECIPROCITY,
+            Route::Ks => sys::MCSTAT_CHECK_ROUTE_KS,
         }
     }
     /// "cells", "mass", "pdf_value", ...
@@ -188,7 +188,7 @@ pub struct RouteSet(u32);
 
 impl RouteSet {
     pub fn all() -> RouteSet {
-        RouteSet(sys::MCSTAT_CHECK_ALL_ROUTES)
+        RouteSet(sys::MCSTAT_CHECK_ROUTE_ALL)
     }
     pub fn of(routes: &[Route]) -> RouteSet {
         RouteSet(routes.iter().fold(0, |b, r| b | 1u32 << r.raw()))

@@ -305,12 +305,12 @@ impl SequentialTest {
     /// either may be empty).
     pub fn push2(&mut self, x: &[f64], y: &[f64]) -> Result<()> {
         self.two_samples("push2")?;
-        check(unsafe { sys::mcstat_seq_push_array_2(&mut self.raw, x.as_ptr(), x.len(), y.as_ptr(), y.len()) })
+        check(unsafe { sys::mcstat_seq_push_2_array(&mut self.raw, x.as_ptr(), x.len(), y.as_ptr(), y.len()) })
     }
     /// [`SequentialTest::push2`] on accumulators.
     pub fn push_moments2(&mut self, x: &Moments, y: &Moments) -> Result<()> {
         self.two_samples("push_moments2")?;
-        check(unsafe { sys::mcstat_seq_push_moments_2(&mut self.raw, x.raw(), y.raw()) })
+        check(unsafe { sys::mcstat_seq_push_2_moments(&mut self.raw, x.raw(), y.raw()) })
     }
 
     /// The test at the last look: the anytime p-value, the confidence
