@@ -192,16 +192,19 @@ docs-go: go-deps
 
 # ---- ABI (part of make test) -------------------------------------------------
 # The shared library built with debug information (Release flags plus -g) in
-# $(BUILD)-abi, its ABI compared by abidiff with the baseline of the first
-# release of this SOVERSION (libmcstat/abi/README.md; MCSTAT_SOVERSION in
-# mcstat.h names the file): any change other than an addition fails.
+# $(BUILD)-abi, its ABI compared by abidiff with that of every release of
+# this SOVERSION (libmcstat/abi/README.md; MCSTAT_SOVERSION in mcstat.h
+# names the files): any change other than an addition fails.
 MCSTAT_SOVERSION := $(shell sed -n 's/^\#define MCSTAT_SOVERSION \([0-9]*\)$$/\1/p' libmcstat/include/mcstat.h)
-ABI_BASELINE := libmcstat/abi/libmcstat.so.$(MCSTAT_SOVERSION).abi
+ABI_BASELINES := $(sort $(wildcard libmcstat/abi/libmcstat.so.$(MCSTAT_SOVERSION).*.abi))
 abi-check:
+	@[ -n "$(ABI_BASELINES)" ] || { echo "abi-check: no baseline for SOVERSION $(MCSTAT_SOVERSION) in libmcstat/abi"; exit 1; }
 	cmake -S . -B $(BUILD)-abi -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g \
 	  -DMCSTAT_BUILD_TESTS=OFF -DMCSTAT_BUILD_EXAMPLES=OFF -DMCSTAT_BUILD_ESTIMATORS=OFF
 	cmake --build $(BUILD)-abi -j $(JOBS) --target mcstat
-	libmcstat/abi/check.sh $(ABI_BASELINE) $(BUILD)-abi/libmcstat/libmcstat.so libmcstat/include
+	for base in $(ABI_BASELINES); do \
+	  libmcstat/abi/check.sh $$base $(BUILD)-abi/libmcstat/libmcstat.so libmcstat/include || exit 1; \
+	done
 
 # ---- sanitizers and valgrind (part of make test) ---------------------------
 # asan-test: every C test of libmcstat and libmcest, built with AddressSanitizer

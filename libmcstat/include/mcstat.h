@@ -1364,11 +1364,11 @@ MCSTAT_API size_t mcstat_sizeof_moments_bytes(void);
 /* against an earlier release with this SOVERSION (a function removed or its */
 /* signature changed, a public struct's size or layout changed, an enum     */
 /* value renumbered), never with the release number alone; additions keep   */
-/* it.  libmcstat/abi/ holds the ABI (abidw) of the first release of this   */
-/* SOVERSION and `make abi-check` compares every build against it.          */
+/* it.  libmcstat/abi/ holds the ABI (abidw) of every release of this      */
+/* SOVERSION and `make abi-check` compares every build against each.        */
 /* ------------------------------------------------------------------------ */
 #define MCSTAT_VERSION_MAJOR 0
-#define MCSTAT_VERSION_MINOR 1
+#define MCSTAT_VERSION_MINOR 2
 #define MCSTAT_VERSION_PATCH 0
 /* The shared library's ABI version (its SOVERSION; see above). */
 #define MCSTAT_SOVERSION 0

@@ -892,7 +892,7 @@ pub struct mcstat_seq {
 // ============================================================================
 
 pub const MCSTAT_VERSION_MAJOR: u32 = 0;
-pub const MCSTAT_VERSION_MINOR: u32 = 1;
+pub const MCSTAT_VERSION_MINOR: u32 = 2;
 pub const MCSTAT_VERSION_PATCH: u32 = 0;
 pub const MCSTAT_SOVERSION: u32 = 0;
 pub const MCSTAT_VERSION_NUMBER: u32 =
