@@ -167,6 +167,8 @@ const (
 	KindBSDF    CheckKind = C.MCSTAT_CHECK_KIND_BSDF
 	KindEmitter CheckKind = C.MCSTAT_CHECK_KIND_EMITTER
 	KindWarp    CheckKind = C.MCSTAT_CHECK_KIND_WARP
+	KindPhase   CheckKind = C.MCSTAT_CHECK_KIND_PHASE
+	KindMedium  CheckKind = C.MCSTAT_CHECK_KIND_MEDIUM
 )
 
 // SampleFunc draws n = len(weight) points: for k < n, from the uniforms
@@ -310,7 +312,7 @@ func reportFromC(c *C.struct_mcstat_check_report) *CheckReport {
 		MassSampledSE: float64(c.mass_sampled_se), Albedo: float64(c.albedo), AlbedoSE: float64(c.albedo_se),
 		AlbedoEval: float64(c.albedo_eval), AlbedoEvalSE: float64(c.albedo_eval_se),
 		TailIndex: [2]float64{float64(c.tail_index[0]), float64(c.tail_index[1])}, raw: *c}
-	if r.Kind == KindBSDF {
+	if r.Kind == KindBSDF || r.Kind == KindPhase {
 		r.WI = []float64{float64(c.wi[0]), float64(c.wi[1]), float64(c.wi[2])}
 	}
 	r.Routes = make([]RouteReport, NumRoutes)
@@ -451,6 +453,35 @@ func CheckWarp(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (
 	o := opt.toC()
 	return runCheck(m, func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int {
 		return C.mcstat_check_warp(cm, C.size_t(n), C.uint64_t(seed), C.double(alpha), &o, nil, 0, out)
+	})
+}
+
+// CheckPhase checks a phase function p(wi, wo) (domain Sphere; Eval is p,
+// no cosine): the routes of CheckBSDF, with RouteEnergy testing albedo == 1
+// (two-sided) and RouteReciprocity (when asked) p(wi, wo) == p(wo, wi).
+func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
+	if err := checkN(n); err != nil {
+		return nil, err
+	}
+	o := opt.toC()
+	w := [3]C.double{C.double(wi[0]), C.double(wi[1]), C.double(wi[2])}
+	return runCheck(m, func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int {
+		return C.mcstat_check_phase(cm, &w[0], C.size_t(n), C.uint64_t(seed), C.double(alpha), &o, nil, 0, out)
+	})
+}
+
+// CheckMedium checks distance sampling along a ray (domain Interval): the
+// callbacks' points are distances t >= 0, mapped inside to x = 1 -
+// exp(-sigmaRef t); a flight that passes the surface is a failed sample
+// (pdf 0, weight 0); Eval is sigma_s T(t).
+func CheckMedium(m *Model, sigmaRef float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
+	if err := checkN(n); err != nil {
+		return nil, err
+	}
+	o := opt.toC()
+	return runCheck(m, func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int {
+		return C.mcstat_check_medium(cm, C.double(sigmaRef), C.size_t(n), C.uint64_t(seed), C.double(alpha), &o, nil,
+			0, out)
 	})
 }
 

@@ -381,3 +381,106 @@ func TestCheckConcurrent(t *testing.T) {
 		}
 	}
 }
+
+// homogeneous free flights (sigma_t 2, sigma_s 1.5) up to a surface at t = 1;
+// bug: pdf() with sigma_t 10% off
+func homogeneous(bug bool) *Model {
+	const st, ss, tmax = 2.0, 1.5, 1.0
+	density := func(t, s float64) float64 {
+		if t < tmax {
+			return s * math.Exp(-s*t)
+		}
+		return 0
+	}
+	return &Model{
+		Domain: DomainInterval, NUniforms: 1, SampleReports: true,
+		Sample: func(wi, u, x, weight, pdf []float64) error {
+			for k := range pdf {
+				t := -math.Log1p(-u[k]) / st
+				x[k], weight[k], pdf[k] = 0, 0, 0
+				if t < tmax {
+					x[k], pdf[k], weight[k] = t, density(t, st), ss/st
+				}
+			}
+			return nil
+		},
+		PDF: func(wi, x, out []float64) error {
+			s := st
+			if bug {
+				s *= 1.1
+			}
+			for k := range out {
+				out[k] = density(x[k], s)
+			}
+			return nil
+		},
+		Eval: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = ss / st * density(x[k], st)
+			}
+			return nil
+		},
+	}
+}
+
+func TestCheckMedium(t *testing.T) {
+	for _, bug := range []bool{false, true} {
+		r, err := CheckMedium(homogeneous(bug), 2.0, 20000, 1, 0.01, nil)
+		if err != nil {
+			t.Fatalf("bug %v: %v", bug, err)
+		}
+		if r.Reject != bug || r.Routes[RoutePDFValue].Reject != bug || r.Kind != KindMedium || r.WI != nil {
+			t.Errorf("bug %v: %+v", bug, r)
+		}
+		if !bug && math.Abs(r.Mass-(1-math.Exp(-2))) > 1e-3 {
+			t.Errorf("mass %.15g", r.Mass)
+		}
+	}
+	if _, err := CheckMedium(homogeneous(false), 0, 20000, 1, 0.01, nil); !errors.Is(err, ErrInvalidArgument) {
+		t.Errorf("sigmaRef 0: %v", err)
+	}
+}
+
+// an isotropic phase function sampled uniformly; bug: eval and weight 0.9 p
+func isotropic(scale float64) *Model {
+	p := 1 / (4 * math.Pi)
+	return &Model{
+		Domain: DomainSphere, NUniforms: 2, SampleReports: true,
+		Sample: func(wi, u, x, weight, pdf []float64) error {
+			for k := range pdf {
+				z := 1 - 2*u[2*k]
+				s := math.Sqrt(math.Max(0, 1-z*z))
+				phi := 2 * math.Pi * u[2*k+1]
+				x[3*k], x[3*k+1], x[3*k+2] = s*math.Cos(phi), s*math.Sin(phi), z
+				weight[k], pdf[k] = scale, p
+			}
+			return nil
+		},
+		PDF: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = p
+			}
+			return nil
+		},
+		Eval: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = scale * p
+			}
+			return nil
+		},
+	}
+}
+
+func TestCheckPhase(t *testing.T) {
+	wi := [3]float64{0, 0.6, 0.8}
+	for _, scale := range []float64{1, 0.9} {
+		r, err := CheckPhase(isotropic(scale), wi, 5000, 1, 0.01, nil)
+		if err != nil {
+			t.Fatal(err)
+		}
+		bad := scale != 1
+		if r.Reject != bad || r.Routes[RouteEnergy].Reject != bad || r.Kind != KindPhase || len(r.WI) != 3 {
+			t.Errorf("scale %v: %+v", scale, r)
+		}
+	}
+}

@@ -2017,7 +2017,9 @@ typedef struct mcstat_check_route_result {
 enum mcstat_check_kind {
     MCSTAT_CHECK_KIND_BSDF = 0,
     MCSTAT_CHECK_KIND_EMITTER = 1,
-    MCSTAT_CHECK_KIND_WARP = 2
+    MCSTAT_CHECK_KIND_WARP = 2,
+    MCSTAT_CHECK_KIND_PHASE = 3, /* mcstat_check_phase */
+    MCSTAT_CHECK_KIND_MEDIUM = 4 /* mcstat_check_medium */
 };
 
 typedef struct mcstat_check_report {
@@ -2047,7 +2049,9 @@ typedef struct mcstat_check_report {
                (Mitsuba and pbrt mark it by pdf 0) shows here; the text says so when
                they are 1% of n or more */
             uint64_t zero_weight;
-            double reserved_rest[7];
+            /* mcstat_check_medium: the sigma_ref of the map of distances (0 otherwise) */
+            double sigma_ref;
+            double reserved_rest[6];
         };
     };
     mcstat_check_route_result route[MCSTAT_CHECK_ROUTE_COUNT];
@@ -2072,15 +2076,47 @@ typedef struct mcstat_check_report {
 /*   mcstat_check_emitter  directions from a reference point: domain SPHERE */
 /*                         or HEMISPHERE, no ENERGY, no RECIPROCITY;         */
 /*   mcstat_check_warp     eval ignored (CELLS, MASS, and PDF_VALUE when     */
-/*                         sample_reports).                                  */
+/*                         sample_reports);                                  */
+/*   mcstat_check_phase    a phase function p(wi, wo) of a medium: as       */
+/*                         mcstat_check_bsdf on domain SPHERE (required),    */
+/*                         eval = p itself (no cosine), weight p/pdf; ENERGY */
+/*                         tests albedo == 1 (two-sided: a phase function    */
+/*                         integrates to 1 over the sphere; constant weights */
+/*                         within rtol), RECIPROCITY (when asked) p(wi, wo)  */
+/*                         == p(wo, wi).  mcstat_check_bsdf on the same      */
+/*                         model runs the same routes but only sees albedo   */
+/*                         above 1, and divides reciprocity by cosines;      */
+/*   mcstat_check_medium   distance sampling along a ray: the callbacks'     */
+/*                         points are distances t >= 0 (domain INTERVAL,     */
+/*                         one coordinate, n_uniforms as the sampler needs), */
+/*                         mapped inside to x = 1 - exp(-sigma_ref t) in     */
+/*                         [0, 1] (pdf and eval divided by dx/dt, so that    */
+/*                         weights are unchanged; pdf() and eval() may be    */
+/*                         asked at t = +inf, x = 1).  sample() reports the  */
+/*                         density in t of a scattering at t, e.g. sigma_t   */
+/*                         exp(-sigma_t t); a flight that passes the surface */
+/*                         at tmax is a failed sample (pdf 0, weight 0), so  */
+/*                         MASS compares the share of flights stopping       */
+/*                         before tmax with the integral of pdf() (1 -       */
+/*                         exp(-sigma_t tmax)): pdf() must be 0 beyond tmax. */
+/*                         eval(t) is the integrand the weight estimates,    */
+/*                         sigma_s T(t) (the weight sigma_s T / pdf);        */
+/*                         ENERGY: albedo <= 1.  The weight of a flight that */
+/*                         passed the surface is not checked.  sigma_ref >   */
+/*                         0 finite (MCSTAT_EINVAL otherwise): near the      */
+/*                         medium's sigma_t the points are nearly uniform;   */
+/*                         far below it they crowd at x = 0 (cells still     */
+/*                         adapt), above it pdf(x) is unbounded at x = 1.    */
+/*                         The report's points (where) are x, not t.         */
 /* Cost: the callbacks are called about n + n_pilot times for samples,      */
 /* n + n_eval times each for eval and pdf, and pdf 17 times per cubature    */
 /* rectangle (2 to 40 per cell); the check's own work is O(1) per sample   */
 /* besides sorting for KS (figures: bench/RESULTS.md).                      */
 /* Statuses: MCSTAT_EINVAL (NULL model, callbacks or out, a bad domain,      */
-/* n_uniforms or weight, a BSDF or emitter without eval or with             */
-/* sample_reports 0, n < 1000, alpha outside (0, 1), an options size        */
-/* this library does not know, a bad option, work too small or misaligned,  */
+/* n_uniforms or weight, a BSDF, emitter, phase function or medium without */
+/* eval or with sample_reports 0, a phase function off SPHERE, a medium    */
+/* off INTERVAL or sigma_ref not > 0 finite, n < 1000, alpha outside       */
+/* (0, 1), an options size this library does not know, a bad option, work too small or misaligned,  */
 /* wi zero or not finite), MCSTAT_ETOOBIG (n beyond 2^48 or sizes whose     */
 /* scratch overflows), MCSTAT_ENOMEM, MCSTAT_ECALLBACK (a callback returned */
 /* non-zero, or NaN, Inf, a negative density or weight, a point outside the */
@@ -2101,6 +2137,12 @@ MCSTAT_API int mcstat_check_emitter(const mcstat_check_model *model, size_t n, u
 MCSTAT_API int mcstat_check_warp(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
                                  const mcstat_check_options *opt, void *work, size_t work_bytes,
                                  mcstat_check_report *out);
+MCSTAT_API int mcstat_check_phase(const mcstat_check_model *model, const double wi[3], size_t n, uint64_t seed,
+                                  double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
+                                  mcstat_check_report *out);
+MCSTAT_API int mcstat_check_medium(const mcstat_check_model *model, double sigma_ref, size_t n, uint64_t seed,
+                                   double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
+                                   mcstat_check_report *out);
 
 /* Writes the report as a text block (R's layout: one line per route with
  * its statistic, df and p-values, then what a pass means and the budget a

@@ -20,8 +20,8 @@ static const char *const route_meanings[MCSTAT_CHECK_ROUTE_COUNT] = {
     "the sample weight equals eval/pdf at the sampled point",
     "eval() is positive only where pdf() is (no part of the integrand is never sampled)",
     "integrals of eval() over regions agree between the sample weights and an eval-only estimator (Wald test)",
-    "the albedo, the mean weight, is at most 1 (one-sided t test)",
-    "eval(wi, wo)/|cos wo| equals eval(wo, wi)/|cos wi|",
+    "the albedo, the mean weight, is at most 1 (one-sided t test; a phase function's is 1, two-sided)",
+    "eval(wi, wo)/|cos wo| equals eval(wo, wi)/|cos wi| (a phase function's eval(wi, wo) equals eval(wo, wi))",
     "the sampled points, resampled by their weights, follow eval() (K-S with Canner's weight on Morton keys)"};
 
 static const char *const route_blind_spots[MCSTAT_CHECK_ROUTE_COUNT] = {
@@ -31,7 +31,7 @@ static const char *const route_blind_spots[MCSTAT_CHECK_ROUTE_COUNT] = {
     "eval() and the weight wrong together (the integrals and energy routes see that only against each other)",
     "regions neither the sample nor the eval-only points reach",
     "errors that cancel within a region; needs finite variance",
-    "energy lost rather than gained; needs finite variance",
+    "energy lost rather than gained (except for phase functions); needs finite variance",
     "BSDFs that are not reciprocal by design (refraction in radiance mode)",
     "eval() and the weights wrong together; weights beyond the pilot's envelope (then no answer)"};
 
@@ -102,6 +102,9 @@ static const char *kind_title(int kind)
     switch (kind) {
     case MCSTAT_CHECK_KIND_BSDF: return "BSDF check: do sample(), pdf(), eval() and the weights agree?";
     case MCSTAT_CHECK_KIND_EMITTER: return "Emitter check: do sample(), pdf(), eval() and the weights agree?";
+    case MCSTAT_CHECK_KIND_PHASE: return "Phase function check: do sample(), pdf(), eval() and the weights agree?";
+    case MCSTAT_CHECK_KIND_MEDIUM:
+        return "Distance sampling check: do sample(), pdf(), eval() and the weights agree?";
     default: return "Warp check: does sample() draw what pdf() claims?";
     }
 }
@@ -200,7 +203,7 @@ static void put_budget(text *t, const mcstat_check_report *r, int i)
         put(t, " samples\n");
         break;
     case MCSTAT_CHECK_ROUTE_ENERGY:
-        put(t, "albedo above 1 by ");
+        put(t, r->kind == MCSTAT_CHECK_KIND_PHASE ? "albedo off 1 by " : "albedo above 1 by ");
         put_g(t, "%.3g", rr->detectable);
         put(t, "; 0.01 needs ");
         put_g(t, "%.3g", rr->n_for_1pct);
@@ -217,7 +220,7 @@ static void put_budget(text *t, const mcstat_check_report *r, int i)
 int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, size_t *length)
 {
     MCSTAT_IEEE_SCOPE();
-    if (!r || (!buf && size > 0) || r->kind < 0 || r->kind > MCSTAT_CHECK_KIND_WARP ||
+    if (!r || (!buf && size > 0) || r->kind < 0 || r->kind > MCSTAT_CHECK_KIND_MEDIUM ||
         mcstat_check_domain_dims(r->domain) == 0)
         return MCSTAT_EINVAL;
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
@@ -225,10 +228,14 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
             return MCSTAT_EINVAL;
     text t = {buf, size, 0};
     put(&t, "\n\t%s\n\n", kind_title(r->kind));
-    if (r->kind == MCSTAT_CHECK_KIND_BSDF)
+    if (r->kind == MCSTAT_CHECK_KIND_BSDF || r->kind == MCSTAT_CHECK_KIND_PHASE)
         put(&t, "wi = (%.6g, %.6g, %.6g), ", r->wi[0], r->wi[1], r->wi[2]);
     put(&t, "domain %s, n = %llu samples (%llu failed), alpha = %g\n", mcstat_check_domain_name(r->domain),
         (unsigned long long)r->n, (unsigned long long)r->n_failed, r->alpha);
+    if (r->kind == MCSTAT_CHECK_KIND_MEDIUM)
+        put(&t, "distances t as points x = 1 - exp(-%.6g t) of [0, 1]; samples that passed the surface count as "
+                "failed\n",
+            r->sigma_ref);
     put(&t, "cells: %llu from %llu pilot samples; pdf() integrates to %.9g (cubature error %.2g)\n",
         (unsigned long long)r->cells, (unsigned long long)r->n_pilot, r->mass, r->mass_error);
     if (r->kind != MCSTAT_CHECK_KIND_WARP) {

@@ -382,12 +382,14 @@ static void route_energy(run *r, const sums *sm, double level)
     double mean = mcstat_moments_mean(&sm->all), sd = mcstat_moments_sd(&sm->all);
     rr->checked = sm->all.n;
     rr->effect = mean - 1.0;
-    int st = mcstat_t_test_1_moments(&sm->all, 1.0, MCSTAT_GREATER, 0.5, &res);
+    /* a phase function is normalised: its albedo is 1, not at most 1 */
+    int exact = r->pl.kind == MCSTAT_CHECK_KIND_PHASE;
+    int st = mcstat_t_test_1_moments(&sm->all, 1.0, exact ? MCSTAT_TWO_SIDED : MCSTAT_GREATER, 0.5, &res);
     rr->state = MCSTAT_ROUTE_RAN;
     if (st == MCSTAT_EDEGENERATE) {
         /* constant weights (a sampler proportional to eval): no spread to test */
         rr->deterministic = 1;
-        rr->reject = mean > 1.0 + r->rtol;
+        rr->reject = exact ? fabs(mean - 1.0) > r->rtol : mean > 1.0 + r->rtol;
         rr->count = rr->reject;
         rr->value[0] = mean;
         rr->value[1] = 1.0;
@@ -400,7 +402,7 @@ static void route_energy(run *r, const sums *sm, double level)
     rr->statistic = res.statistic;
     rr->df = res.df[0];
     rr->p_value = res.p_value;
-    double z = mcstat__norm_quantile(level, 1) + POWER_Z;
+    double z = mcstat__norm_quantile(exact ? level / 2 : level, 1) + POWER_Z;
     double se = sd / sqrt((double)sm->all.n);
     rr->detectable = z * se;
     rr->n_for_1pct = (z * sd / 0.01) * (z * sd / 0.01);

@@ -120,6 +120,10 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
         return MCSTAT_EINVAL;
     if (kind == MCSTAT_CHECK_KIND_BSDF && pl->d.dims != 3)
         return MCSTAT_EINVAL;
+    if (kind == MCSTAT_CHECK_KIND_PHASE && m->domain != MCSTAT_DOMAIN_SPHERE)
+        return MCSTAT_EINVAL; /* a phase function is normalised over the whole sphere */
+    if (kind == MCSTAT_CHECK_KIND_MEDIUM && m->domain != MCSTAT_DOMAIN_INTERVAL)
+        return MCSTAT_EINVAL; /* distances, mapped to [0, 1] */
     if (n < 1000)
         return MCSTAT_EINVAL;
     if ((uint64_t)n > (1ull << 48))
@@ -190,8 +194,8 @@ int mcstat_check_work_size(const mcstat_check_model *model, size_t n, const mcst
     int st = read_options(opt, &o);
     if (st)
         return st;
-    /* sizes depend on the kind only through eval: a model with an
-     * integrand and weights on directions needs the eval-only estimator */
+    /* the sizes do not depend on the kind: any model valid for one of the
+     * checks is sized by the plan of a BSDF's (directions) or a warp's */
     int kind = model && model->eval && model->sample_reports && mcstat_check_domain_dims(model->domain) == 3
                    ? MCSTAT_CHECK_KIND_BSDF
                    : MCSTAT_CHECK_KIND_WARP;
@@ -586,7 +590,7 @@ static int eval_only(run *r, sums *sm)
 static int reciprocity(run *r, const sums *sm)
 {
     double wi_z = fabs(r->wi[2]);
-    if (wi_z < 1e-6 || (r->pl.d.kind == MCSTAT_DOMAIN_HEMISPHERE && r->wi[2] < 0.0)) /* eval at wi: off the domain */
+    if ((wi_z < 1e-6 && r->pl.kind != MCSTAT_CHECK_KIND_PHASE) || (r->pl.d.kind == MCSTAT_DOMAIN_HEMISPHERE && r->wi[2] < 0.0)) /* eval at wi: off the domain */
         return MCSTAT_OK;
     for (uint64_t i = 0; i < sm->n_recip; i++) {
         const double *q = r->s.recip + 4 * i;
@@ -598,15 +602,89 @@ static int reciprocity(run *r, const sums *sm)
         if (!isfinite(back) || back < 0.0)
             return fail(r, "eval() returned %.17g with wi = (%.9g, %.9g, %.9g) and the point wi of the check: "
                         "the integrand must be finite and >= 0", back, q[0], q[1], q[2]);
-        compare(r, MCSTAT_CHECK_ROUTE_RECIPROCITY, q, q[3] / fabs(q[2]), back / wi_z);
+        if (r->pl.kind == MCSTAT_CHECK_KIND_PHASE) /* p(wi, wo) = p(wo, wi): no cosines */
+            compare(r, MCSTAT_CHECK_ROUTE_RECIPROCITY, q, q[3], back);
+        else
+            compare(r, MCSTAT_CHECK_ROUTE_RECIPROCITY, q, q[3] / fabs(q[2]), back / wi_z);
     }
     return MCSTAT_OK;
 }
 
 /* ---- the check ---------------------------------------------------------------- */
 
-static int run_check(int kind, const mcstat_check_model *model, const double *wi_in, size_t n, uint64_t seed,
-                     double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
+/* ---- distances: the caller's t in [0, inf), the check's x = 1 - exp(-sigma t) in [0, 1] -- */
+
+typedef struct medium_map {
+    const mcstat_check_model *m;
+    double sigma; /* the reference coefficient of the map */
+} medium_map;
+
+#define MEDIUM_CHUNK 256 /* distances converted at a time, on the stack */
+
+static double medium_t(double sigma, double x) { return x >= 1.0 ? INFINITY : -log1p(-x) / sigma; }
+
+/* dx/dt = sigma (1 - x): a density in t is one in x divided by it */
+static double medium_jacobian(double sigma, double x) { return sigma * (1.0 - x); }
+
+static int medium_sample(void *user, const double *wi, const double *u, size_t n, double *x, double *weight,
+                         double *pdf)
+{
+    const medium_map *mm = (const medium_map *)user;
+    int st = mm->m->sample(mm->m->user, wi, u, n, x, weight, pdf); /* writes t into x */
+    if (st)
+        return st;
+    for (size_t k = 0; k < n; k++) {
+        double t = x[k];
+        if (!(pdf[k] > 0.0))
+            continue; /* passed the surface (or failed): x ignored */
+        if (!(t >= 0.0) || !isfinite(t)) {
+            x[k] = t < 0.0 ? -1.0 : NAN; /* off the domain: named by the caller's check */
+            continue;
+        }
+        double xx = -expm1(-mm->sigma * t);
+        x[k] = xx;
+        double j = medium_jacobian(mm->sigma, xx);
+        pdf[k] = j > 0.0 ? pdf[k] / j : INFINITY;
+        if (mm->m->weight == MCSTAT_WEIGHT_VALUE) /* a value is a density in t, as eval */
+            weight[k] = j > 0.0 ? weight[k] / j : INFINITY;
+    }
+    return 0;
+}
+
+static int medium_density(const medium_map *mm, mcstat_check_density_fn fn, const double *wi, const double *x,
+                          size_t n, double *out)
+{
+    double t[MEDIUM_CHUNK];
+    for (size_t a = 0; a < n; a += MEDIUM_CHUNK) {
+        size_t k = n - a < MEDIUM_CHUNK ? n - a : MEDIUM_CHUNK;
+        for (size_t i = 0; i < k; i++)
+            t[i] = medium_t(mm->sigma, x[a + i]);
+        int st = fn(mm->m->user, wi, t, k, out + a);
+        if (st)
+            return st;
+        for (size_t i = 0; i < k; i++) {
+            double j = medium_jacobian(mm->sigma, x[a + i]);
+            /* at x = 1 (t = inf) a density that vanishes there stays 0 */
+            out[a + i] = out[a + i] == 0.0 ? 0.0 : (j > 0.0 ? out[a + i] / j : INFINITY);
+        }
+    }
+    return 0;
+}
+
+static int medium_pdf(void *user, const double *wi, const double *x, size_t n, double *out)
+{
+    const medium_map *mm = (const medium_map *)user;
+    return medium_density(mm, mm->m->pdf, wi, x, n, out);
+}
+
+static int medium_eval(void *user, const double *wi, const double *x, size_t n, double *out)
+{
+    const medium_map *mm = (const medium_map *)user;
+    return medium_density(mm, mm->m->eval, wi, x, n, out);
+}
+
+static int run_check(int kind, const mcstat_check_model *model, const double *wi_in, double sigma_ref, size_t n,
+                     uint64_t seed, double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
                      mcstat_check_report *out)
 {
     if (!out || !valid_alpha(alpha))
@@ -620,7 +698,8 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     if (st)
         return st;
     double wi[3] = {NAN, NAN, NAN};
-    if (kind == MCSTAT_CHECK_KIND_BSDF) {
+    int has_wi = kind == MCSTAT_CHECK_KIND_BSDF || kind == MCSTAT_CHECK_KIND_PHASE;
+    if (has_wi) {
         if (!wi_in || !isfinite(wi_in[0]) || !isfinite(wi_in[1]) || !isfinite(wi_in[2]))
             return MCSTAT_EINVAL;
         double len = sqrt(wi_in[0] * wi_in[0] + wi_in[1] * wi_in[1] + wi_in[2] * wi_in[2]);
@@ -645,8 +724,18 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     carve(&r.pl, work, &r.s, &need);
 
     memset(out, 0, sizeof *out);
+    medium_map mm = {model, sigma_ref};
+    mcstat_check_model mapped;
     r.m = model;
-    r.wi = kind == MCSTAT_CHECK_KIND_BSDF ? wi : NULL;
+    if (kind == MCSTAT_CHECK_KIND_MEDIUM) {
+        mapped = *model;
+        mapped.user = &mm;
+        mapped.sample = medium_sample;
+        mapped.pdf = medium_pdf;
+        mapped.eval = medium_eval;
+        r.m = &mapped;
+    }
+    r.wi = has_wi ? wi : NULL;
     r.out = out;
     r.rtol = r.o.rtol;
     r.key_pilot = mcstat__stream_key(seed, STREAM_PILOT);
@@ -678,7 +767,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     if (st == MCSTAT_OK)
         st = eval_only(&r, &sm);
     uint32_t want = r.o.routes;
-    int bsdf = kind == MCSTAT_CHECK_KIND_BSDF;
+    int bsdf = kind == MCSTAT_CHECK_KIND_BSDF || kind == MCSTAT_CHECK_KIND_PHASE;
     if (st == MCSTAT_OK && bsdf && r.o.reciprocal && (want & (1u << MCSTAT_CHECK_ROUTE_RECIPROCITY)))
         st = reciprocity(&r, &sm);
     if (st != MCSTAT_OK) {
@@ -708,7 +797,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     applies[MCSTAT_CHECK_ROUTE_WEIGHT] = r.pl.has_eval && !r.o.stochastic;
     applies[MCSTAT_CHECK_ROUTE_SUPPORT] = r.pl.has_eval;
     applies[MCSTAT_CHECK_ROUTE_INTEGRALS] = r.pl.has_eval;
-    applies[MCSTAT_CHECK_ROUTE_ENERGY] = bsdf;
+    applies[MCSTAT_CHECK_ROUTE_ENERGY] = bsdf || kind == MCSTAT_CHECK_KIND_MEDIUM;
     applies[MCSTAT_CHECK_ROUTE_RECIPROCITY] = bsdf && r.o.reciprocal;
     applies[MCSTAT_CHECK_ROUTE_KS] = r.pl.has_eval;
     enum { N_STATISTICAL = 5 };
@@ -762,6 +851,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
                 out->p_value = 0.0;
         }
     out->pdf_without_eval = r.pdf_without_eval;
+    out->sigma_ref = kind == MCSTAT_CHECK_KIND_MEDIUM ? sigma_ref : 0.0;
     out->zero_weight = r.zero_weight;
     free(owned);
     return MCSTAT_OK;
@@ -771,19 +861,35 @@ int mcstat_check_bsdf(const mcstat_check_model *model, const double wi[3], size_
                       const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
 {
     MCSTAT_IEEE_SCOPE();
-    return run_check(MCSTAT_CHECK_KIND_BSDF, model, wi, n, seed, alpha, opt, work, work_bytes, out);
+    return run_check(MCSTAT_CHECK_KIND_BSDF, model, wi, 0.0, n, seed, alpha, opt, work, work_bytes, out);
 }
 
 int mcstat_check_emitter(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
                          const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
 {
     MCSTAT_IEEE_SCOPE();
-    return run_check(MCSTAT_CHECK_KIND_EMITTER, model, NULL, n, seed, alpha, opt, work, work_bytes, out);
+    return run_check(MCSTAT_CHECK_KIND_EMITTER, model, NULL, 0.0, n, seed, alpha, opt, work, work_bytes, out);
 }
 
 int mcstat_check_warp(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
                       const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
 {
     MCSTAT_IEEE_SCOPE();
-    return run_check(MCSTAT_CHECK_KIND_WARP, model, NULL, n, seed, alpha, opt, work, work_bytes, out);
+    return run_check(MCSTAT_CHECK_KIND_WARP, model, NULL, 0.0, n, seed, alpha, opt, work, work_bytes, out);
+}
+
+int mcstat_check_phase(const mcstat_check_model *model, const double wi[3], size_t n, uint64_t seed, double alpha,
+                       const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    return run_check(MCSTAT_CHECK_KIND_PHASE, model, wi, 0.0, n, seed, alpha, opt, work, work_bytes, out);
+}
+
+int mcstat_check_medium(const mcstat_check_model *model, double sigma_ref, size_t n, uint64_t seed, double alpha,
+                        const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
+{
+    MCSTAT_IEEE_SCOPE();
+    if (!(sigma_ref > 0.0) || !isfinite(sigma_ref))
+        return MCSTAT_EINVAL;
+    return run_check(MCSTAT_CHECK_KIND_MEDIUM, model, NULL, sigma_ref, n, seed, alpha, opt, work, work_bytes, out);
 }

@@ -108,7 +108,7 @@ from ._power import (  # noqa: E402
     power,
 )
 # Renderer checks: do a BSDF's, an emitter's or a warp's sample, pdf and eval agree?
-from ._core import CheckReport, CheckRoute, check_bsdf, check_emitter, check_warp  # noqa: E402
+from ._core import CheckReport, CheckRoute, check_bsdf, check_emitter, check_medium, check_phase, check_warp  # noqa: E402
 # the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 # the t, chi-squared and F distributions (cdf, log cdf, quantile)
@@ -151,6 +151,8 @@ __all__ = [
     "Diagnostics",
     "check_bsdf",
     "check_emitter",
+    "check_medium",
+    "check_phase",
     "check_warp",
     "CheckReport",
     "CheckRoute",

@@ -24,6 +24,7 @@ namespace {
 struct Callbacks {
     py::object sample, eval, pdf;
     int kind = MCSTAT_CHECK_KIND_BSDF;
+    bool has_wi = true; // BSDFs and phase functions: callables take wi first
     int dims = 3, nu = 3;
     py::object wi; // ndarray (3,) for BSDFs
     // the first failure inside a callback: a Python exception, or our message
@@ -117,7 +118,7 @@ int sample_cb(void *user, const double *, const double *u, size_t n, double *x, 
     auto *cb = static_cast<Callbacks *>(user);
     try {
         py::array ua = py::array_t<double>({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(cb->nu)}, u);
-        py::object r = cb->kind == MCSTAT_CHECK_KIND_BSDF ? cb->sample(cb->wi, ua) : cb->sample(ua);
+        py::object r = cb->has_wi ? cb->sample(cb->wi, ua) : cb->sample(ua);
         if (cb->kind == MCSTAT_CHECK_KIND_WARP) {
             return to_rows(cb, "sample", "points", r, n, cb->dims, x) ? 0 : 1;
         }
@@ -144,7 +145,7 @@ int density_cb(Callbacks *cb, py::object &fn, const char *which, const double *w
     try {
         py::array xa = rows_array(x, n, cb->dims);
         py::object r;
-        if (cb->kind == MCSTAT_CHECK_KIND_BSDF) {
+        if (cb->has_wi) {
             // wi is the check's own direction, or (reciprocity) a sampled one
             r = fn(py::array_t<double>({3}, wi), xa);
         } else {
@@ -255,6 +256,12 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     };
     Callbacks cb;
     cb.kind = kind;
+    cb.has_wi = kind == MCSTAT_CHECK_KIND_BSDF || kind == MCSTAT_CHECK_KIND_PHASE;
+    const char *fname = kind == MCSTAT_CHECK_KIND_BSDF      ? "check_bsdf"
+                        : kind == MCSTAT_CHECK_KIND_EMITTER ? "check_emitter"
+                        : kind == MCSTAT_CHECK_KIND_PHASE   ? "check_phase"
+                        : kind == MCSTAT_CHECK_KIND_MEDIUM  ? "check_medium"
+                                                            : "check_warp";
     check_callable(sample, "sample");
     check_callable(pdf, "pdf");
     if (kind != MCSTAT_CHECK_KIND_WARP)
@@ -264,11 +271,15 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     cb.pdf = pdf;
 
     mcstat_check_model m{};
-    const char *domain_default = kind == MCSTAT_CHECK_KIND_WARP ? "square" : "sphere";
+    const char *domain_default = kind == MCSTAT_CHECK_KIND_WARP     ? "square"
+                                 : kind == MCSTAT_CHECK_KIND_MEDIUM ? "interval"
+                                                                    : "sphere";
     m.domain = parse_enum(get("domain", py::str(domain_default)).ptr(), "domain", mcstat_check_domain_parse,
                           choices_of(mcstat_check_domain_name));
     cb.dims = mcstat_check_domain_dims(m.domain);
     int nu_default = kind == MCSTAT_CHECK_KIND_BSDF ? 3 : (m.domain == MCSTAT_DOMAIN_INTERVAL ? 1 : 2);
+    if (kind == MCSTAT_CHECK_KIND_PHASE)
+        nu_default = 2;
     uint64_t nu = get_count(get("n_uniforms", py::int_(nu_default)), "n_uniforms");
     if (nu < 1 || nu > MCSTAT_CHECK_MAX_UNIFORMS)
         throw_invalid("n_uniforms must be in 1.." + std::to_string(MCSTAT_CHECK_MAX_UNIFORMS) + ", got " +
@@ -285,6 +296,18 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     if (kind == MCSTAT_CHECK_KIND_EMITTER && m.domain != MCSTAT_DOMAIN_SPHERE &&
         m.domain != MCSTAT_DOMAIN_HEMISPHERE)
         throw_invalid("domain of an emitter must be 'sphere' or 'hemisphere'");
+    if (kind == MCSTAT_CHECK_KIND_PHASE && m.domain != MCSTAT_DOMAIN_SPHERE)
+        throw_invalid("domain of a phase function must be 'sphere' (it is normalised over the whole sphere)");
+    if (kind == MCSTAT_CHECK_KIND_MEDIUM && m.domain != MCSTAT_DOMAIN_INTERVAL)
+        throw_invalid("domain of a medium's distances must be 'interval'");
+    double sigma_ref = 0.0;
+    if (kind == MCSTAT_CHECK_KIND_MEDIUM) {
+        if (!kw.contains("sigma_ref"))
+            throw py::type_error("check_medium() missing required keyword argument 'sigma_ref'");
+        sigma_ref = get_double(py::object(kw["sigma_ref"]).ptr(), "sigma_ref");
+        if (!(sigma_ref > 0.0) || !std::isfinite(sigma_ref))
+            throw_invalid("sigma_ref must be a finite number > 0, got " + repr(py::object(kw["sigma_ref"]).ptr()));
+    }
 
     mcstat_check_options o;
     mcstat_check_options_init(&o);
@@ -308,7 +331,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
         if (o.reciprocal && !(o.routes & (1u << MCSTAT_CHECK_ROUTE_RECIPROCITY)))
             throw_invalid(std::string("reciprocal=True asks for the '") +
                           mcstat_check_route_name(MCSTAT_CHECK_ROUTE_RECIPROCITY) + "' route, which routes leaves out");
-        if (kind == MCSTAT_CHECK_KIND_BSDF && kw.contains("energy") && py::bool_(kw["energy"]) &&
+        if (kind != MCSTAT_CHECK_KIND_EMITTER && kind != MCSTAT_CHECK_KIND_WARP && kw.contains("energy") && py::bool_(kw["energy"]) &&
             !(o.routes & (1u << MCSTAT_CHECK_ROUTE_ENERGY)))
             throw_invalid(std::string("energy=True asks for the '") + mcstat_check_route_name(MCSTAT_CHECK_ROUTE_ENERGY) +
                           "' route, which routes leaves out");
@@ -339,7 +362,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
         throw_invalid("alpha must be in (0, 1), got " + repr(get("alpha", py::none()).ptr()));
 
     double wiv[3] = {0, 0, 1};
-    if (kind == MCSTAT_CHECK_KIND_BSDF) {
+    if (cb.has_wi) {
         py::array a = as_float_array(wi, "wi");
         if (a.ndim() != 1 || a.shape(0) != 3)
             throw_invalid("wi must be a direction of 3 numbers, got shape " + shape_of(a));
@@ -354,8 +377,10 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     for (auto item : kw) {
         static const char *known[] = {"domain", "n_uniforms", "weight", "routes", "energy", "stochastic",
                                       "reciprocal", "cells", "n_pilot", "n_eval", "batch", "rtol", "tolerated", "n",
-                                      "seed", "alpha"};
+                                      "seed", "alpha", "sigma_ref"};
         std::string k = py::str(item.first);
+        if (k == "sigma_ref" && kind != MCSTAT_CHECK_KIND_MEDIUM)
+            throw py::type_error(std::string(fname) + "() got an unexpected keyword argument 'sigma_ref'");
         bool ok = false;
         for (const char *s : known)
             ok = ok || k == s;
@@ -369,6 +394,10 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
         st = mcstat_check_bsdf(&m, wiv, n, seed, alpha, &o, nullptr, 0, &rep.r);
     else if (kind == MCSTAT_CHECK_KIND_EMITTER)
         st = mcstat_check_emitter(&m, n, seed, alpha, &o, nullptr, 0, &rep.r);
+    else if (kind == MCSTAT_CHECK_KIND_PHASE)
+        st = mcstat_check_phase(&m, wiv, n, seed, alpha, &o, nullptr, 0, &rep.r);
+    else if (kind == MCSTAT_CHECK_KIND_MEDIUM)
+        st = mcstat_check_medium(&m, sigma_ref, n, seed, alpha, &o, nullptr, 0, &rep.r);
     else
         st = mcstat_check_warp(&m, n, seed, alpha, &o, nullptr, 0, &rep.r);
     if (st == MCSTAT_ECALLBACK && cb.exc_type) {
@@ -385,8 +414,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
         throw py::error_already_set();
     }
     if (st)
-        throw_status(st, kind == MCSTAT_CHECK_KIND_BSDF ? "check_bsdf"
-                         : kind == MCSTAT_CHECK_KIND_EMITTER ? "check_emitter" : "check_warp");
+        throw_status(st, fname);
     return py::cast(rep);
 }
 
@@ -485,6 +513,40 @@ Does a warp draw what its density claims?  ``sample(u) -> points``, shape
 and "mass" routes (the density must integrate to 1).
 )doc";
 
+const char *PHASE_DOC = R"doc(check_phase(sample, eval, pdf, wi, *, n=100_000, alpha=0.01, seed=0, n_uniforms=2, weight="over_pdf", stochastic=False, reciprocal=False, energy=True, routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
+
+Do a phase function's sample(), pdf(), eval() and sample weight agree, and
+is it normalised?  The routes of check_bsdf on the whole sphere, with
+``eval(wi, wo)`` the phase function p itself (no cosine) and the weight
+p/pdf (1 for an exactly sampled phase function).  What differs from
+check_bsdf (mcstat_check_phase): "energy" tests that the albedo is 1
+(two-sided; constant weights within rtol), not only at most 1, so a phase
+function scaled by 0.9 together with its weight is caught; "reciprocity"
+(``reciprocal=True``) compares p(wi, wo) with p(wo, wi), without cosines.
+The callables and the report are those of check_bsdf; wi is the direction
+the phase function is given (the renderer's convention: mcstat only holds it
+fixed).
+)doc";
+
+const char *MEDIUM_DOC = R"doc(check_medium(sample, eval, pdf, *, sigma_ref, n=100_000, alpha=0.01, seed=0, n_uniforms=1, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
+
+Does a medium's distance sampling along a ray agree with its density and
+its weights?  ``sample(u) -> (t, weight, pdf)``: t (k,) distances >= 0 of
+the sampled interactions, pdf (k,) their density in t (sigma_t
+exp(-sigma_t t) for a homogeneous medium), weight (k,) the interaction's
+weight (sigma_s T(t) / pdf, Mitsuba's); a flight that passes the surface at
+tmax is a failed sample (pdf 0, weight 0).  ``pdf(t)`` the density
+(0 beyond tmax), ``eval(t)`` the integrand the weight estimates, sigma_s
+T(t).  Inside, t is mapped to x = 1 - exp(-sigma_ref t) on [0, 1]
+(mcstat_check_medium) and checked by check_bsdf's routes: cells, mass (the
+share of flights stopping before tmax against the integral of pdf(), so
+the escape probability exp(-sigma_t tmax) is what is tested), pdf_value,
+weight, support, integrals, energy (albedo <= 1), ks.  The weight of a
+flight that passed the surface is not checked.  sigma_ref: a positive
+coefficient near the medium's sigma_t (e.g. the majorant); t may be
+asked at +inf.
+)doc";
+
 } // namespace
 
 void register_check(py::module_ &mod)
@@ -523,18 +585,28 @@ void register_check(py::module_ &mod)
             return s + ")";
         });
 
-    py::class_<Report>(mod, "CheckReport", "The report of check_bsdf, check_emitter or check_warp.")
+    py::class_<Report>(mod, "CheckReport",
+                       "The report of check_bsdf, check_emitter, check_warp, check_phase or check_medium.")
         .def_property_readonly("kind", [](const Report &r) {
-            return r.r.kind == MCSTAT_CHECK_KIND_BSDF ? "bsdf" : (r.r.kind == MCSTAT_CHECK_KIND_EMITTER ? "emitter"
-                                                                                                       : "warp");
+            switch (r.r.kind) {
+            case MCSTAT_CHECK_KIND_BSDF: return "bsdf";
+            case MCSTAT_CHECK_KIND_EMITTER: return "emitter";
+            case MCSTAT_CHECK_KIND_PHASE: return "phase";
+            case MCSTAT_CHECK_KIND_MEDIUM: return "medium";
+            default: return "warp";
+            }
         })
+        .def_property_readonly("sigma_ref", [](const Report &r) {
+            return r.r.kind == MCSTAT_CHECK_KIND_MEDIUM ? py::object(py::float_(r.r.sigma_ref)) : py::none();
+        }, "check_medium: the coefficient of the map x = 1 - exp(-sigma_ref t) (None otherwise).")
         .def_property_readonly("reject", [](const Report &r) { return r.r.reject != 0; })
         .def_property_readonly("pvalue", [](const Report &r) { return r.r.p_value; })
         .def_property_readonly("alpha", [](const Report &r) { return r.r.alpha; })
         .def_property_readonly("domain", [](const Report &r) { return mcstat_check_domain_name(r.r.domain); })
         .def_property_readonly("wi", [](const Report &r) {
-            return r.r.kind == MCSTAT_CHECK_KIND_BSDF ? py::object(py::make_tuple(r.r.wi[0], r.r.wi[1], r.r.wi[2]))
-                                                      : py::none();
+            return r.r.kind == MCSTAT_CHECK_KIND_BSDF || r.r.kind == MCSTAT_CHECK_KIND_PHASE
+                       ? py::object(py::make_tuple(r.r.wi[0], r.r.wi[1], r.r.wi[2]))
+                       : py::none();
         })
         .def_property_readonly("n", [](const Report &r) { return r.r.n; })
         .def_property_readonly("n_failed", [](const Report &r) { return r.r.n_failed; })
@@ -606,6 +678,23 @@ void register_check(py::module_ &mod)
             return run(MCSTAT_CHECK_KIND_WARP, sample, py::none(), pdf, py::none(), kw);
         },
         py::arg("sample"), py::arg("pdf"), WARP_DOC);
+    mod.def(
+        "check_phase",
+        [](py::object sample, py::object eval, py::object pdf, py::object wi, py::kwargs kw) {
+            if (kw.contains("domain"))
+                throw py::type_error("check_phase() got an unexpected keyword argument 'domain' (always 'sphere')");
+            return run(MCSTAT_CHECK_KIND_PHASE, sample, eval, pdf, wi, kw);
+        },
+        py::arg("sample"), py::arg("eval"), py::arg("pdf"), py::arg("wi"), PHASE_DOC);
+    mod.def(
+        "check_medium",
+        [](py::object sample, py::object eval, py::object pdf, py::kwargs kw) {
+            for (const char *k : {"stochastic", "reciprocal", "energy", "domain"})
+                if (kw.contains(k))
+                    throw py::type_error(std::string("check_medium() got an unexpected keyword argument '") + k + "'");
+            return run(MCSTAT_CHECK_KIND_MEDIUM, sample, eval, pdf, py::none(), kw);
+        },
+        py::arg("sample"), py::arg("eval"), py::arg("pdf"), MEDIUM_DOC);
 }
 
 } // namespace mcs

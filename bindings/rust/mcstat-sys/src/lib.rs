@@ -749,6 +749,8 @@ pub struct mcstat_check_route_result {
 pub const MCSTAT_CHECK_KIND_BSDF: i32 = 0;
 pub const MCSTAT_CHECK_KIND_EMITTER: i32 = 1;
 pub const MCSTAT_CHECK_KIND_WARP: i32 = 2;
+pub const MCSTAT_CHECK_KIND_PHASE: i32 = 3;
+pub const MCSTAT_CHECK_KIND_MEDIUM: i32 = 4;
 
 /// The named storage of `mcstat_check_report`'s anonymous union.
 #[repr(C)]
@@ -756,7 +758,9 @@ pub const MCSTAT_CHECK_KIND_WARP: i32 = 2;
 pub struct mcstat_check_report_named {
     /// Samples with weight 0 where the reported pdf and eval() are > 0.
     pub zero_weight: u64,
-    pub reserved_rest: [f64; 7],
+    /// mcstat_check_medium: the sigma_ref of the map of distances (0 otherwise)
+    pub sigma_ref: f64,
+    pub reserved_rest: [f64; 6],
 }
 
 /// `mcstat_check_report`'s anonymous union: `reserved` is 0.1.0's name of the storage.
@@ -1426,6 +1430,28 @@ extern "C" {
     ) -> c_int;
     pub fn mcstat_check_warp(
         model: *const mcstat_check_model,
+        n: usize,
+        seed: u64,
+        alpha: f64,
+        opt: *const mcstat_check_options,
+        work: *mut c_void,
+        work_bytes: usize,
+        out: *mut mcstat_check_report,
+    ) -> c_int;
+    pub fn mcstat_check_phase(
+        model: *const mcstat_check_model,
+        wi: *const f64,
+        n: usize,
+        seed: u64,
+        alpha: f64,
+        opt: *const mcstat_check_options,
+        work: *mut c_void,
+        work_bytes: usize,
+        out: *mut mcstat_check_report,
+    ) -> c_int;
+    pub fn mcstat_check_medium(
+        model: *const mcstat_check_model,
+        sigma_ref: f64,
         n: usize,
         seed: u64,
         alpha: f64,

@@ -539,6 +539,25 @@ pub fn check_warp(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: 
     run_check(model, opt, |m, o, out| unsafe { sys::mcstat_check_warp(m, n, seed, alpha, o, ptr::null_mut(), 0, out) })
 }
 
+/// Checks a phase function p(wi, wo) (domain sphere; eval is p, no cosine):
+/// the routes of `check_bsdf`, with energy testing albedo == 1 (two-sided)
+/// and reciprocity (when asked) p(wi, wo) == p(wo, wi).
+pub fn check_phase(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
+    run_check(model, opt, |m, o, out| unsafe {
+        sys::mcstat_check_phase(m, wi.as_ptr(), n, seed, alpha, o, ptr::null_mut(), 0, out)
+    })
+}
+
+/// Checks distance sampling along a ray (domain interval): the closures'
+/// points are distances t >= 0, mapped inside to x = 1 - exp(-sigma_ref t);
+/// a flight that passes the surface is a failed sample (pdf 0, weight 0);
+/// eval is sigma_s T(t).
+pub fn check_medium(model: &mut CheckModel, sigma_ref: f64, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
+    run_check(model, opt, |m, o, out| unsafe {
+        sys::mcstat_check_medium(m, sigma_ref, n, seed, alpha, o, ptr::null_mut(), 0, out)
+    })
+}
+
 /// Whether a route ran.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RouteState {
