@@ -76,13 +76,15 @@ wheel-test: python
 # $(BUILD)/wheels/), linked static into the extension; one wheel per pyenv
 # interpreter (~/.pyenv/versions/3.X.*), auditwheel repair and show, each
 # tested in a bare venv of its interpreter; the pixel and module tests on
-# WHEELS_PYTEST's wheel; results in bench/RESULTS_wheels.md
+# WHEELS_PYTEST's wheel; each wheel's mcstat reproduce --quick results
+# compared with those of .venv's gcc build (make python, if installed);
+# results in bench/RESULTS_wheels.md
 # (tools/wheels/build_wheels.sh).  WHEEL_PYTHONS="3.12 3.13" builds a few.
 WHEEL_PYTHONS ?= 3.9 3.10 3.11 3.12 3.13
 WHEELS_PYTEST ?= 3.12
 wheels: python-deps
 	JOBS=$(JOBS) WHEELS_DIR=$(BUILD)/wheels AUDITWHEEL=$(abspath $(VENV))/bin/auditwheel \
-	  WHEELS_PYTEST=$(WHEELS_PYTEST) tools/wheels/build_wheels.sh $(WHEEL_PYTHONS)
+	  WHEELS_PYTEST=$(WHEELS_PYTEST) WHEELS_COMPARE=$(abspath $(PY)) tools/wheels/build_wheels.sh $(WHEEL_PYTHONS)
 
 # The sdist builds a wheel as pip builds it on a user's machine (isolated,
 # from a read-only unpacked tree) with the files of the checkout's wheel

@@ -240,7 +240,21 @@ test_wheel() (
     case $where in "$tmp"/venv/*) ;; *) echo "mcstat._core from $where"; exit 1 ;; esac
 )
 VERSION=$(awk '/#define MCSTAT_VERSION_(MAJOR|MINOR|PATCH) / {v = v (v == "" ? "" : ".") $3} END {print v}' libmcstat/include/mcstat.h)
-declare -A R_WHEEL R_SIZE R_LEVEL R_BUILD R_TEST R_STATUS R_PY
+declare -A R_WHEEL R_SIZE R_LEVEL R_BUILD R_TEST R_STATUS R_PY R_CMP
+# WHEELS_COMPARE=PYTHON: an interpreter whose mcstat is the gcc build (make
+# python's .venv); its `mcstat reproduce --quick` results.json is the
+# reference each wheel's is compared with, number by number.
+ref_json=""
+if [ -n "${WHEELS_COMPARE:-}" ]; then
+    mkdir -p "$W/gcc-reference"
+    if (cd /tmp && LD_LIBRARY_PATH= "$WHEELS_COMPARE" -c "import mcstat, sys; sys.exit(mcstat.__version__ != '$VERSION')") 2> /dev/null &&
+        (cd /tmp && LD_LIBRARY_PATH= "$(dirname "$WHEELS_COMPARE")/mcstat" reproduce --quick --out "$W/gcc-reference/report" \
+            --no-progress > "$W/gcc-reference/reproduce.out" 2>&1); then
+        ref_json=$W/gcc-reference/report/results.json
+    else
+        echo "WHEELS_COMPARE=$WHEELS_COMPARE: no mcstat $VERSION there, or its reproduce failed; no comparison"
+    fi
+fi
 results=$W/results
 rm -rf "$results" && mkdir -p "$results"
 for v in "${VERSIONS[@]}"; do
@@ -321,6 +335,11 @@ PY
     R_STATUS[$v]=FAIL
     if test_wheel "$py" "$whl" "$out"; then R_STATUS[$v]=pass; fi
     R_TEST[$v]=$((SECONDS - t0))
+    R_CMP[$v]="n/a"
+    if [ -n "$ref_json" ] && [ -s "$out/report/results.json" ]; then
+        R_CMP[$v]=$("$W/tools/bin/python" "$root/tools/wheels/compare_results.py" "$ref_json" "$out/report/results.json" --rtol 1e-9) ||
+            { R_STATUS[$v]="FAIL (numbers)"; }
+    fi
     echo "$tag: test ${R_STATUS[$v]} in ${R_TEST[$v]} s"
 done
 
@@ -373,10 +392,12 @@ failed=0
     echo "- $JOBS build jobs; whole run $((SECONDS - t_all)) s (GSL and libRmath built once and cached in $(basename "$W")/prefix)"
     [ -z "$PYTEST_LINE" ] || echo "$PYTEST_LINE"
     echo
-    echo "| Python | wheel | size (KiB) | auditwheel show | build (s) | test | test (s) |"
-    echo "| --- | --- | ---: | --- | ---: | --- | ---: |"
+    [ -z "$ref_json" ] || echo "- vs gcc build: the wheel's results.json against that of \`mcstat reproduce --quick\` by $WHEELS_COMPARE's mcstat (the system gcc, GSL and libRmath: make python), every number (timings left out); a relative difference over 1e-9 fails"
+    echo
+    echo "| Python | wheel | size (KiB) | auditwheel show | build (s) | test | test (s) | vs gcc build |"
+    echo "| --- | --- | ---: | --- | ---: | --- | ---: | --- |"
     for v in "${VERSIONS[@]}"; do
-        echo "| ${R_PY[$v]} | ${R_WHEEL[$v]} | ${R_SIZE[$v]} | ${R_LEVEL[$v]} | ${R_BUILD[$v]} | ${R_STATUS[$v]} | ${R_TEST[$v]} |"
+        echo "| ${R_PY[$v]} | ${R_WHEEL[$v]} | ${R_SIZE[$v]} | ${R_LEVEL[$v]} | ${R_BUILD[$v]} | ${R_STATUS[$v]} | ${R_TEST[$v]} | ${R_CMP[$v]} |"
         [ "${R_STATUS[$v]}" = pass ] || failed=1
     done
 } > "$results/RESULTS_wheels.md"
