@@ -18,7 +18,7 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
 .PHONY: docs docs-c docs-python docs-rust docs-go binding-coverage
-.PHONY: all deps python-deps build test ctest python pytest wheel-test sdist-test install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test quickstart-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps python-deps build test ctest python pytest wheel-test wheel-test-extra wheels sdist-test install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test quickstart-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
 
 all: build
 
@@ -69,6 +69,31 @@ pytest: python
 # step's cost: bench/RESULTS_gate.md.
 wheel-test: python
 	JOBS=$(JOBS) tests/wheel/test_wheel.sh $(BUILD) $(PY)
+
+# One more CPython in the gate: WHEEL_EXTRA_PYTHON's wheel, built like
+# wheel-test's (system toolchain, auditwheel bundling GSL and libRmath), in a
+# bare venv of that interpreter: mcstat reproduce --quick
+# (tests/wheel/test_wheel_extra.sh).  A fixed interpreter, never skipped:
+# missing, the step fails.
+WHEEL_EXTRA_PYTHON ?= $(HOME)/.pyenv/versions/3.13.0/bin/python3
+wheel-test-extra: python-deps
+	JOBS=$(JOBS) tests/wheel/test_wheel_extra.sh $(BUILD) $(PY) $(WHEEL_EXTRA_PYTHON)
+
+# Wheels for CPython 3.9-3.13 at manylinux_2_28, for publishing; not part of
+# make test (ci/test-steps.mk).  zig (PyPI's ziglang) compiles for glibc 2.28:
+# GSL and libRmath from Debian's source packages (checked, cached in
+# $(BUILD)/wheels/), linked static into the extension; one wheel per pyenv
+# interpreter (~/.pyenv/versions/3.X.*), auditwheel repair and show, each
+# tested in a bare venv of its interpreter; the pixel and module tests on
+# WHEELS_PYTEST's wheel; each wheel's mcstat reproduce --quick results
+# compared with those of .venv's gcc build (make python, if installed);
+# results in bench/RESULTS_wheels.md
+# (tools/wheels/build_wheels.sh).  WHEEL_PYTHONS="3.12 3.13" builds a few.
+WHEEL_PYTHONS ?= 3.9 3.10 3.11 3.12 3.13
+WHEELS_PYTEST ?= 3.12
+wheels: python-deps
+	JOBS=$(JOBS) WHEELS_DIR=$(BUILD)/wheels AUDITWHEEL=$(abspath $(VENV))/bin/auditwheel \
+	  WHEELS_PYTEST=$(WHEELS_PYTEST) WHEELS_COMPARE=$(abspath $(PY)) tools/wheels/build_wheels.sh $(WHEEL_PYTHONS)
 
 # The sdist builds a wheel as pip builds it on a user's machine (isolated,
 # from a read-only unpacked tree) with the files of the checkout's wheel

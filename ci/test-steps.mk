@@ -13,6 +13,9 @@ TEST_STEPS += pytest
 # the binary wheel: repaired by auditwheel (manylinux, GSL and libRmath
 # bundled), installed into a bare venv with its extras and run (tests/wheel)
 TEST_STEPS += wheel-test
+# one more CPython (3.13 from pyenv): its wheel, built and repaired the same
+# way, in a bare venv of that interpreter (tests/wheel/test_wheel_extra.sh)
+TEST_STEPS += wheel-test-extra
 # the sdist builds, isolated and read-only, the checkout's wheel (tests/wheel;
 # a full build without ccache; each step's cost: bench/RESULTS_gate.md)
 TEST_STEPS += sdist-test
