@@ -13,7 +13,6 @@
 # directory is kept in BUILD_DIR/python/{wheel_tag}, as make python's.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-root=$PWD
 build=$(mkdir -p "${1:-build}" && cd "${1:-build}" && pwd)
 py=$(cd "$(dirname "${2:-.venv/bin/python}")" && pwd)/$(basename "${2:-.venv/bin/python}")
 xpy=${3:?usage: test_wheel_extra.sh BUILD_DIR PYTHON EXTRA_PYTHON}
@@ -56,25 +55,7 @@ for lib in libgsl- libgslcblas- libRmath-; do
 done
 
 # 3. a bare venv of the same interpreter, outside the checkout
-run=$(mktemp -d /tmp/mcstat-wheel-"$tag".XXXXXX)
-trap 'rm -rf "$run"' EXIT
-cd "$run"
-export LD_LIBRARY_PATH=
-unset PYTHONPATH
-"$xpy" -m venv venv || fail "$xpy -m venv"
-venv/bin/python -m pip install -q "$whl[report]" > "$work/pip-report.log" 2>&1 || { cat "$work/pip-report.log"; fail "pip install $whl[report]"; }
-core=$(venv/bin/python -c 'import mcstat._core as c; print(c.__file__)') || fail "import mcstat._core"
-case $core in "$run"/venv/*) ;; *) fail "mcstat._core imported from $core" ;; esac
-deps=$(ldd "$core")
-grep -q "not found" <<< "$deps" && fail "unresolved libraries: $deps"
-grep -q "mcstat.libs/libgsl-" <<< "$deps" || fail "libgsl not loaded from mcstat.libs: $deps"
-venv/bin/mcstat reproduce --quick --out "$work/report" --no-progress > "$work/reproduce.out" 2> "$work/reproduce.err" \
-    || { tail -20 "$work/reproduce.err"; fail "mcstat reproduce --quick"; }
-grep -q Traceback "$work/reproduce.err" && { cat "$work/reproduce.err"; fail "mcstat reproduce: a traceback"; }
-for f in report.md results.json; do [ -s "$work/report/$f" ] || fail "reproduce wrote no $f"; done
-version=$(awk '/#define MCSTAT_VERSION_(MAJOR|MINOR|PATCH) / {v = v (v == "" ? "" : ".") $3} END {print v}' "$root/libmcstat/include/mcstat.h")
-got=$(venv/bin/python -c 'import mcstat; print(mcstat.__version__)') || fail "import mcstat"
-[ "$got" = "$version" ] || fail "mcstat.__version__ is $got, the header's $version"
+tests/wheel/bare_venv_reproduce.sh "$xpy" "$whl" "$work" || fail "$(basename "$whl") in a bare venv"
 
 echo "extra wheel test passed: $(basename "$whl") ($("$xpy" -c 'import platform; print(platform.python_version())')," \
     "$(du -k "$whl" | cut -f1) KiB) in $((SECONDS - t0)) s (wheel built in $t_build s)"

@@ -215,30 +215,6 @@ interpreter() { # interpreter 3.X: the pyenv CPython 3.X.*
 # beside them, goes into no wheel.
 printf '{\n  global: PyInit_*;\n  local: *;\n};\n' > "$W/bin/extension.map"
 LINK_FLAGS="-Wl,--version-script=$W/bin/extension.map"
-# test_wheel PYTHON WHEEL OUT: python -m venv and nothing else, LD_LIBRARY_PATH
-# empty, a temporary cwd outside the checkout; the report extra, mcstat
-# reproduce --quick (report.md, results.json) and mcstat.__version__.
-test_wheel() (
-    local py=$1 whl=$2 out=$3 tmp
-    tmp=$(mktemp -d /tmp/mcstat-wheel.XXXXXX)
-    trap 'rm -rf "$tmp"' EXIT
-    export LD_LIBRARY_PATH=
-    unset PYTHONPATH PYTHONHOME
-    cd "$tmp"
-    "$py" -m venv venv || { echo "python -m venv failed" > "$out/test.err"; exit 1; }
-    venv/bin/python -m pip install -q "$whl[report]" > "$out/pip.log" 2>&1 || { tail -20 "$out/pip.log"; exit 1; }
-    rm -rf "$out/report"
-    venv/bin/mcstat reproduce --quick --out "$out/report" --no-progress > "$out/reproduce.out" 2> "$out/reproduce.err" ||
-        { tail -20 "$out/reproduce.err"; exit 1; }
-    for f in report.md results.json; do
-        [ -s "$out/report/$f" ] || { echo "mcstat reproduce wrote no $f"; exit 1; }
-    done
-    ! grep -q Traceback "$out/reproduce.err" || { cat "$out/reproduce.err"; exit 1; }
-    got=$(venv/bin/python -c "import mcstat; print(mcstat.__version__)") || exit 1
-    [ "$got" = "$VERSION" ] || { echo "mcstat.__version__ is $got, the wheel's $VERSION"; exit 1; }
-    where=$(venv/bin/python -c "import mcstat._core as c; print(c.__file__)")
-    case $where in "$tmp"/venv/*) ;; *) echo "mcstat._core from $where"; exit 1 ;; esac
-)
 VERSION=$(awk '/#define MCSTAT_VERSION_(MAJOR|MINOR|PATCH) / {v = v (v == "" ? "" : ".") $3} END {print v}' libmcstat/include/mcstat.h)
 declare -A R_WHEEL R_SIZE R_LEVEL R_BUILD R_TEST R_STATUS R_PY R_CMP
 # WHEELS_COMPARE=PYTHON: an interpreter whose mcstat is the gcc build (make
@@ -333,7 +309,7 @@ PY
     log "CPython ${R_PY[$v]}: test in a bare venv"
     t0=$SECONDS
     R_STATUS[$v]=FAIL
-    if test_wheel "$py" "$whl" "$out"; then R_STATUS[$v]=pass; fi
+    if tests/wheel/bare_venv_reproduce.sh "$py" "$whl" "$out"; then R_STATUS[$v]=pass; fi
     R_TEST[$v]=$((SECONDS - t0))
     R_CMP[$v]="n/a"
     if [ -n "$ref_json" ] && [ -s "$out/report/results.json" ]; then
