@@ -28,12 +28,14 @@ cmake --build build -j > "$work/build.log"
 cmake --install build --prefix "$HOME/.local" > "$work/install.log"
 export PKG_CONFIG_PATH="$HOME/.local/lib/pkgconfig" CMAKE_PREFIX_PATH="$HOME/.local"
 step "cmake configure, build, install"
-# the quickstarts as a reader copies them out of README.md
+# the quickstarts as a reader copies them out of README.md (the blocks
+# make quickstart-test reads)
 python3 - "$work" <<'PY'
-import pathlib, re, sys
-text = pathlib.Path("README.md").read_text()
-for name, body in re.findall(r"^<!-- quickstart: ([\w-]+) -->\n```\w*\n(.*?)^```", text, re.S | re.M):
-    pathlib.Path(sys.argv[1], f"qs-{name}").write_text(body.replace("/path/to/mcstat", str(pathlib.Path.cwd())))
+import pathlib, sys
+sys.path.insert(0, "tests/quickstart")
+from run_quickstarts import blocks
+for name, body in blocks().items():
+    pathlib.Path(sys.argv[1], f"qs-{name}").write_text(body)
 PY
 mkdir -p "$work/c" && cd "$work/c" && cp "$work/qs-c" quickstart.c
 cc quickstart.c $(pkg-config --cflags --libs mcstat-rpath) -lm && ./a.out > out.txt && ok out.txt

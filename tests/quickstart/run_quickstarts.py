@@ -98,12 +98,8 @@ def main():
     for lang in args.langs:
         d = pathlib.Path(tempfile.mkdtemp(prefix=f"quickstart-{lang}-"))
         try:
-            if lang == "c":
-                (d / "quickstart.c").write_text(code["c"])
-                run(["cc", "-std=c11", "-Wall", "-Wextra", "-Werror", "quickstart.c", *pc, "-lm"], d, env)
-                out = run(["./a.out"], d, env)
-            elif lang == "header":
-                (d / "example.c").write_text(code["header"])
+            if lang in ("c", "header"):
+                (d / "example.c").write_text(code[lang])
                 run(["cc", "-std=c11", "-Wall", "-Wextra", "-Werror", "example.c", *pc, "-lm"], d, env)
                 out = run(["./a.out"], d, env)
             elif lang == "cpp":
