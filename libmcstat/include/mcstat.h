@@ -1824,6 +1824,24 @@ typedef int (*mcstat_check_sample_fn)(void *user, const double *wi, const double
 typedef int (*mcstat_check_density_fn)(void *user, const double *wi, const double *x, size_t n,
                                        double *out);
 
+/* Discrete lobes (specular reflection and refraction: a BSDF whose sample()
+ * returns a direction with a probability, not a density).  pdf() and
+ * eval() then describe the smooth part only (as Mitsuba's and pbrt's do),
+ * and lobes(user, wi, x, mass, value, count) describes the rest for the
+ * check's wi: *count <= MCSTAT_CHECK_MAX_LOBES lobes, lobe k with its
+ * direction x[3k ..] (unit length, in the domain), the probability
+ * mass[k] in [0, 1] with which sample() returns it (what sample()
+ * reports as its pdf there), and value[k] >= 0, the integral of
+ * f |cos| over the lobe (its albedo: Fresnel's R for a mirror-like
+ * reflection), so that its weight is value/mass (MCSTAT_WEIGHT_VALUE:
+ * value).  A sample within MCSTAT_CHECK_LOBE_TOLERANCE (chord length) of
+ * a lobe's direction is that lobe's sample; lobes must lie further apart
+ * than twice that.  Called once per check (mcstat_check_bsdf only). */
+#define MCSTAT_CHECK_MAX_LOBES 4
+#define MCSTAT_CHECK_LOBE_TOLERANCE 1e-4
+typedef int (*mcstat_check_lobes_fn)(void *user, const double *wi, double *x, double *mass, double *value,
+                                     size_t *count);
+
 typedef struct mcstat_check_model {
     int32_t domain;            /* enum mcstat_check_domain */
     int32_t n_uniforms;        /* uniforms per sample, 1..MCSTAT_CHECK_MAX_UNIFORMS (Mitsuba's BSDFs: 3) */
@@ -1834,7 +1852,13 @@ typedef struct mcstat_check_model {
     mcstat_check_sample_fn sample;
     mcstat_check_density_fn pdf;
     mcstat_check_density_fn eval; /* NULL: no integrand (warps) */
-    double reserved[4];        /* zero */
+    MCSTAT_ANONYMOUS union {
+        double reserved[4];    /* zero */
+        MCSTAT_ANONYMOUS struct {
+            mcstat_check_lobes_fn lobes; /* NULL: no discrete lobes (0.2.0's zeros) */
+            double reserved_rest[3];     /* zero */
+        };
+    };
 } mcstat_check_model;
 
 /* Coordinates per point of a domain (3, 3, 2, 2, 1); 0 for a bad domain. */
@@ -1867,16 +1891,24 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                error estimate, unless a Monte Carlo estimate at n_eval   */
 /*                points from a table of the cubature (the mean of pdf/     */
 /*                table, unbiased) disagrees with it; then a two-sided z    */
-/*                test against that estimate.  Catches pdf() scaled by a    */
-/*                constant, samples lost.                                    */
+/*                test against that estimate.  With discrete lobes, the      */
+/*                smooth successes are tested so, and each lobe's count by  */
+/*                the exact binomial test against n mass[k]; the route's    */
+/*                p-value is the smallest times (lobes + 1) (Bonferroni),   */
+/*                where/value the lobe furthest off (its direction, share    */
+/*                and mass).  Catches pdf() scaled by a constant, samples   */
+/*                lost, a lobe chosen at a rate other than its pdf says.    */
 /*   PDF_VALUE    the pdf sample() reports equals pdf() at the sampled point */
-/*                (deterministic: relative tolerance rtol at every sample). */
+/*                (deterministic: relative tolerance rtol at every sample); */
+/*                on a discrete lobe, its mass.                              */
 /*   WEIGHT       the weight equals eval/pdf (deterministic, as PDF_VALUE);  */
-/*                a failed sample has weight 0.                              */
+/*                a failed sample has weight 0; on a discrete lobe, value/   */
+/*                mass.                                                      */
 /*   SUPPORT      eval > 0 only where pdf > 0, at the sampled points and at  */
 /*                the eval-only estimator's points (a region the sampler     */
-/*                never reaches biases every estimate using it).  pdf > 0    */
-/*                where eval = 0 is counted (wasted samples), not a failure. */
+/*                never reaches biases every estimate using it); a discrete */
+/*                lobe with value > 0 has mass > 0.  pdf > 0 where eval = 0  */
+/*                is counted (wasted samples), not a failure.                */
 /*   INTEGRALS    eval against the sampler, end to end: the integrals of     */
 /*                eval over up to 16 regions (consecutive runs of cells),    */
 /*                estimated from the sample weights and from an estimator    */
@@ -1885,7 +1917,10 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                region is reached), compared by a Wald test (chi-squared   */
 /*                on the regions, covariances estimated).  The statistical   */
 /*                form of WEIGHT: it is what checks a stochastic BSDF.       */
-/*   ENERGY       albedo <= 1: one-sided t test of the mean weight (BSDFs).  */
+/*   ENERGY       albedo <= 1: one-sided t test of the mean weight (BSDFs;   */
+/*                discrete lobes' weights included).                        */
+/* CELLS, INTEGRALS, KS and RECIPROCITY see the smooth part only: samples   */
+/* on a discrete lobe are left out of them (INTEGRALS: weight 0 there).    */
 /*   RECIPROCITY  eval(wi, x)/|x.z| == eval(x, wi)/|wi.z| at up to 1000     */
 /*                sampled points (deterministic; only when asked: BSDFs      */
 /*                with refraction are not reciprocal in radiance).           */
@@ -2051,7 +2086,17 @@ typedef struct mcstat_check_report {
             uint64_t zero_weight;
             /* mcstat_check_medium: the sigma_ref of the map of distances (0 otherwise) */
             double sigma_ref;
-            double reserved_rest[6];
+            MCSTAT_ANONYMOUS union {
+                double reserved_rest[6];
+                MCSTAT_ANONYMOUS struct {
+                    /* discrete lobes (model->lobes): how many, the samples on them, the
+                       sum of their masses and of their values (the discrete part of the
+                       albedo; the albedo fields above are the smooth part's); 0 without */
+                    uint64_t lobes, n_lobe;
+                    double lobe_mass, lobe_albedo;
+                    double reserved_more[2];
+                };
+            };
         };
     };
     mcstat_check_route_result route[MCSTAT_CHECK_ROUTE_COUNT];
@@ -2072,7 +2117,7 @@ typedef struct mcstat_check_report {
 /* at 1e6 (most of it the batch and the cubature's rectangles).             */
 /*   mcstat_check_bsdf     wi a direction (normalised inside; wi.z may be   */
 /*                         negative: light arriving from below); ENERGY,     */
-/*                         RECIPROCITY apply;                                */
+/*                         RECIPROCITY apply; model->lobes may be given;     */
 /*   mcstat_check_emitter  directions from a reference point: domain SPHERE */
 /*                         or HEMISPHERE, no ENERGY, no RECIPROCITY;         */
 /*   mcstat_check_warp     eval ignored (CELLS, MASS, and PDF_VALUE when     */
@@ -2113,14 +2158,17 @@ typedef struct mcstat_check_report {
 /* rectangle (2 to 40 per cell); the check's own work is O(1) per sample   */
 /* besides sorting for KS (figures: bench/RESULTS.md).                      */
 /* Statuses: MCSTAT_EINVAL (NULL model, callbacks or out, a bad domain,      */
-/* n_uniforms or weight, a BSDF, emitter, phase function or medium without */
+/* n_uniforms or weight, lobes given to a check other than mcstat_check_bsdf, */
+/* a BSDF, emitter, phase function or medium without */
 /* eval or with sample_reports 0, a phase function off SPHERE, a medium    */
 /* off INTERVAL or sigma_ref not > 0 finite, n < 1000, alpha outside       */
 /* (0, 1), an options size this library does not know, a bad option, work too small or misaligned,  */
 /* wi zero or not finite), MCSTAT_ETOOBIG (n beyond 2^48 or sizes whose     */
 /* scratch overflows), MCSTAT_ENOMEM, MCSTAT_ECALLBACK (a callback returned */
 /* non-zero, or NaN, Inf, a negative density or weight, a point outside the */
-/* domain or a direction not of unit length within 1e-4: out->message says  */
+/* domain or a direction not of unit length within 1e-4, lobes() giving     */
+/* more than MCSTAT_CHECK_MAX_LOBES lobes, a mass outside [0, 1] or lobes  */
+/* closer than twice MCSTAT_CHECK_LOBE_TOLERANCE: out->message says       */
 /* which callback, the index, point and value; nothing else in *out is      */
 /* meaningful).  A sampler whose samples all fail is not an error: the      */
 /* report's routes that need samples say "no answer", and MASS compares     */

@@ -154,7 +154,12 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
     put(t, "%-6s ", rr->reject ? "FAIL" : "pass");
     switch (i) {
     case MCSTAT_CHECK_ROUTE_CELLS: put(t, "X-squared = %.4g, df = %.0f", rr->statistic, rr->df); break;
-    case MCSTAT_CHECK_ROUTE_MASS: put(t, "success share %.6g vs mass %.6g", rr->statistic, r->mass); break;
+    case MCSTAT_CHECK_ROUTE_MASS:
+        put(t, "success share %.6g vs mass %.6g", rr->statistic, r->mass);
+        if (r->lobes > 0) /* the lobe furthest off */
+            put(t, "; lobe (%.6g, %.6g, %.6g) share %.6g vs mass %.6g", rr->where[0], rr->where[1], rr->where[2],
+                rr->value[0], rr->value[1]);
+        break;
     case MCSTAT_CHECK_ROUTE_INTEGRALS: put(t, "W = %.4g, df = %.0f", rr->statistic, rr->df); break;
     case MCSTAT_CHECK_ROUTE_KS:
         put(t, "D2 = %.4g (Canner), %llu resampled points vs %llu from eval", rr->statistic,
@@ -247,6 +252,10 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
         put_g(&t, "%.3g", r->tail_index[1]);
         put(&t, "%s\n", r->heavy_tailed ? " (below 2: infinite variance)" : "");
     }
+    if (r->lobes > 0)
+        put(&t, "discrete lobes: %llu, mass %.9g, albedo %.9g; %llu samples on them (the lines above: the smooth "
+                "part)\n",
+            (unsigned long long)r->lobes, r->lobe_mass, r->lobe_albedo, (unsigned long long)r->n_lobe);
     /* many zero weights with pdf > 0: most likely failed samples marked by the
      * weight alone, which the mass and cells routes then count as successes */
     if (r->kind != MCSTAT_CHECK_KIND_WARP && r->zero_weight > 0 && r->zero_weight >= r->n / 100)

@@ -80,7 +80,7 @@ static void finish_deterministic(run *r, int route)
     rr->checked = r->checked[route];
     rr->count = r->bad[route];
     double n = (double)r->checked[route], tau = r->o.tolerated;
-    rr->reject = (double)r->bad[route] > floor(tau * n);
+    rr->reject = (double)r->bad[route] > floor(tau * n) || r->hard[route];
     rr->effect = r->worst[route];
     /* a wrong region of probability q gives about n q points beyond rtol:
      * seen with probability ~0.8 once n q exceeds the tolerated count by
@@ -200,6 +200,49 @@ static void route_cells(run *r, const sums *sm, double level)
  * m clipped to [1/n, 1 - 1/n] in the binomial variance; otherwise the
  * binomial test as above.  "pdf() integrates above 1" (p = 0) needs both
  * estimates above 1. */
+/* The discrete lobes' counts, each against n mass[k] by the exact binomial
+ * test, with the smooth part's p-value p: the smallest times (lobes + 1).
+ * where/value: the lobe furthest off, its share and its mass. */
+static double lobe_counts(run *r, mcstat_check_route_result *rr, double p, double level)
+{
+    int K = r->n_lobes;
+    if (K == 0)
+        return p;
+    double least = p, least_lobe = 2.0, n = (double)r->pl.n;
+    double z = mcstat__norm_quantile(level / 2 / (K + 1), 1) + POWER_Z;
+    /* the budget is the weakest part's: a smooth part of mass 0 has none */
+    if (!(r->out->mass > 0.0))
+        rr->effect = rr->detectable = rr->n_for_1pct = NAN;
+    for (int k = 0; k < K; k++) {
+        double pk, mass = r->lobe_mass[k];
+        uint64_t x = r->lobe_count[k];
+        mcstat_result res;
+        if (mcstat_binom_test(x, r->pl.n, mass, MCSTAT_TWO_SIDED, 0.5, &res) == MCSTAT_OK)
+            pk = res.p_value;
+        else
+            pk = (double)x == n * mass ? 1.0 : 0.0;
+        if (mass > 0.0 && mass < 1.0) {
+            double det = z * sqrt(mass * (1.0 - mass) / n) / mass;
+            double n1 = z * z * (1.0 - mass) / mass / (0.01 * 0.01);
+            if (!(rr->detectable >= det))
+                rr->detectable = det;
+            if (!(rr->n_for_1pct >= n1))
+                rr->n_for_1pct = n1;
+        }
+        if (pk < least_lobe) {
+            least_lobe = pk;
+            if (pk < p || isnan(rr->effect))
+                rr->effect = mass > 0.0 ? ((double)x / n - mass) / mass : NAN;
+            for (int c = 0; c < 3; c++)
+                rr->where[c] = r->lobe_x[k][c];
+            rr->value[0] = (double)x / n;
+            rr->value[1] = mass;
+        }
+        least = fmin(least, pk);
+    }
+    return fmin(1.0, (double)(K + 1) * least);
+}
+
 static void route_mass(run *r, const sums *sm, double level)
 {
     mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_MASS];
@@ -210,7 +253,8 @@ static void route_mass(run *r, const sums *sm, double level)
     r->out->mass_sampled = mhat;
     r->out->mass_sampled_se = sqrt(var_m);
     double phat = (double)x / (double)n, p;
-    double z = mcstat__norm_quantile(level / 2, 1) + POWER_Z;
+    /* with lobes, each part is held to level/(lobes + 1) (Bonferroni) */
+    double z = mcstat__norm_quantile(level / 2 / (r->n_lobes + 1), 1) + POWER_Z;
     rr->checked = n;
     rr->count = x;
     rr->state = MCSTAT_ROUTE_RAN;
@@ -259,7 +303,7 @@ static void route_mass(run *r, const sums *sm, double level)
         double room = 0.01 * mm - err;
         rr->n_for_1pct = room > 0.0 ? fmax(z * z * mm * (1.0 - mm) / (room * room), -log(0.2) / 0.01) : INFINITY;
     }
-    rr->p_value = p;
+    rr->p_value = lobe_counts(r, rr, p, level);
 }
 
 /* Solves the Wald statistic d' S^-1 d by Cholesky, dropping regions whose

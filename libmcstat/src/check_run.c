@@ -131,8 +131,10 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
     if (o->routes == 0 || (o->routes & ~MCSTAT_CHECK_ROUTE_ALL))
         return MCSTAT_EINVAL;
     for (int i = 0; i < 4; i++)
-        if (m->reserved[i] != 0.0 || o->reserved[i] != 0.0)
+        if ((i < 3 && m->reserved_rest[i] != 0.0) || o->reserved[i] != 0.0)
             return MCSTAT_EINVAL; /* kept zero, so that later releases can give them a meaning */
+    if (m->lobes && kind != MCSTAT_CHECK_KIND_BSDF)
+        return MCSTAT_EINVAL;
     if (o->reserved_i != 0)
         return MCSTAT_EINVAL;
     if ((o->stochastic != 0 && o->stochastic != 1) || (o->reciprocal != 0 && o->reciprocal != 1))
@@ -336,6 +338,89 @@ static void compare(run *r, int route, const double *x, double a, double b)
     }
 }
 
+/* ---- discrete lobes ---------------------------------------------------------- */
+
+/* The lobe a sampled direction lies on, or -1 (a smooth sample). */
+static int lobe_of(const run *r, const double *x)
+{
+    for (int k = 0; k < r->n_lobes; k++) {
+        double d0 = x[0] - r->lobe_x[k][0], d1 = x[1] - r->lobe_x[k][1], d2 = x[2] - r->lobe_x[k][2];
+        if (d0 * d0 + d1 * d1 + d2 * d2 <= MCSTAT_CHECK_LOBE_TOLERANCE * MCSTAT_CHECK_LOBE_TOLERANCE)
+            return k;
+    }
+    return -1;
+}
+
+/* lobes() once for the check's wi, validated; SUPPORT sees a lobe that
+ * carries energy but is never sampled. */
+static int fetch_lobes(run *r)
+{
+    double x[3 * MCSTAT_CHECK_MAX_LOBES], mass[MCSTAT_CHECK_MAX_LOBES], value[MCSTAT_CHECK_MAX_LOBES];
+    size_t count = (size_t)-1;
+    for (int k = 0; k < 3 * MCSTAT_CHECK_MAX_LOBES; k++)
+        x[k] = NAN;
+    for (int k = 0; k < MCSTAT_CHECK_MAX_LOBES; k++)
+        mass[k] = value[k] = NAN;
+    r->out->calls++;
+    int st = r->m->lobes(r->m->user, r->wi, x, mass, value, &count);
+    if (st)
+        return fail(r, "lobes() returned status %d", st);
+    if (count > MCSTAT_CHECK_MAX_LOBES)
+        return fail(r, "lobes() gave %zu lobes: at most %d", count, MCSTAT_CHECK_MAX_LOBES);
+    for (size_t k = 0; k < count; k++) {
+        const double *d = x + 3 * k;
+        char pt[128];
+        format_point(r, d, pt, sizeof pt);
+        double ds, dt;
+        if (mcstat__domain_coords(&r->pl.d, d, &ds, &dt))
+            return fail(r, "lobes() gave the direction %s for lobe %zu: not in the %s domain (%s)", pt, k,
+                        mcstat_check_domain_name(r->pl.d.kind), domain_rule(&r->pl.d, d));
+        if (!(mass[k] >= 0.0 && mass[k] <= 1.0))
+            return fail(r, "lobes() gave mass %.17g for lobe %zu (direction %s): a probability must lie in [0, 1]",
+                        mass[k], k, pt);
+        if (!(value[k] >= 0.0) || !isfinite(value[k]))
+            return fail(r, "lobes() gave value %.17g for lobe %zu (direction %s): it must be finite and >= 0",
+                        value[k], k, pt);
+        for (size_t j = 0; j < k; j++) {
+            const double *e = x + 3 * j;
+            double c = (d[0] - e[0]) * (d[0] - e[0]) + (d[1] - e[1]) * (d[1] - e[1]) + (d[2] - e[2]) * (d[2] - e[2]);
+            if (c <= 4.0 * MCSTAT_CHECK_LOBE_TOLERANCE * MCSTAT_CHECK_LOBE_TOLERANCE)
+                return fail(r, "lobes() gave lobes %zu and %zu at the same direction %s (closer than twice %g)", j, k,
+                            pt, MCSTAT_CHECK_LOBE_TOLERANCE);
+        }
+        memcpy(r->lobe_x[k], d, sizeof r->lobe_x[k]);
+        r->lobe_mass[k] = mass[k];
+        r->lobe_value[k] = value[k];
+        int unsampled = value[k] > 0.0 && mass[k] == 0.0;
+        compare(r, MCSTAT_CHECK_ROUTE_SUPPORT, d, unsampled ? value[k] : 0.0, 0.0);
+        r->hard[MCSTAT_CHECK_ROUTE_SUPPORT] |= unsampled;
+    }
+    r->n_lobes = (int)count;
+    r->out->lobes = count;
+    for (size_t k = 0; k < count; k++) {
+        r->out->lobe_mass += mass[k];
+        r->out->lobe_albedo += value[k];
+    }
+    return MCSTAT_OK;
+}
+
+/* A tested sample on lobe k: its pdf is the lobe's mass, its weight the
+ * lobe's value over it; the weight enters the albedo. */
+static int lobe_sample(run *r, sums *sm, int k, const double *x, double w, double p)
+{
+    r->lobe_count[k]++;
+    sm->n_lobe++;
+    if (!r->o.stochastic) {
+        compare(r, MCSTAT_CHECK_ROUTE_PDF_VALUE, x, p, r->lobe_mass[k]);
+        if (r->m->weight == MCSTAT_WEIGHT_VALUE)
+            compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, r->lobe_value[k]);
+        else if (r->lobe_mass[k] > 0.0)
+            compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, r->lobe_value[k] / r->lobe_mass[k]);
+    }
+    int st = mcstat_moments_add(&sm->all, weight_over_pdf(r, w, p));
+    return st == MCSTAT_ENONFINITE ? fail(r, "a weight overflowed (weight = value/pdf is infinite)") : st;
+}
+
 /* ---- stage 1: pilot and cells -------------------------------------------- */
 
 static int pilot_and_cells(run *r)
@@ -348,7 +433,7 @@ static int pilot_and_cells(run *r)
         if (st)
             return st;
         for (size_t i = 0; i < k; i++)
-            if (r->s.p[i] > 0.0) {
+            if (r->s.p[i] > 0.0 && (r->n_lobes == 0 || lobe_of(r, r->s.x + i * pl->d.dims) < 0)) {
                 double w = weight_over_pdf(r, r->s.w[i], r->s.p[i]);
                 if (w > r->w_envelope)
                     r->w_envelope = w;
@@ -399,7 +484,7 @@ static int tested_sample(run *r, sums *sm)
         int st = call_sample(r, r->key_test, "tested sample", first, k);
         if (st)
             return st;
-        size_t ns = 0;
+        size_t ns = 0, nl = 0;
         for (size_t i = 0; i < k; i++) {
             const double *x = r->s.x + i * dims;
             double p = r->s.p[i], w = r->s.w[i];
@@ -407,6 +492,14 @@ static int tested_sample(run *r, sums *sm)
                 /* a failed sample contributes a zero weight */
                 if (w != 0.0 && deterministic)
                     compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, 0.0);
+                continue;
+            }
+            int lobe = r->n_lobes ? lobe_of(r, x) : -1;
+            if (lobe >= 0) {
+                int s1 = lobe_sample(r, sm, lobe, x, w, p);
+                if (s1)
+                    return s1;
+                nl++;
                 continue;
             }
             int32_t c = mcstat__tree_locate(&r->tr, r->s.sb[2 * i], r->s.sb[2 * i + 1]);
@@ -422,9 +515,9 @@ static int tested_sample(run *r, sums *sm)
         }
         sm->n_succ += ns;
         /* zeros of the failed samples enter the mean weight */
-        if (pl->has_eval && k > ns) {
+        if (pl->has_eval && k > ns + nl) {
             mcstat_moments zeros;
-            int s2 = mcstat_moments_from_summary(k - ns, 0.0, 0.0, &zeros);
+            int s2 = mcstat_moments_from_summary(k - ns - nl, 0.0, 0.0, &zeros);
             if (s2 == MCSTAT_OK)
                 s2 = mcstat_moments_merge(&sm->all, &zeros);
             if (s2)
@@ -757,7 +850,9 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     sums sm;
     memset(&sm, 0, sizeof sm);
     mcstat_moments_init(&sm.all);
-    st = pilot_and_cells(&r);
+    st = model->lobes ? fetch_lobes(&r) : MCSTAT_OK;
+    if (st == MCSTAT_OK)
+        st = pilot_and_cells(&r);
     if (st == MCSTAT_OK) {
         memset(r.s.counts, 0, (size_t)r.tr.n_cells * sizeof(double));
         memset(r.s.cell_r, 0, (size_t)r.tr.n_cells * sizeof(double));
@@ -779,7 +874,8 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
         free(owned);
         return st;
     }
-    out->n_failed = n - sm.n_succ;
+    out->n_failed = n - sm.n_succ - sm.n_lobe;
+    out->n_lobe = sm.n_lobe;
 
     /* heavy tails first: they decide which mean-based routes can answer */
     out->tail_index[0] = out->tail_index[1] = NAN;

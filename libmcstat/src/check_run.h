@@ -60,11 +60,19 @@ typedef struct run {
     double rtol;
     /* deterministic comparisons: points beyond tolerance and the worst */
     uint64_t bad[MCSTAT_CHECK_ROUTE_COUNT], checked[MCSTAT_CHECK_ROUTE_COUNT];
+    /* failures the tolerated share does not excuse: a discrete lobe is one
+     * claim, not one point among many */
+    int hard[MCSTAT_CHECK_ROUTE_COUNT];
     double worst[MCSTAT_CHECK_ROUTE_COUNT], worst_x[MCSTAT_CHECK_ROUTE_COUNT][3], worst_v[MCSTAT_CHECK_ROUTE_COUNT][2];
     uint64_t pdf_without_eval; /* pdf > 0 where eval = 0 (counted, not a failure) */
     uint64_t zero_weight;      /* successes (pdf > 0) whose weight is 0 where eval() > 0 */
     size_t n_rects;            /* cubature rectangles: a fine partition of the domain */
     uint64_t seed;
+    /* discrete lobes (model->lobes), and the tested samples that fell on each */
+    int n_lobes;
+    double lobe_x[MCSTAT_CHECK_MAX_LOBES][3], lobe_mass[MCSTAT_CHECK_MAX_LOBES],
+        lobe_value[MCSTAT_CHECK_MAX_LOBES];
+    uint64_t lobe_count[MCSTAT_CHECK_MAX_LOBES];
 } run;
 
 /* Regions of the integrals route: up to 16, with about 500 samples each at
@@ -86,7 +94,8 @@ typedef struct sums {
     double b[MAX_GROUPS], b2[MAX_GROUPS]; /* eval-only */
     double r, r2;                         /* pdf/table at the table points: the mass, sampled */
     mcstat_moments all;                  /* every weight (0 for failed samples) */
-    uint64_t n_succ, n_w, n_v, n_recip;
+    uint64_t n_succ, n_w, n_v, n_recip;   /* n_succ: successes off the discrete lobes */
+    uint64_t n_lobe;                      /* successes on them */
 } sums;
 
 /* ---- the routes' statistics (check_routes.c) ------------------------------ */

@@ -378,7 +378,7 @@ static void test_einval_options_and_work(void)
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "options reserved_i not zero");
     {
         mcstat_check_model bad = model;
-        bad.reserved[0] = 1.0;
+        bad.reserved_rest[0] = 1.0;
         CHECK_EINVAL(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, &opt, NULL, 0, &rep), "model reserved not zero");
     }
     o = opt;

@@ -70,7 +70,7 @@ int main(void)
     const double wi[3] = {0, 0.6, 0.8};
     phase ph = {1.0};
     mcstat_check_model m = {MCSTAT_DOMAIN_SPHERE, 2, MCSTAT_WEIGHT_OVER_PDF, 1, &ph, iso_sample, iso_pdf, iso_eval,
-                            {0, 0, 0, 0}};
+                            {{0, 0, 0, 0}}};
     CHECK_INT(mcstat_check_phase(&m, wi, 5000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_OK);
     CHECK(!r.reject && r.kind == MCSTAT_CHECK_KIND_PHASE && r.route[MCSTAT_CHECK_ROUTE_ENERGY].state == MCSTAT_ROUTE_RAN);
     CHECK_REL(r.wi[1], 0.6, 1e-12, "wi");
@@ -90,7 +90,7 @@ int main(void)
 
     medium md = {ST};
     mcstat_check_model d = {MCSTAT_DOMAIN_INTERVAL, 1, MCSTAT_WEIGHT_OVER_PDF, 1, &md, med_sample, med_pdf, med_eval,
-                            {0, 0, 0, 0}};
+                            {{0, 0, 0, 0}}};
     CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_OK);
     CHECK(!r.reject && r.kind == MCSTAT_CHECK_KIND_MEDIUM && r.sigma_ref == 2.0);
     CHECK_REL(r.mass, 1 - exp(-ST * TMAX), 1e-3, "mass");

@@ -503,7 +503,7 @@ static void test_check_reciprocity_wi_below_hemisphere(void)
 {
     hemi_model hm = {0};
     mcstat_check_model m = {MCSTAT_DOMAIN_HEMISPHERE, 3, MCSTAT_WEIGHT_OVER_PDF, 1, &hm, hemi_sample, hemi_pdf,
-                            hemi_eval, {0, 0, 0, 0}};
+                            hemi_eval, {{0, 0, 0, 0}}};
     mcstat_check_options o;
     mcstat_check_options_init(&o);
     o.reciprocal = 1;
@@ -542,7 +542,7 @@ static int square_pdf_huge(void *user, const double *wi, const double *x, size_t
 static void test_check_mass_pdf_integral_overflows(void)
 {
     mcstat_check_model m = {MCSTAT_DOMAIN_SQUARE, 2, MCSTAT_WEIGHT_OVER_PDF, 1, NULL, square_sample,
-                            square_pdf_huge, NULL, {0, 0, 0, 0}};
+                            square_pdf_huge, NULL, {{0, 0, 0, 0}}};
     mcstat_check_options o;
     mcstat_check_options_init(&o);
     o.routes = 1u << MCSTAT_CHECK_ROUTE_MASS;

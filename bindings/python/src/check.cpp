@@ -22,7 +22,7 @@ namespace mcs {
 namespace {
 
 struct Callbacks {
-    py::object sample, eval, pdf;
+    py::object sample, eval, pdf, lobes;
     int kind = MCSTAT_CHECK_KIND_BSDF;
     bool has_wi = true; // BSDFs and phase functions: callables take wi first
     int dims = 3, nu = 3;
@@ -171,6 +171,43 @@ int eval_cb(void *user, const double *wi, const double *x, size_t n, double *out
     return density_cb(cb, cb->eval, "eval", wi, x, n, out);
 }
 
+// lobes(wi) -> (directions (K, 3), mass (K,), value (K,)), K <= MCSTAT_CHECK_MAX_LOBES
+int lobes_cb(void *user, const double *wi, double *x, double *mass, double *value, size_t *count)
+{
+    auto *cb = static_cast<Callbacks *>(user);
+    try {
+        py::object r = cb->lobes(py::array_t<double>({3}, wi));
+        if (!py::isinstance<py::tuple>(r) || py::len(r) != 3) {
+            remember_message(cb, "lobes returned " + std::string(py::str(py::type::of(r).attr("__name__"))) +
+                                     ", expected a tuple (directions, mass, value)");
+            return 1;
+        }
+        py::tuple t = r;
+        py::array d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(t[0]);
+        if (!d || d.ndim() != 2 || d.shape(1) != 3) {
+            remember_message(cb, "lobes returned directions " +
+                                     (d ? "of shape " + shape_of(d) : std::string("that are not an array")) +
+                                     ", expected (k, 3)");
+            return 1;
+        }
+        size_t k = static_cast<size_t>(d.shape(0));
+        if (k > MCSTAT_CHECK_MAX_LOBES) {
+            remember_message(cb, "lobes returned " + std::to_string(k) + " lobes: at most " +
+                                     std::to_string(MCSTAT_CHECK_MAX_LOBES));
+            return 1;
+        }
+        std::memcpy(x, d.data(), k * 3 * sizeof(double));
+        if (!to_rows(cb, "lobes", "mass", t[1], k, 0, mass) || !to_rows(cb, "lobes", "value", t[2], k, 0, value))
+            return 1;
+        *count = k;
+        return 0;
+    } catch (py::error_already_set &e) {
+        e.restore();
+        remember_python_error(cb, "lobes");
+        return 1;
+    }
+}
+
 // ---- the report -----------------------------------------------------------------
 
 struct Route {
@@ -291,6 +328,13 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     m.sample = sample_cb;
     m.pdf = pdf_cb;
     m.eval = kind == MCSTAT_CHECK_KIND_WARP ? nullptr : eval_cb;
+    if (kw.contains("lobes") && !py::object(kw["lobes"]).is_none()) {
+        if (kind != MCSTAT_CHECK_KIND_BSDF)
+            throw py::type_error(std::string(fname) + "() got an unexpected keyword argument 'lobes'");
+        cb.lobes = kw["lobes"];
+        check_callable(cb.lobes, "lobes");
+        m.lobes = lobes_cb;
+    }
     if (kind == MCSTAT_CHECK_KIND_BSDF && m.domain != MCSTAT_DOMAIN_SPHERE && m.domain != MCSTAT_DOMAIN_HEMISPHERE)
         throw_invalid("domain of a BSDF must be 'sphere' or 'hemisphere'");
     if (kind == MCSTAT_CHECK_KIND_EMITTER && m.domain != MCSTAT_DOMAIN_SPHERE &&
@@ -377,7 +421,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     for (auto item : kw) {
         static const char *known[] = {"domain", "n_uniforms", "weight", "routes", "energy", "stochastic",
                                       "reciprocal", "cells", "n_pilot", "n_eval", "batch", "rtol", "tolerated", "n",
-                                      "seed", "alpha", "sigma_ref"};
+                                      "seed", "alpha", "sigma_ref", "lobes"};
         std::string k = py::str(item.first);
         if (k == "sigma_ref" && kind != MCSTAT_CHECK_KIND_MEDIUM)
             throw py::type_error(std::string(fname) + "() got an unexpected keyword argument 'sigma_ref'");
@@ -418,7 +462,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     return py::cast(rep);
 }
 
-const char *BSDF_DOC = R"doc(check_bsdf(sample, eval, pdf, wi, *, n=100_000, alpha=0.01, seed=0, domain="sphere", n_uniforms=3, weight="over_pdf", stochastic=False, reciprocal=False, energy=True, routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
+const char *BSDF_DOC = R"doc(check_bsdf(sample, eval, pdf, wi, *, n=100_000, alpha=0.01, seed=0, domain="sphere", n_uniforms=3, weight="over_pdf", stochastic=False, reciprocal=False, lobes=None, energy=True, routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
 
 Do a BSDF's sample(), pdf(), eval() and sample weight agree?
 
@@ -463,6 +507,15 @@ stochastic : bool
 reciprocal : bool
     Check ``eval(wi, wo)/|cos wo| == eval(wo, wi)/|cos wi|`` at up to 1000
     sampled directions.
+lobes : callable, optional
+    Discrete (delta) lobes, for BSDFs whose sample() returns specular
+    directions: ``lobes(wi) -> (directions, mass, value)``, directions
+    (k, 3) with k <= 4, mass (k,) the probability sample() returns each
+    (what it reports as pdf there), value (k,) the integral of f |cos|
+    over each (e.g. Fresnel's R).  eval and pdf are the smooth part only.
+    A sample within 1e-4 of a lobe's direction is that lobe's: its pdf
+    must equal the mass, its weight value/mass, and each lobe's count is
+    tested against n mass ("mass"); the smooth routes see the rest.
 energy : bool
     Check albedo <= 1 (turn off for BSDFs that scale radiance at
     refraction, e.g. Mitsuba's dielectrics in radiance mode).
@@ -619,6 +672,14 @@ void register_check(py::module_ &mod)
         .def_property_readonly("zero_weight", [](const Report &r) { return r.r.zero_weight; },
                                "Samples with weight 0 where the reported pdf and eval() are > 0, counted as successes (a sampler "
                                "that marks a failed sample by its weight alone shows here: it must return pdf 0).")
+        .def_property_readonly("lobes", [](const Report &r) { return r.r.lobes; },
+                               "Discrete lobes given by lobes() (0 without).")
+        .def_property_readonly("n_lobe", [](const Report &r) { return r.r.n_lobe; },
+                               "Tested samples that fell on a discrete lobe.")
+        .def_property_readonly("lobe_mass", [](const Report &r) { return r.r.lobe_mass; },
+                               "The sum of the discrete lobes' masses (probabilities).")
+        .def_property_readonly("lobe_albedo", [](const Report &r) { return r.r.lobe_albedo; },
+                               "The sum of the discrete lobes' values: the discrete part of the albedo.")
         .def_property_readonly("mass_sampled", [](const Report &r) { return r.r.mass_sampled; })
         .def_property_readonly("mass_sampled_se", [](const Report &r) { return r.r.mass_sampled_se; })
         .def_property_readonly("mass", [](const Report &r) { return r.r.mass; })
