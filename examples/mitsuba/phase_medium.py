@@ -2,7 +2,7 @@
 free-flight sampling through mcstat.check_phase and mcstat.check_medium,
 correct and with planted 10% bugs wrapped around Mitsuba's own objects.
 
-    .venv/bin/python examples/mitsuba/phase_medium.py [--seeds 20] [--n 10000]
+    .venv/bin/python examples/mitsuba/phase_medium.py [--seeds 20] [--n 10000] [--only NAME] [--null-seeds N]
 
 prints the Markdown table of RESULTS.md's section "Phase functions and
 distance sampling": for each model, in how many of the seeds the check
@@ -35,6 +35,13 @@ Planted bugs (BUG = 1.1):
          weight   the scattering weight * 1.1
          sampler  distances drawn by a medium with sigma_t * 1.1, pdf and
                   weight those of the correct one
+  delta   accept   a tentative collision accepted with probability 1.1
+  tracking         sigma_t / majorant
+         weight   the scattering weight * 1.1
+         sampler  tracked through the medium scaled by 1.1, claims the
+                  correct one's
+         restart  the distance of the last tentative flight alone (the
+                  null collisions' distances dropped)
 """
 import argparse
 import sys
@@ -171,11 +178,113 @@ class MitsubaMedium:
         return mcstat.check_medium(self.sample, self.eval, self.pdf, sigma_ref=SIGMA_T, n=n, seed=seed, alpha=ALPHA)
 
 
+# A heterogeneous medium: a random 8 x 4 x 4 grid of densities in [0.2, 1]
+# scaled by 3 (sigma_t up to 2.9) in the unit cube, albedo 0.8; the ray from
+# (0.37, 0.61, 0) along +z, a surface at HET_TMAX.  Its distances are drawn
+# by delta tracking as a volumetric path tracer does: tentative collisions
+# from Mitsuba's sample_interaction (against its majorant), each real with
+# probability sigma_t / majorant, the ray restarted at a null collision.
+HET_SCALE, HET_ALBEDO, HET_TMAX = 3.0, 0.8, 0.9
+HET_ORIGIN = (0.37, 0.61, 0.0)
+HET_TABLE = 40001  # points of the optical-depth table along the ray
+
+
+def _splitmix(x):
+    x = (x + 0x9E3779B97F4A7C15) & 0xFFFFFFFFFFFFFFFF
+    x = ((x ^ (x >> 30)) * 0xBF58476D1CE4E5B9) & 0xFFFFFFFFFFFFFFFF
+    x = ((x ^ (x >> 27)) * 0x94D049BB133111EB) & 0xFFFFFFFFFFFFFFFF
+    return x ^ (x >> 31)
+
+
+class MitsubaHeterogeneous:
+    """Delta tracking through a heterogeneous Mitsuba medium as
+    check_medium's callables.  A flight needs a random number of uniforms:
+    it gets two from mcstat and derives the rest by splitmix64, so each
+    flight is a pure function of its two uniforms.  The claims: pdf(t) =
+    sigma_t(t) T(t) and eval(t) = sigma_s(t) T(t), T from an optical-depth
+    table of Mitsuba's own sigma_t along the ray (trilinear: piecewise
+    linear along the ray, so the table's trapezoids are within ~1e-8);
+    sample() reports that pdf at its distance and the weight sigma_s /
+    sigma_t of the collision Mitsuba returns."""
+
+    def __init__(self, bug=None):
+        grid = np.random.default_rng(3).uniform(0.2, 1.0, size=(8, 4, 4, 1)).astype(np.float32)
+        self.spec = {"type": "heterogeneous", "sigma_t": {"type": "gridvolume", "grid": mi.VolumeGrid(grid)},
+                     "albedo": HET_ALBEDO, "scale": HET_SCALE}
+        self.med = mi.load_dict(self.spec)
+        self.tracker = mi.load_dict(dict(self.spec, scale=HET_SCALE * BUG)) if bug == "sampler" else self.med
+        self.bug = bug
+        vol = mi.load_dict(self.spec["sigma_t"])
+        it = mi.Interaction3f()
+        z = np.linspace(0.0, HET_TMAX, HET_TABLE)
+        sig = np.empty(HET_TABLE)
+        for i, zz in enumerate(z):
+            it.p = mi.Point3f(HET_ORIGIN[0], HET_ORIGIN[1], float(zz))
+            sig[i] = HET_SCALE * vol.eval(it)[0]
+        self.z, self.sig = z, sig
+        self.tau = np.concatenate([[0.0], np.cumsum(0.5 * (sig[1:] + sig[:-1]) * np.diff(z))])
+
+    def _sigma_tau(self, t):
+        i = np.clip(np.searchsorted(self.z, t, side="right") - 1, 0, HET_TABLE - 2)
+        f = (t - self.z[i]) / (self.z[i + 1] - self.z[i])
+        s = self.sig[i] + f * (self.sig[i + 1] - self.sig[i])
+        tau = self.tau[i] + (t - self.z[i]) * 0.5 * (self.sig[i] + s)
+        return s, tau
+
+    def _flight(self, u0, u1):
+        key = (int(u0 * 2.0**32) << 32) | int(u1 * 2.0**32)
+        ray = mi.Ray3f(mi.Point3f(*HET_ORIGIN), mi.Vector3f(0, 0, 1))
+        t, j = 0.0, 0
+        while True:
+            ray.maxt = HET_TMAX - t
+            xi = (_splitmix(key ^ _splitmix(2 * j)) >> 11) * 2.0**-53
+            mei = self.tracker.sample_interaction(ray, float(np.float32(min(xi, _ONE_MINUS))), 0, True)
+            if not (mei.is_valid() and mei.t < ray.maxt):
+                return None  # passed the surface
+            t_new = mei.t if self.bug == "restart" else t + mei.t
+            st, maj, ss = mei.sigma_t[0], mei.combined_extinction[0], mei.sigma_s[0]
+            accept = st / maj * (BUG if self.bug == "accept" else 1.0)
+            xi2 = (_splitmix(key ^ _splitmix(2 * j + 1)) >> 11) * 2.0**-53
+            if xi2 < accept:
+                return t_new, ss / st
+            t = t + mei.t  # a null collision: on from there
+            ray = mi.Ray3f(mei.p, mi.Vector3f(0, 0, 1))
+            j += 1
+
+    def sample(self, u):
+        t, w, p = np.zeros(len(u)), np.zeros(len(u)), np.zeros(len(u))
+        for k in range(len(u)):
+            f = self._flight(u[k, 0], u[k, 1])
+            if f is None:
+                continue
+            t[k], w[k] = f
+            s, tau = self._sigma_tau(t[k])
+            p[k] = s * np.exp(-tau)
+        if self.bug == "weight":
+            w *= BUG
+        return t, w, p
+
+    def pdf(self, t):
+        t = np.asarray(t, float)
+        inside = t < HET_TMAX
+        s, tau = self._sigma_tau(np.where(inside, t, 0.0))
+        return np.where(inside, s * np.exp(-tau), 0.0)
+
+    def eval(self, t):
+        return HET_ALBEDO * self.pdf(t)  # albedo constant: sigma_s T = albedo sigma_t T
+
+    def check(self, n, seed):
+        return mcstat.check_medium(self.sample, self.eval, self.pdf, sigma_ref=2.0, n=n, seed=seed, alpha=ALPHA,
+                                   n_uniforms=2)
+
+
 CASES = [
     ("hg g=0.7", lambda bug: MitsubaPhase({"type": "hg", "g": 0.7}, bug), (None, "pdf_g", "weight", "norm")),
     ("hg g=-0.3", lambda bug: MitsubaPhase({"type": "hg", "g": -0.3}, bug), (None, "pdf_g", "weight", "norm")),
     ("rayleigh", lambda bug: MitsubaPhase({"type": "rayleigh"}, bug), (None, "pdf", "weight", "norm")),
     ("homogeneous (sigma_t 2, albedo 0.75, tmax 1)", MitsubaMedium, (None, "pdf", "weight", "sampler")),
+    ("heterogeneous grid, delta tracking (sigma_t 0.6..2.9, tmax 0.9)", MitsubaHeterogeneous,
+     (None, "accept", "weight", "sampler", "restart")),
 ]
 
 
@@ -183,23 +292,29 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--seeds", type=int, default=20)
     ap.add_argument("--n", type=int, default=10000)
+    ap.add_argument("--only", default="", help="only the models whose name contains this")
+    ap.add_argument("--null-seeds", type=int, default=None, help="seeds of the correct models (default --seeds)")
     a = ap.parse_args(argv)
+    null_seeds = a.null_seeds or a.seeds
     print(f"Mitsuba {mi.__version__} ({mi.variant()}), mcstat {mcstat.__version__}: n = {a.n}, alpha = {ALPHA}, "
           f"seeds 0..{a.seeds - 1}, planted factor {BUG}\n")
     print("| model | planted bug | rejected | routes that rejected (runs) |")
     print("|---|---|---|---|")
     for name, make, bugs in CASES:
+        if a.only not in name:
+            continue
         for bug in bugs:
             model = make(bug)
             rejected, routes = 0, {}
-            for seed in range(a.seeds):
+            seeds = null_seeds if bug is None else a.seeds
+            for seed in range(seeds):
                 r = model.check(a.n, seed)
                 rejected += r.reject
                 for x in r.routes:
                     if x.state == "ran" and x.reject:
                         routes[x.name] = routes.get(x.name, 0) + 1
             which = ", ".join(f"{k} ({v})" for k, v in sorted(routes.items(), key=lambda kv: -kv[1])) or "-"
-            print(f"| {name} | {bug or 'none (correct)'} | {rejected}/{a.seeds} | {which} |", flush=True)
+            print(f"| {name} | {bug or 'none (correct)'} | {rejected}/{seeds} | {which} |", flush=True)
     return 0
 
 
