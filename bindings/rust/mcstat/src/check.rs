@@ -475,7 +475,7 @@ fn raw_model(model: &CheckModel, user: *mut c_void) -> Result<sys::mcstat_check_
         sample: Some(sample_trampoline),
         pdf: Some(pdf_trampoline),
         eval: if model.eval.is_some() { Some(eval_trampoline) } else { None },
-        reserved: [0.0; 4],
+        extra: sys::mcstat_check_model_union::default(),
     })
 }
 
