@@ -9,6 +9,7 @@ package mcstat
 // extern int gomcstatSample(void *, double *, double *, size_t, double *, double *, double *);
 // extern int gomcstatPDF(void *, double *, double *, size_t, double *);
 // extern int gomcstatEval(void *, double *, double *, size_t, double *);
+// extern int gomcstatLobes(void *, double *, double *, double *, double *, size_t *);
 // static int gomcstat_sample(void *user, const double *wi, const double *u, size_t n, double *x,
 //                            double *weight, double *pdf) {
 //     return gomcstatSample(user, (double *)wi, (double *)u, n, x, weight, pdf);
@@ -19,13 +20,22 @@ package mcstat
 // static int gomcstat_eval(void *user, const double *wi, const double *x, size_t n, double *out) {
 //     return gomcstatEval(user, (double *)wi, (double *)x, n, out);
 // }
-// /* the report's anonymous union, which cgo cannot name */
+// static int gomcstat_lobes(void *user, const double *wi, double *x, double *mass, double *value,
+//                           size_t *count) {
+//     return gomcstatLobes(user, (double *)wi, x, mass, value, count);
+// }
+// /* the anonymous unions of the report and the model, which cgo cannot name */
 // static uint64_t gomcstat_zero_weight(const mcstat_check_report *r) { return r->zero_weight; }
-// static void gomcstat_model_callbacks(mcstat_check_model *m, void *user, int with_eval) {
+// static uint64_t gomcstat_lobes_count(const mcstat_check_report *r) { return r->lobes; }
+// static uint64_t gomcstat_n_lobe(const mcstat_check_report *r) { return r->n_lobe; }
+// static double gomcstat_lobe_mass(const mcstat_check_report *r) { return r->lobe_mass; }
+// static double gomcstat_lobe_albedo(const mcstat_check_report *r) { return r->lobe_albedo; }
+// static void gomcstat_model_callbacks(mcstat_check_model *m, void *user, int with_eval, int with_lobes) {
 //     m->user = user;
 //     m->sample = gomcstat_sample;
 //     m->pdf = gomcstat_pdf;
 //     m->eval = with_eval ? gomcstat_eval : NULL;
+//     m->lobes = with_lobes ? gomcstat_lobes : NULL;
 // }
 import "C"
 
@@ -185,6 +195,29 @@ type SampleFunc func(wi, u, x, weight, pdf []float64) error
 // density (pdf) or the integrand (eval) into out[k].
 type DensityFunc func(wi, x, out []float64) error
 
+// MaxLobes is the most discrete lobes a LobesFunc may return.
+const MaxLobes = int(C.MCSTAT_CHECK_MAX_LOBES)
+
+// LobeTolerance is the distance (chord length) within which a sample is a
+// lobe's; lobes must lie further apart than twice this.
+const LobeTolerance = float64(C.MCSTAT_CHECK_LOBE_TOLERANCE)
+
+// Lobe is one discrete (delta) lobe of a BSDF at the check's wi: a
+// specular reflection or refraction, which the sampler returns with a
+// probability rather than a density.
+type Lobe struct {
+	Dir  [3]float64 // the direction (unit length, in the model's domain)
+	Mass float64    // the probability in [0, 1] that Sample returns Dir: the pdf it reports there
+	// Value is the integral of f |cos| over the lobe, >= 0 (its albedo:
+	// Fresnel's R for a mirror-like reflection); Sample's weight there is
+	// Value/Mass (WeightValue: Value).
+	Value float64
+}
+
+// LobesFunc returns, for the check's wi (normalised), at most MaxLobes
+// discrete lobes.  It is called once per check.
+type LobesFunc func(wi []float64) ([]Lobe, error)
+
 // Model is what a renderer hands over to be checked.  A callback that
 // returns an error or panics stops the check, which then fails with an
 // error matching ErrCallback (a *CallbackError carrying the callback's
@@ -197,6 +230,17 @@ type Model struct {
 	Sample        SampleFunc
 	PDF           DensityFunc
 	Eval          DensityFunc // the integrand; nil for warps
+	// Lobes gives a BSDF's discrete (delta) lobes (CheckBSDF only; nil:
+	// none).  PDF and Eval then describe the smooth part only (as
+	// Mitsuba's and pbrt's do).  A sample within LobeTolerance of a lobe's
+	// direction is that lobe's: RoutePDFValue and RouteWeight check it
+	// against the lobe's Mass and Value/Mass, RouteMass tests each lobe's
+	// count against n Mass (exact binomial test), RouteSupport rejects a
+	// lobe with Value > 0 and Mass 0, RouteEnergy includes the lobes;
+	// RouteCells, RouteIntegrals and RouteKS see the smooth samples only.
+	// An error, a panic or more than MaxLobes lobes stop the check with a
+	// *CallbackError whose Callback is "lobes".
+	Lobes LobesFunc
 }
 
 // CheckOptions are the checks' options; start from DefaultCheckOptions.
@@ -282,7 +326,14 @@ type CheckReport struct {
 	// ZeroWeight counts samples with weight 0 where the reported pdf and eval
 	// are > 0, counted as successes: a sampler that marks a failed sample by
 	// its weight alone shows here (mark it by pdf 0 instead).
-	ZeroWeight    uint64
+	ZeroWeight uint64
+	// Discrete lobes (Model.Lobes): how many, the samples that fell on
+	// them, the sum of their masses and of their values (the discrete part
+	// of the albedo; Albedo is the smooth part's); 0 without.
+	Lobes         uint64
+	NLobe         uint64
+	LobeMass      float64
+	LobeAlbedo    float64
 	Mass          float64
 	MassError     float64
 	MassSampled   float64
@@ -308,7 +359,9 @@ func reportFromC(c *C.struct_mcstat_check_report) *CheckReport {
 		N: uint64(c.n), NFailed: uint64(c.n_failed), NPilot: uint64(c.n_pilot), NEval: uint64(c.n_eval),
 		Cells: uint64(c.cells), Calls: uint64(c.calls), PDFWithoutEval: uint64(c.pdf_without_eval),
 		ZeroWeight: uint64(C.gomcstat_zero_weight(c)),
-		Mass:       float64(c.mass), MassError: float64(c.mass_error), MassSampled: float64(c.mass_sampled),
+		Lobes:      uint64(C.gomcstat_lobes_count(c)), NLobe: uint64(C.gomcstat_n_lobe(c)),
+		LobeMass: float64(C.gomcstat_lobe_mass(c)), LobeAlbedo: float64(C.gomcstat_lobe_albedo(c)),
+		Mass: float64(c.mass), MassError: float64(c.mass_error), MassSampled: float64(c.mass_sampled),
 		MassSampledSE: float64(c.mass_sampled_se), Albedo: float64(c.albedo), AlbedoSE: float64(c.albedo_se),
 		AlbedoEval: float64(c.albedo_eval), AlbedoEvalSE: float64(c.albedo_eval_se),
 		TailIndex: [2]float64{float64(c.tail_index[0]), float64(c.tail_index[1])}, raw: *c}
@@ -332,7 +385,7 @@ func reportFromC(c *C.struct_mcstat_check_report) *CheckReport {
 // panic becomes a *PanicError), nil when the callback returned invalid
 // values (NaN, a point outside the domain, ...) rather than failing.
 type CallbackError struct {
-	Callback string // "sample", "pdf" or "eval" when a Go callback failed
+	Callback string // "sample", "pdf", "eval" or "lobes" when a Go callback failed
 	Message  string // libmcstat's sentence: the callback, the point and the value
 	Err      error
 }
@@ -381,7 +434,7 @@ func withModel(m *Model, f func(cm *C.struct_mcstat_check_model) C.int) (*checkC
 	cm.n_uniforms = C.int32_t(m.NUniforms)
 	cm.weight = C.int32_t(m.Weight)
 	cm.sample_reports = C.int32_t(b2i(m.SampleReports))
-	C.gomcstat_model_callbacks(&cm, unsafe.Pointer(slot), b2i(m.Eval != nil))
+	C.gomcstat_model_callbacks(&cm, unsafe.Pointer(slot), b2i(m.Eval != nil), b2i(m.Lobes != nil))
 	return call, f(&cm)
 }
 
@@ -393,6 +446,14 @@ func validModel(m *Model) error {
 		return invalid("model.Sample is nil")
 	case m.PDF == nil:
 		return invalid("model.PDF is nil")
+	}
+	return nil
+}
+
+// noLobes refuses a model with Lobes in the checks other than CheckBSDF.
+func noLobes(m *Model, check string) error {
+	if m != nil && m.Lobes != nil {
+		return invalid(check + ": the model has Lobes, which only CheckBSDF takes")
 	}
 	return nil
 }
@@ -436,6 +497,9 @@ func CheckBSDF(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *
 // CheckEmitter checks an emitter's direction sampling (domain Sphere or
 // Hemisphere; the reference point is the callbacks' business).
 func CheckEmitter(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
+	if err := noLobes(m, "CheckEmitter"); err != nil {
+		return nil, err
+	}
 	if err := checkN(n); err != nil {
 		return nil, err
 	}
@@ -447,6 +511,9 @@ func CheckEmitter(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions
 
 // CheckWarp checks a warp (a sampler and its density; Eval is ignored).
 func CheckWarp(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
+	if err := noLobes(m, "CheckWarp"); err != nil {
+		return nil, err
+	}
 	if err := checkN(n); err != nil {
 		return nil, err
 	}
@@ -460,6 +527,9 @@ func CheckWarp(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (
 // no cosine): the routes of CheckBSDF, with RouteEnergy testing albedo == 1
 // (two-sided) and RouteReciprocity (when asked) p(wi, wo) == p(wo, wi).
 func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
+	if err := noLobes(m, "CheckPhase"); err != nil {
+		return nil, err
+	}
 	if err := checkN(n); err != nil {
 		return nil, err
 	}
@@ -475,6 +545,9 @@ func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt 
 // exp(-sigmaRef t); a flight that passes the surface is a failed sample
 // (pdf 0, weight 0); Eval is sigma_s T(t).
 func CheckMedium(m *Model, sigmaRef float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
+	if err := noLobes(m, "CheckMedium"); err != nil {
+		return nil, err
+	}
 	if err := checkN(n); err != nil {
 		return nil, err
 	}

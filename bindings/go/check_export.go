@@ -8,6 +8,7 @@ package mcstat
 import "C"
 
 import (
+	"fmt"
 	"runtime/cgo"
 	"unsafe"
 )
@@ -80,4 +81,34 @@ func gomcstatPDF(user unsafe.Pointer, wi, x *C.double, n C.size_t, out *C.double
 //export gomcstatEval
 func gomcstatEval(user unsafe.Pointer, wi, x *C.double, n C.size_t, out *C.double) C.int {
 	return density(user, "eval", wi, x, n, out)
+}
+
+//export gomcstatLobes
+func gomcstatLobes(user unsafe.Pointer, wi, x, mass, value *C.double, count *C.size_t) (rc C.int) {
+	c := callOf(user)
+	var err error
+	defer func() {
+		// a panic must not unwind through C: recover it here (recover works
+		// only when called by the deferred function itself)
+		if p := recover(); p != nil {
+			err = &PanicError{Value: p}
+		}
+		c.finish("lobes", err, &rc)
+	}()
+	lobes, err := c.model.Lobes(doubles(wi, 3))
+	if err != nil {
+		return 0
+	}
+	if len(lobes) > MaxLobes {
+		err = fmt.Errorf("gave %d lobes: at most %d", len(lobes), MaxLobes)
+		return 0
+	}
+	// libmcstat's arrays hold MaxLobes lobes
+	xs, ms, vs := doubles(x, 3*MaxLobes), doubles(mass, MaxLobes), doubles(value, MaxLobes)
+	for k, l := range lobes {
+		copy(xs[3*k:3*k+3], l.Dir[:])
+		ms[k], vs[k] = l.Mass, l.Value
+	}
+	*count = C.size_t(len(lobes))
+	return 0
 }

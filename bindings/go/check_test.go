@@ -1,7 +1,8 @@
 package mcstat
 
 // The renderer checks with Go callbacks: the C tests' models (a disk warp
-// and a Phong-like lobe, tests/c/test_check.c), correct ones passing and
+// and a Phong-like lobe, tests/c/test_check.c; a coated diffuse BSDF with a
+// discrete lobe, tests/c/test_check_lobes.c), correct ones passing and
 // planted bugs caught by the route that must catch them; callback errors,
 // panics and invalid values reported as ErrCallback, never a crash.
 
@@ -482,5 +483,138 @@ func TestCheckPhase(t *testing.T) {
 		if r.Reject != bad || r.Routes[RouteEnergy].Reject != bad || r.Kind != KindPhase || len(r.WI) != 3 {
 			t.Errorf("scale %v: %+v", scale, r)
 		}
+	}
+}
+
+// coated is the coated diffuse BSDF of tests/c/test_check_lobes.c: a
+// specular reflection picked with probability coatQ (weight F/coatQ) over
+// a Lambertian base of albedo coatRho; specWeight != 1 plants a specular
+// weight that disagrees with the lobe.  Its Lobes is left to the tests.
+const coatQ, coatRho = 0.3, 0.6
+
+func fresnel(c float64) float64 { return 0.04 + 0.96*math.Pow(1-c, 5) }
+
+func coated(specWeight float64) *Model {
+	return &Model{
+		Domain: DomainHemisphere, NUniforms: 3, Weight: WeightOverPDF, SampleReports: true,
+		Sample: func(wi, u, x, weight, pdf []float64) error {
+			f := fresnel(wi[2])
+			for k := range weight {
+				v, d := u[3*k:3*k+3], x[3*k:3*k+3]
+				if v[0] < coatQ {
+					d[0], d[1], d[2] = -wi[0], -wi[1], wi[2]
+					pdf[k], weight[k] = coatQ, f/coatQ*specWeight
+				} else {
+					r, phi := math.Sqrt(v[1]), 2*math.Pi*v[2]
+					d[0], d[1], d[2] = r*math.Cos(phi), r*math.Sin(phi), math.Sqrt(1-v[1])
+					pdf[k], weight[k] = (1-coatQ)*d[2]/math.Pi, (1-f)*coatRho/(1-coatQ)
+				}
+			}
+			return nil
+		},
+		PDF: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = (1 - coatQ) * math.Max(x[3*k+2], 0) / math.Pi
+			}
+			return nil
+		},
+		Eval: func(wi, x, out []float64) error {
+			for k := range out {
+				out[k] = (1 - fresnel(wi[2])) * coatRho * math.Max(x[3*k+2], 0) / math.Pi
+			}
+			return nil
+		},
+	}
+}
+
+func coatedLobes(wi []float64) ([]Lobe, error) {
+	return []Lobe{{Dir: [3]float64{-wi[0], -wi[1], wi[2]}, Mass: coatQ, Value: fresnel(wi[2])}}, nil
+}
+
+var coatedWI = [3]float64{0.4, 0.1, 0.9}
+
+func TestCheckLobes(t *testing.T) {
+	m := coated(1)
+	calls := 0
+	m.Lobes = func(wi []float64) ([]Lobe, error) {
+		calls++
+		return coatedLobes(wi)
+	}
+	r, err := CheckBSDF(m, coatedWI, 20000, 1, 0.01, nil)
+	if err != nil || r.Reject {
+		t.Fatalf("a correct coated BSDF: %v\n%s", err, r)
+	}
+	cos := coatedWI[2] / math.Sqrt(0.98) // lobes() sees the normalised wi
+	if calls != 1 || r.Lobes != 1 || r.NLobe < 5000 || r.NLobe > 7000 || math.Abs(r.LobeMass-coatQ) > 1e-15 ||
+		math.Abs(r.LobeAlbedo/fresnel(cos)-1) > 1e-12 || math.Abs(r.Albedo/((1-fresnel(cos))*coatRho)-1) > 0.02 {
+		t.Errorf("%d calls, lobes %d, n_lobe %d, mass %v, albedo %v + %v", calls, r.Lobes, r.NLobe, r.LobeMass,
+			r.LobeAlbedo, r.Albedo)
+	}
+	if r.Routes[RoutePDFValue].Checked != 20000 || !strings.Contains(r.String(), "discrete lobes: 1") {
+		t.Errorf("pdf_value checked %d\n%s", r.Routes[RoutePDFValue].Checked, r)
+	}
+	// without Lobes the specular samples' pdf (a probability) disagrees with pdf()
+	r, err = CheckBSDF(coated(1), coatedWI, 20000, 1, 0.01, nil)
+	if err != nil || !r.Reject || !r.Routes[RoutePDFValue].Reject || r.Lobes != 0 || r.NLobe != 0 ||
+		r.LobeMass != 0 || r.LobeAlbedo != 0 {
+		t.Errorf("no lobes: %v\n%s", err, r)
+	}
+	// the specular weight 5% off: RouteWeight, not RoutePDFValue
+	m = coated(1.05)
+	m.Lobes = coatedLobes
+	r, err = CheckBSDF(m, coatedWI, 20000, 1, 0.01, nil)
+	if err != nil || !r.Reject || !r.Routes[RouteWeight].Reject || r.Routes[RoutePDFValue].Reject ||
+		r.Routes[RouteWeight].Effect == nil || math.Abs(*r.Routes[RouteWeight].Effect-0.05/1.05) > 1e-9 {
+		t.Errorf("a discrete weight error: %v\n%s", err, r)
+	}
+}
+
+func TestCheckLobesFailures(t *testing.T) {
+	sentinel := io.ErrUnexpectedEOF
+	for _, c := range []struct {
+		name  string
+		lobes LobesFunc
+		want  string // in the error's text
+		goErr bool   // a Go error (else libmcstat's sentence)
+	}{
+		{"error", func(wi []float64) ([]Lobe, error) { return nil, fmt.Errorf("no lobes today: %w", sentinel) },
+			"no lobes today", true},
+		{"panic", func(wi []float64) ([]Lobe, error) { panic("lobes exploded") }, "lobes exploded", true},
+		{"too many", func(wi []float64) ([]Lobe, error) {
+			l, _ := coatedLobes(wi)
+			for k := 0; k < MaxLobes; k++ {
+				a := 0.3 * float64(k)
+				l = append(l, Lobe{Dir: [3]float64{0.5 * math.Sin(a), 0.5 * math.Cos(a), math.Sqrt(0.75)}})
+			}
+			return l, nil
+		}, fmt.Sprintf("gave %d lobes: at most %d", MaxLobes+1, MaxLobes), true},
+		{"mass 1.5", func(wi []float64) ([]Lobe, error) {
+			return []Lobe{{Dir: [3]float64{-wi[0], -wi[1], wi[2]}, Mass: 1.5, Value: 0.1}}, nil
+		}, "mass 1.5", false},
+	} {
+		m := coated(1)
+		m.Lobes = c.lobes
+		_, err := CheckBSDF(m, coatedWI, 20000, 1, 0.01, nil)
+		var ce *CallbackError
+		if !errors.Is(err, ErrCallback) || !errors.As(err, &ce) || !strings.Contains(err.Error(), c.want) ||
+			(ce.Err != nil) != c.goErr || (c.goErr && ce.Callback != "lobes") || !strings.Contains(ce.Message, "lobes()") {
+			t.Errorf("%s: %v", c.name, err)
+		}
+		if c.name == "error" && !errors.Is(err, sentinel) {
+			t.Errorf("the callback's error is not wrapped: %v", err)
+		}
+	}
+	// lobes are a BSDF's
+	m := isotropic(1)
+	m.Lobes = coatedLobes
+	if _, err := CheckPhase(m, [3]float64{0, 0.6, 0.8}, 5000, 1, 0.01, nil); !errors.Is(err, ErrInvalidArgument) ||
+		!strings.Contains(err.Error(), "only CheckBSDF") {
+		t.Errorf("lobes in a phase check: %v", err)
+	}
+	// the check still works after the failures
+	m = coated(1)
+	m.Lobes = coatedLobes
+	if r, err := CheckBSDF(m, coatedWI, 20000, 1, 0.01, nil); err != nil || r.Reject {
+		t.Errorf("after failures: %v", err)
 	}
 }

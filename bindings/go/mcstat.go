@@ -31,7 +31,8 @@
 //   - GOFChisqTest, BinomTest, BatteryTest, BatteryTestPValues;
 //   - CheckBSDF, CheckEmitter, CheckWarp: a Model's Go functions called
 //     back from libmcstat (an error or panic in one ends the check with an
-//     error matching ErrCallback);
+//     error matching ErrCallback); Model.Lobes gives a BSDF's discrete
+//     (specular) lobes;
 //   - Sequential: anytime-valid tests looked at after every batch
 //     (NewSequential, Push, PushStream, Result, Finish);
 //   - the t, chi-squared and F distributions (TCDF, ...);

@@ -675,6 +675,61 @@ pub type mcstat_check_sample_fn = Option<
 pub type mcstat_check_density_fn =
     Option<unsafe extern "C" fn(user: *mut c_void, wi: *const f64, x: *const f64, n: usize, out: *mut f64) -> c_int>;
 
+/// Discrete lobes per check at most (`lobes()` gives up to this many).
+pub const MCSTAT_CHECK_MAX_LOBES: usize = 4;
+/// A sample within this chord length of a lobe's direction is that lobe's.
+pub const MCSTAT_CHECK_LOBE_TOLERANCE: f64 = 1e-4;
+
+/// `lobes(user, wi, x, mass, value, count)`: 0 on success.  For the check's
+/// wi, `*count <= MCSTAT_CHECK_MAX_LOBES` discrete (delta) lobes: lobe k's
+/// direction `x[3k..3k + 3]`, the probability `mass[k]` in [0, 1] with which
+/// sample() returns it (the pdf it reports there) and `value[k] >= 0`, its
+/// albedo (the weight there is value/mass).  Called once per check
+/// (`mcstat_check_bsdf` only).
+pub type mcstat_check_lobes_fn = Option<
+    unsafe extern "C" fn(
+        user: *mut c_void,
+        wi: *const f64,
+        x: *mut f64,
+        mass: *mut f64,
+        value: *mut f64,
+        count: *mut usize,
+    ) -> c_int,
+>;
+
+/// The named storage of `mcstat_check_model`'s anonymous union.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_check_model_named {
+    /// None: no discrete lobes (0.2.0's zeros).
+    pub lobes: mcstat_check_lobes_fn,
+    /// Zero.
+    pub reserved_rest: [f64; 3],
+}
+
+/// `mcstat_check_model`'s anonymous union: `reserved` is 0.2.0's name of the
+/// storage (zeros: no lobes).  `Default` is all zeros.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub union mcstat_check_model_union {
+    pub reserved: [f64; 4],
+    pub s: mcstat_check_model_named,
+}
+
+impl Default for mcstat_check_model_union {
+    fn default() -> Self {
+        mcstat_check_model_union { reserved: [0.0; 4] }
+    }
+}
+
+impl std::fmt::Debug for mcstat_check_model_union {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // both members are plain data of the same size: the named one is
+        // always readable
+        unsafe { self.s.fmt(f) }
+    }
+}
+
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct mcstat_check_model {
@@ -686,7 +741,19 @@ pub struct mcstat_check_model {
     pub sample: mcstat_check_sample_fn,
     pub pdf: mcstat_check_density_fn,
     pub eval: mcstat_check_density_fn,
-    pub reserved: [f64; 4],
+    /// C's anonymous union of `reserved[4]` and `{ lobes, reserved_rest[3] }`.
+    pub extra: mcstat_check_model_union,
+}
+
+impl mcstat_check_model {
+    /// The discrete lobes' callback (`model->lobes` in C).
+    pub fn lobes(&self) -> mcstat_check_lobes_fn {
+        unsafe { self.extra.s.lobes }
+    }
+    pub fn set_lobes(&mut self, lobes: mcstat_check_lobes_fn) {
+        // a write to the named member: reserved_rest is left as it was
+        self.extra.s.lobes = lobes;
+    }
 }
 
 pub const MCSTAT_CHECK_ROUTE_CELLS: i32 = 0;
@@ -752,6 +819,44 @@ pub const MCSTAT_CHECK_KIND_WARP: i32 = 2;
 pub const MCSTAT_CHECK_KIND_PHASE: i32 = 3;
 pub const MCSTAT_CHECK_KIND_MEDIUM: i32 = 4;
 
+/// The discrete lobes' counts: the named storage of the anonymous union
+/// over `reserved_rest` in `mcstat_check_report`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct mcstat_check_report_lobes {
+    /// Discrete lobes given by `lobes()` (0 without).
+    pub lobes: u64,
+    /// Samples that fell on a discrete lobe.
+    pub n_lobe: u64,
+    /// The sum of the lobes' masses (probabilities).
+    pub lobe_mass: f64,
+    /// The sum of the lobes' values: the discrete part of the albedo (the
+    /// report's albedo fields are the smooth part's).
+    pub lobe_albedo: f64,
+    pub reserved_more: [f64; 2],
+}
+
+/// The anonymous union over `reserved_rest` in `mcstat_check_report`:
+/// `reserved_rest` is 0.2.0's name of the storage.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub union mcstat_check_report_rest {
+    pub reserved_rest: [f64; 6],
+    pub s: mcstat_check_report_lobes,
+}
+
+impl Default for mcstat_check_report_rest {
+    fn default() -> Self {
+        mcstat_check_report_rest { reserved_rest: [0.0; 6] }
+    }
+}
+
+impl std::fmt::Debug for mcstat_check_report_rest {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        unsafe { self.s.fmt(f) }
+    }
+}
+
 /// The named storage of `mcstat_check_report`'s anonymous union.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
@@ -760,7 +865,8 @@ pub struct mcstat_check_report_named {
     pub zero_weight: u64,
     /// mcstat_check_medium: the sigma_ref of the map of distances (0 otherwise)
     pub sigma_ref: f64,
-    pub reserved_rest: [f64; 6],
+    /// C's anonymous union of `reserved_rest[6]` and the lobes' counts.
+    pub rest: mcstat_check_report_rest,
 }
 
 /// `mcstat_check_report`'s anonymous union: `reserved` is 0.1.0's name of the storage.
@@ -806,6 +912,10 @@ impl mcstat_check_report {
     pub fn zero_weight(&self) -> u64 {
         unsafe { self.extra.s.zero_weight }
     }
+    /// The discrete lobes' counts (`lobes`, `n_lobe`, `lobe_mass`, `lobe_albedo`).
+    pub fn lobe_counts(&self) -> mcstat_check_report_lobes {
+        unsafe { self.extra.s.rest.s }
+    }
 }
 
 impl std::fmt::Debug for mcstat_check_report {
@@ -821,6 +931,7 @@ impl std::fmt::Debug for mcstat_check_report {
             .field("p_value", &self.p_value)
             .field("n", &self.n)
             .field("zero_weight", &self.zero_weight())
+            .field("lobes", &self.lobe_counts())
             .field("route", &self.route)
             .field("message", &String::from_utf8_lossy(&msg))
             .finish()

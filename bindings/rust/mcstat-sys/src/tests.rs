@@ -124,7 +124,9 @@ fn layout_matches_the_c_compiler() {
         (mcstat_check_model, user) = "user",
         (mcstat_check_model, sample) = "sample",
         (mcstat_check_model, eval) = "eval",
-        (mcstat_check_model, reserved) = "reserved",
+        (mcstat_check_model, extra) = "reserved", // the anonymous union's first member
+        (mcstat_check_model, extra.s.lobes) = "lobes",
+        (mcstat_check_model, extra.s.reserved_rest) = "reserved_rest",
         (mcstat_check_options, n_pilot) = "n_pilot",
         (mcstat_check_options, batch) = "batch",
         (mcstat_check_options, rtol) = "rtol",
@@ -160,6 +162,13 @@ fn layout_matches_the_c_compiler() {
         (mcstat_result, ints.eff.eff_batches_y) = "eff_batches_y",
         (mcstat_result, per_test.eff.eff_se_log_time_y) = "eff_se_log_time_y",
         (mcstat_check_report, extra.s.zero_weight) = "zero_weight",
+        (mcstat_check_report, extra.s.sigma_ref) = "sigma_ref",
+        (mcstat_check_report, extra.s.rest) = "reserved_rest",
+        (mcstat_check_report, extra.s.rest.s.lobes) = "lobes",
+        (mcstat_check_report, extra.s.rest.s.n_lobe) = "n_lobe",
+        (mcstat_check_report, extra.s.rest.s.lobe_mass) = "lobe_mass",
+        (mcstat_check_report, extra.s.rest.s.lobe_albedo) = "lobe_albedo",
+        (mcstat_check_report, extra.s.rest.s.reserved_more) = "reserved_more",
         (mcstat_pixels_in, data) = "data",
         (mcstat_pixels_in, weights) = "weights",
         (mcstat_pixels_options, threads) = "threads",
@@ -174,6 +183,13 @@ fn layout_matches_the_c_compiler() {
         mcstat_check_route_result, mcstat_check_report, mcstat_seq_options, mcstat_seq, mcstat_escalation,
         mcstat_pixels_in, mcstat_pixels_options, mcstat_pixels_out
     );
+    // the header's constants of the discrete lobes (the tolerance as its reciprocal)
+    v.push(("const".to_string(), "MCSTAT_CHECK_MAX_LOBES".to_string(), MCSTAT_CHECK_MAX_LOBES));
+    v.push((
+        "const".to_string(),
+        "(1 / MCSTAT_CHECK_LOBE_TOLERANCE + 0.5)".to_string(),
+        (1.0 / MCSTAT_CHECK_LOBE_TOLERANCE).round() as usize,
+    ));
     let exprs: Vec<String> = v.iter().map(|e| e.1.clone()).collect();
     let c = c_compiler_layout(&exprs);
     assert_eq!(c.len(), v.len());

@@ -8,6 +8,9 @@
 //! error or panic message (panics are caught at the FFI boundary: they
 //! never unwind into C).
 //!
+//! A BSDF with specular (delta) parts gives them through
+//! [`CheckModel::lobes`]; its `pdf` and `eval` are then the smooth part.
+//!
 //! ```
 //! use mcstat::check::{check_warp, CheckModel, CheckOptions, Domain, Samples};
 //! // x = u^2 on [0, 1], whose density is 1 / (2 sqrt x)
@@ -41,7 +44,31 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::ptr;
 
 /// What a callback returns: `Err` stops the check (its message is kept).
-pub type CallbackResult = std::result::Result<(), Box<dyn std::error::Error + Send + Sync>>;
+/// `T` is `()` for the batch callbacks, which write into slices, and
+/// `Vec<Lobe>` for [`CheckModel::lobes`].
+pub type CallbackResult<T = ()> = std::result::Result<T, Box<dyn std::error::Error + Send + Sync>>;
+
+/// Discrete lobes a [`CheckModel::lobes`] callback may give, at most.
+pub const MAX_LOBES: usize = sys::MCSTAT_CHECK_MAX_LOBES;
+/// A sample within this distance (chord length) of a lobe's direction is
+/// that lobe's sample; lobes must lie further apart than twice this.
+pub const LOBE_TOLERANCE: f64 = sys::MCSTAT_CHECK_LOBE_TOLERANCE;
+
+/// One discrete (delta) lobe of a BSDF at the check's incident direction:
+/// a specular reflection or refraction, which sample() returns with a
+/// probability rather than a density.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lobe {
+    /// The lobe's direction (unit length, in the model's domain).
+    pub direction: [f64; 3],
+    /// The probability, in [0, 1], with which sample() returns this
+    /// direction: the pdf sample() reports there.
+    pub mass: f64,
+    /// The integral of f |cos| over the lobe, >= 0 (its albedo: Fresnel's
+    /// R for a mirror-like reflection); sample()'s weight there is
+    /// value / mass (`WeightConvention::Value`: value).
+    pub value: f64,
+}
 
 /// The points' domain.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -306,9 +333,11 @@ impl Samples<'_> {
 type SampleFn<'a> = dyn FnMut(Samples<'_>) -> CallbackResult + 'a;
 /// (wi, points x (n * dims values), out (n values)).
 type DensityFn<'a> = dyn FnMut(Option<&[f64; 3]>, &[f64], &mut [f64]) -> CallbackResult + 'a;
+type LobesFn<'a> = dyn FnMut(&[f64; 3]) -> CallbackResult<Vec<Lobe>> + 'a;
 
 /// The model a renderer hands over: its domain, how many uniforms a sample
-/// takes, and its sample, pdf and (BSDFs, emitters) eval routines.
+/// takes, its sample, pdf and (BSDFs, emitters) eval routines, and (BSDFs
+/// with specular parts) its discrete lobes.
 pub struct CheckModel<'a> {
     domain: Domain,
     n_uniforms: usize,
@@ -317,6 +346,7 @@ pub struct CheckModel<'a> {
     sample: Box<SampleFn<'a>>,
     pdf: Box<DensityFn<'a>>,
     eval: Option<Box<DensityFn<'a>>>,
+    lobes: Option<Box<LobesFn<'a>>>,
 }
 
 impl<'a> CheckModel<'a> {
@@ -336,6 +366,7 @@ impl<'a> CheckModel<'a> {
             sample: Box::new(sample),
             pdf: Box::new(pdf),
             eval: None,
+            lobes: None,
         }
     }
     /// The integrand the sampler is built for: f(wi, x) |cos x| for a BSDF,
@@ -345,6 +376,25 @@ impl<'a> CheckModel<'a> {
         E: FnMut(Option<&[f64; 3]>, &[f64], &mut [f64]) -> CallbackResult + 'a,
     {
         self.eval = Some(Box::new(eval));
+        self
+    }
+    /// The discrete (delta) lobes of a BSDF whose sample() returns
+    /// specular directions ([`check_bsdf`] only): for the check's
+    /// (normalised) wi, up to [`MAX_LOBES`] lobes, each with its direction,
+    /// the probability sample() picks it and its albedo.  `pdf` and `eval`
+    /// then describe the smooth part only (as Mitsuba's and pbrt's do).  A
+    /// sample within [`LOBE_TOLERANCE`] of a lobe's direction is that
+    /// lobe's: PDF_VALUE and WEIGHT check it against the lobe's mass and
+    /// value / mass, MASS tests each lobe's count against n mass (exact
+    /// binomial test), SUPPORT rejects a lobe with energy and mass 0,
+    /// ENERGY includes the lobes; CELLS, INTEGRALS and KS see the smooth
+    /// samples only.  Called once per check; an `Err`, a panic or more than
+    /// [`MAX_LOBES`] lobes fail the check with [`Error::Callback`].
+    pub fn lobes<L>(mut self, lobes: L) -> CheckModel<'a>
+    where
+        L: FnMut(&[f64; 3]) -> CallbackResult<Vec<Lobe>> + 'a,
+    {
+        self.lobes = Some(Box::new(lobes));
         self
     }
     pub fn weight(mut self, w: WeightConvention) -> CheckModel<'a> {
@@ -455,6 +505,47 @@ unsafe extern "C" fn eval_trampoline(user: *mut c_void, wi: *const f64, x: *cons
     ctx.settle("eval", r)
 }
 
+unsafe extern "C" fn lobes_trampoline(
+    user: *mut c_void,
+    wi: *const f64,
+    x: *mut f64,
+    mass: *mut f64,
+    value: *mut f64,
+    count: *mut usize,
+) -> c_int {
+    let ctx = &mut *(user as *mut Ctx);
+    let model = &mut *ctx.model;
+    let r = catch_unwind(AssertUnwindSafe(|| match (model.lobes.as_mut(), direction(wi)) {
+        (Some(lobes), Some(wi)) => lobes(wi),
+        (None, _) => Err("the model has no lobes".into()),
+        (Some(_), None) => Err("lobes() called without wi".into()),
+    }));
+    let lobes = match r {
+        Ok(Ok(v)) => v,
+        Ok(Err(e)) => return ctx.settle("lobes", Ok(Err(e))),
+        Err(payload) => return ctx.settle("lobes", Err(payload)),
+    };
+    if x.is_null() || mass.is_null() || value.is_null() || count.is_null() {
+        ctx.failure.get_or_insert("lobes() called with NULL outputs".to_string());
+        return 1;
+    }
+    if lobes.len() > MAX_LOBES {
+        let msg = format!("lobes() gave {} lobes: at most {MAX_LOBES}", lobes.len());
+        ctx.failure.get_or_insert(msg);
+        return 1;
+    }
+    // libmcstat's arrays hold MAX_LOBES lobes
+    let x = slice_mut(x, 3 * MAX_LOBES);
+    let (mass, value) = (slice_mut(mass, MAX_LOBES), slice_mut(value, MAX_LOBES));
+    for (k, l) in lobes.iter().enumerate() {
+        x[3 * k..3 * k + 3].copy_from_slice(&l.direction);
+        mass[k] = l.mass;
+        value[k] = l.value;
+    }
+    *count = lobes.len();
+    0
+}
+
 fn raw_model(model: &CheckModel, user: *mut c_void) -> Result<sys::mcstat_check_model> {
     if model.n_uniforms > sys::MCSTAT_CHECK_MAX_UNIFORMS as usize {
         return Err(Error::invalid(format!(
@@ -475,7 +566,12 @@ fn raw_model(model: &CheckModel, user: *mut c_void) -> Result<sys::mcstat_check_
         sample: Some(sample_trampoline),
         pdf: Some(pdf_trampoline),
         eval: if model.eval.is_some() { Some(eval_trampoline) } else { None },
-        reserved: [0.0; 4],
+        extra: sys::mcstat_check_model_union {
+            s: sys::mcstat_check_model_named {
+                lobes: if model.lobes.is_some() { Some(lobes_trampoline) } else { None },
+                reserved_rest: [0.0; 3],
+            },
+        },
     })
 }
 
@@ -528,14 +624,24 @@ pub fn check_bsdf(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, alp
     })
 }
 
+/// Discrete lobes are a BSDF's: the other checks refuse a model with them.
+fn no_lobes(model: &CheckModel, check: &str) -> Result<()> {
+    if model.lobes.is_some() {
+        return Err(Error::invalid(format!("{check}: the model has lobes, which only check_bsdf takes")));
+    }
+    Ok(())
+}
+
 /// Checks an emitter's sampling of directions from a reference point (the
 /// closures hold the point): domain sphere or hemisphere.
 pub fn check_emitter(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
+    no_lobes(model, "check_emitter")?;
     run_check(model, opt, |m, o, out| unsafe { sys::mcstat_check_emitter(m, n, seed, alpha, o, ptr::null_mut(), 0, out) })
 }
 
 /// Checks a warp (a sampler and its density, no integrand).
 pub fn check_warp(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
+    no_lobes(model, "check_warp")?;
     run_check(model, opt, |m, o, out| unsafe { sys::mcstat_check_warp(m, n, seed, alpha, o, ptr::null_mut(), 0, out) })
 }
 
@@ -543,6 +649,7 @@ pub fn check_warp(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: 
 /// the routes of `check_bsdf`, with energy testing albedo == 1 (two-sided)
 /// and reciprocity (when asked) p(wi, wo) == p(wo, wi).
 pub fn check_phase(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
+    no_lobes(model, "check_phase")?;
     run_check(model, opt, |m, o, out| unsafe {
         sys::mcstat_check_phase(m, wi.as_ptr(), n, seed, alpha, o, ptr::null_mut(), 0, out)
     })
@@ -553,6 +660,7 @@ pub fn check_phase(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, al
 /// a flight that passes the surface is a failed sample (pdf 0, weight 0);
 /// eval is sigma_s T(t).
 pub fn check_medium(model: &mut CheckModel, sigma_ref: f64, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
+    no_lobes(model, "check_medium")?;
     run_check(model, opt, |m, o, out| unsafe {
         sys::mcstat_check_medium(m, sigma_ref, n, seed, alpha, o, ptr::null_mut(), 0, out)
     })
@@ -714,6 +822,23 @@ impl CheckReport {
     /// shows here (mark it by pdf 0 instead).
     pub fn zero_weight(&self) -> u64 {
         self.raw.zero_weight()
+    }
+    /// Discrete lobes given by the model's `lobes` (0 without).
+    pub fn lobes(&self) -> u64 {
+        self.raw.lobe_counts().lobes
+    }
+    /// Samples that fell on a discrete lobe.
+    pub fn n_lobe(&self) -> u64 {
+        self.raw.lobe_counts().n_lobe
+    }
+    /// The sum of the discrete lobes' masses (probabilities; 0 without).
+    pub fn lobe_mass(&self) -> f64 {
+        self.raw.lobe_counts().lobe_mass
+    }
+    /// The sum of the discrete lobes' values: the discrete part of the
+    /// albedo ([`albedo`](Self::albedo) is the smooth part's; 0 without).
+    pub fn lobe_albedo(&self) -> f64 {
+        self.raw.lobe_counts().lobe_albedo
     }
     /// The integral of pdf() over the domain (cubature) and its error estimate.
     pub fn mass(&self) -> Option<(f64, f64)> {
