@@ -1828,7 +1828,8 @@ typedef int (*mcstat_check_density_fn)(void *user, const double *wi, const doubl
  * returns a direction with a probability, not a density).  pdf() and
  * eval() then describe the smooth part only (as Mitsuba's and pbrt's do),
  * and lobes(user, wi, x, mass, value, count) describes the rest for the
- * check's wi: *count <= MCSTAT_CHECK_MAX_LOBES lobes, lobe k with its
+ * check's wi: *count <= MCSTAT_CHECK_MAX_LOBES lobes (x, mass and value
+ * have room for that many, no more), lobe k with its
  * direction x[3k ..] (unit length, in the domain), the probability
  * mass[k] in [0, 1] with which sample() returns it (what sample()
  * reports as its pdf there), and value[k] >= 0, the integral of

@@ -365,6 +365,8 @@ static int fetch_lobes(run *r)
     int st = r->m->lobes(r->m->user, r->wi, x, mass, value, &count);
     if (st)
         return fail(r, "lobes() returned status %d", st);
+    if (count == (size_t)-1)
+        return fail(r, "lobes() returned 0 without setting *count");
     if (count > MCSTAT_CHECK_MAX_LOBES)
         return fail(r, "lobes() gave %zu lobes: at most %d", count, MCSTAT_CHECK_MAX_LOBES);
     for (size_t k = 0; k < count; k++) {

@@ -69,6 +69,7 @@ static int co_lobes(void *user, const double *wi, double *x, double *mass, doubl
         x[3] = 0, x[4] = 0, x[5] = 1, mass[1] = 0, value[1] = 0.1, *count = 2;
         break;
     case 7: value[0] = -1; break;                   /* a negative value */
+    case 8: *count = (size_t)-1; break;             /* *count left unset */
     }
     return 0;
 }
@@ -124,8 +125,8 @@ int main(void)
     CHECK(r.reject && r.route[MCSTAT_CHECK_ROUTE_SUPPORT].reject);
 
     static const char *want[] = {NULL, "status 7", "at most", "mass 1.5", "not in the hemisphere",
-                                 "same direction", NULL, "value -1"};
-    for (int g = 1; g <= 7; g++) {
+                                 "same direction", NULL, "value -1", "without setting *count"};
+    for (int g = 1; g <= 8; g++) {
         if (!want[g])
             continue;
         b.garbage = g;
