@@ -109,6 +109,8 @@ from ._power import (  # noqa: E402
 )
 # Renderer checks: do a BSDF's, an emitter's or a warp's sample, pdf and eval agree?
 from ._core import CheckReport, CheckRoute, check_bsdf, check_emitter, check_medium, check_phase, check_warp  # noqa: E402
+# Gradient checks: does an AD gradient agree with finite differences (or a reference)?
+from ._gradient import GradientParameter, GradientReport, check_gradient  # noqa: E402
 # the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 # the t, chi-squared and F distributions (cdf, log cdf, quantile)
@@ -156,6 +158,9 @@ __all__ = [
     "check_warp",
     "CheckReport",
     "CheckRoute",
+    "check_gradient",
+    "GradientReport",
+    "GradientParameter",
     "distributions",
     *_errors.__all__,
     # equivalence, power and sample size
