@@ -39,6 +39,10 @@ tests use (cdf, log cdf, quantile, over arrays) in `mcstat.distributions`.
 `compare_efficiency` times two estimators itself (interleaved batches)
 and runs `efficiency_test` on their samples and times.
 
+Gradients: `check_gradient` tests a gradient estimator (a differentiable
+renderer's) against central finite differences of the same loss with common
+random numbers, or against a reference estimator of the same derivative.
+
 In a test suite: `mcstat.testing` (assertions, one error budget for the
 whole suite, escalation instead of reruns, and its pytest plugin, enabled
 by ``pytest --mcstat-alpha A``); `Escalation` is its two-stage test.

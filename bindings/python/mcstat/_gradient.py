@@ -8,7 +8,7 @@ derivative, over n independent seeds with common random numbers: seed i
 gives one AD estimate and one finite difference from the same random
 numbers, and the paired differences d_i = AD_i - FD_i are tested.
 
-H0 (per parameter): |E d| <= margin, the gradients agree up to the margin
+H0 (per parameter): ``|E d| <= margin``, the gradients agree up to the margin
 allowed for the finite difference's bias.  It is rejected when the
 1 - alpha confidence interval of E d lies entirely outside
 [-margin, margin]: two one-sided t tests, H1 "E d > margin" and H1
@@ -17,7 +17,7 @@ mcstat_t_test_paired, with mu0 = +-margin); p = min(1, 2 min(p+, p-)).
 Its size is at most alpha for every E d inside the margin.
 
 The margin is the user's absolute `margin`, plus `rtol` times an upper
-confidence bound of |E reference|, plus (``richardson=True``, the default
+confidence bound of ``|E reference|``, plus (``richardson=True``, the default
 when `f` is given) an upper confidence bound of the central difference's
 bias estimated by Richardson's rule from steps h and 2h with the same
 seeds, bias(h) ~ (FD(2h) - FD(h)) / 3.  Those bounds spend a share of
@@ -35,7 +35,8 @@ from __future__ import annotations
 import math
 import numbers
 import operator
-from typing import Any, Callable, Iterator, List, Optional, Sequence, Tuple
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -55,12 +56,13 @@ _WHO = "check_gradient"
 _ADJUST = {"holm": "Holm", "bonferroni": "Bonferroni"}
 
 
-def _fmt(v: float) -> str:
+def _fmt(v: Optional[float]) -> str:
     if v is None or not math.isfinite(v):
         return str(v)
     return f"{v:.4g}"
 
 
+@dataclass(eq=False)
 class GradientParameter:
     """One parameter's line of a `GradientReport`.
 
@@ -83,12 +85,12 @@ class GradientParameter:
     margin_given : float
         The absolute margin passed in.
     ref_bound : float or None
-        Upper confidence bound of |E reference| (only with ``rtol > 0``).
+        Upper confidence bound of ``|E reference|`` (only with ``rtol > 0``).
     bias : float or None
         Richardson's estimate of the central difference's bias at h,
         mean of (FD(2h) - FD(h)) / 3; None without Richardson.
     bias_bound : float or None
-        Upper confidence bound of |that bias| added to the margin.
+        Upper confidence bound of the magnitude of that bias, added to the margin.
     pvalue : float
         min(1, 2 min(p+, p-)) of the two one-sided tests.
     pvalues : tuple of float
@@ -98,7 +100,7 @@ class GradientParameter:
     reject : bool
         ``pvalue_adjusted <= alpha_test``.
     detectable : float
-        The smallest |E d| this run detects with probability 0.8 (normal
+        The smallest ``|E d|`` this run detects with probability 0.8 (normal
         approximation with t quantiles, at the Bonferroni level
         alpha_test / k): ``margin + (t(1 - a/2) + t(0.8)) * std_error``.
         A pass says an error of that size could hide.
@@ -107,13 +109,23 @@ class GradientParameter:
         (reject iff all of them lie beyond the margin on one side).
     """
 
-    __slots__ = ("name", "mean_grad", "mean_ref", "mean_diff", "std_error", "conf_int", "margin",
-                 "margin_given", "ref_bound", "bias", "bias_bound", "pvalue", "pvalues",
-                 "pvalue_adjusted", "reject", "detectable", "exact")
-
-    def __init__(self, **kw: Any) -> None:
-        for k in self.__slots__:
-            setattr(self, k, kw.get(k))
+    name: str
+    mean_grad: float
+    mean_ref: float
+    margin: float
+    margin_given: float
+    ref_bound: Optional[float]
+    bias: Optional[float]
+    bias_bound: Optional[float]
+    mean_diff: float
+    std_error: float
+    conf_int: Tuple[float, float]
+    pvalue: float
+    pvalues: Tuple[float, float]
+    detectable: float
+    exact: bool
+    pvalue_adjusted: float
+    reject: bool
 
     def __repr__(self) -> str:
         return (f"GradientParameter(name={self.name!r}, mean_diff={self.mean_diff!r}, "
@@ -121,6 +133,7 @@ class GradientParameter:
                 f"pvalue_adjusted={self.pvalue_adjusted!r}, reject={self.reject!r})")
 
 
+@dataclass(eq=False, repr=False)
 class GradientReport:
     """The outcome of `check_gradient`.
 
@@ -153,8 +166,22 @@ class GradientReport:
         reference estimates); ``ref_2h`` those at step 2h, or None.
     """
 
-    def __init__(self, **kw: Any) -> None:
-        self.__dict__.update(kw)
+    reject: bool
+    pvalue: float
+    alpha: float
+    alpha_test: float
+    alpha_bounds: float
+    n_bounds: int
+    n: int
+    adjust: str
+    method: str
+    h: Optional[Tuple[float, ...]]
+    richardson: bool
+    rtol: float
+    parameters: List[GradientParameter]
+    grad: np.ndarray
+    ref: np.ndarray
+    ref_2h: Optional[np.ndarray]
 
     def __iter__(self) -> Iterator[GradientParameter]:
         return iter(self.parameters)
@@ -184,7 +211,7 @@ class GradientReport:
             split += (f" ({_fmt(self.alpha_test)} for the tests, {_fmt(self.alpha_bounds)} for "
                       f"{self.n_bounds} margin bound{'s' if self.n_bounds > 1 else ''})")
         lines.append(f"n = {self.n} seeds (paired, common random numbers), {split}")
-        if self.method == "finite difference":
+        if self.h is not None:
             hs = ", ".join(_fmt(v) for v in self.h)
             lines.append(f"finite differences: central, h = {hs}; Richardson bias bound "
                          f"{'on (steps h and 2h)' if self.richardson else 'off'}")
@@ -329,11 +356,11 @@ def _abs_upper(x: np.ndarray, a: float) -> float:
         lo, hi = _core.t_test(x, alpha=a).conf_int
     except DegenerateDataError:
         return float(np.max(np.abs(x)))
-    return max(abs(lo), abs(hi))
+    return float(max(abs(lo), abs(hi)))
 
 
 def _test_one(g: np.ndarray, r: np.ndarray, margin: float, alpha_t: float,
-              level_k: float) -> dict:
+              level_k: float) -> Dict[str, Any]:
     d = g - r
     try:
         two = _core.t_test(g, r, paired=True, alpha=alpha_t)
@@ -366,7 +393,7 @@ def check_gradient(grad: Any, f: Optional[Callable[..., Any]] = None, theta: Any
     reference estimator) of the same derivative?
 
     Per parameter, the paired differences d_i = grad_i - FD_i over n seeds
-    test H0 |E d| <= margin against "the gradients disagree by more than
+    test H0 ``|E d| <= margin`` against "the gradients disagree by more than
     the margin": rejected when the 1 - alpha_test confidence interval of
     E d lies entirely outside [-margin, margin] (two one-sided paired t
     tests of libmcstat at alpha_test / 2 each).  A correct gradient is
@@ -409,7 +436,7 @@ def check_gradient(grad: Any, f: Optional[Callable[..., Any]] = None, theta: Any
         Absolute margin: differences up to it are agreement.
     rtol : float, >= 0
         Relative margin: plus rtol times an upper confidence bound of
-        |E reference| (spends a share of alpha, see `bound_share`).
+        ``|E reference|`` (spends a share of alpha, see `bound_share`).
     richardson : bool, optional
         Widen each margin by an upper confidence bound of the central
         difference's bias, estimated from steps h and 2h with the same seeds
@@ -634,7 +661,8 @@ def check_gradient(grad: Any, f: Optional[Callable[..., Any]] = None, theta: Any
         res = _test_one(g[:, j], r[:, j], m, alpha_test, alpha_test / k)
         params.append(GradientParameter(name=names_l[j], mean_grad=float(np.mean(g[:, j])),
                                         mean_ref=float(np.mean(r[:, j])), margin=m, margin_given=float(marg[j]),
-                                        ref_bound=ref_bound, bias=bias, bias_bound=bias_bound, **res))
+                                        ref_bound=ref_bound, bias=bias, bias_bound=bias_bound,
+                                        pvalue_adjusted=math.nan, reject=False, **res))
     p = np.array([q.pvalue for q in params])
     padj = _core.p_adjust(p, method=adjust) if k > 1 else p
     for q, pa in zip(params, padj):
