@@ -130,7 +130,7 @@ def test_oracle_richardson_and_rtol_bounds_match_scipy():
     r2 = r + 3 * rng.normal(0.01, 0.02, size=(n, 2))  # Richardson term of mean about 0.01
     rep = mcstat.check_gradient(g, reference=r, reference_2h=r2, margin=[0.01, 0.0], rtol=0.01,
                                 alpha=0.1, bound_share=0.25, adjust="bonferroni")
-    assert rep.richardson and rep.n_bounds == 4
+    assert rep.richardson and rep.n_bounds == 4 and rep.richardson_factor == 2.0
     assert rep.alpha_bounds == pytest.approx(0.025) and rep.alpha_test == pytest.approx(0.075)
     a_b = 0.025 / 4
     t = scipy_stats.t(n - 1)
@@ -139,7 +139,7 @@ def test_oracle_richardson_and_rtol_bounds_match_scipy():
         rr = (r2[:, j] - r[:, j]) / 3
         q = t.ppf(1 - a_b / 2)
         se_r = rr.std(ddof=1) / math.sqrt(n)
-        bias_bound = max(abs(rr.mean() - q * se_r), abs(rr.mean() + q * se_r))
+        bias_bound = 2 * max(abs(rr.mean() - q * se_r), abs(rr.mean() + q * se_r))
         se_ref = r[:, j].std(ddof=1) / math.sqrt(n)
         ref_bound = abs(r[:, j].mean()) + q * se_ref
         assert p.bias == pytest.approx(rr.mean(), rel=1e-12)
@@ -327,6 +327,9 @@ def test_bad_arguments():
     for bad in (-0.1, float("nan")):
         with pytest.raises(E, match="rtol must be finite"):
             call(rtol=bad)
+    for bad in (0.5, float("inf")):
+        with pytest.raises(E, match="richardson_factor must be finite and >= 1"):
+            call(richardson_factor=bad)
     with pytest.raises(E, match="adjust must be 'holm' or 'bonferroni'"):
         call(adjust="BH")
     with pytest.raises(TypeError, match="adjust must be a string"):
@@ -443,3 +446,19 @@ def test_callbacks_returning_garbage():
         raise RuntimeError("renderer failed")
     with pytest.raises(RuntimeError, match="renderer failed"):
         call(grad=boom)
+
+
+def test_richardson_factor_covers_an_opposing_next_term():
+    """sin: the central difference's bias is -cos h^2/6 + cos h^4/120, so
+    Richardson's term (c2 h^2 + 5 c4 h^4) underestimates it by about h^2/5;
+    common random numbers resolve that, and factor 1 rejects the correct
+    gradient at every seed while the default 2 covers it."""
+    def loss(theta, seed):
+        return math.sin(theta + 0.01 * _z(seed, 1)[0])
+
+    def grad(seed):
+        return math.cos(0.4 + 0.01 * _z(seed, 1)[0])
+    one = sum(mcstat.check_gradient(grad, loss, 0.4, h=0.3, n=16, seed=16 * c, richardson_factor=1.0).reject
+              for c in range(20))
+    two = sum(mcstat.check_gradient(grad, loss, 0.4, h=0.3, n=16, seed=16 * c).reject for c in range(20))
+    assert one == 20 and two == 0
