@@ -39,6 +39,10 @@ tests use (cdf, log cdf, quantile, over arrays) in `mcstat.distributions`.
 `compare_efficiency` times two estimators itself (interleaved batches)
 and runs `efficiency_test` on their samples and times.
 
+Gradients: `check_gradient` tests a gradient estimator (a differentiable
+renderer's) against central finite differences of the same loss with common
+random numbers, or against a reference estimator of the same derivative.
+
 In a test suite: `mcstat.testing` (assertions, one error budget for the
 whole suite, escalation instead of reruns, and its pytest plugin, enabled
 by ``pytest --mcstat-alpha A``); `Escalation` is its two-stage test.
@@ -109,6 +113,8 @@ from ._power import (  # noqa: E402
 )
 # Renderer checks: do a BSDF's, an emitter's or a warp's sample, pdf and eval agree?
 from ._core import CheckReport, CheckRoute, check_bsdf, check_emitter, check_medium, check_phase, check_warp  # noqa: E402
+# Gradient checks: does an AD gradient agree with finite differences (or a reference)?
+from ._gradient import GradientParameter, GradientReport, check_gradient  # noqa: E402
 # the binomial meta-test and estimator diagnostics
 from .diagnostics import Diagnostics, battery_test, binom_test, diagnose  # noqa: E402
 # the t, chi-squared and F distributions (cdf, log cdf, quantile)
@@ -156,6 +162,9 @@ __all__ = [
     "check_warp",
     "CheckReport",
     "CheckRoute",
+    "check_gradient",
+    "GradientReport",
+    "GradientParameter",
     "distributions",
     *_errors.__all__,
     # equivalence, power and sample size
