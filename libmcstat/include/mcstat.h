@@ -1897,7 +1897,10 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                the exact binomial test against n mass[k]; the route's    */
 /*                p-value is the smallest times (lobes + 1) (Bonferroni),   */
 /*                where/value the lobe furthest off (its direction, share    */
-/*                and mass).  Catches pdf() scaled by a constant, samples   */
+/*                and mass).  mcstat_check_medium with escape_transmittance */
+/*                adds the escapes' weights (a t test, in the same         */
+/*                Bonferroni; value: their mean and T(tmax)).  Catches      */
+/*                pdf() scaled by a constant, samples                        */
 /*                lost, a lobe chosen at a rate other than its pdf says.    */
 /*   PDF_VALUE    the pdf sample() reports equals pdf() at the sampled point */
 /*                (deterministic: relative tolerance rtol at every sample); */
@@ -1998,16 +2001,26 @@ typedef struct mcstat_check_options {
                               of samples (measured on Mitsuba 3); a real bug of a region of
                               probability 1e-3 is still seen at n = 1e5 */
     double reserved[4];    /* zero */
+    /* since 0.3 (MCSTAT_CHECK_OPTIONS_SIZE_0_3): */
+    double escape_transmittance; /* mcstat_check_medium: < 0 (default -1): a flight that passes the
+                              surface is a failed sample, weight 0, its weight not checked; in
+                              [0, 1]: T(tmax), the transmittance to the surface, and such a flight
+                              reports pdf 0 and the weight it carries on (1 for analog tracking,
+                              T(tmax)/P(escape) when the distances follow another density): MASS
+                              also tests that the mean over the n flights of the escapes' weights
+                              (0 for a scattering) equals T(tmax), by a two-sided t test.  Needs
+                              MCSTAT_WEIGHT_OVER_PDF */
     /* routes must not be 0; reserved fields and the model's must be zero
      * (later releases may give them a meaning): MCSTAT_EINVAL otherwise. */
 } mcstat_check_options;
 
 #define MCSTAT_CHECK_ROUTE_ALL ((1u << MCSTAT_CHECK_ROUTE_COUNT) - 1u)
 #define MCSTAT_CHECK_OPTIONS_INIT \
-    {sizeof(mcstat_check_options), MCSTAT_CHECK_ROUTE_ALL, 0, 0, 0, 0, 0, 0, 65536, 1e-3, 1e-4, {0, 0, 0, 0}}
+    {sizeof(mcstat_check_options), MCSTAT_CHECK_ROUTE_ALL, 0, 0, 0, 0, 0, 0, 65536, 1e-3, 1e-4, {0, 0, 0, 0}, -1.0}
 
 /* sizeof(mcstat_check_options) in each release that changed it. */
 #define MCSTAT_CHECK_OPTIONS_SIZE_0_2 96u
+#define MCSTAT_CHECK_OPTIONS_SIZE_0_3 104u
 /* Sets the first `size` bytes of *opt to MCSTAT_CHECK_OPTIONS_INIT, with
  * opt->size = size (as mcstat_gof_options_init_size). */
 MCSTAT_API int mcstat_check_options_init_size(mcstat_check_options *opt, size_t size);
@@ -2095,7 +2108,10 @@ typedef struct mcstat_check_report {
                        albedo; the albedo fields above are the smooth part's); 0 without */
                     uint64_t lobes, n_lobe;
                     double lobe_mass, lobe_albedo;
-                    double reserved_more[2];
+                    /* mcstat_check_medium with escape_transmittance >= 0: the mean over
+                       the n flights of the escapes' weights and its standard error (NaN
+                       otherwise, and the se with fewer than 2 escapes) */
+                    double escape_weight, escape_weight_se;
                 };
             };
         };
@@ -2144,11 +2160,12 @@ typedef struct mcstat_check_report {
 /*                         at tmax is a failed sample (pdf 0, weight 0), so  */
 /*                         MASS compares the share of flights stopping       */
 /*                         before tmax with the integral of pdf() (1 -       */
-/*                         exp(-sigma_t tmax)): pdf() must be 0 beyond tmax. */
+/*                         exp(-sigma_t tmax)): pdf() must be 0 beyond tmax; */
+/*                         with options' escape_transmittance, an escape's  */
+/*                         weight is checked too.                            */
 /*                         eval(t) is the integrand the weight estimates,    */
 /*                         sigma_s T(t) (the weight sigma_s T / pdf);        */
-/*                         ENERGY: albedo <= 1.  The weight of a flight that */
-/*                         passed the surface is not checked.  sigma_ref >   */
+/*                         ENERGY: albedo <= 1.  sigma_ref >                 */
 /*                         0 finite (MCSTAT_EINVAL otherwise): near the      */
 /*                         medium's sigma_t the points are nearly uniform;   */
 /*                         far below it they crowd at x = 0 (cells still     */
@@ -2160,6 +2177,8 @@ typedef struct mcstat_check_report {
 /* besides sorting for KS (figures: bench/RESULTS.md).                      */
 /* Statuses: MCSTAT_EINVAL (NULL model, callbacks or out, a bad domain,      */
 /* n_uniforms or weight, lobes given to a check other than mcstat_check_bsdf, */
+/* escape_transmittance NaN or above 1, or at least 0 for a check other     */
+/* than mcstat_check_medium or with MCSTAT_WEIGHT_VALUE,                     */
 /* a BSDF, emitter, phase function or medium without */
 /* eval or with sample_reports 0, a phase function off SPHERE, a medium    */
 /* off INTERVAL or sigma_ref not > 0 finite, n < 1000, alpha outside       */

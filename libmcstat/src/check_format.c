@@ -159,6 +159,12 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
         if (r->lobes > 0) /* the lobe furthest off */
             put(t, "; lobe (%.6g, %.6g, %.6g) share %.6g vs mass %.6g", rr->where[0], rr->where[1], rr->where[2],
                 rr->value[0], rr->value[1]);
+        if (r->kind == MCSTAT_CHECK_KIND_MEDIUM && !isnan(r->escape_weight))
+        {
+            put(t, "; escape weights %.6g (se ", r->escape_weight);
+            put_g(t, "%.2g", r->escape_weight_se);
+            put(t, ") vs T(tmax) %.6g", rr->value[1]);
+        }
         break;
     case MCSTAT_CHECK_ROUTE_INTEGRALS: put(t, "W = %.4g, df = %.0f", rr->statistic, rr->df); break;
     case MCSTAT_CHECK_ROUTE_KS:

@@ -203,13 +203,41 @@ static void route_cells(run *r, const sums *sm, double level)
 /* The discrete lobes' counts, each against n mass[k] by the exact binomial
  * test, with the smooth part's p-value p: the smallest times (lobes + 1).
  * where/value: the lobe furthest off, its share and its mass. */
+/* The parts of the MASS route: the smooth successes, each discrete lobe,
+ * and a medium's escape weights; Bonferroni across them. */
+static int mass_parts(const run *r) { return 1 + r->n_lobes + (r->o.escape_transmittance >= 0.0); }
+
+/* A medium's escapes: the mean over the n flights of their weights (0 for
+ * a scattering) against T(tmax), a two-sided t test; p = 1 (no answer)
+ * with fewer than 2 escapes of weight > 0, whose spread says nothing. */
+static double escape_weights(run *r, const sums *sm)
+{
+    double T = r->o.escape_transmittance;
+    mcstat_moments y = sm->escapes, zeros;
+    uint64_t n = r->pl.n;
+    if (mcstat_moments_from_summary(n - y.n, 0.0, 0.0, &zeros) != MCSTAT_OK ||
+        mcstat_moments_merge(&y, &zeros) != MCSTAT_OK)
+        return 1.0;
+    r->out->escape_weight = mcstat_moments_mean(&y);
+    r->out->route[MCSTAT_CHECK_ROUTE_MASS].value[0] = r->out->escape_weight;
+    r->out->route[MCSTAT_CHECK_ROUTE_MASS].value[1] = T;
+    if (sm->n_escape < 2)
+        return 1.0;
+    r->out->escape_weight_se = mcstat_moments_sd(&y) / sqrt((double)n);
+    mcstat_result res;
+    int st = mcstat_t_test_1_moments(&y, T, MCSTAT_TWO_SIDED, 0.5, &res);
+    if (st == MCSTAT_EDEGENERATE) /* every flight escaped with the same weight */
+        return fabs(r->out->escape_weight - T) <= r->rtol * fmax(T, r->out->escape_weight) ? 1.0 : 0.0;
+    return st == MCSTAT_OK ? res.p_value : 1.0;
+}
+
 static double lobe_counts(run *r, mcstat_check_route_result *rr, double p, double level)
 {
     int K = r->n_lobes;
     if (K == 0)
         return p;
     double least = p, least_lobe = 2.0, n = (double)r->pl.n;
-    double z = mcstat__norm_quantile(level / 2 / (K + 1), 1) + POWER_Z;
+    double z = mcstat__norm_quantile(level / 2 / mass_parts(r), 1) + POWER_Z;
     /* the budget is the weakest part's: a smooth part of mass 0 has none */
     if (!(r->out->mass > 0.0))
         rr->effect = rr->detectable = rr->n_for_1pct = NAN;
@@ -240,7 +268,7 @@ static double lobe_counts(run *r, mcstat_check_route_result *rr, double p, doubl
         }
         least = fmin(least, pk);
     }
-    return fmin(1.0, (double)(K + 1) * least);
+    return least;
 }
 
 static void route_mass(run *r, const sums *sm, double level)
@@ -254,7 +282,7 @@ static void route_mass(run *r, const sums *sm, double level)
     r->out->mass_sampled_se = sqrt(var_m);
     double phat = (double)x / (double)n, p;
     /* with lobes, each part is held to level/(lobes + 1) (Bonferroni) */
-    double z = mcstat__norm_quantile(level / 2 / (r->n_lobes + 1), 1) + POWER_Z;
+    double z = mcstat__norm_quantile(level / 2 / mass_parts(r), 1) + POWER_Z;
     rr->checked = n;
     rr->count = x;
     rr->state = MCSTAT_ROUTE_RAN;
@@ -303,7 +331,10 @@ static void route_mass(run *r, const sums *sm, double level)
         double room = 0.01 * mm - err;
         rr->n_for_1pct = room > 0.0 ? fmax(z * z * mm * (1.0 - mm) / (room * room), -log(0.2) / 0.01) : INFINITY;
     }
-    rr->p_value = lobe_counts(r, rr, p, level);
+    double least = lobe_counts(r, rr, p, level);
+    if (r->o.escape_transmittance >= 0.0)
+        least = fmin(least, escape_weights(r, sm));
+    rr->p_value = fmin(1.0, (double)mass_parts(r) * least);
 }
 
 /* Solves the Wald statistic d' S^-1 d by Cholesky, dropping regions whose

@@ -36,7 +36,7 @@ enum { STREAM_PILOT = 1, STREAM_TEST = 2, STREAM_EVAL = 3, STREAM_KEEP_SAMPLE = 
  * an independent half in about 30% of runs, twice it in about 6%. */
 #define ENVELOPE_MARGIN 2.0
 
-static const uint32_t known_sizes[] = {MCSTAT_CHECK_OPTIONS_SIZE_0_2};
+static const uint32_t known_sizes[] = {MCSTAT_CHECK_OPTIONS_SIZE_0_2, MCSTAT_CHECK_OPTIONS_SIZE_0_3};
 
 static const mcstat_check_options defaults = MCSTAT_CHECK_OPTIONS_INIT;
 
@@ -134,6 +134,9 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
         if ((i < 3 && m->reserved_rest[i] != 0.0) || o->reserved[i] != 0.0)
             return MCSTAT_EINVAL; /* kept zero, so that later releases can give them a meaning */
     if (m->lobes && kind != MCSTAT_CHECK_KIND_BSDF)
+        return MCSTAT_EINVAL;
+    if (isnan(o->escape_transmittance) || o->escape_transmittance > 1.0 ||
+        (o->escape_transmittance >= 0.0 && (kind != MCSTAT_CHECK_KIND_MEDIUM || m->weight != MCSTAT_WEIGHT_OVER_PDF)))
         return MCSTAT_EINVAL;
     if (o->reserved_i != 0)
         return MCSTAT_EINVAL;
@@ -491,9 +494,15 @@ static int tested_sample(run *r, sums *sm)
             const double *x = r->s.x + i * dims;
             double p = r->s.p[i], w = r->s.w[i];
             if (pl->reports && p == 0.0) {
-                /* a failed sample contributes a zero weight */
-                if (w != 0.0 && deterministic)
+                /* a failed sample contributes a zero weight; an escape the weight it carries on */
+                if (r->o.escape_transmittance >= 0.0) {
+                    int s1 = mcstat_moments_add(&sm->escapes, w);
+                    if (s1)
+                        return s1;
+                    sm->n_escape += w > 0.0;
+                } else if (w != 0.0 && deterministic) {
                     compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, 0.0);
+                }
                 continue;
             }
             int lobe = r->n_lobes ? lobe_of(r, x) : -1;
@@ -852,6 +861,8 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     sums sm;
     memset(&sm, 0, sizeof sm);
     mcstat_moments_init(&sm.all);
+    mcstat_moments_init(&sm.escapes);
+    out->escape_weight = out->escape_weight_se = NAN;
     st = model->lobes ? fetch_lobes(&r) : MCSTAT_OK;
     if (st == MCSTAT_OK)
         st = pilot_and_cells(&r);

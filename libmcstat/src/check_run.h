@@ -96,6 +96,8 @@ typedef struct sums {
     mcstat_moments all;                  /* every weight (0 for failed samples) */
     uint64_t n_succ, n_w, n_v, n_recip;   /* n_succ: successes off the discrete lobes */
     uint64_t n_lobe;                      /* successes on them */
+    mcstat_moments escapes;               /* escape_transmittance >= 0: the escapes' weights */
+    uint64_t n_escape;                    /* escapes of weight > 0 */
 } sums;
 
 /* ---- the routes' statistics (check_routes.c) ------------------------------ */

@@ -1,7 +1,8 @@
 /* mcstat_check_phase and mcstat_check_medium: an isotropic phase function
  * (correct; eval and weight 0.9 p: caught by energy), homogeneous free
  * flights up to a surface (correct; pdf() with sigma_t 10% off: caught by
- * pdf_value), and bad arguments. */
+ * pdf_value), the escapes' weights against T(tmax) (right, 10% low, and
+ * a caller with 0.2's options), and bad arguments. */
 #include "harness.h"
 #include "mcstat.h"
 
@@ -49,6 +50,15 @@ static int med_sample(void *user, const double *wi, const double *u, size_t n, d
         int in = t < TMAX;
         x[k] = in ? t : 0, p[k] = in ? dens(t, ST) : 0, w[k] = in ? SS / ST : 0;
     }
+    return 0;
+}
+/* analog flights whose escapes carry weight esc_weight (1 is right) */
+static double esc_weight = 1.0;
+static int med_sample_esc(void *user, const double *wi, const double *u, size_t n, double *x, double *w, double *p)
+{
+    med_sample(user, wi, u, n, x, w, p);
+    for (size_t k = 0; k < n; k++)
+        if (p[k] == 0) w[k] = esc_weight;
     return 0;
 }
 static int med_pdf(void *user, const double *wi, const double *x, size_t n, double *out)
@@ -102,6 +112,40 @@ int main(void)
     CHECK_INT(mcstat_check_medium(&d, 0.0, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
     CHECK_INT(mcstat_check_medium(&d, NAN, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
     CHECK_INT(mcstat_check_medium(&d, INFINITY, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
+    /* escapes' weights against T(tmax) (options of 0.3), and a 0.2-sized options struct */
+    md.pdf_sigma = ST;
+    mcstat_check_options o;
+    mcstat_check_options_init(&o);
+    CHECK(o.escape_transmittance < 0);
+    o.escape_transmittance = exp(-ST * TMAX);
+    d.sample = med_sample_esc;
+    CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_OK);
+    CHECK_MSG(!r.reject, "escapes of weight 1: p = %g", r.p_value);
+    CHECK_REL(r.escape_weight, (double)r.n_failed / (double)r.n, 1e-12, "analog: the escape share");
+    CHECK_REL(r.route[MCSTAT_CHECK_ROUTE_MASS].value[1], exp(-ST * TMAX), 1e-15, "T(tmax)");
+    CHECK_INT(mcstat_check_format(&r, buf, sizeof buf, NULL), MCSTAT_OK);
+    CHECK(strstr(buf, "escape weights") != NULL);
+    esc_weight = 0.9;
+    CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_OK);
+    CHECK(r.reject && r.route[MCSTAT_CHECK_ROUTE_MASS].reject);
+    mcstat_check_options old;
+    CHECK_INT(mcstat_check_options_init_size(&old, MCSTAT_CHECK_OPTIONS_SIZE_0_2), MCSTAT_OK);
+    old.escape_transmittance = 0.5; /* beyond the caller's size: never read */
+    CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &old, NULL, 0, &r), MCSTAT_OK);
+    CHECK(r.reject && r.route[MCSTAT_CHECK_ROUTE_WEIGHT].reject && isnan(r.escape_weight)); /* escapes must weigh 0 */
+    esc_weight = 0.0;
+    CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &old, NULL, 0, &r), MCSTAT_OK);
+    CHECK(!r.reject);
+    o.escape_transmittance = NAN;
+    CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_EINVAL);
+    o.escape_transmittance = 1.5;
+    CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_EINVAL);
+    o.escape_transmittance = 0.5;
+    d.weight = MCSTAT_WEIGHT_VALUE;
+    CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_EINVAL);
+    d.weight = MCSTAT_WEIGHT_OVER_PDF;
+    CHECK_INT(mcstat_check_phase(&m, wi, 5000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_EINVAL);
+    d.sample = med_sample;
     d.domain = MCSTAT_DOMAIN_SQUARE;
     CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
     return h_report("test_check_phase");

@@ -225,6 +225,89 @@ def test_escape_probability_is_what_mass_tests():
     assert r.reject and r.route("mass").reject, str(r)
 
 
+class Weighted:
+    """Distances drawn from exp(sigma_d) rather than from the medium's
+    sigma_t, and weighted: a scattering at t carries sigma_s T(t) / pdf(t),
+    an escape T(tmax) / P(escape) (analog: sigma_d = sigma_t, escape weight
+    1).  bug: "escape" (the escape's weight T(tmax), the division by
+    P(escape) forgotten), "claim" (the transmittance claimed 10% high)."""
+
+    def __init__(self, sigma_d=1.2, sigma_t=2.0, sigma_s=1.5, tmax=1.0, bug=None):
+        self.sd, self.st, self.ss, self.tmax, self.bug = sigma_d, sigma_t, sigma_s, tmax, bug
+        self.T = math.exp(-sigma_t * tmax)
+
+    def claim(self):
+        return min(self.T * (1.1 if self.bug == "claim" else 1.0), 1.0)
+
+    def sample(self, u):
+        t = -np.log1p(-u[:, 0]) / self.sd
+        inside = t < self.tmax
+        ti = np.where(inside, t, 0.0)
+        p = np.where(inside, self.sd * np.exp(-self.sd * ti), 0.0)
+        w_in = self.ss * np.exp(-self.st * ti) / np.where(inside, p, 1.0)
+        escape = self.T if self.bug == "escape" else self.T / math.exp(-self.sd * self.tmax)
+        return ti, np.where(inside, w_in, escape), p
+
+    def pdf(self, t):
+        with np.errstate(invalid="ignore"):
+            return np.where(t < self.tmax, self.sd * np.exp(-self.sd * np.minimum(t, 1e300)), 0.0)
+
+    def eval(self, t):
+        with np.errstate(invalid="ignore"):
+            return np.where(t < self.tmax, self.ss * np.exp(-self.st * np.minimum(t, 1e300)), 0.0)
+
+
+def weighted_check(m, **kw):
+    return mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, transmittance=m.claim(), **kw)
+
+
+@pytest.mark.parametrize("sigma_d", [2.0, 1.2, 3.0])
+def test_escape_weights_pass_when_right(sigma_d):
+    m = Weighted(sigma_d=sigma_d)
+    r = weighted_check(m, n=20000, seed=1)
+    assert not r.reject, str(r)
+    assert r.escape_weight == pytest.approx(m.T, rel=5 * r.escape_weight_se / m.T + 1e-12)
+    assert r.route("mass").values[1] == m.claim()
+    assert "escape weights" in str(r) and "vs T(tmax)" in str(r)
+
+
+@pytest.mark.parametrize("bug", ["escape", "claim"])
+def test_escape_weight_bugs_are_caught_by_mass(bug):
+    for seed in range(5):
+        r = weighted_check(Weighted(bug=bug), n=20000, seed=seed)
+        assert r.reject and r.route("mass").reject, (seed, str(r))
+
+
+def test_without_transmittance_escape_weights_are_not_looked_at_but_must_be_0():
+    m = Weighted()
+    r = mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, n=5000, seed=1)
+    assert r.escape_weight is None and r.reject and r.route("weight").reject  # escapes must weigh 0 then
+    h = Homogeneous()
+    r = mcstat.check_medium(h.sample, h.eval, h.pdf, sigma_ref=2.0, n=5000, seed=1)
+    assert not r.reject and r.escape_weight is None
+
+
+def test_analog_escapes_weigh_one():
+    """Analog tracking (distances from sigma_t itself): an escape carries
+    weight 1, and its mean over the flights is the escape share."""
+    m = Weighted(sigma_d=2.0)
+    r = weighted_check(m, n=20000, seed=3)
+    assert not r.reject
+    assert r.escape_weight == pytest.approx(r.n_failed / r.n, rel=1e-12)
+
+
+def test_transmittance_bad_arguments():
+    m = Weighted()
+    for bad in (-0.1, 1.5, float("nan")):
+        with pytest.raises(mcstat.InvalidArgumentError, match="transmittance"):
+            mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, transmittance=bad, n=2000)
+    with pytest.raises(mcstat.InvalidArgumentError, match="over_pdf"):
+        mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, transmittance=0.5, weight="value", n=2000)
+    ph = Phase("hg", 0.3)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'transmittance'"):
+        mcstat.check_phase(ph.sample, ph.eval, ph.pdf, WI, transmittance=0.5, n=2000)
+
+
 def test_medium_bad_arguments():
     m = Homogeneous()
     args = (m.sample, m.eval, m.pdf)
@@ -247,8 +330,8 @@ def test_medium_bad_arguments():
 
 @pytest.mark.stats
 def test_phase_and_medium_reject_correct_models_at_rate_alpha():
-    """200 seeds x 4 correct models (HG 0.7, HG -0.3, Rayleigh, the
-    homogeneous medium) at n = 4000, alpha = 0.05: the rejections must not
+    """200 seeds x 5 correct models (HG 0.7, HG -0.3, Rayleigh, the
+    homogeneous medium, the weighted one with its escape weights) at n = 4000, alpha = 0.05: the rejections must not
     be significantly above 5% (battery meta-test at 0.001).  About 10 s."""
     rejected = runs = 0
     for seed in range(200):
@@ -256,6 +339,7 @@ def test_phase_and_medium_reject_correct_models_at_rate_alpha():
             rejected += phase_check(Phase(kind, g), n=4000, seed=seed, alpha=0.05).reject
             runs += 1
         rejected += medium_check(Homogeneous(), n=4000, seed=seed, alpha=0.05).reject
-        runs += 1
+        rejected += weighted_check(Weighted(), n=4000, seed=seed, alpha=0.05).reject
+        runs += 2
     meta = mcstat.battery_test(rejected, 0.05, n=runs, alternative="greater", meta_alpha=0.001)
     assert not meta.reject, (rejected, runs)

@@ -396,6 +396,16 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     if (!(o.tolerated >= 0.0 && o.tolerated < 1.0))
         throw_invalid("tolerated must be in [0, 1)");
 
+    if (kw.contains("transmittance") && !py::object(kw["transmittance"]).is_none()) {
+        if (kind != MCSTAT_CHECK_KIND_MEDIUM)
+            throw py::type_error(std::string(fname) + "() got an unexpected keyword argument 'transmittance'");
+        o.escape_transmittance = get_double(py::object(kw["transmittance"]).ptr(), "transmittance");
+        if (!(o.escape_transmittance >= 0.0 && o.escape_transmittance <= 1.0))
+            throw_invalid("transmittance must be in [0, 1] (the transmittance to the surface), got " +
+                          repr(py::object(kw["transmittance"]).ptr()));
+        if (m.weight != MCSTAT_WEIGHT_OVER_PDF)
+            throw_invalid("transmittance needs weight='over_pdf' (an escape's weight is what it carries on)");
+    }
     uint64_t n = get_count(get("n", py::int_(100000)), "n");
     if (n < 1000)
         throw_invalid("n must be at least 1000, got " + std::to_string(n));
@@ -421,7 +431,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     for (auto item : kw) {
         static const char *known[] = {"domain", "n_uniforms", "weight", "routes", "energy", "stochastic",
                                       "reciprocal", "cells", "n_pilot", "n_eval", "batch", "rtol", "tolerated", "n",
-                                      "seed", "alpha", "sigma_ref", "lobes"};
+                                      "seed", "alpha", "sigma_ref", "lobes", "transmittance"};
         std::string k = py::str(item.first);
         if (k == "sigma_ref" && kind != MCSTAT_CHECK_KIND_MEDIUM)
             throw py::type_error(std::string(fname) + "() got an unexpected keyword argument 'sigma_ref'");
@@ -581,7 +591,7 @@ the phase function is given (the renderer's convention: mcstat only holds it
 fixed).
 )doc";
 
-const char *MEDIUM_DOC = R"doc(check_medium(sample, eval, pdf, *, sigma_ref, n=100_000, alpha=0.01, seed=0, n_uniforms=1, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
+const char *MEDIUM_DOC = R"doc(check_medium(sample, eval, pdf, *, sigma_ref, transmittance=None, n=100_000, alpha=0.01, seed=0, n_uniforms=1, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
 
 Does a medium's distance sampling along a ray agree with its density and
 its weights?  ``sample(u) -> (t, weight, pdf)``: t (k,) distances >= 0 of
@@ -594,10 +604,17 @@ T(t).  Inside, t is mapped to x = 1 - exp(-sigma_ref t) on [0, 1]
 (mcstat_check_medium) and checked by check_bsdf's routes: cells, mass (the
 share of flights stopping before tmax against the integral of pdf(), so
 the escape probability exp(-sigma_t tmax) is what is tested), pdf_value,
-weight, support, integrals, energy (albedo <= 1), ks.  The weight of a
-flight that passed the surface is not checked.  sigma_ref: a positive
-coefficient near the medium's sigma_t (e.g. the majorant); t may be
-asked at +inf.
+weight, support, integrals, energy (albedo <= 1), ks.  sigma_ref: a
+positive coefficient near the medium's sigma_t (e.g. the majorant); t may
+be asked at +inf.
+
+transmittance: None (default), the weight of a flight that passed the
+surface is not checked (it must be 0).  A number in [0, 1], T(tmax), the
+transmittance to the surface: such a flight reports pdf 0 and the weight
+it carries on (1 for analog tracking, T(tmax)/P(escape) when the distances
+follow another density), and "mass" also tests that the mean over the n
+flights of the escapes' weights (0 for a scattering) equals T(tmax)
+(report.escape_weight, escape_weight_se).
 )doc";
 
 } // namespace
@@ -680,6 +697,11 @@ void register_check(py::module_ &mod)
                                "The sum of the discrete lobes' masses (probabilities).")
         .def_property_readonly("lobe_albedo", [](const Report &r) { return r.r.lobe_albedo; },
                                "The sum of the discrete lobes' values: the discrete part of the albedo.")
+        .def_property_readonly("escape_weight", [](const Report &r) { return nan_to_none(r.r.escape_weight); },
+                               "check_medium with transmittance=: the mean over the n flights of the escapes' "
+                               "weights (0 for a scattering), tested against it by the mass route (None otherwise).")
+        .def_property_readonly("escape_weight_se", [](const Report &r) { return nan_to_none(r.r.escape_weight_se); },
+                               "Its standard error (None with fewer than 2 escapes of weight > 0).")
         .def_property_readonly("mass_sampled", [](const Report &r) { return r.r.mass_sampled; })
         .def_property_readonly("mass_sampled_se", [](const Report &r) { return r.r.mass_sampled_se; })
         .def_property_readonly("mass", [](const Report &r) { return r.r.mass; })
