@@ -521,7 +521,7 @@ lobes : callable, optional
     Discrete (delta) lobes, for BSDFs whose sample() returns specular
     directions: ``lobes(wi) -> (directions, mass, value)``, directions
     (k, 3) with k <= 4, mass (k,) the probability sample() returns each
-    (what it reports as pdf there), value (k,) the integral of f |cos|
+    (what it reports as pdf there), value (k,) the integral of ``f |cos wo|``
     over each (e.g. Fresnel's R).  eval and pdf are the smooth part only.
     A sample within 1e-4 of a lobe's direction is that lobe's: its pdf
     must equal the mass, its weight value/mass, and each lobe's count is
