@@ -21,8 +21,10 @@ homogeneous medium (sigma_t 2, albedo 0.75); sample() is
 sample_interaction, an interaction at t < TMAX a scattering with the
 weight sigma_s T / pdf from transmittance_eval_pdf and
 get_scattering_coefficients (what Mitsuba's volumetric path tracer
-multiplies by), one that passes TMAX a failed sample; pdf(t) and eval(t)
-(sigma_s T) come from transmittance_eval_pdf at an interaction moved to t.
+multiplies by), one that passes TMAX an escape (pdf 0) with the weight 1
+it carries on, checked against T(TMAX) (check_medium's transmittance=);
+pdf(t) and eval(t) (sigma_s T) come from transmittance_eval_pdf at an
+interaction moved to t.
 
 Planted bugs (BUG = 1.1):
   phase  pdf_g    pdf() from the same phase function with g * 1.1 (hg only);
@@ -42,6 +44,8 @@ Planted bugs (BUG = 1.1):
                   correct one's
          restart  the distance of the last tentative flight alone (the
                   null collisions' distances dropped)
+  both   escape   an escape's weight times the albedo (0.75, 0.8), as if
+  media           it had scattered
 """
 import argparse
 import sys
@@ -146,7 +150,9 @@ class MitsubaMedium:
         for k in range(len(u)):
             mei = self.sampler_med.sample_interaction(self.ray, float(u[k]), 0, True)
             if not (mei.is_valid() and mei.t < TMAX):
-                continue  # passed the surface: a failed sample for mcstat
+                # passed the surface: pdf 0 and the throughput it carries on (analog: 1)
+                w[k] = HET_ALBEDO if self.bug == "escape" else 1.0
+                continue
             if self.bug == "sampler":  # the correct medium's values at the wrongly drawn distance
                 m = mi.MediumInteraction3f(self.template)
                 m.t = mei.t
@@ -154,7 +160,7 @@ class MitsubaMedium:
             tr, pdf, sigma_s = self._tr_pdf(mei)
             t[k], p[k], w[k] = mei.t, pdf, sigma_s * tr / pdf
         if self.bug == "weight":
-            w *= BUG
+            w = np.where(p > 0, w * BUG, w)
         return t, w, p
 
     def _at(self, t, which):
@@ -175,7 +181,8 @@ class MitsubaMedium:
         return self._at(t, "eval")
 
     def check(self, n, seed):
-        return mcstat.check_medium(self.sample, self.eval, self.pdf, sigma_ref=SIGMA_T, n=n, seed=seed, alpha=ALPHA)
+        return mcstat.check_medium(self.sample, self.eval, self.pdf, sigma_ref=SIGMA_T, n=n, seed=seed, alpha=ALPHA,
+                                   transmittance=float(np.exp(-SIGMA_T * TMAX)))
 
 
 # A heterogeneous medium: a random 8 x 4 x 4 grid of densities in [0.2, 1]
@@ -240,7 +247,7 @@ class MitsubaHeterogeneous:
             xi = (_splitmix(key ^ _splitmix(2 * j)) >> 11) * 2.0**-53
             mei = self.tracker.sample_interaction(ray, float(np.float32(min(xi, _ONE_MINUS))), 0, True)
             if not (mei.is_valid() and mei.t < ray.maxt):
-                return None  # passed the surface
+                return None, (HET_ALBEDO if self.bug == "escape" else 1.0)  # passed the surface (analog: 1)
             t_new = mei.t if self.bug == "restart" else t + mei.t
             st, maj, ss = mei.sigma_t[0], mei.combined_extinction[0], mei.sigma_s[0]
             accept = st / maj * (BUG if self.bug == "accept" else 1.0)
@@ -254,14 +261,14 @@ class MitsubaHeterogeneous:
     def sample(self, u):
         t, w, p = np.zeros(len(u)), np.zeros(len(u)), np.zeros(len(u))
         for k in range(len(u)):
-            f = self._flight(u[k, 0], u[k, 1])
-            if f is None:
+            tk, w[k] = self._flight(u[k, 0], u[k, 1])
+            if tk is None:  # passed the surface: pdf 0, the throughput it carries on
                 continue
-            t[k], w[k] = f
-            s, tau = self._sigma_tau(t[k])
+            t[k] = tk
+            s, tau = self._sigma_tau(tk)
             p[k] = s * np.exp(-tau)
         if self.bug == "weight":
-            w *= BUG
+            w = np.where(p > 0, w * BUG, w)
         return t, w, p
 
     def pdf(self, t):
@@ -275,16 +282,16 @@ class MitsubaHeterogeneous:
 
     def check(self, n, seed):
         return mcstat.check_medium(self.sample, self.eval, self.pdf, sigma_ref=2.0, n=n, seed=seed, alpha=ALPHA,
-                                   n_uniforms=2)
+                                   n_uniforms=2, transmittance=float(np.exp(-self.tau[-1])))
 
 
 CASES = [
     ("hg g=0.7", lambda bug: MitsubaPhase({"type": "hg", "g": 0.7}, bug), (None, "pdf_g", "weight", "norm")),
     ("hg g=-0.3", lambda bug: MitsubaPhase({"type": "hg", "g": -0.3}, bug), (None, "pdf_g", "weight", "norm")),
     ("rayleigh", lambda bug: MitsubaPhase({"type": "rayleigh"}, bug), (None, "pdf", "weight", "norm")),
-    ("homogeneous (sigma_t 2, albedo 0.75, tmax 1)", MitsubaMedium, (None, "pdf", "weight", "sampler")),
+    ("homogeneous (sigma_t 2, albedo 0.75, tmax 1)", MitsubaMedium, (None, "pdf", "weight", "sampler", "escape")),
     ("heterogeneous grid, delta tracking (sigma_t 0.6..2.9, tmax 0.9)", MitsubaHeterogeneous,
-     (None, "accept", "weight", "sampler", "restart")),
+     (None, "accept", "weight", "sampler", "restart", "escape")),
 ]
 
 

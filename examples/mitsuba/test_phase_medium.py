@@ -3,7 +3,8 @@ scalar_rgb): hg, the homogeneous medium and delta tracking through a
 heterogeneous grid pass at seed 0 (a fixed-seed regression test of the
 adapters; the rates over seeds are RESULTS.md's "Phase functions and
 distance sampling"), and one planted bug of each is rejected by the route
-that sees it.  Skips as test_mitsuba.py."""
+that sees it (the media's escapes weighed against T(tmax) too).  Skips as
+test_mitsuba.py."""
 import os
 import sys
 
@@ -50,7 +51,8 @@ def test_correct_models_pass_at_seed_0(name):
 
 @pytest.mark.parametrize("name,bug,route", [("hg", "pdf_g", "pdf_value"), ("homogeneous", "sampler", "mass"),
                                             ("heterogeneous", "restart", "cells"),
-                                            ("heterogeneous", "accept", "mass")])
+                                            ("heterogeneous", "accept", "mass"),
+                                            ("homogeneous", "escape", "mass"), ("heterogeneous", "escape", "mass")])
 def test_planted_bugs_are_rejected(name, bug, route):
     r = make(name, bug).check(10000, 0)
     assert r.reject and route in rejected(r), rejected(r)
