@@ -30,6 +30,8 @@ package mcstat
 // static uint64_t gomcstat_n_lobe(const mcstat_check_report *r) { return r->n_lobe; }
 // static double gomcstat_lobe_mass(const mcstat_check_report *r) { return r->lobe_mass; }
 // static double gomcstat_lobe_albedo(const mcstat_check_report *r) { return r->lobe_albedo; }
+// static double gomcstat_escape_weight(const mcstat_check_report *r) { return r->escape_weight; }
+// static double gomcstat_escape_weight_se(const mcstat_check_report *r) { return r->escape_weight_se; }
 // static void gomcstat_model_callbacks(mcstat_check_model *m, void *user, int with_eval, int with_lobes) {
 //     m->user = user;
 //     m->sample = gomcstat_sample;
@@ -254,6 +256,16 @@ type CheckOptions struct {
 	Batch      uint64  // points per callback call
 	RTol       float64 // relative tolerance of the deterministic routes
 	Tolerated  float64 // share of points a deterministic route lets differ beyond RTol
+	// EscapeTransmittance is CheckMedium's only (the other checks refuse
+	// it).  nil (the default): a flight that passes the surface is a
+	// failed sample (pdf 0), which must weigh 0.  A value T in [0, 1],
+	// T(tmax), the transmittance to the surface: such a flight reports pdf 0 and the weight it carries on (1 for analog
+	// tracking, T(tmax)/P(escape) when the distances follow another
+	// density), and RouteMass also tests, by a two-sided t test in the
+	// same Bonferroni as its other parts, that the mean over the n flights
+	// of the escapes' weights (0 for a scattering) equals T
+	// (CheckReport.EscapeWeight).  Needs WeightOverPDF.
+	EscapeTransmittance *float64
 }
 
 func checkOptionsInit() C.struct_mcstat_check_options {
@@ -283,8 +295,30 @@ func (opt *CheckOptions) toC() C.struct_mcstat_check_options {
 		o.batch = C.uint64_t(opt.Batch)
 		o.rtol = C.double(opt.RTol)
 		o.tolerated = C.double(opt.Tolerated)
+		if opt.EscapeTransmittance != nil {
+			o.escape_transmittance = C.double(*opt.EscapeTransmittance)
+		}
 	}
 	return o
+}
+
+// escapeTransmittance checks opt.EscapeTransmittance for check (m nil:
+// its value only), as the Python binding does, with messages naming it;
+// C's EINVAL would say nothing, and takes a negative value as off.
+func escapeTransmittance(opt *CheckOptions, check string, m *Model) error {
+	if opt == nil || opt.EscapeTransmittance == nil {
+		return nil
+	}
+	t := *opt.EscapeTransmittance
+	switch {
+	case check != "" && check != "CheckMedium":
+		return invalid(check + ": EscapeTransmittance is CheckMedium's only")
+	case !(t >= 0 && t <= 1):
+		return invalid(fmt.Sprintf("EscapeTransmittance must be in [0, 1] (the transmittance to the surface), got %v", t))
+	case m != nil && m.Weight != WeightOverPDF:
+		return invalid("EscapeTransmittance needs WeightOverPDF (an escape's weight is what it carries on)")
+	}
+	return nil
 }
 
 // RouteReport is one route's outcome.  Values a route does not produce are
@@ -330,21 +364,27 @@ type CheckReport struct {
 	// Discrete lobes (Model.Lobes): how many, the samples that fell on
 	// them, the sum of their masses and of their values (the discrete part
 	// of the albedo; Albedo is the smooth part's); 0 without.
-	Lobes         uint64
-	NLobe         uint64
-	LobeMass      float64
-	LobeAlbedo    float64
-	Mass          float64
-	MassError     float64
-	MassSampled   float64
-	MassSampledSE float64
-	Albedo        float64
-	AlbedoSE      float64
-	AlbedoEval    float64
-	AlbedoEvalSE  float64
-	TailIndex     [2]float64    // of the weights, of the eval-only estimates
-	Routes        []RouteReport // indexed by Route
-	raw           C.struct_mcstat_check_report
+	Lobes      uint64
+	NLobe      uint64
+	LobeMass   float64
+	LobeAlbedo float64
+	// CheckMedium with EscapeTransmittance: the mean over the n flights of
+	// the escapes' weights (0 for a scattering), which RouteMass tests
+	// against T(tmax), and its standard error (NaN with fewer than 2
+	// escapes of weight > 0); both NaN otherwise.
+	EscapeWeight   float64
+	EscapeWeightSE float64
+	Mass           float64
+	MassError      float64
+	MassSampled    float64
+	MassSampledSE  float64
+	Albedo         float64
+	AlbedoSE       float64
+	AlbedoEval     float64
+	AlbedoEvalSE   float64
+	TailIndex      [2]float64    // of the weights, of the eval-only estimates
+	Routes         []RouteReport // indexed by Route
+	raw            C.struct_mcstat_check_report
 }
 
 func (r *CheckReport) String() string {
@@ -361,6 +401,7 @@ func reportFromC(c *C.struct_mcstat_check_report) *CheckReport {
 		ZeroWeight: uint64(C.gomcstat_zero_weight(c)),
 		Lobes:      uint64(C.gomcstat_lobes_count(c)), NLobe: uint64(C.gomcstat_n_lobe(c)),
 		LobeMass: float64(C.gomcstat_lobe_mass(c)), LobeAlbedo: float64(C.gomcstat_lobe_albedo(c)),
+		EscapeWeight: float64(C.gomcstat_escape_weight(c)), EscapeWeightSE: float64(C.gomcstat_escape_weight_se(c)),
 		Mass: float64(c.mass), MassError: float64(c.mass_error), MassSampled: float64(c.mass_sampled),
 		MassSampledSE: float64(c.mass_sampled_se), Albedo: float64(c.albedo), AlbedoSE: float64(c.albedo_se),
 		AlbedoEval: float64(c.albedo_eval), AlbedoEvalSE: float64(c.albedo_eval_se),
@@ -484,6 +525,9 @@ func checkN(n int) error {
 // incident direction wi with n >= 1000 samples at battery level alpha;
 // opt nil means DefaultCheckOptions().  Reproducible for a given seed.
 func CheckBSDF(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
+	if err := escapeTransmittance(opt, "CheckBSDF", m); err != nil {
+		return nil, err
+	}
 	if err := checkN(n); err != nil {
 		return nil, err
 	}
@@ -500,6 +544,9 @@ func CheckEmitter(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions
 	if err := noLobes(m, "CheckEmitter"); err != nil {
 		return nil, err
 	}
+	if err := escapeTransmittance(opt, "CheckEmitter", m); err != nil {
+		return nil, err
+	}
 	if err := checkN(n); err != nil {
 		return nil, err
 	}
@@ -512,6 +559,9 @@ func CheckEmitter(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions
 // CheckWarp checks a warp (a sampler and its density; Eval is ignored).
 func CheckWarp(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
 	if err := noLobes(m, "CheckWarp"); err != nil {
+		return nil, err
+	}
+	if err := escapeTransmittance(opt, "CheckWarp", m); err != nil {
 		return nil, err
 	}
 	if err := checkN(n); err != nil {
@@ -530,6 +580,9 @@ func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt 
 	if err := noLobes(m, "CheckPhase"); err != nil {
 		return nil, err
 	}
+	if err := escapeTransmittance(opt, "CheckPhase", m); err != nil {
+		return nil, err
+	}
 	if err := checkN(n); err != nil {
 		return nil, err
 	}
@@ -543,9 +596,13 @@ func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt 
 // CheckMedium checks distance sampling along a ray (domain Interval): the
 // callbacks' points are distances t >= 0, mapped inside to x = 1 -
 // exp(-sigmaRef t); a flight that passes the surface is a failed sample
-// (pdf 0, weight 0); Eval is sigma_s T(t).
+// (pdf 0, weight 0), or with opt.EscapeTransmittance one that reports pdf
+// 0 and the weight it carries on; Eval is sigma_s T(t).
 func CheckMedium(m *Model, sigmaRef float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
 	if err := noLobes(m, "CheckMedium"); err != nil {
+		return nil, err
+	}
+	if err := escapeTransmittance(opt, "CheckMedium", m); err != nil {
 		return nil, err
 	}
 	if err := checkN(n); err != nil {
@@ -565,6 +622,9 @@ func CheckWorkSize(m *Model, n int, opt *CheckOptions) (int, error) {
 		return 0, err
 	}
 	if err := checkN(n); err != nil {
+		return 0, err
+	}
+	if err := escapeTransmittance(opt, "", nil); err != nil {
 		return 0, err
 	}
 	o := opt.toC()

@@ -2,7 +2,8 @@ package mcstat
 
 // The renderer checks with Go callbacks: the C tests' models (a disk warp
 // and a Phong-like lobe, tests/c/test_check.c; a coated diffuse BSDF with a
-// discrete lobe, tests/c/test_check_lobes.c), correct ones passing and
+// discrete lobe, tests/c/test_check_lobes.c; free flights whose escapes
+// carry a weight, tests/c/test_check_phase.c), correct ones passing and
 // planted bugs caught by the route that must catch them; callback errors,
 // panics and invalid values reported as ErrCallback, never a crash.
 
@@ -439,6 +440,88 @@ func TestCheckMedium(t *testing.T) {
 	}
 	if _, err := CheckMedium(homogeneous(false), 0, 20000, 1, 0.01, nil); !errors.Is(err, ErrInvalidArgument) {
 		t.Errorf("sigmaRef 0: %v", err)
+	}
+}
+
+// escaping is homogeneous(false) whose escapes (pdf 0) carry the weight
+// escape on, as tests/c/test_check_phase.c's med_sample_esc (1 is right).
+func escaping(escape float64) *Model {
+	m := homogeneous(false)
+	sample := m.Sample
+	m.Sample = func(wi, u, x, weight, pdf []float64) error {
+		if err := sample(wi, u, x, weight, pdf); err != nil {
+			return err
+		}
+		for k := range pdf {
+			if pdf[k] == 0 {
+				weight[k] = escape
+			}
+		}
+		return nil
+	}
+	return m
+}
+
+func withEscapes(t float64) *CheckOptions {
+	o := DefaultCheckOptions()
+	o.EscapeTransmittance = &t
+	return &o
+}
+
+func TestCheckMediumEscapes(t *testing.T) {
+	T := math.Exp(-2.0 * 1.0) // exp(-sigma_t tmax)
+	r, err := CheckMedium(homogeneous(false), 2.0, 20000, 1, 0.01, nil)
+	if err != nil {
+		t.Fatal(err)
+	}
+	if !math.IsNaN(r.EscapeWeight) || !math.IsNaN(r.EscapeWeightSE) {
+		t.Errorf("not checked: escape weight %v (se %v)", r.EscapeWeight, r.EscapeWeightSE)
+	}
+	// analog escapes of weight 1: their mean over the flights is the escape share
+	r, err = CheckMedium(escaping(1), 2.0, 20000, 1, 0.01, withEscapes(T))
+	if err != nil {
+		t.Fatal(err)
+	}
+	share := float64(r.NFailed) / float64(r.N)
+	if r.Reject || math.Abs(r.EscapeWeight-share) > 1e-12*share || !(r.EscapeWeightSE > 0) {
+		t.Errorf("escapes of weight 1: escape weight %v (se %v), share %v\n%v", r.EscapeWeight, r.EscapeWeightSE,
+			share, r)
+	}
+	if v := r.Routes[RouteMass].Value; len(v) != 2 || v[0] != r.EscapeWeight || v[1] != T {
+		t.Errorf("mass route's values %v, want [%v %v]", v, r.EscapeWeight, T)
+	}
+	if !strings.Contains(r.String(), "escape weights") {
+		t.Errorf("report without the escape weights:\n%v", r)
+	}
+	// escapes 10% light: the mass route sees it
+	r, err = CheckMedium(escaping(0.9), 2.0, 20000, 1, 0.01, withEscapes(T))
+	if err != nil {
+		t.Fatal(err)
+	}
+	if !r.Reject || !r.Routes[RouteMass].Reject {
+		t.Errorf("escapes of weight 0.9 pass:\n%v", r)
+	}
+}
+
+func TestCheckMediumEscapesRefused(t *testing.T) {
+	for _, bad := range []float64{math.NaN(), -0.5, 1.5, math.Inf(1)} {
+		_, err := CheckMedium(escaping(1), 2.0, 20000, 1, 0.01, withEscapes(bad))
+		if !errors.Is(err, ErrInvalidArgument) || !strings.Contains(err.Error(), "EscapeTransmittance") {
+			t.Errorf("EscapeTransmittance %v: %v", bad, err)
+		}
+		if _, err := CheckWorkSize(escaping(1), 20000, withEscapes(bad)); !errors.Is(err, ErrInvalidArgument) {
+			t.Errorf("CheckWorkSize, EscapeTransmittance %v: %v", bad, err)
+		}
+	}
+	value := escaping(1)
+	value.Weight = WeightValue
+	_, err := CheckMedium(value, 2.0, 20000, 1, 0.01, withEscapes(0.5))
+	if !errors.Is(err, ErrInvalidArgument) || !strings.Contains(err.Error(), "WeightOverPDF") {
+		t.Errorf("WeightValue: %v", err)
+	}
+	_, err = CheckPhase(isotropic(1), [3]float64{0, 0.6, 0.8}, 5000, 1, 0.01, withEscapes(0.5))
+	if !errors.Is(err, ErrInvalidArgument) || !strings.Contains(err.Error(), "CheckPhase") {
+		t.Errorf("CheckPhase with EscapeTransmittance: %v", err)
 	}
 }
 

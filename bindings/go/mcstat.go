@@ -29,10 +29,12 @@
 //   - PowerOptions (Compute, Solve, String as R's power.t.test);
 //   - Diagnose, TailIndex, TSize, BatchSize;
 //   - GOFChisqTest, BinomTest, BatteryTest, BatteryTestPValues;
-//   - CheckBSDF, CheckEmitter, CheckWarp: a Model's Go functions called
-//     back from libmcstat (an error or panic in one ends the check with an
-//     error matching ErrCallback); Model.Lobes gives a BSDF's discrete
-//     (specular) lobes;
+//   - CheckBSDF, CheckEmitter, CheckWarp, CheckPhase, CheckMedium: a
+//     Model's Go functions called back from libmcstat (an error or panic
+//     in one ends the check with an error matching ErrCallback);
+//     Model.Lobes gives a BSDF's discrete (specular) lobes,
+//     CheckOptions.EscapeTransmittance has a medium's escape weights
+//     checked;
 //   - Sequential: anytime-valid tests looked at after every batch
 //     (NewSequential, Push, PushStream, Result, Finish);
 //   - the t, chi-squared and F distributions (TCDF, ...);

@@ -788,9 +788,20 @@ pub struct mcstat_check_options {
     pub rtol: f64,
     pub tolerated: f64,
     pub reserved: [f64; 4],
+    /// Since 0.3 (`MCSTAT_CHECK_OPTIONS_SIZE_0_3`).  `mcstat_check_medium`:
+    /// < 0 (the initialiser's -1): a flight that passes the surface is a
+    /// failed sample, which must weigh 0; in [0, 1]: T(tmax), the
+    /// transmittance to the surface, and such a flight reports pdf 0 and the
+    /// weight it carries on; MASS also tests that the mean over the n flights
+    /// of the escapes' weights (0 for a scattering) equals T(tmax).  Needs
+    /// `MCSTAT_WEIGHT_OVER_PDF`; NaN, > 1, or >= 0 for another check:
+    /// `MCSTAT_EINVAL`.
+    pub escape_transmittance: f64,
 }
 
+/// sizeof(mcstat_check_options) in each release that changed it.
 pub const MCSTAT_CHECK_OPTIONS_SIZE_0_2: usize = 96;
+pub const MCSTAT_CHECK_OPTIONS_SIZE_0_3: usize = 104;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
@@ -819,8 +830,9 @@ pub const MCSTAT_CHECK_KIND_WARP: i32 = 2;
 pub const MCSTAT_CHECK_KIND_PHASE: i32 = 3;
 pub const MCSTAT_CHECK_KIND_MEDIUM: i32 = 4;
 
-/// The discrete lobes' counts: the named storage of the anonymous union
-/// over `reserved_rest` in `mcstat_check_report`.
+/// The discrete lobes' counts and a medium's escape weights: the named
+/// storage of the anonymous union over `reserved_rest` in
+/// `mcstat_check_report`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct mcstat_check_report_lobes {
@@ -833,7 +845,13 @@ pub struct mcstat_check_report_lobes {
     /// The sum of the lobes' values: the discrete part of the albedo (the
     /// report's albedo fields are the smooth part's).
     pub lobe_albedo: f64,
-    pub reserved_more: [f64; 2],
+    /// `mcstat_check_medium` with `escape_transmittance >= 0`: the mean over
+    /// the n flights of the escapes' weights (0 for a scattering), which
+    /// MASS tests against T(tmax); NaN otherwise.
+    pub escape_weight: f64,
+    /// Its standard error (NaN when not checked, or with fewer than 2
+    /// escapes of weight > 0).
+    pub escape_weight_se: f64,
 }
 
 /// The anonymous union over `reserved_rest` in `mcstat_check_report`:
@@ -912,9 +930,16 @@ impl mcstat_check_report {
     pub fn zero_weight(&self) -> u64 {
         unsafe { self.extra.s.zero_weight }
     }
-    /// The discrete lobes' counts (`lobes`, `n_lobe`, `lobe_mass`, `lobe_albedo`).
+    /// The discrete lobes' counts (`lobes`, `n_lobe`, `lobe_mass`,
+    /// `lobe_albedo`), with a medium's `escape_weight`, `escape_weight_se`.
     pub fn lobe_counts(&self) -> mcstat_check_report_lobes {
         unsafe { self.extra.s.rest.s }
+    }
+    /// `mcstat_check_medium` with `escape_transmittance >= 0`: the escapes'
+    /// mean weight and its standard error (NaN otherwise).
+    pub fn escape_weight(&self) -> (f64, f64) {
+        let s = self.lobe_counts();
+        (s.escape_weight, s.escape_weight_se)
     }
 }
 
@@ -1040,7 +1065,7 @@ const _: () = {
     assert!(size_of::<mcstat_power_options>() == MCSTAT_POWER_OPTIONS_SIZE_0_1);
     assert!(size_of::<mcstat_diag_options>() == MCSTAT_DIAG_OPTIONS_SIZE_0_1);
     assert!(size_of::<mcstat_gof_options>() == MCSTAT_GOF_OPTIONS_SIZE_0_1);
-    assert!(size_of::<mcstat_check_options>() == MCSTAT_CHECK_OPTIONS_SIZE_0_2);
+    assert!(size_of::<mcstat_check_options>() == MCSTAT_CHECK_OPTIONS_SIZE_0_3);
     assert!(size_of::<mcstat_seq_options>() == MCSTAT_SEQ_OPTIONS_SIZE_0_2);
     assert!(size_of::<mcstat_seq>() == 448);
     assert!(size_of::<mcstat_pixels_in>() == MCSTAT_PIXELS_IN_SIZE_0_2);

@@ -131,6 +131,7 @@ fn layout_matches_the_c_compiler() {
         (mcstat_check_options, batch) = "batch",
         (mcstat_check_options, rtol) = "rtol",
         (mcstat_check_options, reserved) = "reserved",
+        (mcstat_check_options, escape_transmittance) = "escape_transmittance",
         (mcstat_check_route_result, statistic) = "statistic",
         (mcstat_check_route_result, checked) = "checked",
         (mcstat_check_route_result, r#where) = "where",
@@ -168,7 +169,8 @@ fn layout_matches_the_c_compiler() {
         (mcstat_check_report, extra.s.rest.s.n_lobe) = "n_lobe",
         (mcstat_check_report, extra.s.rest.s.lobe_mass) = "lobe_mass",
         (mcstat_check_report, extra.s.rest.s.lobe_albedo) = "lobe_albedo",
-        (mcstat_check_report, extra.s.rest.s.reserved_more) = "reserved_more",
+        (mcstat_check_report, extra.s.rest.s.escape_weight) = "escape_weight",
+        (mcstat_check_report, extra.s.rest.s.escape_weight_se) = "escape_weight_se",
         (mcstat_pixels_in, data) = "data",
         (mcstat_pixels_in, weights) = "weights",
         (mcstat_pixels_options, threads) = "threads",
@@ -190,6 +192,9 @@ fn layout_matches_the_c_compiler() {
         "(1 / MCSTAT_CHECK_LOBE_TOLERANCE + 0.5)".to_string(),
         (1.0 / MCSTAT_CHECK_LOBE_TOLERANCE).round() as usize,
     ));
+    // the options' sizes by release
+    v.push(("const".to_string(), "MCSTAT_CHECK_OPTIONS_SIZE_0_2".to_string(), MCSTAT_CHECK_OPTIONS_SIZE_0_2));
+    v.push(("const".to_string(), "MCSTAT_CHECK_OPTIONS_SIZE_0_3".to_string(), MCSTAT_CHECK_OPTIONS_SIZE_0_3));
     let exprs: Vec<String> = v.iter().map(|e| e.1.clone()).collect();
     let c = c_compiler_layout(&exprs);
     assert_eq!(c.len(), v.len());
@@ -264,6 +269,11 @@ fn old_initialisers_equal_the_sized_ones() {
         let mut c = MaybeUninit::<mcstat_check_options>::zeroed().assume_init();
         assert_eq!(mcstat_check_options_init_size(&mut c, size_of::<mcstat_check_options>()), MCSTAT_OK);
         assert_eq!((c.routes, c.batch, c.rtol), (MCSTAT_CHECK_ROUTE_ALL, 65536, 1e-3));
+        assert_eq!(c.escape_transmittance, -1.0); // off
+        // 0.2's size: the appended field is left as the caller had it
+        c.escape_transmittance = 0.5;
+        assert_eq!(mcstat_check_options_init_size(&mut c, MCSTAT_CHECK_OPTIONS_SIZE_0_2), MCSTAT_OK);
+        assert_eq!((c.size as usize, c.escape_transmittance), (MCSTAT_CHECK_OPTIONS_SIZE_0_2, 0.5));
     }
 }
 

@@ -10,6 +10,9 @@
 //!
 //! A BSDF with specular (delta) parts gives them through
 //! [`CheckModel::lobes`]; its `pdf` and `eval` are then the smooth part.
+//! A medium whose escaping flights carry a weight on (analog or weighted
+//! tracking) has it checked against T(tmax) by [`check_medium`] with
+//! [`CheckOptions::escape_transmittance`].
 //!
 //! ```
 //! use mcstat::check::{check_warp, CheckModel, CheckOptions, Domain, Samples};
@@ -259,6 +262,17 @@ pub struct CheckOptions {
     pub rtol: f64,
     /// Share of points a deterministic route lets differ beyond rtol, in [0, 1).
     pub tolerated: f64,
+    /// [`check_medium`] only: `None` (the default), a flight that passes the
+    /// surface is a failed sample (pdf 0), which must weigh 0.  `Some(T)`
+    /// with T = T(tmax) in [0, 1], the transmittance to the surface: such a
+    /// flight reports pdf 0 and the weight it carries on
+    /// (1 for analog tracking, T(tmax) / P(escape) when the distances follow
+    /// another density), and [`Route::Mass`] also tests, by a two-sided t
+    /// test in the same Bonferroni as its other parts, that the mean over the
+    /// n flights of the escapes' weights (0 for a scattering) equals T
+    /// ([`CheckReport::escape_weight`]).  Needs [`WeightConvention::OverPdf`];
+    /// the other checks refuse it.
+    pub escape_transmittance: Option<f64>,
 }
 
 fn c_options_defaults() -> sys::mcstat_check_options {
@@ -283,6 +297,7 @@ impl Default for CheckOptions {
             batch: o.batch,
             rtol: o.rtol,
             tolerated: o.tolerated,
+            escape_transmittance: None,
         }
     }
 }
@@ -303,6 +318,15 @@ impl CheckOptions {
         o.batch = self.batch;
         o.rtol = self.rtol;
         o.tolerated = self.tolerated;
+        if let Some(t) = self.escape_transmittance {
+            // NaN fails the test too; C would take a negative value as "off"
+            if !(0.0..=1.0).contains(&t) {
+                return Err(Error::invalid(format!(
+                    "escape_transmittance must be in [0, 1] (the transmittance to the surface), got {t}"
+                )));
+            }
+            o.escape_transmittance = t;
+        }
         Ok(o)
     }
 }
@@ -619,6 +643,7 @@ fn message(r: &sys::mcstat_check_report) -> String {
 /// Checks a BSDF at the incident direction `wi` with `n` samples (>= 1000)
 /// at battery level `alpha`; the seed makes it reproducible.
 pub fn check_bsdf(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
+    no_escapes(opt, "check_bsdf")?;
     run_check(model, opt, |m, o, out| unsafe {
         sys::mcstat_check_bsdf(m, wi.as_ptr(), n, seed, alpha, o, ptr::null_mut(), 0, out)
     })
@@ -632,16 +657,26 @@ fn no_lobes(model: &CheckModel, check: &str) -> Result<()> {
     Ok(())
 }
 
+/// Escapes are a medium's: the other checks refuse escape_transmittance.
+fn no_escapes(opt: &CheckOptions, check: &str) -> Result<()> {
+    if opt.escape_transmittance.is_some() {
+        return Err(Error::invalid(format!("{check}: escape_transmittance is check_medium's only")));
+    }
+    Ok(())
+}
+
 /// Checks an emitter's sampling of directions from a reference point (the
 /// closures hold the point): domain sphere or hemisphere.
 pub fn check_emitter(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
     no_lobes(model, "check_emitter")?;
+    no_escapes(opt, "check_emitter")?;
     run_check(model, opt, |m, o, out| unsafe { sys::mcstat_check_emitter(m, n, seed, alpha, o, ptr::null_mut(), 0, out) })
 }
 
 /// Checks a warp (a sampler and its density, no integrand).
 pub fn check_warp(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
     no_lobes(model, "check_warp")?;
+    no_escapes(opt, "check_warp")?;
     run_check(model, opt, |m, o, out| unsafe { sys::mcstat_check_warp(m, n, seed, alpha, o, ptr::null_mut(), 0, out) })
 }
 
@@ -650,6 +685,7 @@ pub fn check_warp(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: 
 /// and reciprocity (when asked) p(wi, wo) == p(wo, wi).
 pub fn check_phase(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
     no_lobes(model, "check_phase")?;
+    no_escapes(opt, "check_phase")?;
     run_check(model, opt, |m, o, out| unsafe {
         sys::mcstat_check_phase(m, wi.as_ptr(), n, seed, alpha, o, ptr::null_mut(), 0, out)
     })
@@ -657,10 +693,16 @@ pub fn check_phase(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, al
 
 /// Checks distance sampling along a ray (domain interval): the closures'
 /// points are distances t >= 0, mapped inside to x = 1 - exp(-sigma_ref t);
-/// a flight that passes the surface is a failed sample (pdf 0, weight 0);
-/// eval is sigma_s T(t).
+/// a flight that passes the surface is a failed sample (pdf 0, weight 0),
+/// or with [`CheckOptions::escape_transmittance`] one that reports pdf 0 and
+/// the weight it carries on; eval is sigma_s T(t).
 pub fn check_medium(model: &mut CheckModel, sigma_ref: f64, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
     no_lobes(model, "check_medium")?;
+    if opt.escape_transmittance.is_some() && model.weight != WeightConvention::OverPdf {
+        return Err(Error::invalid(
+            "escape_transmittance needs WeightConvention::OverPdf (an escape's weight is what it carries on)",
+        ));
+    }
     run_check(model, opt, |m, o, out| unsafe {
         sys::mcstat_check_medium(m, sigma_ref, n, seed, alpha, o, ptr::null_mut(), 0, out)
     })
@@ -839,6 +881,17 @@ impl CheckReport {
     /// albedo ([`albedo`](Self::albedo) is the smooth part's; 0 without).
     pub fn lobe_albedo(&self) -> f64 {
         self.raw.lobe_counts().lobe_albedo
+    }
+    /// [`check_medium`] with [`CheckOptions::escape_transmittance`]: the mean
+    /// over the n flights of the escapes' weights (0 for a scattering), which
+    /// [`Route::Mass`] tests against T(tmax) (`None` otherwise).
+    pub fn escape_weight(&self) -> Option<f64> {
+        some(self.raw.escape_weight().0)
+    }
+    /// Its standard error (`None` when not checked, or with fewer than 2
+    /// escapes of weight > 0).
+    pub fn escape_weight_se(&self) -> Option<f64> {
+        some(self.raw.escape_weight().1)
     }
     /// The integral of pdf() over the domain (cubature) and its error estimate.
     pub fn mass(&self) -> Option<(f64, f64)> {

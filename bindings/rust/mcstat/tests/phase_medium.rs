@@ -1,7 +1,9 @@
 //! check_phase and check_medium: an isotropic phase function (correct, and
-//! short by 10% in eval and weight together) and homogeneous free flights
-//! up to a surface (correct, and pdf() with sigma_t 10% off).
-use mcstat::check::{check_medium, check_phase, CheckModel, CheckOptions, Domain, Route, Samples};
+//! short by 10% in eval and weight together), homogeneous free flights up
+//! to a surface (correct, and pdf() with sigma_t 10% off), and the escapes'
+//! weights against T(tmax) (analog escapes of weight 1, and 10% low).
+use mcstat::check::{check_medium, check_phase, CheckModel, CheckOptions, Domain, Route, Samples, WeightConvention};
+use mcstat::ErrorKind;
 use std::f64::consts::PI;
 
 fn isotropic<'a>(scale: f64) -> CheckModel<'a> {
@@ -42,10 +44,18 @@ fn phase_normalisation() {
     assert!(check_phase(&mut isotropic(1.0), [0.0, 0.0, 0.0], 5000, 1, 0.01, &CheckOptions::default()).is_err());
 }
 
+const ST: f64 = 2.0;
+const SS: f64 = 1.5;
+const TMAX: f64 = 1.0;
+
 fn homogeneous<'a>(pdf_sigma: f64) -> CheckModel<'a> {
-    const ST: f64 = 2.0;
-    const SS: f64 = 1.5;
-    const TMAX: f64 = 1.0;
+    flights(pdf_sigma, 0.0)
+}
+
+/// Analog flights (sigma_t ST) whose escapes carry the weight `escape`
+/// (0: failed samples; 1: the weight analog tracking carries on), as
+/// tests/c/test_check_phase.c's med_sample_esc.
+fn flights<'a>(pdf_sigma: f64, escape: f64) -> CheckModel<'a> {
     let density = |t: f64, s: f64| if t < TMAX { s * (-s * t).exp() } else { 0.0 };
     CheckModel::new(
         Domain::Interval,
@@ -56,7 +66,7 @@ fn homogeneous<'a>(pdf_sigma: f64) -> CheckModel<'a> {
                 let inside = t < TMAX;
                 s.x[k] = if inside { t } else { 0.0 };
                 s.pdf[k] = if inside { density(t, ST) } else { 0.0 };
-                s.weight[k] = if inside { SS / ST } else { 0.0 };
+                s.weight[k] = if inside { SS / ST } else { escape };
             }
             Ok(())
         },
@@ -82,4 +92,44 @@ fn medium_distance_sampling() {
     let bad = check_medium(&mut homogeneous(2.2), 2.0, 20000, 1, 0.01, &CheckOptions::default()).unwrap();
     assert!(bad.reject() && bad.route(Route::PdfValue).reject(), "{bad}");
     assert!(check_medium(&mut homogeneous(2.0), 0.0, 20000, 1, 0.01, &CheckOptions::default()).is_err());
+}
+
+fn with_escapes(t: f64) -> CheckOptions {
+    CheckOptions { escape_transmittance: Some(t), ..Default::default() }
+}
+
+#[test]
+fn medium_escape_weights() {
+    let t = (-ST * TMAX).exp();
+    let none = check_medium(&mut homogeneous(2.0), 2.0, 20000, 1, 0.01, &CheckOptions::default()).unwrap();
+    assert_eq!((none.escape_weight(), none.escape_weight_se()), (None, None));
+    // analog escapes of weight 1: their mean over the flights is the escape share
+    let ok = check_medium(&mut flights(2.0, 1.0), 2.0, 20000, 1, 0.01, &with_escapes(t)).unwrap();
+    assert!(!ok.reject(), "{ok}");
+    let share = ok.n_failed() as f64 / ok.n() as f64;
+    let mean = ok.escape_weight().unwrap();
+    assert!((mean - share).abs() <= 1e-12 * share, "escape weight {mean} vs share {share}");
+    assert!(ok.escape_weight_se().unwrap() > 0.0);
+    let mass = ok.route(Route::Mass);
+    assert_eq!((mass.raw().value[0], mass.raw().value[1]), (mean, t));
+    assert!(ok.to_string().contains("escape weights"), "{ok}");
+    // escapes 10% light: the mass route sees it
+    let light = check_medium(&mut flights(2.0, 0.9), 2.0, 20000, 1, 0.01, &with_escapes(t)).unwrap();
+    assert!(light.reject() && light.route(Route::Mass).reject(), "{light}");
+}
+
+#[test]
+fn medium_escape_transmittance_refused() {
+    for bad in [f64::NAN, -0.5, 1.5, f64::INFINITY] {
+        let e = check_medium(&mut flights(2.0, 1.0), 2.0, 20000, 1, 0.01, &with_escapes(bad)).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::InvalidArgument, "{bad}: {e}");
+        assert!(e.to_string().contains("escape_transmittance"), "{bad}: {e}");
+    }
+    let mut value = flights(2.0, 1.0).weight(WeightConvention::Value);
+    let e = check_medium(&mut value, 2.0, 20000, 1, 0.01, &with_escapes(0.5)).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument, "{e}");
+    assert!(e.to_string().contains("escape_transmittance"), "{e}");
+    let e = check_phase(&mut isotropic(1.0), [0.0, 0.6, 0.8], 5000, 1, 0.01, &with_escapes(0.5)).unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::InvalidArgument, "{e}");
+    assert!(e.to_string().contains("check_phase"), "{e}");
 }
