@@ -14,22 +14,9 @@ if _unavailable:
     pytest.skip("the mitsuba wheel could not be installed here: " + _unavailable, allow_module_level=True)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import mitsuba as mi  # noqa: E402
+from scalar_scripts import import_scalar, rejected, scalar_rgb  # noqa: E402,F401  (the fixture: autouse)
 
-_before = mi.variant()
-import delta_lobes as dl  # noqa: E402  (sets scalar_rgb)
-
-if _before is not None:
-    mi.set_variant(_before)
-
-
-@pytest.fixture(autouse=True)
-def scalar():
-    before = mi.variant()
-    mi.set_variant("scalar_rgb")
-    yield
-    if before is not None and before != "scalar_rgb":
-        mi.set_variant(before)
+dl = import_scalar("delta_lobes")
 
 
 MODELS = {
@@ -37,10 +24,6 @@ MODELS = {
     "thindielectric": (dl.THIN, dl.lobes_thin),
     "plastic": (dl.PLASTIC, dl.lobes_plastic),
 }
-
-
-def rejected(r):
-    return {x.name for x in r.routes if x.state == "ran" and x.reject}
 
 
 @pytest.mark.parametrize("name,wi", [("dielectric", dl.ABOVE), ("dielectric", dl.BELOW),

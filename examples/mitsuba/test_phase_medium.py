@@ -15,32 +15,15 @@ if _unavailable:
     pytest.skip("the mitsuba wheel could not be installed here: " + _unavailable, allow_module_level=True)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import mitsuba as mi  # noqa: E402
+from scalar_scripts import import_scalar, rejected, scalar_rgb  # noqa: E402,F401  (the fixture: autouse)
 
-_before = mi.variant()
-import phase_medium as pm  # noqa: E402  (sets scalar_rgb)
-
-if _before is not None:
-    mi.set_variant(_before)
-
-
-@pytest.fixture(autouse=True)
-def scalar():
-    before = mi.variant()
-    mi.set_variant("scalar_rgb")
-    yield
-    if before is not None and before != "scalar_rgb":
-        mi.set_variant(before)
+pm = import_scalar("phase_medium")
 
 
 def make(name, bug=None):
     if name == "hg":
         return pm.MitsubaPhase({"type": "hg", "g": 0.7}, bug)
     return pm.MitsubaMedium(bug) if name == "homogeneous" else pm.MitsubaHeterogeneous(bug)
-
-
-def rejected(r):
-    return {x.name for x in r.routes if x.state == "ran" and x.reject}
 
 
 @pytest.mark.parametrize("name", ["hg", "homogeneous", "heterogeneous"])

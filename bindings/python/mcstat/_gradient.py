@@ -303,16 +303,20 @@ def _samples(v: Any, name: str) -> np.ndarray:
     return a
 
 
+def _returned_reals(out: Any, where: str, what: str) -> np.ndarray:
+    """what a callable returned as float64, or CallbackError saying it is not `what`"""
+    if out is None or isinstance(out, (str, bytes)):
+        raise CallbackError(f"{_WHO}: {where} returned {type(out).__name__} {out!r:.80}, not {what}")
+    try:
+        return np.asarray(out, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise CallbackError(f"{_WHO}: {where} returned {type(out).__name__} {out!r:.80}, not {what}") from None
+
+
 def _call_vector(fn: Callable[..., Any], name: str, args: Tuple[Any, ...], k: Optional[int]) -> np.ndarray:
     out = fn(*args)
     where = f"{name}({', '.join(repr(a) for a in args)})"
-    if out is None or isinstance(out, (str, bytes)):
-        raise CallbackError(f"{_WHO}: {where} returned {type(out).__name__} {out!r:.80}, not real numbers")
-    try:
-        a = np.asarray(out, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise CallbackError(f"{_WHO}: {where} returned {type(out).__name__} {out!r:.80}, "
-                            "not real numbers") from None
+    a = _returned_reals(out, where, "real numbers")
     if a.ndim > 1 and a.size == max(a.shape):  # (k, 1), (1, k)
         a = a.ravel()
     if a.ndim > 1:
@@ -331,13 +335,7 @@ def _call_vector(fn: Callable[..., Any], name: str, args: Tuple[Any, ...], k: Op
 def _call_scalar(fn: Callable[..., Any], name: str, theta: Any, seed: int) -> float:
     out = fn(theta, seed)
     where = f"{name}(theta={theta!r}, seed={seed!r})"
-    if out is None or isinstance(out, (str, bytes)):
-        raise CallbackError(f"{_WHO}: {where} returned {type(out).__name__} {out!r:.80}, not a real number")
-    try:
-        a = np.asarray(out, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise CallbackError(f"{_WHO}: {where} returned {type(out).__name__} {out!r:.80}, "
-                            "not a real number") from None
+    a = _returned_reals(out, where, "a real number")
     if a.size != 1:
         raise CallbackError(f"{_WHO}: {where} returned {a.size} values (shape {a.shape}); expected one "
                             "real number (the loss)")
