@@ -345,12 +345,17 @@ static void test_einval_options_and_work(void)
     CHECK_INT(mcstat_check_options_init_size(&o, 13), MCSTAT_EINVAL);
 
     /* sizes this library does not know */
-    const uint32_t sizes[] = {0, 4, (uint32_t)sizeof opt - 8, (uint32_t)sizeof opt + 8, 0xFFFFFFFFu};
+    const uint32_t sizes[] = {0, 4, MCSTAT_CHECK_OPTIONS_SIZE_0_2 - 8, MCSTAT_CHECK_OPTIONS_SIZE_0_2 + 4,
+                              (uint32_t)sizeof opt + 8, 0xFFFFFFFFu};
     for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
         o = opt;
         o.size = sizes[i];
         CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "unknown options size");
     }
+    /* every released size is read */
+    o = opt;
+    o.size = MCSTAT_CHECK_OPTIONS_SIZE_0_2;
+    CHECK_INT(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), MCSTAT_OK);
     /* bad options */
     o = opt;
     o.batch = 0;
