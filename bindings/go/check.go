@@ -521,17 +521,32 @@ func checkN(n int) error {
 	return nil
 }
 
+// checkArgs refuses, naming what is wrong, what C would refuse with a bare
+// EINVAL (Lobes outside CheckBSDF, a bad EscapeTransmittance, n < 0), and
+// gives the C options.
+func checkArgs(check string, m *Model, n int, opt *CheckOptions) (C.struct_mcstat_check_options, error) {
+	if check != "CheckBSDF" {
+		if err := noLobes(m, check); err != nil {
+			return C.struct_mcstat_check_options{}, err
+		}
+	}
+	if err := escapeTransmittance(opt, check, m); err != nil {
+		return C.struct_mcstat_check_options{}, err
+	}
+	if err := checkN(n); err != nil {
+		return C.struct_mcstat_check_options{}, err
+	}
+	return opt.toC(), nil
+}
+
 // CheckBSDF checks a BSDF's sample(), pdf(), eval() and weights at the
 // incident direction wi with n >= 1000 samples at battery level alpha;
 // opt nil means DefaultCheckOptions().  Reproducible for a given seed.
 func CheckBSDF(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	if err := escapeTransmittance(opt, "CheckBSDF", m); err != nil {
+	o, err := checkArgs("CheckBSDF", m, n, opt)
+	if err != nil {
 		return nil, err
 	}
-	if err := checkN(n); err != nil {
-		return nil, err
-	}
-	o := opt.toC()
 	w := [3]C.double{C.double(wi[0]), C.double(wi[1]), C.double(wi[2])}
 	return runCheck(m, func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int {
 		return C.mcstat_check_bsdf(cm, &w[0], C.size_t(n), C.uint64_t(seed), C.double(alpha), &o, nil, 0, out)
@@ -541,16 +556,10 @@ func CheckBSDF(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *
 // CheckEmitter checks an emitter's direction sampling (domain Sphere or
 // Hemisphere; the reference point is the callbacks' business).
 func CheckEmitter(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	if err := noLobes(m, "CheckEmitter"); err != nil {
+	o, err := checkArgs("CheckEmitter", m, n, opt)
+	if err != nil {
 		return nil, err
 	}
-	if err := escapeTransmittance(opt, "CheckEmitter", m); err != nil {
-		return nil, err
-	}
-	if err := checkN(n); err != nil {
-		return nil, err
-	}
-	o := opt.toC()
 	return runCheck(m, func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int {
 		return C.mcstat_check_emitter(cm, C.size_t(n), C.uint64_t(seed), C.double(alpha), &o, nil, 0, out)
 	})
@@ -558,16 +567,10 @@ func CheckEmitter(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions
 
 // CheckWarp checks a warp (a sampler and its density; Eval is ignored).
 func CheckWarp(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	if err := noLobes(m, "CheckWarp"); err != nil {
+	o, err := checkArgs("CheckWarp", m, n, opt)
+	if err != nil {
 		return nil, err
 	}
-	if err := escapeTransmittance(opt, "CheckWarp", m); err != nil {
-		return nil, err
-	}
-	if err := checkN(n); err != nil {
-		return nil, err
-	}
-	o := opt.toC()
 	return runCheck(m, func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int {
 		return C.mcstat_check_warp(cm, C.size_t(n), C.uint64_t(seed), C.double(alpha), &o, nil, 0, out)
 	})
@@ -577,16 +580,10 @@ func CheckWarp(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (
 // no cosine): the routes of CheckBSDF, with RouteEnergy testing albedo == 1
 // (two-sided) and RouteReciprocity (when asked) p(wi, wo) == p(wo, wi).
 func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	if err := noLobes(m, "CheckPhase"); err != nil {
+	o, err := checkArgs("CheckPhase", m, n, opt)
+	if err != nil {
 		return nil, err
 	}
-	if err := escapeTransmittance(opt, "CheckPhase", m); err != nil {
-		return nil, err
-	}
-	if err := checkN(n); err != nil {
-		return nil, err
-	}
-	o := opt.toC()
 	w := [3]C.double{C.double(wi[0]), C.double(wi[1]), C.double(wi[2])}
 	return runCheck(m, func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int {
 		return C.mcstat_check_phase(cm, &w[0], C.size_t(n), C.uint64_t(seed), C.double(alpha), &o, nil, 0, out)
@@ -599,16 +596,10 @@ func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt 
 // (pdf 0, weight 0), or with opt.EscapeTransmittance one that reports pdf
 // 0 and the weight it carries on; Eval is sigma_s T(t).
 func CheckMedium(m *Model, sigmaRef float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	if err := noLobes(m, "CheckMedium"); err != nil {
+	o, err := checkArgs("CheckMedium", m, n, opt)
+	if err != nil {
 		return nil, err
 	}
-	if err := escapeTransmittance(opt, "CheckMedium", m); err != nil {
-		return nil, err
-	}
-	if err := checkN(n); err != nil {
-		return nil, err
-	}
-	o := opt.toC()
 	return runCheck(m, func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int {
 		return C.mcstat_check_medium(cm, C.double(sigmaRef), C.size_t(n), C.uint64_t(seed), C.double(alpha), &o, nil,
 			0, out)
