@@ -53,7 +53,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 # mitsuba_adapters points DRJIT_LIBLLVM_PATH at Debian's libllvm19 before
 # drjit is imported (LLVM 15 aborts in code generation on some CPUs)
-import mitsuba_adapters  # noqa: E402,F401
+import mitsuba_adapters  # noqa: E402
 import drjit as dr  # noqa: E402
 import mitsuba as mi  # noqa: E402
 
@@ -66,15 +66,6 @@ KEYS = ("floor.bsdf.reflectance.value", "light.emitter.radiance.value")
 NAMES = ("reflectance", "radiance")
 H = np.array([0.02, 0.1])
 ALPHA, RTOL = 0.05, 0.0
-
-
-def loaded_libllvm():
-    """The libLLVM this process has mapped (None before the first LLVM kernel)."""
-    with open("/proc/self/maps") as f:
-        for line in f:
-            if "libLLVM" in line:
-                return line.split()[-1]
-    return None
 
 
 def make_scene():
@@ -248,7 +239,7 @@ def main():
           f"n = {args.n} seeds per check (disjoint), alpha = {ALPHA}, rtol = {args.rtol:g}, "
           f"h = ({H[0]:g}, {H[1]:g}), Richardson bound on (factor {args.richardson_factor:g}); {renders} renders "
           f"({n_ok} checks x {args.n} seeds x (1 AD + {4 * len(THETA)} FD), and 1 AD per planted bug in "
-          f"{args.checks} checks) in {wall:.0f} s wall, {cpu:.0f} s CPU; libLLVM: {loaded_libllvm()}")
+          f"{args.checks} checks) in {wall:.0f} s wall, {cpu:.0f} s CPU; libLLVM: {mitsuba_adapters.loaded_libllvm()}")
     print()
     print("| integrator | checks | rejected | reflectance rejected | radiance rejected | "
           "median detectable \\|E d\\| (reflectance, radiance) |")

@@ -41,7 +41,7 @@ ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, HERE)
 # mitsuba_adapters points DRJIT_LIBLLVM_PATH at Debian's libllvm19 before
 # drjit is imported (LLVM 15 aborts in code generation on some CPUs)
-import mitsuba_adapters  # noqa: E402,F401
+import mitsuba_adapters  # noqa: E402
 import mitsuba as mi  # noqa: E402
 
 import mcstat.image  # noqa: E402
@@ -57,15 +57,6 @@ PLANTED = ("llvm_ad_rgb", range(2000, 2000 + SEEDS))
 PLANTED_WALL = "red"
 PLANTED_FACTOR = 1.02
 LUMINANCE = np.asarray(mcstat.image.LUMINANCE_WEIGHTS)
-
-
-def loaded_libllvm():
-    """The libLLVM this process has mapped (None before the first LLVM kernel)."""
-    with open("/proc/self/maps") as f:
-        for line in f:
-            if "libLLVM" in line:
-                return line.split()[-1]
-    return None
 
 
 def scene_dict(size=SIZE, rfilter=None, wall_factor=1.0, wall=PLANTED_WALL):
@@ -135,7 +126,7 @@ def main():
     ref, cand, planted, cpu = renders()
     print(f"Cornell box {SIZE} x {SIZE}, {SPP} spp, box filter; reference {REFERENCE[0]} seeds "
           f"{REFERENCE[1].start}..{REFERENCE[1].stop - 1}, candidate {CANDIDATE[0]} seeds "
-          f"{CANDIDATE[1].start}..{CANDIDATE[1].stop - 1}; libLLVM: {loaded_libllvm()}; renders {cpu:.1f} s CPU")
+          f"{CANDIDATE[1].start}..{CANDIDATE[1].stop - 1}; libLLVM: {mitsuba_adapters.loaded_libllvm()}; renders {cpu:.1f} s CPU")
     print(f"planted: {PLANTED[0]} seeds {PLANTED[1].start}..{PLANTED[1].stop - 1}, {PLANTED_WALL} wall's "
           f"reflectance x {PLANTED_FACTOR}\n")
     os.makedirs(args.out, exist_ok=True)

@@ -73,6 +73,15 @@ dr.eval(w); print('ok', w[0][0] > 0)
 _variant_choice = None
 
 
+def loaded_libllvm():
+    """The libLLVM this process has mapped (None before the first LLVM kernel)."""
+    with open("/proc/self/maps") as f:
+        for line in f:
+            if "libLLVM" in line:
+                return line.split()[-1]
+    return None
+
+
 def pick_variant():
     """llvm_ad_rgb when it runs here (probed once per process in a subprocess:
     a broken LLVM aborts the process), else scalar_rgb.  MCSTAT_MITSUBA_VARIANT

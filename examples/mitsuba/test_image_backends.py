@@ -40,14 +40,14 @@ def stacks():
     ref, cand, planted, cpu = ib.renders()
     if before is not None:  # the variant other modules of the run set at import
         ib.mi.set_variant(before)
-    print(f"\nrenders: {cpu:.1f} s CPU; libLLVM {ib.loaded_libllvm()}")
+    print(f"\nrenders: {cpu:.1f} s CPU; libLLVM {ib.mitsuba_adapters.loaded_libllvm()}")
     return ref, cand, planted
 
 
 def test_llvm_is_19(stacks):
     # LLVM 15 aborts in code generation on some CPUs: the renders above ran
     # llvm_ad_rgb, so libLLVM is mapped by now and must be Debian's 19
-    lib = ib.loaded_libllvm()
+    lib = ib.mitsuba_adapters.loaded_libllvm()
     assert lib is not None and ("19" in os.path.basename(lib) or "llvm-19" in lib), lib
 
 
