@@ -1975,6 +1975,22 @@ enum mcstat_check_state {
     MCSTAT_ROUTE_INVALID = 2  /* an assumption failed (heavy tails, too few samples): no answer */
 };
 
+/* Why a route could not answer (its state INVALID): the report's `why`.
+ * mcstat_check_why_text gives the reason and what would let it answer. */
+enum mcstat_check_why {
+    MCSTAT_CHECK_WHY_NONE = 0,        /* it answered (or was skipped) */
+    MCSTAT_CHECK_WHY_HEAVY_TAIL = 1,  /* a tail index below 2: the mean it tests has no finite variance */
+    MCSTAT_CHECK_WHY_TOO_FEW = 2,     /* too few samples, cells, regions or kept points */
+    MCSTAT_CHECK_WHY_ENVELOPE = 3,    /* KS: a ratio beyond the resampling envelope */
+    MCSTAT_CHECK_WHY_NOTHING = 4,     /* nothing to compare: eval() and the weights are 0 wherever looked */
+    MCSTAT_CHECK_WHY_NUMERIC = 5,     /* a numerical step failed */
+    MCSTAT_CHECK_WHY_INTEGRATION = 6  /* the integral of pdf() is not known well enough to test against */
+};
+/* A sentence: the reason a route could not answer and what would let it
+ * answer; "" for MCSTAT_CHECK_WHY_NONE, NULL for an invalid value. */
+MCSTAT_API const char *mcstat_check_why_text(int why);
+
+
 /* ------------------------------------------------------------------------ */
 /* Options; grows by appending fields ("Conventions"), so always start     */
 /* from the initialiser.                                                    */
@@ -2010,17 +2026,34 @@ typedef struct mcstat_check_options {
                               also tests that the mean over the n flights of the escapes' weights
                               (0 for a scattering) equals T(tmax), by a two-sided t test.  Needs
                               MCSTAT_WEIGHT_OVER_PDF */
+    double resolution;     /* the relative resolution of the caller's arithmetic: differences of
+                              integrals at that scale are rounding, not evidence.  The statistical
+                              routes add it as an error of the integrals they compare (INTEGRALS
+                              and ENERGY: a relative error common to all regions and one of each
+                              region, of this size each, in the variance of the difference; MASS
+                              and CELLS: a relative error of the cubature), and each route reports
+                              it.  0 (default): derived from the values the callbacks return,
+                              MCSTAT_CHECK_RESOLUTION_FLOAT32 when every pdf, weight and eval value
+                              is a float32 (a renderer computing in float), else
+                              MCSTAT_CHECK_RESOLUTION_FLOAT64; > 0: that value, below 0.01 */
     /* routes must not be 0; reserved fields and the model's must be zero
      * (later releases may give them a meaning): MCSTAT_EINVAL otherwise. */
 } mcstat_check_options;
 
 #define MCSTAT_CHECK_ROUTE_ALL ((1u << MCSTAT_CHECK_ROUTE_COUNT) - 1u)
 #define MCSTAT_CHECK_OPTIONS_INIT \
-    {sizeof(mcstat_check_options), MCSTAT_CHECK_ROUTE_ALL, 0, 0, 0, 0, 0, 0, 65536, 1e-3, 1e-4, {0, 0, 0, 0}, -1.0}
+    {sizeof(mcstat_check_options), MCSTAT_CHECK_ROUTE_ALL, 0, 0, 0, 0, 0, 0, 65536, 1e-3, 1e-4, {0, 0, 0, 0}, -1.0, 0.0}
+
+/* The derived resolutions: 64 units in the last place of float32 and of
+ * float64 (2^-18, 2^-47).  A float formula of a few dozen operations
+ * (a BSDF's eval, a normalisation 1/(4 pi) rounded once) is off by up to
+ * tens of ulps, and an integral of it keeps a mean of those errors. */
+#define MCSTAT_CHECK_RESOLUTION_FLOAT32 0x1p-18
+#define MCSTAT_CHECK_RESOLUTION_FLOAT64 0x1p-47
 
 /* sizeof(mcstat_check_options) in each release that changed it. */
 #define MCSTAT_CHECK_OPTIONS_SIZE_0_2 96u
-#define MCSTAT_CHECK_OPTIONS_SIZE_0_3 104u
+#define MCSTAT_CHECK_OPTIONS_SIZE_0_3 112u
 /* Sets the first `size` bytes of *opt to MCSTAT_CHECK_OPTIONS_INIT, with
  * opt->size = size (as mcstat_gof_options_init_size). */
 MCSTAT_API int mcstat_check_options_init_size(mcstat_check_options *opt, size_t size);
@@ -2054,13 +2087,24 @@ typedef struct mcstat_check_route_result {
     int32_t state;         /* enum mcstat_check_state */
     int32_t deterministic; /* 1: a tolerance check, not a test */
     int32_t reject;
-    int32_t reserved_i;
+    MCSTAT_ANONYMOUS union {
+        int32_t reserved_i; /* 0.2.0's name of this storage */
+        int32_t why;        /* state INVALID: enum mcstat_check_why; else 0 */
+    };
     double statistic, df, p_value, p_adjusted;
     double effect, detectable, n_for_1pct;
     uint64_t checked, count;
     double where[3];
     double value[2];
-    double reserved[3];
+    MCSTAT_ANONYMOUS union {
+        double reserved[3]; /* 0.2.0's name of this storage */
+        MCSTAT_ANONYMOUS struct {
+            /* statistical routes: the numerical floor they applied, relative
+               (options' resolution); NaN for the deterministic ones */
+            double resolution;
+            double reserved_2[2]; /* zero */
+        };
+    };
 } mcstat_check_route_result;
 
 enum mcstat_check_kind {
@@ -2120,6 +2164,23 @@ typedef struct mcstat_check_report {
     char message[256];     /* MCSTAT_ECALLBACK: what went wrong, naming the callback, the point
                               and the value; otherwise empty */
 } mcstat_check_report;
+
+/* The three verdicts of a check.  INCONCLUSIVE: no route rejected, but a
+ * route the check needed could not answer (state INVALID for a reason other
+ * than MCSTAT_CHECK_WHY_NOTHING; KS only when INTEGRALS did not answer
+ * either, as both check eval() against the sampler), so "consistent" would
+ * claim an error rate the battery did not have. */
+enum mcstat_check_verdict {
+    MCSTAT_CHECK_CONSISTENT = 0,
+    MCSTAT_CHECK_INCONSISTENT = 1, /* report->reject */
+    MCSTAT_CHECK_INCONCLUSIVE = 2
+};
+/* *verdict <- the report's verdict; *unanswered (may be NULL) <- bit
+ * (1u << route) for each route that could not answer and counts toward
+ * INCONCLUSIVE.  MCSTAT_EINVAL for NULL report or verdict, or a report
+ * whose states are not those of a check. */
+MCSTAT_API int mcstat_check_verdict(const mcstat_check_report *report, int *verdict, uint32_t *unanswered);
+MCSTAT_API const char *mcstat_check_verdict_name(int verdict); /* "consistent", ...; NULL if invalid */
 
 /* ------------------------------------------------------------------------ */
 /* The checks.                                                               */

@@ -130,7 +130,8 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
             put_point(t, rr->where, dims);
             put(t, " (%.6g > %.6g), so the kept points would not follow eval\n", rr->value[0], rr->value[1]);
         } else {
-            put(t, "no answer: too little to test (too few samples, cells, regions or kept points)\n");
+            put(t, "no answer: %s\n", mcstat_check_why_text(rr->why) && rr->why ? mcstat_check_why_text(rr->why)
+                                                                           : "too little to test");
         }
         return;
     }
@@ -274,6 +275,15 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
     if (r->pdf_without_eval > 0)
         put(&t, "pdf() > 0 where eval() = 0 at %llu points (samples wasted there; not an error)\n",
             (unsigned long long)r->pdf_without_eval);
+    for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
+        if (r->route[i].state == MCSTAT_ROUTE_RAN && !isnan(r->route[i].resolution)) {
+            double res = r->route[i].resolution;
+            put(&t, "numerical floor: differences of %.2g relative are rounding, not evidence%s\n", res,
+                res == MCSTAT_CHECK_RESOLUTION_FLOAT32   ? " (every value a float32)"
+                : res == MCSTAT_CHECK_RESOLUTION_FLOAT64 ? " (float64 values)"
+                                                          : "");
+            break;
+        }
     put(&t, "routes:\n");
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         put_route(&t, r, i);
@@ -281,7 +291,24 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
         put_budget(&t, r, i);
     put(&t, "decision at alpha = %g: ", r->alpha);
-    if (!r->reject) {
+    int verdict;
+    uint32_t open_routes = 0;
+    (void)mcstat_check_verdict(r, &verdict, &open_routes);
+    if (!r->reject && open_routes) {
+        put(&t, "INCONCLUSIVE: no route rejected, but");
+        const char *sep = " ";
+        for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
+            if (open_routes & (1u << i)) {
+                put(&t, "%s%s", sep, route_names[i]);
+                sep = ", ";
+            }
+        put(&t, " could not answer:\n");
+        for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
+            if (open_routes & (1u << i))
+                put(&t, "  %-12s%s\n", route_names[i], mcstat_check_why_text(r->route[i].why) && r->route[i].why
+                                                          ? mcstat_check_why_text(r->route[i].why)
+                                                          : "too little to test");
+    } else if (!r->reject) {
         put(&t, "consistent (no route rejected; the battery's error rate is at most alpha)\n");
     } else {
         put(&t, "INCONSISTENT:");

@@ -70,6 +70,7 @@ void mcstat__check_route_init(mcstat_check_route_result *rr)
     rr->effect = rr->detectable = rr->n_for_1pct = NAN;
     rr->where[0] = rr->where[1] = rr->where[2] = NAN;
     rr->value[0] = rr->value[1] = NAN;
+    rr->resolution = NAN;
 }
 
 static void finish_deterministic(run *r, int route)
@@ -92,8 +93,10 @@ static void finish_deterministic(run *r, int route)
         rr->where[c] = r->worst_x[route][c];
     rr->value[0] = r->worst_v[route][0];
     rr->value[1] = r->worst_v[route][1];
-    if (r->checked[route] == 0)
+    if (r->checked[route] == 0) {
         rr->state = MCSTAT_ROUTE_INVALID;
+        rr->why = MCSTAT_CHECK_WHY_TOO_FEW;
+    }
 }
 
 /* Noncentrality at which chi^2(df) beyond its upper level-a quantile has
@@ -115,6 +118,7 @@ static int ran_chisq(mcstat_check_route_result *rr, double statistic, double df)
     double p;
     if (mcstat_chisq_cdf(statistic, df, 1, &p) != MCSTAT_OK) {
         rr->state = MCSTAT_ROUTE_INVALID;
+        rr->why = MCSTAT_CHECK_WHY_NUMERIC;
         return 0;
     }
     rr->state = MCSTAT_ROUTE_RAN;
@@ -407,6 +411,40 @@ static int region_integrals(const run *r, const sums *sm, double A[MAX_GROUPS], 
     return g;
 }
 
+/* The numerical floor of the regions' difference: a relative error of size
+ * res common to every region (a normalisation rounded once) and one of
+ * each region (rounding that varies over the domain), both as variance,
+ * each of the two sides' mean magnitude: S += res^2 (a a' + diag(a^2)).
+ * Adding a positive semi-definite matrix only lowers the Wald statistic.
+ * *total: the same floor's variance of the totals' difference. */
+static void add_floor(const double A[MAX_GROUPS], const double B[MAX_GROUPS], double S[MAX_GROUPS][MAX_GROUPS],
+                      int g, double res, double *total)
+{
+    double a[MAX_GROUPS], sum = 0.0, sum2 = 0.0;
+    for (int i = 0; i < g; i++) {
+        a[i] = 0.5 * (fabs(A[i]) + fabs(B[i]));
+        sum += a[i];
+        sum2 += a[i] * a[i];
+    }
+    for (int i = 0; i < g; i++)
+        for (int j = 0; j < g; j++)
+            S[i][j] += res * res * (a[i] * a[j] + (i == j ? a[i] * a[i] : 0.0));
+    *total = res * res * (sum * sum + sum2);
+}
+
+/* Samples a mean-based route needs for a 1% relative departure, when at n
+ * its sampling variance is v_n and the floor's is v_floor (relative to the
+ * squared integral), z the quantile sum: n v_n / ((0.01/z)^2 - v_floor),
+ * never below the smallest check (1000); INFINITY when the floor alone
+ * hides 1%. */
+static double n_for_one_percent(double n, double v_n, double v_floor, double z)
+{
+    double room = (0.01 / z) * (0.01 / z) - v_floor;
+    if (!(room > 0.0))
+        return INFINITY;
+    return fmax(n * v_n / room, 1000.0);
+}
+
 /* The integral of eval from the weights and from eval alone (check_run.h). */
 void mcstat__check_report_albedos(run *r, const sums *sm)
 {
@@ -427,23 +465,28 @@ static void route_integrals(run *r, const sums *sm, double level)
     double ta = tot[0], tb = tot[1], va = var[0], vb = var[1];
     if (r->out->heavy_tailed) {
         rr->state = MCSTAT_ROUTE_INVALID;
+        rr->why = MCSTAT_CHECK_WHY_HEAVY_TAIL;
         return;
     }
+    double v_floor;
+    add_floor(A, B, S, g, r->resolution, &v_floor);
+    rr->resolution = r->resolution;
     int df = 0;
     double t = wald(D, S, g, &df);
     rr->checked = (uint64_t)(n + m);
     rr->count = (uint64_t)df;
     if (df < 1) {
         rr->state = MCSTAT_ROUTE_INVALID; /* eval is zero wherever either estimator looked */
+        rr->why = MCSTAT_CHECK_WHY_NOTHING;
         return;
     }
     if (!ran_chisq(rr, t, df))
         return;
     rr->effect = tb != 0.0 ? (ta - tb) / tb : NAN;
     double z = mcstat__norm_quantile(level / 2, 1) + POWER_Z;
-    double se = sqrt(fmax(va + vb, 0.0));
-    rr->detectable = tb > 0.0 ? z * se / tb : NAN;
-    rr->n_for_1pct = tb > 0.0 ? n * (z * se / tb / 0.01) * (z * se / tb / 0.01) : NAN;
+    double v = fmax(va + vb, 0.0);
+    rr->detectable = tb > 0.0 ? z * sqrt(v + v_floor) / tb : NAN;
+    rr->n_for_1pct = tb > 0.0 ? n_for_one_percent(n, v / (tb * tb), v_floor / (tb * tb), z) : NAN;
 }
 
 static void route_energy(run *r, const sums *sm, double level)
@@ -451,36 +494,47 @@ static void route_energy(run *r, const sums *sm, double level)
     mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_ENERGY];
     if (r->out->tail_index[0] < 2.0) { /* it reads the weights only */
         rr->state = MCSTAT_ROUTE_INVALID;
+        rr->why = MCSTAT_CHECK_WHY_HEAVY_TAIL;
         return;
     }
-    mcstat_result res;
     double mean = mcstat_moments_mean(&sm->all), sd = mcstat_moments_sd(&sm->all);
+    double n = (double)sm->all.n;
     rr->checked = sm->all.n;
     rr->effect = mean - 1.0;
+    rr->resolution = r->resolution;
     /* a phase function is normalised: its albedo is 1, not at most 1 */
     int exact = r->pl.kind == MCSTAT_CHECK_KIND_PHASE;
-    int st = mcstat_t_test_1_moments(&sm->all, 1.0, exact ? MCSTAT_TWO_SIDED : MCSTAT_GREATER, 0.5, &res);
     rr->state = MCSTAT_ROUTE_RAN;
-    if (st == MCSTAT_EDEGENERATE) {
+    if (!(sd > 0.0) && isfinite(mean)) {
         /* constant weights (a sampler proportional to eval): no spread to test */
         rr->deterministic = 1;
-        rr->reject = exact ? fabs(mean - 1.0) > r->rtol : mean > 1.0 + r->rtol;
+        double tol = fmax(r->rtol, r->resolution);
+        rr->reject = exact ? fabs(mean - 1.0) > tol : mean > 1.0 + tol;
         rr->count = rr->reject;
         rr->value[0] = mean;
         rr->value[1] = 1.0;
         return;
     }
-    if (st != MCSTAT_OK) {
+    if (!isfinite(mean) || !isfinite(sd) || n < 2.0) {
         rr->state = MCSTAT_ROUTE_INVALID;
+        rr->why = isfinite(mean) ? MCSTAT_CHECK_WHY_TOO_FEW : MCSTAT_CHECK_WHY_NUMERIC;
         return;
     }
-    rr->statistic = res.statistic;
-    rr->df = res.df[0];
-    rr->p_value = res.p_value;
+    /* the t statistic of the mean weight against 1, the floor's relative
+     * error of the albedo added to the mean's variance */
+    double v_n = sd * sd / n, v_floor = r->resolution * r->resolution * fmax(mean * mean, 1.0);
+    double t = (mean - 1.0) / sqrt(v_n + v_floor), p;
+    if (mcstat_t_cdf(exact ? -fabs(t) : t, n - 1.0, !exact, &p) != MCSTAT_OK) {
+        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->why = MCSTAT_CHECK_WHY_NUMERIC;
+        return;
+    }
+    rr->statistic = t;
+    rr->df = n - 1.0;
+    rr->p_value = exact ? fmin(1.0, 2.0 * p) : p;
     double z = mcstat__norm_quantile(exact ? level / 2 : level, 1) + POWER_Z;
-    double se = sd / sqrt((double)sm->all.n);
-    rr->detectable = z * se;
-    rr->n_for_1pct = (z * sd / 0.01) * (z * sd / 0.01);
+    rr->detectable = z * sqrt(v_n + v_floor);
+    rr->n_for_1pct = n_for_one_percent(n, v_n, v_floor, z);
 }
 
 static void route_ks(run *r, double level)
@@ -496,10 +550,12 @@ static void route_ks(run *r, double level)
         rr->value[0] = r->breach_v[0];
         rr->value[1] = r->breach_v[1];
         rr->count = (uint64_t)(r->w_breach ? 1 : 2);
+        rr->why = MCSTAT_CHECK_WHY_ENVELOPE;
         return;
     }
     if (na < 50 || nb < 50) {
         rr->state = MCSTAT_ROUTE_INVALID;
+        rr->why = MCSTAT_CHECK_WHY_TOO_FEW;
         return;
     }
     mcstat_ks_options ko;
@@ -518,6 +574,7 @@ static void route_ks(run *r, double level)
     int st = mcstat_ks_test_2(r->s.keys_a, na, r->s.keys_b, nb, MCSTAT_TWO_SIDED, 0.5, &ko, &res);
     if (st != MCSTAT_OK) {
         rr->state = MCSTAT_ROUTE_INVALID;
+        rr->why = MCSTAT_CHECK_WHY_NUMERIC;
         return;
     }
     rr->state = MCSTAT_ROUTE_RAN;
@@ -546,4 +603,7 @@ void mcstat__check_route(run *r, const sums *sm, int route, double level)
     case MCSTAT_CHECK_ROUTE_KS: route_ks(r, level); break;
     default: finish_deterministic(r, route); break;
     }
+    mcstat_check_route_result *rr = &r->out->route[route];
+    if (rr->state == MCSTAT_ROUTE_INVALID && rr->why == MCSTAT_CHECK_WHY_NONE)
+        rr->why = MCSTAT_CHECK_WHY_TOO_FEW; /* the routes' other exits: too little to test */
 }

@@ -21,6 +21,7 @@
  */
 #include "check_run.h"
 
+#include <float.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,6 +38,8 @@ enum { STREAM_PILOT = 1, STREAM_TEST = 2, STREAM_EVAL = 3, STREAM_KEEP_SAMPLE = 
 #define ENVELOPE_MARGIN 2.0
 
 static const uint32_t known_sizes[] = {MCSTAT_CHECK_OPTIONS_SIZE_0_2, MCSTAT_CHECK_OPTIONS_SIZE_0_3};
+_Static_assert(sizeof(mcstat_check_options) == MCSTAT_CHECK_OPTIONS_SIZE_0_3,
+               "a grown mcstat_check_options needs its size appended to known_sizes");
 
 static const mcstat_check_options defaults = MCSTAT_CHECK_OPTIONS_INIT;
 
@@ -148,6 +151,8 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
         return MCSTAT_EINVAL;
     if (!(o->rtol > 0.0 && o->rtol < 1.0) || !(o->tolerated >= 0.0 && o->tolerated < 1.0))
         return MCSTAT_EINVAL;
+    if (!(o->resolution >= 0.0 && o->resolution < 0.01))
+        return MCSTAT_EINVAL;
     if (o->n_pilot > (1ull << 40) || o->n_eval > (1ull << 48))
         return MCSTAT_ETOOBIG;
     pl->kind = kind;
@@ -254,6 +259,14 @@ static double weight_over_pdf(const run *r, double w, double p)
     return (r->pl.reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? w / p : w;
 }
 
+/* Whether v is a float32 value (a float renderer's result converted to
+ * double is exactly one); out of float's range it is not (and converting
+ * it would be undefined). */
+static int is_float32(double v)
+{
+    return fabs(v) <= FLT_MAX && (double)(float)v == v;
+}
+
 static int call_sample(run *r, uint64_t key, const char *stream, uint64_t first, size_t k)
 {
     const plan *pl = &r->pl;
@@ -275,6 +288,8 @@ static int call_sample(run *r, uint64_t key, const char *stream, uint64_t first,
                     (unsigned long long)first, stream);
     for (size_t i = 0; i < k; i++) {
         double w = r->s.w[i], p = r->s.p[i];
+        if (pl->reports && !(is_float32(w) && is_float32(p)))
+            r->not_float32 = 1;
         if (isfinite(p) && p >= 0.0 && isfinite(w) && w >= 0.0 && p == 0.0)
             continue; /* a failed sample: its point is not looked at */
         if (isfinite(p) && p >= 0.0 && isfinite(w) && w >= 0.0 &&
@@ -306,6 +321,8 @@ static int call_density(run *r, mcstat_check_density_fn fn, const char *name, co
     int st = fn(r->m->user, r->wi, x, n, out);
     if (st)
         return fail(r, "%s() returned status %d (call with %zu points)", name, st, n);
+    for (size_t i = 0; i < n && !r->not_float32; i++)
+        r->not_float32 = !is_float32(out[i]);
     for (size_t i = 0; i < n; i++)
         if (!isfinite(out[i]) || out[i] < 0.0) {
             char pt[128];
@@ -720,7 +737,8 @@ static int reciprocity(run *r, const sums *sm)
 
 typedef struct medium_map {
     const mcstat_check_model *m;
-    double sigma; /* the reference coefficient of the map */
+    double sigma;    /* the reference coefficient of the map */
+    int not_float32; /* a value the caller's callbacks returned is not a float32 (before the map) */
 } medium_map;
 
 #define MEDIUM_CHUNK 256 /* distances converted at a time, on the stack */
@@ -739,6 +757,8 @@ static int medium_sample(void *user, const double *wi, const double *u, size_t n
         return st;
     for (size_t k = 0; k < n; k++) {
         double t = x[k];
+        if (!(is_float32(weight[k]) && is_float32(pdf[k])))
+            ((medium_map *)user)->not_float32 = 1;
         if (!(pdf[k] > 0.0))
             continue; /* passed the surface (or failed): x ignored */
         if (!(t >= 0.0) || !isfinite(t)) {
@@ -755,7 +775,7 @@ static int medium_sample(void *user, const double *wi, const double *u, size_t n
     return 0;
 }
 
-static int medium_density(const medium_map *mm, mcstat_check_density_fn fn, const double *wi, const double *x,
+static int medium_density(medium_map *mm, mcstat_check_density_fn fn, const double *wi, const double *x,
                           size_t n, double *out)
 {
     double t[MEDIUM_CHUNK];
@@ -768,6 +788,8 @@ static int medium_density(const medium_map *mm, mcstat_check_density_fn fn, cons
             return st;
         for (size_t i = 0; i < k; i++) {
             double j = medium_jacobian(mm->sigma, x[a + i]);
+            if (!is_float32(out[a + i]))
+                mm->not_float32 = 1;
             /* at x = 1 (t = inf) a density that vanishes there stays 0 */
             out[a + i] = out[a + i] == 0.0 ? 0.0 : (j > 0.0 ? out[a + i] / j : INFINITY);
         }
@@ -777,13 +799,13 @@ static int medium_density(const medium_map *mm, mcstat_check_density_fn fn, cons
 
 static int medium_pdf(void *user, const double *wi, const double *x, size_t n, double *out)
 {
-    const medium_map *mm = (const medium_map *)user;
+    medium_map *mm = (medium_map *)user;
     return medium_density(mm, mm->m->pdf, wi, x, n, out);
 }
 
 static int medium_eval(void *user, const double *wi, const double *x, size_t n, double *out)
 {
-    const medium_map *mm = (const medium_map *)user;
+    medium_map *mm = (medium_map *)user;
     return medium_density(mm, mm->m->eval, wi, x, n, out);
 }
 
@@ -828,7 +850,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     carve(&r.pl, work, &r.s, &need);
 
     memset(out, 0, sizeof *out);
-    medium_map mm = {model, sigma_ref};
+    medium_map mm = {model, sigma_ref, 0};
     mcstat_check_model mapped;
     r.m = model;
     if (kind == MCSTAT_CHECK_KIND_MEDIUM) {
@@ -889,6 +911,11 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     }
     out->n_failed = n - sm.n_succ - sm.n_lobe;
     out->n_lobe = sm.n_lobe;
+
+    /* a medium's values are judged as the caller returned them, not as mapped */
+    int not_float32 = kind == MCSTAT_CHECK_KIND_MEDIUM ? mm.not_float32 : r.not_float32;
+    r.resolution = r.o.resolution > 0.0 ? r.o.resolution
+                   : (not_float32 ? MCSTAT_CHECK_RESOLUTION_FLOAT64 : MCSTAT_CHECK_RESOLUTION_FLOAT32);
 
     /* heavy tails first: they decide which mean-based routes can answer */
     out->tail_index[0] = out->tail_index[1] = NAN;

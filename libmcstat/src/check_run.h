@@ -58,6 +58,8 @@ typedef struct run {
     double breach_x[3], breach_v[2];
     uint64_t n_keys_a, n_keys_b;
     double rtol;
+    double resolution; /* the numerical floor the statistical routes apply (options' resolution) */
+    int not_float32;   /* a value a callback returned is not a float32 */
     /* deterministic comparisons: points beyond tolerance and the worst */
     uint64_t bad[MCSTAT_CHECK_ROUTE_COUNT], checked[MCSTAT_CHECK_ROUTE_COUNT];
     /* failures the tolerated share does not excuse: a discrete lobe is one

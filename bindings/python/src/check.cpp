@@ -395,6 +395,10 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     o.tolerated = get_double(get("tolerated", py::float_(1e-4)).ptr(), "tolerated");
     if (!(o.tolerated >= 0.0 && o.tolerated < 1.0))
         throw_invalid("tolerated must be in [0, 1)");
+    o.resolution = get_double(get("resolution", py::float_(0.0)).ptr(), "resolution");
+    if (!(o.resolution >= 0.0 && o.resolution < 0.01))
+        throw_invalid("resolution must be 0 (derived from the values) or in (0, 0.01), got " +
+                      repr(get("resolution", py::none()).ptr()));
 
     if (kw.contains("transmittance") && !py::object(kw["transmittance"]).is_none()) {
         if (kind != MCSTAT_CHECK_KIND_MEDIUM)
@@ -431,7 +435,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     for (auto item : kw) {
         static const char *known[] = {"domain", "n_uniforms", "weight", "routes", "energy", "stochastic",
                                       "reciprocal", "cells", "n_pilot", "n_eval", "batch", "rtol", "tolerated", "n",
-                                      "seed", "alpha", "sigma_ref", "lobes", "transmittance"};
+                                      "seed", "alpha", "sigma_ref", "lobes", "transmittance", "resolution"};
         std::string k = py::str(item.first);
         if (k == "sigma_ref" && kind != MCSTAT_CHECK_KIND_MEDIUM)
             throw py::type_error(std::string(fname) + "() got an unexpected keyword argument 'sigma_ref'");
@@ -472,7 +476,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     return py::cast(rep);
 }
 
-const char *BSDF_DOC = R"doc(check_bsdf(sample, eval, pdf, wi, *, n=100_000, alpha=0.01, seed=0, domain="sphere", n_uniforms=3, weight="over_pdf", stochastic=False, reciprocal=False, lobes=None, energy=True, routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
+const char *BSDF_DOC = R"doc(check_bsdf(sample, eval, pdf, wi, *, n=100_000, alpha=0.01, seed=0, domain="sphere", n_uniforms=3, weight="over_pdf", stochastic=False, reciprocal=False, lobes=None, energy=True, routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4, resolution=0)
 
 Do a BSDF's sample(), pdf(), eval() and sample weight agree?
 
@@ -539,14 +543,23 @@ cells, n_pilot, n_eval, batch, rtol, tolerated
     routes' relative tolerance and the share of points they let differ
     beyond it (float32 renderers lose digits at grazing angles and miss a
     light's rim on a retraced point in ~1e-5 of samples).
+resolution : float
+    The relative resolution of the renderer's arithmetic: differences of
+    integrals at that scale are rounding, not evidence (the statistical
+    routes add it as an error of what they compare).  0 (default): derived
+    from the values the callables return, ``2**-18`` (64 float32 ulps) when
+    every pdf, weight and eval value is a float32, else ``2**-47``.
 
 Returns
 -------
 CheckReport
-    ``reject``, ``pvalue`` (smallest Holm-adjusted p-value; 0 when a
-    deterministic route failed), ``routes`` (one CheckRoute each: name,
-    state, statistic, pvalue, p_adjusted, reject, effect, detectable,
-    n_for_1pct, meaning, blind_spot), ``str(report)`` the text block.
+    ``verdict`` ("consistent", "inconsistent" or "inconclusive": no route
+    rejected but one the check needed could not answer, named in
+    ``unanswered``), ``reject``, ``pvalue`` (smallest Holm-adjusted
+    p-value; 0 when a deterministic route failed), ``routes`` (one
+    CheckRoute each: name, state, why (when it could not answer),
+    statistic, pvalue, p_adjusted, reject, effect, detectable, n_for_1pct,
+    resolution, meaning, blind_spot), ``str(report)`` the text block.
 
 Raises
 ------
@@ -560,7 +573,7 @@ InvalidArgumentError
     route, ...).
 )doc";
 
-const char *EMITTER_DOC = R"doc(check_emitter(sample, eval, pdf, *, n=100_000, alpha=0.01, seed=0, domain="sphere", n_uniforms=2, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3)
+const char *EMITTER_DOC = R"doc(check_emitter(sample, eval, pdf, *, n=100_000, alpha=0.01, seed=0, domain="sphere", n_uniforms=2, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, resolution=0)
 
 Do an emitter's direction sampling, pdf and radiance agree (from a fixed
 reference point)?  As check_bsdf without wi: ``sample(u) -> (d, weight,
@@ -568,7 +581,7 @@ pdf)`` with weight = radiance/pdf, ``eval(d)`` the radiance arriving along
 d, ``pdf(d)`` the solid-angle density.  No energy or reciprocity routes.
 )doc";
 
-const char *WARP_DOC = R"doc(check_warp(sample, pdf, *, n=100_000, alpha=0.01, seed=0, domain="square", n_uniforms=2 (1 on "interval"), routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536)
+const char *WARP_DOC = R"doc(check_warp(sample, pdf, *, n=100_000, alpha=0.01, seed=0, domain="square", n_uniforms=2 (1 on "interval"), routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, resolution=0)
 
 Does a warp draw what its density claims?  ``sample(u) -> points``, shape
 (k, dims) (dims 3 on "sphere"/"hemisphere", 2 on "square"/"disk", 1 on
@@ -576,7 +589,7 @@ Does a warp draw what its density claims?  ``sample(u) -> points``, shape
 and "mass" routes (the density must integrate to 1).
 )doc";
 
-const char *PHASE_DOC = R"doc(check_phase(sample, eval, pdf, wi, *, n=100_000, alpha=0.01, seed=0, n_uniforms=2, weight="over_pdf", stochastic=False, reciprocal=False, energy=True, routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
+const char *PHASE_DOC = R"doc(check_phase(sample, eval, pdf, wi, *, n=100_000, alpha=0.01, seed=0, n_uniforms=2, weight="over_pdf", stochastic=False, reciprocal=False, energy=True, routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4, resolution=0)
 
 Do a phase function's sample(), pdf(), eval() and sample weight agree, and
 is it normalised?  The routes of check_bsdf on the whole sphere, with
@@ -591,7 +604,7 @@ the phase function is given (the renderer's convention: mcstat only holds it
 fixed).
 )doc";
 
-const char *MEDIUM_DOC = R"doc(check_medium(sample, eval, pdf, *, sigma_ref, transmittance=None, n=100_000, alpha=0.01, seed=0, n_uniforms=1, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4)
+const char *MEDIUM_DOC = R"doc(check_medium(sample, eval, pdf, *, sigma_ref, transmittance=None, n=100_000, alpha=0.01, seed=0, n_uniforms=1, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4, resolution=0)
 
 Does a medium's distance sampling along a ray agree with its density and
 its weights?  ``sample(u) -> (t, weight, pdf)``: t (k,) distances >= 0 of
@@ -616,6 +629,13 @@ follow another density), and "mass" also tests that the mean over the n
 flights of the escapes' weights (0 for a scattering) equals T(tmax)
 (report.escape_weight, escape_weight_se).
 )doc";
+
+int verdict_of(const mcstat_check_report &r)
+{
+    int v = MCSTAT_CHECK_INCONSISTENT;
+    (void)mcstat_check_verdict(&r, &v, nullptr); // a report the library wrote: never refused
+    return v;
+}
 
 } // namespace
 
@@ -643,6 +663,13 @@ void register_check(py::module_ &mod)
         .def_property_readonly("values",
                                [](const Route &r) { return py::make_tuple(nan_to_none(r.r.value[0]),
                                                                           nan_to_none(r.r.value[1])); })
+        .def_property_readonly("why", [](const Route &r) -> py::object {
+            const char *t = mcstat_check_why_text(r.r.why);
+            return r.r.state == MCSTAT_ROUTE_INVALID && t ? py::object(py::str(t)) : py::none();
+        }, "state 'invalid': why the route could not answer and what would let it (None otherwise).")
+        .def_property_readonly("resolution", [](const Route &r) { return nan_to_none(r.r.resolution); },
+                               "Statistical routes: the relative numerical floor applied (differences at that "
+                               "scale are rounding, not evidence); None for the deterministic ones.")
         .def_property_readonly("meaning", [](const Route &r) { return mcstat_check_route_meaning(r.index); })
         .def_property_readonly("blind_spot", [](const Route &r) { return mcstat_check_route_blind_spot(r.index); })
         .def("__repr__", [](const Route &r) {
@@ -670,6 +697,19 @@ void register_check(py::module_ &mod)
             return r.r.kind == MCSTAT_CHECK_KIND_MEDIUM ? py::object(py::float_(r.r.sigma_ref)) : py::none();
         }, "check_medium: the coefficient of the map x = 1 - exp(-sigma_ref t) (None otherwise).")
         .def_property_readonly("reject", [](const Report &r) { return r.r.reject != 0; })
+        .def_property_readonly("verdict", [](const Report &r) { return mcstat_check_verdict_name(verdict_of(r.r)); },
+                               "'consistent', 'inconsistent' (reject) or 'inconclusive': no route rejected but a "
+                               "route the check needed could not answer (see unanswered).")
+        .def_property_readonly("unanswered", [](const Report &r) {
+            uint32_t mask = 0;
+            int v;
+            py::list l;
+            if (mcstat_check_verdict(&r.r, &v, &mask) == MCSTAT_OK)
+                for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
+                    if (mask & (1u << i))
+                        l.append(py::str(mcstat_check_route_name(i)));
+            return l;
+        }, "The names of the routes that could not answer and make the verdict 'inconclusive'.")
         .def_property_readonly("pvalue", [](const Report &r) { return r.r.p_value; })
         .def_property_readonly("alpha", [](const Report &r) { return r.r.alpha; })
         .def_property_readonly("domain", [](const Report &r) { return mcstat_check_domain_name(r.r.domain); })
@@ -728,7 +768,7 @@ void register_check(py::module_ &mod)
         }, py::arg("name"), "The route of that name ('cells', 'mass', 'pdf_value', ...).")
         .def("__str__", [](const Report &r) { return report_text(r.r); })
         .def("__repr__", [](const Report &r) {
-            return std::string("<CheckReport ") + (r.r.reject ? "reject" : "pass") +
+            return std::string("<CheckReport ") + mcstat_check_verdict_name(verdict_of(r.r)) +
                    ", p=" + std::string(py::str(py::float_(r.r.p_value))) + ">";
         })
         .def("__bool__", [](const Report &) -> bool {

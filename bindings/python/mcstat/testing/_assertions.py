@@ -14,10 +14,11 @@ A failure raises `StatisticalAssertionError` (an AssertionError) whose
 message holds the deciding stage's report, the alpha spent, the stages'
 p-values, the seed and how to reproduce it; a pass records what it could
 have missed (the smallest error of each kind the check detects).  A check
-that could not answer (a route's assumption failed: heavy tails, too few
-samples) fails as "inconclusive" when no statistical route answered: no
-answer is not a pass.  A route short of
-data beside others that answered is listed with what the pass could miss.
+that could not answer (the report's verdict "inconclusive": a route it
+needed failed an assumption, heavy tails or too few samples) fails as
+"inconclusive", naming the routes and why, unless the assertion is given
+``allow_inconclusive=True``: no answer is not a pass.  Every route without
+an answer is listed with what the pass could miss.
 """
 from __future__ import annotations
 
@@ -175,19 +176,19 @@ def _decide(kind: str, plan: _Plan, n: int, stage: Callable[[int, int, float], _
 
 
 # ---- renderer checks ---------------------------------------------------------------
-def _check_stage(run: Callable[..., Any]) -> Callable[[int, int, float], _Stage]:
+def _check_stage(run: Callable[..., Any], allow_inconclusive: bool) -> Callable[[int, int, float], _Stage]:
     def stage(n: int, seed: int, a: float) -> _Stage:
         rep = run(n=n, seed=seed, alpha=a)
         invalid = [r.name for r in rep.routes if r.state == "invalid"]
-        ran = [r for r in rep.routes if r.state == "ran" and not r.deterministic]
         hide = ", ".join(f"{r.name} {r.detectable:.3g}" for r in rep.routes
                          if r.state == "ran" and r.detectable is not None)
         if invalid:
             hide += ("; " if hide else "") + "no answer from " + ", ".join(invalid)
-        # no answer is not a pass when no statistical route answered; a route
-        # without an answer (short of data, heavy tails) beside others that
-        # answered is listed with what the pass could miss
-        why = "no statistical route answered (" + ", ".join(invalid) + ")" if not ran and invalid else ""
+        # the library's verdict: "inconclusive" when a route the check needed
+        # could not answer; no answer is not a pass unless the test allows it
+        why = ""
+        if rep.verdict == "inconclusive" and not allow_inconclusive:
+            why = "; ".join(f"{name} could not answer: {rep.route(name).why}" for name in rep.unanswered)
         return _Stage(p=float(rep.pvalue), text=str(rep), samples=int(rep.n + rep.n_pilot + rep.n_eval),
                       could_hide=("detectable: " + hide) if hide else "",
                       inconclusive=why,
@@ -198,35 +199,37 @@ def _check_stage(run: Callable[..., Any]) -> Callable[[int, int, float], _Stage]
 def assert_bsdf_consistent(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], wi: Any,
                            *, n: int = 100_000, alpha: Optional[float] = None, seed: Optional[int] = None,
                            escalate: Optional[float] = None, alpha0: Optional[float] = None,
-                           **check_kwargs: Any) -> Any:
+                           allow_inconclusive: bool = False, **check_kwargs: Any) -> Any:
     """``mcstat.check_bsdf(sample, eval, pdf, wi, **check_kwargs)`` as an
     assertion: its sample(), pdf(), eval() and weight agree.  Returns the
     deciding stage's CheckReport on a pass.  ``alpha``/``seed`` default to
     the suite's (required outside one); ``escalate`` the stage-2 factor (0:
-    off), ``alpha0`` the escalation band's top."""
+    off), ``alpha0`` the escalation band's top.  A report whose verdict is
+    "inconclusive" (a route the check needed could not answer) fails with
+    the routes and the reasons, unless ``allow_inconclusive``."""
     plan = _plan("bsdf", alpha, seed, escalate, alpha0)
     w = tuple(float(v) for v in np.asarray(wi, dtype=np.float64).ravel())
-    st = _check_stage(lambda **k: _core.check_bsdf(sample, eval, pdf, wi, **k, **check_kwargs))
+    st = _check_stage(lambda **k: _core.check_bsdf(sample, eval, pdf, wi, **k, **check_kwargs), allow_inconclusive)
     return _decide("bsdf", plan, n, st, True, f"check_bsdf at wi {w}").payload
 
 
 def assert_emitter_consistent(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], *,
                               n: int = 100_000, alpha: Optional[float] = None, seed: Optional[int] = None,
                               escalate: Optional[float] = None, alpha0: Optional[float] = None,
-                              **check_kwargs: Any) -> Any:
+                              allow_inconclusive: bool = False, **check_kwargs: Any) -> Any:
     """``mcstat.check_emitter`` as an assertion (see `assert_bsdf_consistent`)."""
     plan = _plan("emitter", alpha, seed, escalate, alpha0)
-    st = _check_stage(lambda **k: _core.check_emitter(sample, eval, pdf, **k, **check_kwargs))
+    st = _check_stage(lambda **k: _core.check_emitter(sample, eval, pdf, **k, **check_kwargs), allow_inconclusive)
     return _decide("emitter", plan, n, st, True, "check_emitter").payload
 
 
 def assert_warp_consistent(sample: Callable[..., Any], pdf: Callable[..., Any], *, n: int = 100_000,
                            alpha: Optional[float] = None, seed: Optional[int] = None,
                            escalate: Optional[float] = None, alpha0: Optional[float] = None,
-                           **check_kwargs: Any) -> Any:
+                           allow_inconclusive: bool = False, **check_kwargs: Any) -> Any:
     """``mcstat.check_warp`` as an assertion (see `assert_bsdf_consistent`)."""
     plan = _plan("warp", alpha, seed, escalate, alpha0)
-    st = _check_stage(lambda **k: _core.check_warp(sample, pdf, **k, **check_kwargs))
+    st = _check_stage(lambda **k: _core.check_warp(sample, pdf, **k, **check_kwargs), allow_inconclusive)
     return _decide("warp", plan, n, st, True, "check_warp").payload
 
 
