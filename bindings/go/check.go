@@ -32,6 +32,8 @@ package mcstat
 // static double gomcstat_lobe_albedo(const mcstat_check_report *r) { return r->lobe_albedo; }
 // static double gomcstat_escape_weight(const mcstat_check_report *r) { return r->escape_weight; }
 // static double gomcstat_escape_weight_se(const mcstat_check_report *r) { return r->escape_weight_se; }
+// static int gomcstat_route_why(const mcstat_check_route_result *q) { return q->why; }
+// static double gomcstat_route_resolution(const mcstat_check_route_result *q) { return q->resolution; }
 // static void gomcstat_model_callbacks(mcstat_check_model *m, void *user, int with_eval, int with_lobes) {
 //     m->user = user;
 //     m->sample = gomcstat_sample;
@@ -266,6 +268,14 @@ type CheckOptions struct {
 	// of the escapes' weights (0 for a scattering) equals T
 	// (CheckReport.EscapeWeight).  Needs WeightOverPDF.
 	EscapeTransmittance *float64
+	// Resolution is the relative resolution of the renderer's arithmetic:
+	// differences of integrals at that scale are rounding, not evidence
+	// (the statistical routes add it as an error of what they compare;
+	// each reports it in RouteReport.Resolution).  0 (the default):
+	// derived from the values the callbacks return, 2^-18 (64 float32
+	// ulps) when every pdf, weight and eval value is a float32, else
+	// 2^-47; otherwise a value in (0, 0.01).
+	Resolution float64
 }
 
 func checkOptionsInit() C.struct_mcstat_check_options {
@@ -298,6 +308,7 @@ func (opt *CheckOptions) toC() C.struct_mcstat_check_options {
 		if opt.EscapeTransmittance != nil {
 			o.escape_transmittance = C.double(*opt.EscapeTransmittance)
 		}
+		o.resolution = C.double(opt.Resolution)
 	}
 	return o
 }
@@ -340,6 +351,33 @@ type RouteReport struct {
 	Count         uint64    // points beyond tolerance (CELLS: pooled cells)
 	Where         []float64 // deterministic routes: the point of the largest difference
 	Value         []float64 // deterministic routes: the two values that differ there
+	// Why: state RouteInvalid, why the route could not answer and what
+	// would let it (libmcstat's sentence); "" otherwise.
+	Why string
+	// Resolution: statistical routes, the relative numerical floor they
+	// applied (nil for the deterministic ones).
+	Resolution *float64
+}
+
+// Verdict is a check's verdict.
+type Verdict int
+
+const (
+	// Consistent: no route rejected, and every route the check needed answered.
+	Consistent Verdict = C.MCSTAT_CHECK_CONSISTENT
+	// Inconsistent: some route rejected (CheckReport.Reject).
+	Inconsistent Verdict = C.MCSTAT_CHECK_INCONSISTENT
+	// Inconclusive: no route rejected, but a route the check needed could
+	// not answer (CheckReport.Unanswered): "consistent" would claim an
+	// error rate the battery did not have.
+	Inconclusive Verdict = C.MCSTAT_CHECK_INCONCLUSIVE
+)
+
+func (v Verdict) String() string {
+	if s := C.mcstat_check_verdict_name(C.int(v)); s != nil {
+		return C.GoString(s)
+	}
+	return fmt.Sprintf("Verdict(%d)", int(v))
 }
 
 // CheckReport is a renderer check's report; String() is its text block.
@@ -384,7 +422,11 @@ type CheckReport struct {
 	AlbedoEvalSE   float64
 	TailIndex      [2]float64    // of the weights, of the eval-only estimates
 	Routes         []RouteReport // indexed by Route
-	raw            C.struct_mcstat_check_report
+	// Verdict: consistent, inconsistent, or inconclusive, with the routes
+	// that could not answer (libmcstat's mcstat_check_verdict).
+	Verdict    Verdict
+	Unanswered []Route
+	raw        C.struct_mcstat_check_report
 }
 
 func (r *CheckReport) String() string {
@@ -416,7 +458,24 @@ func reportFromC(c *C.struct_mcstat_check_report) *CheckReport {
 			Reject: q.reject != 0, Statistic: optional(q.statistic), DF: optional(q.df), PValue: optional(q.p_value),
 			PAdjusted: optional(q.p_adjusted), Effect: optional(q.effect), Detectable: optional(q.detectable),
 			NFor1Pct: optional(q.n_for_1pct), Checked: uint64(q.checked), Count: uint64(q.count),
-			Where: present(q.where[0], q.where[1], q.where[2]), Value: present(q.value[0], q.value[1])}
+			Where: present(q.where[0], q.where[1], q.where[2]), Value: present(q.value[0], q.value[1]),
+			Resolution: optional(C.gomcstat_route_resolution(q))}
+		if r.Routes[i].State == RouteInvalid {
+			if w := C.mcstat_check_why_text(C.gomcstat_route_why(q)); w != nil {
+				r.Routes[i].Why = C.GoString(w)
+			}
+		}
+	}
+	var v C.int
+	var mask C.uint32_t
+	// a report the library wrote: never refused
+	if C.mcstat_check_verdict(c, &v, &mask) == C.MCSTAT_OK {
+		r.Verdict = Verdict(v)
+		for i := 0; i < NumRoutes; i++ {
+			if mask&(1<<uint(i)) != 0 {
+				r.Unanswered = append(r.Unanswered, Route(i))
+			}
+		}
 	}
 	return r
 }

@@ -797,11 +797,37 @@ pub struct mcstat_check_options {
     /// `MCSTAT_WEIGHT_OVER_PDF`; NaN, > 1, or >= 0 for another check:
     /// `MCSTAT_EINVAL`.
     pub escape_transmittance: f64,
+    /// Since 0.3.  The relative resolution of the caller's arithmetic:
+    /// differences of integrals at that scale are rounding, not evidence
+    /// (the statistical routes add it as an error of what they compare).
+    /// 0 (the initialiser's): derived from the values the callbacks return,
+    /// `MCSTAT_CHECK_RESOLUTION_FLOAT32` when every pdf, weight and eval
+    /// value is a float32, else `MCSTAT_CHECK_RESOLUTION_FLOAT64`; > 0: that
+    /// value, below 0.01.
+    pub resolution: f64,
 }
 
 /// sizeof(mcstat_check_options) in each release that changed it.
 pub const MCSTAT_CHECK_OPTIONS_SIZE_0_2: usize = 96;
-pub const MCSTAT_CHECK_OPTIONS_SIZE_0_3: usize = 104;
+pub const MCSTAT_CHECK_OPTIONS_SIZE_0_3: usize = 112;
+
+/// The derived resolutions: 64 units in the last place of float32 and float64.
+pub const MCSTAT_CHECK_RESOLUTION_FLOAT32: f64 = 3.814697265625e-06; // 2^-18
+pub const MCSTAT_CHECK_RESOLUTION_FLOAT64: f64 = 7.105427357601002e-15; // 2^-47
+
+/// Why a route could not answer (`mcstat_check_route_result::why`).
+pub const MCSTAT_CHECK_WHY_NONE: i32 = 0;
+pub const MCSTAT_CHECK_WHY_HEAVY_TAIL: i32 = 1;
+pub const MCSTAT_CHECK_WHY_TOO_FEW: i32 = 2;
+pub const MCSTAT_CHECK_WHY_ENVELOPE: i32 = 3;
+pub const MCSTAT_CHECK_WHY_NOTHING: i32 = 4;
+pub const MCSTAT_CHECK_WHY_NUMERIC: i32 = 5;
+pub const MCSTAT_CHECK_WHY_INTEGRATION: i32 = 6;
+
+/// The verdicts of `mcstat_check_verdict`.
+pub const MCSTAT_CHECK_CONSISTENT: c_int = 0;
+pub const MCSTAT_CHECK_INCONSISTENT: c_int = 1;
+pub const MCSTAT_CHECK_INCONCLUSIVE: c_int = 2;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
@@ -809,7 +835,8 @@ pub struct mcstat_check_route_result {
     pub state: i32,
     pub deterministic: i32,
     pub reject: i32,
-    pub reserved_i: i32,
+    /// State INVALID: `MCSTAT_CHECK_WHY_*` (C's union with 0.2.0's `reserved_i`).
+    pub why: i32,
     pub statistic: f64,
     pub df: f64,
     pub p_value: f64,
@@ -821,7 +848,11 @@ pub struct mcstat_check_route_result {
     pub count: u64,
     pub r#where: [f64; 3],
     pub value: [f64; 2],
-    pub reserved: [f64; 3],
+    /// Statistical routes: the relative numerical floor they applied (NaN
+    /// for the deterministic ones); with `reserved_2`, C's union with
+    /// 0.2.0's `reserved[3]`.
+    pub resolution: f64,
+    pub reserved_2: [f64; 2],
 }
 
 pub const MCSTAT_CHECK_KIND_BSDF: i32 = 0;
@@ -1599,6 +1630,9 @@ extern "C" {
     pub fn mcstat_check_format(r: *const mcstat_check_report, buf: *mut c_char, size: usize, length: *mut usize) -> c_int;
     pub fn mcstat_check_route_meaning(route: c_int) -> *const c_char;
     pub fn mcstat_check_route_blind_spot(route: c_int) -> *const c_char;
+    pub fn mcstat_check_verdict(report: *const mcstat_check_report, verdict: *mut c_int, unanswered: *mut u32) -> c_int;
+    pub fn mcstat_check_verdict_name(verdict: c_int) -> *const c_char;
+    pub fn mcstat_check_why_text(why: c_int) -> *const c_char;
 
     // ---- sequential tests (experimental) ---------------------------------
     pub fn mcstat_seq_options_init_size(opt: *mut mcstat_seq_options, size: usize) -> c_int;

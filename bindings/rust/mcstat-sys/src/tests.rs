@@ -136,7 +136,7 @@ fn layout_matches_the_c_compiler() {
         (mcstat_check_route_result, checked) = "checked",
         (mcstat_check_route_result, r#where) = "where",
         (mcstat_check_route_result, value) = "value",
-        (mcstat_check_route_result, reserved) = "reserved",
+        (mcstat_check_route_result, resolution) = "resolution",
         (mcstat_check_report, alpha) = "alpha",
         (mcstat_check_report, wi) = "wi",
         (mcstat_check_report, n) = "n",
@@ -195,6 +195,40 @@ fn layout_matches_the_c_compiler() {
     // the options' sizes by release
     v.push(("const".to_string(), "MCSTAT_CHECK_OPTIONS_SIZE_0_2".to_string(), MCSTAT_CHECK_OPTIONS_SIZE_0_2));
     v.push(("const".to_string(), "MCSTAT_CHECK_OPTIONS_SIZE_0_3".to_string(), MCSTAT_CHECK_OPTIONS_SIZE_0_3));
+    // the route result's named storage, and the why and verdict values
+    v.push((
+        "offset".to_string(),
+        "offsetof(mcstat_check_route_result, why)".to_string(),
+        std::mem::offset_of!(mcstat_check_route_result, why),
+    ));
+    v.push((
+        "offset".to_string(),
+        "offsetof(mcstat_check_options, resolution)".to_string(),
+        std::mem::offset_of!(mcstat_check_options, resolution),
+    ));
+    for (name, value) in [
+        ("MCSTAT_CHECK_WHY_HEAVY_TAIL", MCSTAT_CHECK_WHY_HEAVY_TAIL),
+        ("MCSTAT_CHECK_WHY_TOO_FEW", MCSTAT_CHECK_WHY_TOO_FEW),
+        ("MCSTAT_CHECK_WHY_ENVELOPE", MCSTAT_CHECK_WHY_ENVELOPE),
+        ("MCSTAT_CHECK_WHY_NOTHING", MCSTAT_CHECK_WHY_NOTHING),
+        ("MCSTAT_CHECK_WHY_NUMERIC", MCSTAT_CHECK_WHY_NUMERIC),
+        ("MCSTAT_CHECK_WHY_INTEGRATION", MCSTAT_CHECK_WHY_INTEGRATION),
+        ("MCSTAT_CHECK_INCONSISTENT", MCSTAT_CHECK_INCONSISTENT),
+        ("MCSTAT_CHECK_INCONCLUSIVE", MCSTAT_CHECK_INCONCLUSIVE),
+    ] {
+        v.push(("const".to_string(), name.to_string(), value as usize));
+    }
+    // the resolutions as their reciprocals (2^18, 2^47)
+    v.push((
+        "const".to_string(),
+        "(size_t)(1 / MCSTAT_CHECK_RESOLUTION_FLOAT32)".to_string(),
+        (1.0 / MCSTAT_CHECK_RESOLUTION_FLOAT32) as usize,
+    ));
+    v.push((
+        "const".to_string(),
+        "(size_t)(1 / MCSTAT_CHECK_RESOLUTION_FLOAT64)".to_string(),
+        (1.0 / MCSTAT_CHECK_RESOLUTION_FLOAT64) as usize,
+    ));
     let exprs: Vec<String> = v.iter().map(|e| e.1.clone()).collect();
     let c = c_compiler_layout(&exprs);
     assert_eq!(c.len(), v.len());

@@ -273,6 +273,13 @@ pub struct CheckOptions {
     /// ([`CheckReport::escape_weight`]).  Needs [`WeightConvention::OverPdf`];
     /// the other checks refuse it.
     pub escape_transmittance: Option<f64>,
+    /// The relative resolution of the renderer's arithmetic: differences of
+    /// integrals at that scale are rounding, not evidence (the statistical
+    /// routes add it as an error of what they compare; each reports it,
+    /// [`RouteResult::resolution`]).  `None` (the default): derived from the
+    /// values the callbacks return, 2^-18 (64 float32 ulps) when every pdf,
+    /// weight and eval value is a float32, else 2^-47; `Some(r)`: r in (0, 0.01).
+    pub resolution: Option<f64>,
 }
 
 fn c_options_defaults() -> sys::mcstat_check_options {
@@ -298,6 +305,7 @@ impl Default for CheckOptions {
             rtol: o.rtol,
             tolerated: o.tolerated,
             escape_transmittance: None,
+            resolution: None,
         }
     }
 }
@@ -327,6 +335,7 @@ impl CheckOptions {
             }
             o.escape_transmittance = t;
         }
+        o.resolution = self.resolution.unwrap_or(0.0);
         Ok(o)
     }
 }
@@ -789,8 +798,51 @@ impl RouteResult {
             Some((self.raw.r#where, self.raw.value[0], self.raw.value[1]))
         }
     }
+    /// State [`RouteState::Invalid`]: why the route could not answer and
+    /// what would let it (libmcstat's sentence).
+    pub fn why(&self) -> Option<&'static str> {
+        if self.state() != RouteState::Invalid {
+            return None;
+        }
+        static_str(unsafe { sys::mcstat_check_why_text(self.raw.why) })
+    }
+    /// Statistical routes: the relative numerical floor they applied.
+    pub fn resolution(&self) -> Option<f64> {
+        some(self.raw.resolution)
+    }
     pub fn raw(&self) -> &sys::mcstat_check_route_result {
         &self.raw
+    }
+}
+
+/// A check's verdict.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// No route rejected, and every route the check needed answered.
+    Consistent,
+    /// Some route rejected ([`CheckReport::reject`]).
+    Inconsistent,
+    /// No route rejected, but a route the check needed could not answer
+    /// ([`CheckReport::unanswered`]): "consistent" would claim an error rate
+    /// the battery did not have.
+    Inconclusive,
+}
+
+impl Verdict {
+    /// "consistent", "inconsistent", "inconclusive".
+    pub fn name(self) -> &'static str {
+        let v = match self {
+            Verdict::Consistent => sys::MCSTAT_CHECK_CONSISTENT,
+            Verdict::Inconsistent => sys::MCSTAT_CHECK_INCONSISTENT,
+            Verdict::Inconclusive => sys::MCSTAT_CHECK_INCONCLUSIVE,
+        };
+        static_str(unsafe { sys::mcstat_check_verdict_name(v) }).unwrap_or("?")
+    }
+}
+
+impl fmt::Display for Verdict {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
     }
 }
 
@@ -929,6 +981,29 @@ impl CheckReport {
     /// Every route with its outcome.
     pub fn routes(&self) -> impl Iterator<Item = (Route, RouteResult)> + '_ {
         Route::ALL.iter().map(move |&r| (r, self.route(r)))
+    }
+    /// The verdict and the routes that could not answer (libmcstat's
+    /// `mcstat_check_verdict`).
+    fn verdict_raw(&self) -> (c_int, u32) {
+        let (mut v, mut mask): (c_int, u32) = (sys::MCSTAT_CHECK_INCONSISTENT, 0);
+        // a report the library wrote: never refused
+        let st = unsafe { sys::mcstat_check_verdict(&*self.raw, &mut v, &mut mask) };
+        debug_assert_eq!(st, sys::MCSTAT_OK);
+        (v, mask)
+    }
+    /// Consistent, inconsistent, or inconclusive (a route the check needed
+    /// could not answer).
+    pub fn verdict(&self) -> Verdict {
+        match self.verdict_raw().0 {
+            sys::MCSTAT_CHECK_CONSISTENT => Verdict::Consistent,
+            sys::MCSTAT_CHECK_INCONCLUSIVE => Verdict::Inconclusive,
+            _ => Verdict::Inconsistent,
+        }
+    }
+    /// The routes that could not answer and make the verdict inconclusive.
+    pub fn unanswered(&self) -> Vec<Route> {
+        let mask = self.verdict_raw().1;
+        Route::ALL.iter().copied().filter(|r| mask & (1u32 << r.raw()) != 0).collect()
     }
     pub fn raw(&self) -> &sys::mcstat_check_report {
         &self.raw

@@ -46,7 +46,7 @@ pub mod power;
 pub mod rows;
 mod seq;
 
-pub use check::{check_bsdf, check_emitter, check_medium, check_phase, check_warp, CheckModel, CheckOptions, CheckReport, Domain, Route};
+pub use check::{check_bsdf, check_emitter, check_medium, check_phase, check_warp, CheckModel, CheckOptions, CheckReport, Domain, Route, Verdict};
 pub use diag::{diagnose, DiagOptions, Diagnostics};
 pub use escalation::{Escalation, EscalationDecision};
 pub use gof::{battery_test, battery_test_p_values, binom_test, gof_chisq_test, GofOptions};
