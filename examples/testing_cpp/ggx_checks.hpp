@@ -65,6 +65,55 @@ inline mcstat_check_model cosine_warp()
     return m;
 }
 
+// A BSDF with the cosine in the wrong place: f |cos| should be rho 3 cos^2 /
+// (2 pi), sampled exactly (pdf 3 cos^2 / (2 pi)), but eval() leaves out the
+// cos^2 and sample() reuses it, so the weights rho / cos^2 are heavy-tailed
+// (tail index 1.5): the routes that average them cannot answer, and the
+// check's verdict is inconclusive.
+inline double wrong_cosine_eval(double c) { return c > 0 ? 0.8 * 3 / (2 * kPi) : 0.0; }
+inline double wrong_cosine_density(double c) { return c > 0 ? 3 * c * c / (2 * kPi) : 0.0; }
+
+inline int wrong_cosine_sample(void *, const double *, const double *u, size_t n, double *x, double *w, double *p)
+{
+    for (size_t k = 0; k < n; k++) {
+        double c = std::fmin(std::fmax(std::cbrt(1 - u[3 * k]), 1e-12), 1.0);
+        double r = std::sqrt(std::fmax(0.0, 1 - c * c)), phi = 2 * kPi * u[3 * k + 1];
+        x[3 * k] = r * std::cos(phi);
+        x[3 * k + 1] = r * std::sin(phi);
+        x[3 * k + 2] = c;
+        p[k] = wrong_cosine_density(c);
+        w[k] = wrong_cosine_eval(c) / p[k];
+    }
+    return 0;
+}
+
+inline int wrong_cosine_pdf(void *, const double *, const double *x, size_t n, double *out)
+{
+    for (size_t k = 0; k < n; k++)
+        out[k] = wrong_cosine_density(x[3 * k + 2]);
+    return 0;
+}
+
+inline int wrong_cosine_value(void *, const double *, const double *x, size_t n, double *out)
+{
+    for (size_t k = 0; k < n; k++)
+        out[k] = wrong_cosine_eval(x[3 * k + 2]);
+    return 0;
+}
+
+inline mcstat_check_model wrong_cosine_bsdf()
+{
+    mcstat_check_model m{};
+    m.domain = MCSTAT_DOMAIN_HEMISPHERE;
+    m.n_uniforms = 3;
+    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.sample_reports = 1;
+    m.sample = &wrong_cosine_sample;
+    m.pdf = &wrong_cosine_pdf;
+    m.eval = &wrong_cosine_value;
+    return m;
+}
+
 // n estimates of the integral of cos over the hemisphere (pi) by uniform
 // hemisphere sampling, from a fixed generator (splitmix64 of the index).
 inline std::vector<double> cosine_estimates(size_t n, uint64_t seed)

@@ -1,7 +1,9 @@
 // gtest_ggx.cpp - mcstat's checks as GoogleTest assertions (mcstat_testing.h)
 // under one budget for the run: the correct GGX at three angles, the warp
 // and an estimator pass; the planted pdf bug fails (ctest expects that of
-// the Planted test alone, CMakeLists.txt).
+// the Planted test alone, CMakeLists.txt); a BSDF whose heavy-tailed
+// weights leave the check inconclusive fails, and passes where the test
+// allows it.
 #include <gtest/gtest.h>
 
 #include "mcstat_testing.h"
@@ -40,4 +42,15 @@ TEST(Planted, PdfBugIsCaught)
 {
     example::Bsdf b(ggx::Bug::Pdf);
     MCSTAT_EXPECT_BSDF_CONSISTENT(b.model(), example::incident(35), 50000);
+}
+
+TEST(Inconclusive, WrongCosineFails)
+{
+    MCSTAT_EXPECT_BSDF_CONSISTENT(example::wrong_cosine_bsdf(), example::incident(0), 50000);
+}
+
+TEST(Inconclusive, WrongCosineAllowed)
+{
+    MCSTAT_ALLOW_INCONCLUSIVE();
+    MCSTAT_EXPECT_BSDF_CONSISTENT(example::wrong_cosine_bsdf(), example::incident(0), 50000);
 }

@@ -30,7 +30,10 @@
  *                                                   p-values reach small shares)
  * and MCSTAT_ASSERT_... for each.  A failure's message holds the deciding
  * stage's report (mcstat's text block), the alpha spent, the stages'
- * p-values, the seed and how to rerun exactly that test.
+ * p-values, the seed and how to rerun exactly that test.  A renderer check
+ * whose verdict is inconclusive (mcstat_check_verdict: a route it needed
+ * could not answer) fails too, naming the routes and why, unless the test
+ * called MCSTAT_ALLOW_INCONCLUSIVE() before it.
  *
  * The budget.  MCSTAT_SUITE_ALPHA (default 1e-3) is the probability that a
  * run in which every checked component is correct fails at all.  It is
@@ -182,6 +185,7 @@ struct Suite {
     std::string test;       // the test whose checks are being counted
     unsigned used = 0;      // its checks so far
     unsigned declared = 1;  // MCSTAT_TEST_CHECKS
+    bool allow_inconclusive = false; // MCSTAT_ALLOW_INCONCLUSIVE
     unsigned long checks = 0, escalated = 0, failed = 0;
     unsigned long long samples = 0;
     double spent = 0;
@@ -213,6 +217,7 @@ struct Plan {
     unsigned index = 0;
     double alpha = 0;
     uint64_t seed = 0;
+    bool allow_inconclusive = false;
 };
 
 inline Plan next_check(const char *kind)
@@ -229,6 +234,7 @@ inline Plan next_check(const char *kind)
         s.test = p.name;
         s.used = 0;
         s.declared = 1;
+        s.allow_inconclusive = false;
     }
     long m = s.settings.tests ? s.settings.tests : framework_test_count();
     if (m < 1) {
@@ -245,6 +251,7 @@ inline Plan next_check(const char *kind)
     p.index = s.used++;
     p.alpha = s.settings.alpha / (double)m / (double)s.declared;
     p.seed = check_seed(s.settings.master, p.name, p.index);
+    p.allow_inconclusive = s.allow_inconclusive;
     p.ok = true;
     return p;
 }
@@ -256,6 +263,22 @@ inline void declare_checks(unsigned k)
     s.test = current_test_name();
     s.used = 0;
     s.declared = k < 1 ? 1 : k;
+    s.allow_inconclusive = false;
+}
+
+// The running test's renderer checks pass when their verdict is
+// inconclusive (a route they needed could not answer) instead of failing.
+inline void allow_inconclusive()
+{
+    Suite &s = suite();
+    std::lock_guard<std::mutex> lock(s.mu);
+    std::string name = current_test_name();
+    if (name != s.test) {
+        s.test = name;
+        s.used = 0;
+        s.declared = 1;
+    }
+    s.allow_inconclusive = true;
 }
 
 struct Outcome {
@@ -296,6 +319,7 @@ struct Stage {
     double p = 1;
     std::string text;
     unsigned long long samples = 0;
+    std::string inconclusive; // a check's verdict "inconclusive": the routes and why
 };
 
 // One statistical check: `run(n, seed, alpha)` is a stage; escalatable ones
@@ -354,6 +378,10 @@ inline Outcome decide(const char *kind, size_t n, bool escalatable,
         s.samples += last.samples;
         s.escalated += stages > 1;
     }
+    if (decision != MCSTAT_ESCALATION_REJECT && !last.inconclusive.empty() && !p.allow_inconclusive)
+        return failed(std::string(kind) + " inconclusive at alpha " + g(p.alpha) + ": no route rejected, but " +
+                      last.inconclusive + " (MCSTAT_ALLOW_INCONCLUSIVE() lets the test pass so)\n" + lines +
+                      last.text + "\n" + reproduce(p));
     if (decision != MCSTAT_ESCALATION_REJECT)
         return {true, ""};
     return failed(std::string(kind) + " rejected at alpha " + g(p.alpha) + " (this check's share of the suite's " +
@@ -391,6 +419,13 @@ inline Outcome check(const char *kind, const mcstat_check_model &model, const do
         st.p = r.p_value;
         st.text = check_text(r);
         st.samples = r.n + r.n_pilot + r.n_eval;
+        int verdict;
+        uint32_t open = 0;
+        if (mcstat_check_verdict(&r, &verdict, &open) == MCSTAT_OK && verdict == MCSTAT_CHECK_INCONCLUSIVE)
+            for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
+                if (open & (1u << i))
+                    st.inconclusive += std::string(st.inconclusive.empty() ? "" : "; ") + mcstat_check_route_name(i) +
+                                       " could not answer: " + mcstat_check_why_text(r.route[i].why);
         return st;
     });
 }
@@ -480,6 +515,7 @@ inline long framework_test_count()
 } // namespace mcstat_testing
 
 #define MCSTAT_TEST_CHECKS(k) ::mcstat_testing::declare_checks(k)
+#define MCSTAT_ALLOW_INCONCLUSIVE() ::mcstat_testing::allow_inconclusive()
 
 #define MCSTAT_EXPECT_BSDF_CONSISTENT(model, wi, n) \
     MCSTAT_TESTING_FAIL_(::mcstat_testing::check("check_bsdf", (model), (wi), (n)), false)
