@@ -1949,7 +1949,13 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /* the check rejects when any adjusted p-value is <= alpha: a correct model */
 /* is rejected with probability at most alpha (the cubature and the         */
 /* asymptotic tests being approximations; measured: tests/python/           */
-/* test_check_calibration.py and bench/).                                   */
+/* test_check_calibration.py and bench/).  A check that did not reject but  */
+/* needed a route that could not answer is inconclusive, not consistent    */
+/* (mcstat_check_verdict, below the report).                                */
+/* The numerical floor: differences at the resolution of the caller's       */
+/* arithmetic are not evidence.  The statistical routes add the options'    */
+/* resolution (derived from the values by default: float32 or float64) as a */
+/* relative error of what they compare, and report it.                      */
 /* ------------------------------------------------------------------------ */
 enum mcstat_check_route {
     MCSTAT_CHECK_ROUTE_CELLS = 0,
