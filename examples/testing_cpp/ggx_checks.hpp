@@ -65,6 +65,85 @@ inline mcstat_check_model cosine_warp()
     return m;
 }
 
+// The isotropic phase function, sampled uniformly (weights 1).
+inline int iso_sample(void *, const double *, const double *u, size_t n, double *x, double *w, double *p)
+{
+    for (size_t k = 0; k < n; k++) {
+        double z = 1 - 2 * u[2 * k], r = std::sqrt(std::fmax(0.0, 1 - z * z)), phi = 2 * kPi * u[2 * k + 1];
+        x[3 * k] = r * std::cos(phi);
+        x[3 * k + 1] = r * std::sin(phi);
+        x[3 * k + 2] = z;
+        w[k] = 1.0;
+        p[k] = 1 / (4 * kPi);
+    }
+    return 0;
+}
+
+inline int iso_density(void *, const double *, const double *, size_t n, double *out)
+{
+    for (size_t k = 0; k < n; k++)
+        out[k] = 1 / (4 * kPi);
+    return 0;
+}
+
+inline mcstat_check_model isotropic_phase()
+{
+    mcstat_check_model m{};
+    m.domain = MCSTAT_DOMAIN_SPHERE;
+    m.n_uniforms = 2;
+    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.sample_reports = 1;
+    m.sample = &iso_sample;
+    m.pdf = &iso_density;
+    m.eval = &iso_density;
+    return m;
+}
+
+// Free flights in a homogeneous medium (sigma_t 2, sigma_s 1.5) up to a
+// surface at t = 1: distances t with density sigma_t exp(-sigma_t t), the
+// weight sigma_s / sigma_t; a flight past the surface fails (pdf 0).
+constexpr double kSigmaT = 2.0, kSigmaS = 1.5, kTmax = 1.0;
+inline double flight_density(double t) { return t < kTmax ? kSigmaT * std::exp(-kSigmaT * t) : 0.0; }
+
+inline int flight_sample(void *, const double *, const double *u, size_t n, double *x, double *w, double *p)
+{
+    for (size_t k = 0; k < n; k++) {
+        double t = -std::log1p(-u[k]) / kSigmaT;
+        bool inside = t < kTmax;
+        x[k] = inside ? t : 0.0;
+        p[k] = inside ? flight_density(t) : 0.0;
+        w[k] = inside ? kSigmaS / kSigmaT : 0.0;
+    }
+    return 0;
+}
+
+inline int flight_pdf(void *, const double *, const double *x, size_t n, double *out)
+{
+    for (size_t k = 0; k < n; k++)
+        out[k] = flight_density(x[k]);
+    return 0;
+}
+
+inline int flight_eval(void *, const double *, const double *x, size_t n, double *out)
+{
+    for (size_t k = 0; k < n; k++)
+        out[k] = kSigmaS / kSigmaT * flight_density(x[k]);
+    return 0;
+}
+
+inline mcstat_check_model homogeneous_medium()
+{
+    mcstat_check_model m{};
+    m.domain = MCSTAT_DOMAIN_INTERVAL;
+    m.n_uniforms = 1;
+    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.sample_reports = 1;
+    m.sample = &flight_sample;
+    m.pdf = &flight_pdf;
+    m.eval = &flight_eval;
+    return m;
+}
+
 // A BSDF with the cosine in the wrong place: f |cos| should be rho 3 cos^2 /
 // (2 pi), sampled exactly (pdf 3 cos^2 / (2 pi)), but eval() leaves out the
 // cos^2 and sample() reuses it, so the weights rho / cos^2 are heavy-tailed

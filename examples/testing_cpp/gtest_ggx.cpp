@@ -32,6 +32,10 @@ TEST(Ggx, TwoChecksDeclared)
 
 TEST(Warp, CosineHemisphere) { MCSTAT_ASSERT_WARP_CONSISTENT(example::cosine_warp(), 50000); }
 
+TEST(Phase, Isotropic) { MCSTAT_EXPECT_PHASE_CONSISTENT(example::isotropic_phase(), example::incident(30), 50000); }
+
+TEST(Medium, HomogeneousFlights) { MCSTAT_EXPECT_MEDIUM_CONSISTENT(example::homogeneous_medium(), 2.0, 50000); }
+
 TEST(Estimator, CosineIntegralIsPi)
 {
     std::vector<double> v = example::cosine_estimates(20000, 7);

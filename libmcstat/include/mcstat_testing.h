@@ -24,6 +24,8 @@
  *   MCSTAT_EXPECT_BSDF_CONSISTENT(model, wi, n)     mcstat_check_bsdf
  *   MCSTAT_EXPECT_EMITTER_CONSISTENT(model, n)      mcstat_check_emitter
  *   MCSTAT_EXPECT_WARP_CONSISTENT(model, n)         mcstat_check_warp
+ *   MCSTAT_EXPECT_PHASE_CONSISTENT(model, wi, n)    mcstat_check_phase
+ *   MCSTAT_EXPECT_MEDIUM_CONSISTENT(model, sigma_ref, n)  mcstat_check_medium
  *   MCSTAT_EXPECT_UNBIASED(values, count, expected) two-sided one-sample t test
  *   MCSTAT_EXPECT_SAME_DISTRIBUTION(x, nx, y, ny)   two-sample Kolmogorov-Smirnov
  *                                                   (unweighted: exact or asymptotic
@@ -78,6 +80,9 @@
 #include <mutex>
 #include <string>
 #include <vector>
+#if defined(__linux__)
+#include <unistd.h>
+#endif
 
 #if !defined(MCSTAT_TESTING_GTEST) && !defined(MCSTAT_TESTING_CATCH2)
 #  if defined(GTEST_INCLUDE_GTEST_GTEST_H_) || defined(GOOGLETEST_INCLUDE_GTEST_GTEST_H_)
@@ -300,6 +305,20 @@ inline Outcome failed(const std::string &m)
     return {false, "mcstat: " + m};
 }
 
+// The running test program, as a command that works from any folder.
+inline std::string program_path()
+{
+#if defined(__linux__)
+    char buf[4096];
+    ssize_t k = readlink("/proc/self/exe", buf, sizeof buf - 1);
+    if (k > 0) {
+        buf[k] = '\0';
+        return "'" + std::string(buf) + "'";
+    }
+#endif
+    return "./the-test-program";
+}
+
 inline std::string reproduce(const Plan &p)
 {
     const Settings &st = suite().settings;
@@ -310,8 +329,8 @@ inline std::string reproduce(const Plan &p)
         "'" + p.name + "'";
 #endif
     return "reproduce: MCSTAT_SUITE_ALPHA=" + g(st.alpha) + " MCSTAT_SEED=" + std::to_string(st.master) +
-           " MCSTAT_SUITE_TESTS=" + std::to_string(st.tests ? st.tests : framework_test_count()) +
-           " ./this-test " + filter + " (the same seeds and shares)";
+           " MCSTAT_SUITE_TESTS=" + std::to_string(st.tests ? st.tests : framework_test_count()) + " " +
+           program_path() + " " + filter + " (the same seeds and shares)";
 }
 
 struct Stage {
@@ -383,7 +402,7 @@ inline Outcome decide(const char *kind, size_t n, bool escalatable,
                       last.inconclusive + " (MCSTAT_ALLOW_INCONCLUSIVE() lets the test pass so)\n" + lines +
                       last.text + "\n" + reproduce(p));
     if (decision != MCSTAT_ESCALATION_REJECT)
-        return {true, ""};
+        return {true, std::string(kind) + " passed at alpha " + g(p.alpha) + " (seed " + std::to_string(p.seed) + ")"};
     return failed(std::string(kind) + " rejected at alpha " + g(p.alpha) + " (this check's share of the suite's " +
                   g(st.alpha) + ")\n" + lines + last.text + "\n" + reproduce(p));
 }
@@ -399,17 +418,28 @@ inline std::string check_text(const mcstat_check_report &r)
     return t;
 }
 
-inline Outcome check(const char *kind, const mcstat_check_model &model, const double *wi, size_t n)
+// kind: MCSTAT_CHECK_KIND_*; wi for BSDFs and phase functions, sigma_ref for media
+inline Outcome check(int kind, const mcstat_check_model &model, const double *wi, double sigma_ref, size_t n)
 {
-    return decide(kind, n, true, [&](size_t k, uint64_t seed, double a) {
+    const char *name = kind == MCSTAT_CHECK_KIND_BSDF      ? "check_bsdf"
+                       : kind == MCSTAT_CHECK_KIND_EMITTER ? "check_emitter"
+                       : kind == MCSTAT_CHECK_KIND_PHASE   ? "check_phase"
+                       : kind == MCSTAT_CHECK_KIND_MEDIUM  ? "check_medium"
+                                                           : "check_warp";
+    return decide(name, n, true, [&](size_t k, uint64_t seed, double a) {
         Stage st;
         mcstat_check_report r;
-        if (wi)
-            st.status = mcstat_check_bsdf(&model, wi, k, seed, a, nullptr, nullptr, 0, &r);
-        else if (model.eval)
+        switch (kind) {
+        case MCSTAT_CHECK_KIND_BSDF: st.status = mcstat_check_bsdf(&model, wi, k, seed, a, nullptr, nullptr, 0, &r); break;
+        case MCSTAT_CHECK_KIND_EMITTER:
             st.status = mcstat_check_emitter(&model, k, seed, a, nullptr, nullptr, 0, &r);
-        else
-            st.status = mcstat_check_warp(&model, k, seed, a, nullptr, nullptr, 0, &r);
+            break;
+        case MCSTAT_CHECK_KIND_PHASE: st.status = mcstat_check_phase(&model, wi, k, seed, a, nullptr, nullptr, 0, &r); break;
+        case MCSTAT_CHECK_KIND_MEDIUM:
+            st.status = mcstat_check_medium(&model, sigma_ref, k, seed, a, nullptr, nullptr, 0, &r);
+            break;
+        default: st.status = mcstat_check_warp(&model, k, seed, a, nullptr, nullptr, 0, &r); break;
+        }
         if (st.status == MCSTAT_ECALLBACK) {
             st.text = r.message;
             return st;
@@ -508,6 +538,8 @@ inline long framework_test_count()
                 FAIL(mcstat_o_.message);                                                                       \
             else                                                                                               \
                 FAIL_CHECK(mcstat_o_.message);                                                                 \
+        } else {                                                                                               \
+            SUCCEED(mcstat_o_.message); /* an assertion, so that -w NoAssertions sees the check */             \
         }                                                                                                      \
     } while (0)
 #endif
@@ -518,17 +550,25 @@ inline long framework_test_count()
 #define MCSTAT_ALLOW_INCONCLUSIVE() ::mcstat_testing::allow_inconclusive()
 
 #define MCSTAT_EXPECT_BSDF_CONSISTENT(model, wi, n) \
-    MCSTAT_TESTING_FAIL_(::mcstat_testing::check("check_bsdf", (model), (wi), (n)), false)
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_BSDF, (model), (wi), 0.0, (n)), false)
 #define MCSTAT_ASSERT_BSDF_CONSISTENT(model, wi, n) \
-    MCSTAT_TESTING_FAIL_(::mcstat_testing::check("check_bsdf", (model), (wi), (n)), true)
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_BSDF, (model), (wi), 0.0, (n)), true)
 #define MCSTAT_EXPECT_EMITTER_CONSISTENT(model, n) \
-    MCSTAT_TESTING_FAIL_(::mcstat_testing::check("check_emitter", (model), nullptr, (n)), false)
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_EMITTER, (model), nullptr, 0.0, (n)), false)
 #define MCSTAT_ASSERT_EMITTER_CONSISTENT(model, n) \
-    MCSTAT_TESTING_FAIL_(::mcstat_testing::check("check_emitter", (model), nullptr, (n)), true)
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_EMITTER, (model), nullptr, 0.0, (n)), true)
 #define MCSTAT_EXPECT_WARP_CONSISTENT(model, n) \
-    MCSTAT_TESTING_FAIL_(::mcstat_testing::check("check_warp", (model), nullptr, (n)), false)
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_WARP, (model), nullptr, 0.0, (n)), false)
 #define MCSTAT_ASSERT_WARP_CONSISTENT(model, n) \
-    MCSTAT_TESTING_FAIL_(::mcstat_testing::check("check_warp", (model), nullptr, (n)), true)
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_WARP, (model), nullptr, 0.0, (n)), true)
+#define MCSTAT_EXPECT_PHASE_CONSISTENT(model, wi, n) \
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_PHASE, (model), (wi), 0.0, (n)), false)
+#define MCSTAT_ASSERT_PHASE_CONSISTENT(model, wi, n) \
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_PHASE, (model), (wi), 0.0, (n)), true)
+#define MCSTAT_EXPECT_MEDIUM_CONSISTENT(model, sigma_ref, n) \
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_MEDIUM, (model), nullptr, (sigma_ref), (n)), false)
+#define MCSTAT_ASSERT_MEDIUM_CONSISTENT(model, sigma_ref, n) \
+    MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_MEDIUM, (model), nullptr, (sigma_ref), (n)), true)
 #define MCSTAT_EXPECT_UNBIASED(values, count, expected) \
     MCSTAT_TESTING_FAIL_(::mcstat_testing::unbiased((values), (count), (expected)), false)
 #define MCSTAT_ASSERT_UNBIASED(values, count, expected) \

@@ -210,9 +210,14 @@ static void put_budget(text *t, const mcstat_check_report *r, int i)
     case MCSTAT_CHECK_ROUTE_KS:
         put(t, "a sup distance of about ");
         put_g(t, "%.3g", rr->detectable);
-        put(t, " between the CDFs (probability ~0.5); 0.01 needs ");
-        put_g(t, "%.3g", rr->n_for_1pct);
-        put(t, " samples\n");
+        put(t, " between the CDFs (probability ~0.5); ");
+        if (isinf(rr->n_for_1pct))
+            put(t, "0.01 is beyond its cap of points a side, whatever n\n");
+        else {
+            put(t, "0.01 needs ");
+            put_g(t, "%.3g", rr->n_for_1pct);
+            put(t, " samples\n");
+        }
         break;
     case MCSTAT_CHECK_ROUTE_ENERGY:
         put(t, r->kind == MCSTAT_CHECK_KIND_PHASE ? "albedo off 1 by " : "albedo above 1 by ");

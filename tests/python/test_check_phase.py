@@ -343,3 +343,21 @@ def test_phase_and_medium_reject_correct_models_at_rate_alpha():
         runs += 2
     meta = mcstat.battery_test(rejected, 0.05, n=runs, alternative="greater", meta_alpha=0.001)
     assert not meta.reject, (rejected, runs)
+
+
+# ---- as assertions of mcstat.testing ---------------------------------------------------
+def test_phase_and_medium_assertions():
+    import mcstat.testing as mt
+    wi = np.array([0.3, -0.4, 0.866])
+    good, bad = Phase("hg", 0.7), Phase("hg", 0.7, "norm")
+    with mt.scope("phase", 0.01):
+        r = mt.assert_phase_consistent(good.sample, good.eval, good.pdf, wi, n=20000)
+        assert r.kind == "phase"
+    with mt.scope("phase-bad", 0.01), pytest.raises(mt.StatisticalAssertionError, match="check_phase at wi"):
+        mt.assert_phase_consistent(bad.sample, bad.eval, bad.pdf, wi, n=20000)
+    m, wrong = Homogeneous(), Homogeneous(bug="weight")
+    with mt.scope("medium", 0.01):
+        r = mt.assert_medium_consistent(m.sample, m.eval, m.pdf, sigma_ref=2.0, n=20000)
+        assert r.kind == "medium"
+    with mt.scope("medium-bad", 0.01), pytest.raises(mt.StatisticalAssertionError, match="check_medium"):
+        mt.assert_medium_consistent(wrong.sample, wrong.eval, wrong.pdf, sigma_ref=2.0, n=20000)

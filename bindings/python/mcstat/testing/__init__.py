@@ -9,7 +9,8 @@ Here:
 - **assertions** that raise `StatisticalAssertionError` (an
   AssertionError) with mcstat's report, the alpha spent, the seed and how
   to reproduce: `assert_bsdf_consistent`, `assert_emitter_consistent`,
-  `assert_warp_consistent` (the renderer kit), `assert_unbiased`,
+  `assert_warp_consistent`, `assert_phase_consistent`,
+  `assert_medium_consistent` (the renderer kit), `assert_unbiased`,
   `assert_same_distribution`, `assert_images_equivalent`;
 - **one budget for the suite** (`Suite`, `scope`): the run's
   false-failure probability is the budget, each test's share fixed before
@@ -41,6 +42,8 @@ from ._assertions import (
     assert_bsdf_consistent,
     assert_emitter_consistent,
     assert_images_equivalent,
+    assert_medium_consistent,
+    assert_phase_consistent,
     assert_same_distribution,
     assert_unbiased,
     assert_warp_consistent,
@@ -54,6 +57,8 @@ __all__ = [
     "assert_bsdf_consistent",
     "assert_emitter_consistent",
     "assert_warp_consistent",
+    "assert_phase_consistent",
+    "assert_medium_consistent",
     "assert_unbiased",
     "assert_same_distribution",
     "assert_images_equivalent",

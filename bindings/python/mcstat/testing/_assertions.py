@@ -23,6 +23,8 @@ an answer is listed with what the pass could miss.
 from __future__ import annotations
 
 import math
+import shlex
+import sys
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, Optional, Tuple
 
@@ -119,6 +121,7 @@ def _g(v: float) -> str:
 def _decide(kind: str, plan: _Plan, n: int, stage: Callable[[int, int, float], _Stage], escalatable: bool,
             describe: str) -> _Stage:
     """Runs the stages, records the check, raises on a rejection."""
+    __tracebackhide__ = True  # a failure's traceback ends at the user's assertion
     lines = []
     if escalatable and plan.escalate > 0:
         d = _design(plan.alpha, plan.alpha0)
@@ -163,9 +166,11 @@ def _decide(kind: str, plan: _Plan, n: int, stage: Callable[[int, int, float], _
             f"at alpha {_g(plan.alpha)} ({share})")
     if plan.scope is not None and plan.scope.suite is not None:
         su = plan.scope.suite
-        repro = (f"reproduce: pytest '{name}' --mcstat-alpha {su.alpha:g} --mcstat-seed {su.master_seed} "
-                 f"--mcstat-escalate {su.escalate:g} (the same seeds; alone, the test gets a larger share, so a "
-                 "rejection stays one)")
+        where = f"cd {shlex.quote(su.rootdir)} && " if su.rootdir else ""
+        repro = (f"reproduce: {where}{shlex.quote(sys.executable)} -m pytest {shlex.quote(name)} "
+                 f"--mcstat-alpha {su.alpha:g} --mcstat-seed {su.master_seed} --mcstat-escalate {su.escalate:g} "
+                 f"--mcstat-alpha0 {su.alpha0:g} --mcstat-tests {su.total_weight:g} "
+                 "(the same seeds and the same share)")
     else:
         repro = f"reproduce: the same call with seed={plan.seed}"
     msg = "\n".join([head] + lines + [last.text, repro])
@@ -207,6 +212,7 @@ def assert_bsdf_consistent(sample: Callable[..., Any], eval: Callable[..., Any],
     off), ``alpha0`` the escalation band's top.  A report whose verdict is
     "inconclusive" (a route the check needed could not answer) fails with
     the routes and the reasons, unless ``allow_inconclusive``."""
+    __tracebackhide__ = True
     plan = _plan("bsdf", alpha, seed, escalate, alpha0)
     w = tuple(float(v) for v in np.asarray(wi, dtype=np.float64).ravel())
     st = _check_stage(lambda **k: _core.check_bsdf(sample, eval, pdf, wi, **k, **check_kwargs), allow_inconclusive)
@@ -218,6 +224,7 @@ def assert_emitter_consistent(sample: Callable[..., Any], eval: Callable[..., An
                               escalate: Optional[float] = None, alpha0: Optional[float] = None,
                               allow_inconclusive: bool = False, **check_kwargs: Any) -> Any:
     """``mcstat.check_emitter`` as an assertion (see `assert_bsdf_consistent`)."""
+    __tracebackhide__ = True
     plan = _plan("emitter", alpha, seed, escalate, alpha0)
     st = _check_stage(lambda **k: _core.check_emitter(sample, eval, pdf, **k, **check_kwargs), allow_inconclusive)
     return _decide("emitter", plan, n, st, True, "check_emitter").payload
@@ -228,9 +235,39 @@ def assert_warp_consistent(sample: Callable[..., Any], pdf: Callable[..., Any], 
                            escalate: Optional[float] = None, alpha0: Optional[float] = None,
                            allow_inconclusive: bool = False, **check_kwargs: Any) -> Any:
     """``mcstat.check_warp`` as an assertion (see `assert_bsdf_consistent`)."""
+    __tracebackhide__ = True
     plan = _plan("warp", alpha, seed, escalate, alpha0)
     st = _check_stage(lambda **k: _core.check_warp(sample, pdf, **k, **check_kwargs), allow_inconclusive)
     return _decide("warp", plan, n, st, True, "check_warp").payload
+
+
+def assert_phase_consistent(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], wi: Any,
+                            *, n: int = 100_000, alpha: Optional[float] = None, seed: Optional[int] = None,
+                            escalate: Optional[float] = None, alpha0: Optional[float] = None,
+                            allow_inconclusive: bool = False, **check_kwargs: Any) -> Any:
+    """``mcstat.check_phase`` as an assertion: a phase function's sample(),
+    pdf(), eval() and weight agree and it is normalised (its energy route
+    is two-sided).  See `assert_bsdf_consistent`."""
+    __tracebackhide__ = True
+    plan = _plan("phase", alpha, seed, escalate, alpha0)
+    w = tuple(float(v) for v in np.asarray(wi, dtype=np.float64).ravel())
+    st = _check_stage(lambda **k: _core.check_phase(sample, eval, pdf, wi, **k, **check_kwargs), allow_inconclusive)
+    return _decide("phase", plan, n, st, True, f"check_phase at wi {w}").payload
+
+
+def assert_medium_consistent(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], *,
+                             sigma_ref: float, n: int = 100_000, alpha: Optional[float] = None,
+                             seed: Optional[int] = None, escalate: Optional[float] = None,
+                             alpha0: Optional[float] = None, allow_inconclusive: bool = False,
+                             **check_kwargs: Any) -> Any:
+    """``mcstat.check_medium`` as an assertion: a medium's distance
+    sampling, its density and its weights agree (``transmittance=`` also
+    checks the escapes' weights).  See `assert_bsdf_consistent`."""
+    __tracebackhide__ = True
+    plan = _plan("medium", alpha, seed, escalate, alpha0)
+    st = _check_stage(lambda **k: _core.check_medium(sample, eval, pdf, sigma_ref=sigma_ref, **k, **check_kwargs),
+                      allow_inconclusive)
+    return _decide("medium", plan, n, st, True, "check_medium").payload
 
 
 # ---- estimators and samplers ---------------------------------------------------------
@@ -255,17 +292,40 @@ def assert_unbiased(draw: Any, expected: float, *, n: int = 10_000, alpha: Optio
     variance and enough estimates for the mean to be near normal (batch
     means, ``mcstat.batch_means``, help with skewed estimators).  Returns
     the deciding TestResult; a pass records the interval of the bias it
-    leaves open."""
+    leaves open, absolute and relative to ``expected``.
+
+    An exact estimator (every estimate the same value) has no spread to
+    test: it passes when that value is ``expected`` up to the resolution
+    of its arithmetic (64 units in the last place: of float32 when the
+    estimates come as a float32 array, else of float64) and fails
+    otherwise; the TestResult is then None."""
+    __tracebackhide__ = True
     if not (isinstance(expected, (int, float)) and math.isfinite(expected)):
         raise InvalidArgumentError(f"expected must be a finite number, got {expected!r}")
     plan = _plan("unbiased", alpha, seed, escalate, alpha0)
 
     def stage(k: int, s: int, a: float) -> _Stage:
-        x = _values(draw, k, s, "draw")
+        raw = draw(k, s) if callable(draw) else draw
+        x = np.asarray(raw, dtype=np.float64).ravel()
+        if callable(draw) and x.size != k:
+            raise InvalidArgumentError(f"draw(n, seed) returned {x.size} values; {k} were asked for")
+        if x.size >= 2 and np.all(np.isfinite(x)) and np.all(x == x[0]):
+            single = getattr(np.asarray(raw), "dtype", None) == np.float32
+            res = _core.CHECK_RESOLUTION_FLOAT32 if single else _core.CHECK_RESOLUTION_FLOAT64
+            off = abs(float(x[0]) - expected)
+            exact = off <= res * max(abs(expected), abs(float(x[0])))
+            text = (f"every one of the {x.size} estimates is {float(x[0])!r}: an exact estimator, "
+                    f"{'equal to' if exact else 'not'} {expected!r} within {res:.3g} relative "
+                    f"({'float32' if single else 'float64'} arithmetic)")
+            return _Stage(p=1.0 if exact else 0.0, text=text, samples=int(x.size),
+                          could_hide="nothing beyond rounding: every estimate is the same value" if exact else "")
         r = _core.t_test(x, mu=float(expected), alpha=a)
         lo, hi = r.conf_int
+        rel = (f"; relative to {expected:g}: [{(lo - expected) / abs(expected):+.3g}, "
+               f"{(hi - expected) / abs(expected):+.3g}]") if expected != 0 else ""
         return _Stage(p=float(r.pvalue), text=str(r), samples=int(x.size),
-                      could_hide=f"a bias in [{lo - expected:.3g}, {hi - expected:.3g}] (the {1 - a:.6g} interval)",
+                      could_hide=f"a bias in [{lo - expected:.3g}, {hi - expected:.3g}] (the {1 - a:.6g} interval"
+                                 f"{rel})",
                       payload=r)
 
     return _decide("unbiased", plan, n, stage, callable(draw), f"the mean is {expected!r}").payload
@@ -279,6 +339,7 @@ def assert_same_distribution(draw_a: Any, draw_b: Any, *, n: int = 10_000, alpha
     ``weight=`` says otherwise: its p-values are exact or asymptotic, where
     Canner's are simulated and cannot reach a suite's small shares).  ``draw_a``/``draw_b``: ``draw(n, seed) ->
     n`` values (independent seeds for the two; escalates) or the values."""
+    __tracebackhide__ = True
     plan = _plan("same_distribution", alpha, seed, escalate, alpha0)
     both = callable(draw_a) and callable(draw_b)
     # the plain statistic by default: its exact and asymptotic p-values reach
@@ -317,6 +378,7 @@ def assert_images_equivalent(reference: Any, candidate: Any, *, margin: float, a
     of the suite's false-failure budget, and a pass's worth is its
     ``margin_shown``: a correct candidate fails when the renders are too
     few to show the margin (more seeds or larger blocks)."""
+    __tracebackhide__ = True
     from ..image import equivalence
 
     sc = current_scope()

@@ -67,9 +67,20 @@ class Suite:
     escalate: float = 4.0  # stage 2 has escalate x n samples; 0: no escalation
     alpha0: float = 0.05  # an inconclusive stage 1 escalates when alpha1 < p1 <= alpha0
     artifacts: Optional[str] = None
+    #: the whole suite's statistical tests (the sum of their weights), when
+    #: only part of it is collected; None: the collected tests' weights
+    suite_weight: Optional[float] = None
+    #: where the run's node ids are valid (the reproduce line changes there)
+    rootdir: Optional[str] = None
     shares: Dict[str, float] = field(default_factory=dict)
     checks: Dict[str, int] = field(default_factory=dict)
     records: List[CheckRecord] = field(default_factory=list)
+    #: statistical tests that failed, by a check or an error before one: node id -> phase
+    failed_tests: Dict[str, str] = field(default_factory=dict)
+    total_weight: float = 0.0
+    #: the statistical tests budgeted (len(shares); a pytest-xdist
+    #: controller, which collects nothing, learns it from the workers)
+    budgeted: int = 0
 
     def __post_init__(self) -> None:
         if not (isinstance(self.alpha, (int, float)) and 0.0 < self.alpha < 1.0):
@@ -80,6 +91,8 @@ class Suite:
             raise InvalidArgumentError(f"escalate must be 0 (off) or a factor >= 1, got {self.escalate!r}")
         if not (0.0 < self.alpha0 <= 1.0):
             raise InvalidArgumentError(f"alpha0 must be in (0, 1], got {self.alpha0!r}")
+        if self.suite_weight is not None and not (math.isfinite(self.suite_weight) and self.suite_weight > 0):
+            raise InvalidArgumentError(f"the suite's test count must be > 0, got {self.suite_weight!r}")
 
     def allocate(self, tests: List[Tuple[str, float, int]]) -> None:
         """Fixes the shares: (name, weight > 0, checks >= 1) for every statistical test of the run."""
@@ -90,7 +103,15 @@ class Suite:
             if not (isinstance(k, int) and k >= 1):
                 raise InvalidArgumentError(f"{name}: checks must be an integer >= 1, got {k!r}")
             total += w
+        if self.suite_weight is not None:
+            if self.suite_weight < total * (1 - 1e-12):
+                raise InvalidArgumentError(
+                    f"the suite's statistical tests were given as {self.suite_weight:g}, but {total:g} (their "
+                    "weights' sum) are collected: the shares would spend more than the budget")
+            total = self.suite_weight
+        self.total_weight = total
         self.shares = {name: self.alpha * w / total for name, w, _ in tests}
+        self.budgeted = len(self.shares)
         self.checks = {name: k for name, _, k in tests}
 
     def scope(self, name: str) -> "Scope":
@@ -110,16 +131,25 @@ class Suite:
         tests = len({r.test for r in rs})
         failed = [r for r in rs if r.decision != "pass"]
         esc = [r for r in rs if r.stages > 1]
+        # tests that failed without a failing check: an error (bad data, a
+        # check beyond the declared count) before any decision
+        errored = sorted(t for t in self.failed_tests if t not in {r.test for r in failed})
         lines = [
             f"mcstat: {len(rs)} statistical check(s) in {tests} test(s); alpha spent {self.spent:.3g} of the "
-            f"suite's {self.alpha:.3g} ({len(self.shares)} test(s) budgeted), master seed {self.master_seed}",
+            f"suite's {self.alpha:.3g} ({self.budgeted} test(s) budgeted"
+            + (f" of the suite's {self.total_weight:g}" if self.suite_weight is not None else "")
+            + f"), master seed {self.master_seed}",
             f"  samples: {sum(r.samples for r in rs)}; escalated {len(esc)} "
             f"({sum(1 for r in esc if r.decision == 'reject')} of them rejected at stage 2); "
-            f"failed {len(failed)}",
+            f"failed {len(failed)} check(s)" + (f", and {len(errored)} test(s) without a failing budgeted check"
+                                                if errored else ""),
         ]
         for r in failed:
             lines.append(f"  FAILED {r.test} check {r.index} ({r.kind}): {r.decision}, alpha {r.alpha:.3g}, "
                          f"seed {r.seed}")
+        for t in errored:
+            lines.append(f"  FAILED {t} (in {self.failed_tests[t]}): an error before a decision, or an mcstat "
+                         "assertion outside the budget")
         hides = [r for r in rs if r.decision == "pass" and r.could_hide]
         if hides:
             lines.append("  what each pass could have missed (the smallest error each check detects):")
