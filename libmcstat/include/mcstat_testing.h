@@ -8,13 +8,19 @@
  *     #include <gtest/gtest.h>
  *     #include <mcstat_testing.h>
  *
- *     TEST(Ggx, Consistent) {                       // run: MCSTAT_SUITE_ALPHA=1e-3 ./tests
- *         ggx::Ggx<double> bsdf(0.3, 0.15, 0.8);
- *         ggx::Callbacks<ggx::Ggx<double>> cb{&bsdf};
- *         mcstat_check_model model = cb.model();
+ *     TEST(Lambert, Consistent) {                   // run: MCSTAT_SUITE_ALPHA=1e-3 ./tests
+ *         mcstat_check_model model = {};            // the BSDF's callbacks (mcstat.h, "Renderer checks")
+ *         model.domain = MCSTAT_DOMAIN_HEMISPHERE;
+ *         model.n_uniforms = 3;
+ *         model.weight = MCSTAT_WEIGHT_OVER_PDF;
+ *         model.sample_reports = 1;
+ *         model.sample = lambert_sample, model.pdf = lambert_pdf, model.eval = lambert_eval;
  *         const double wi[3] = {0.48, 0.0, 0.88};
  *         MCSTAT_EXPECT_BSDF_CONSISTENT(model, wi, 100000);
  *     }
+ *
+ * (the README's GoogleTest quickstart defines the three callbacks; it is
+ * built and run as written by the project's checks).
  *
  * Include the framework's header first (gtest/gtest.h, or catch2/catch.hpp);
  * MCSTAT_TESTING_GTEST or MCSTAT_TESTING_CATCH2 defined to 1 forces one.

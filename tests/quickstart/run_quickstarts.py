@@ -5,8 +5,9 @@ with the README's command (plus warnings as errors), against the staged install 
 `cmake --install` of `make install-test`), the Python one with the package
 installed in .venv.  Each program must exit 0 and print the decisions the
 README's example leads to: the importance-sampled estimator's mean "equal"
-to 1, and its variance "less" than the uniform estimator's.  The seeds are
-fixed in the examples, so the decisions are too.
+to 1, and its variance "less" than the uniform estimator's; the test-suite
+ones (pytest, GoogleTest) must pass every test at the budget their comment
+gives.  The seeds are fixed in the examples, so the decisions are too.
 
   run_quickstarts.py --stage build/stage --python .venv/bin/python [LANG...]
 
@@ -31,6 +32,12 @@ EXPECTED = {
     "go": ["importance: equal", "importance and uniform: less"],
     "header": ["estimates: equal"],
 }
+# the test-suite quickstarts: a line their runner must print (every test passed)
+SUITE_EXPECTED = {
+    "pytest": re.compile(r"^4 passed in ", re.M),
+    "gtest": re.compile(r"^\[  PASSED  \] 1 test\.", re.M),
+}
+SUITE_ENV = {"MCSTAT_SUITE_ALPHA": "1e-3", "MCSTAT_SEED": "0"}
 HEADER = ROOT / "libmcstat" / "include" / "mcstat.h"
 
 
@@ -55,7 +62,7 @@ def blocks():
             sys.exit(f"README.md: two quickstart blocks named {name!r}")
         found[name] = body.replace("/path/to/mcstat", str(ROOT))
     found["header"] = header_example()
-    missing = (EXPECTED.keys() | {"rust-toml", "go-mod"}) - found.keys()
+    missing = (EXPECTED.keys() | SUITE_EXPECTED.keys() | {"rust-toml", "go-mod"}) - found.keys()
     if missing:
         sys.exit(f"README.md: no quickstart block for {', '.join(sorted(missing))}")
     return found
@@ -86,7 +93,7 @@ def main():
     ap.add_argument("--stage", required=True, type=pathlib.Path)
     ap.add_argument("--python", required=True)
     ap.add_argument("--cargo-target-dir", type=pathlib.Path)
-    ap.add_argument("langs", nargs="*", default=sorted(EXPECTED))
+    ap.add_argument("langs", nargs="*", default=sorted(EXPECTED.keys() | SUITE_EXPECTED.keys()))
     args = ap.parse_args()
     stage = args.stage.resolve()
     python = str(pathlib.Path(args.python).absolute()) if os.sep in args.python else args.python
@@ -123,8 +130,22 @@ def main():
                 (d / "go.mod").write_text(code["go-mod"])
                 (d / "main.go").write_text(code["go"])
                 out = run(["go", "run", "."], d, env)
+            elif lang == "pytest":
+                (d / "test_lambert.py").write_text(code["pytest"])
+                out = run([python, "-m", "pytest", "-q", "-p", "no:cacheprovider", "--mcstat-alpha", "1e-3",
+                           "test_lambert.py"], d, env)
+            elif lang == "gtest":
+                (d / "test_lambert.cpp").write_text(code["gtest"])
+                run(["c++", "-std=c++14", "-Wall", "-Wextra", "-Werror", "test_lambert.cpp", *pc, "-lgtest",
+                     "-lgtest_main", "-pthread"], d, env)
+                out = run(["./a.out"], d, dict(env, **SUITE_ENV))
             else:
                 sys.exit(f"unknown quickstart {lang!r}")
+            if lang in SUITE_EXPECTED:
+                if not SUITE_EXPECTED[lang].search(out):
+                    raise RuntimeError(f"did not print {SUITE_EXPECTED[lang].pattern!r}:\n{out}")
+                print(f"quickstart {lang}: every test passed")
+                continue
             got = decisions(out)
             if got != EXPECTED[lang]:
                 raise RuntimeError(f"printed the decisions {got}, expected {EXPECTED[lang]}:\n{out}")
