@@ -336,7 +336,9 @@ static void test_threads(void)
 static void test_structs(void)
 {
     CHECK_INT(mcstat_sizeof_pixels_in(), MCSTAT_PIXELS_IN_SIZE_0_2);
-    CHECK_INT(mcstat_sizeof_pixels_options(), MCSTAT_PIXELS_OPTIONS_SIZE_0_2);
+    CHECK_INT(mcstat_sizeof_pixels_options(), MCSTAT_PIXELS_OPTIONS_SIZE_0_3);
+    mcstat_pixels_options old = MCSTAT_PIXELS_OPTIONS_INIT; /* 0.2's size stays a known one */
+    CHECK_INT(mcstat_pixels_options_init_size(&old, MCSTAT_PIXELS_OPTIONS_SIZE_0_2), MCSTAT_OK);
     CHECK_INT(mcstat_sizeof_pixels_out(), MCSTAT_PIXELS_OUT_SIZE_0_2);
     mcstat_pixels_in in;
     mcstat_pixels_options op;
