@@ -921,7 +921,8 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
  *                               the rule of three), under H0 its variance
  *                               would be at least d^2 (1 - pi) / pi, which
  *                               becomes its variance.  Then |t| <= sqrt(n
- *                               pi / (1 - pi)), below 2.2 for any n: such
+ *                               pi / (1 - pi)), which falls from 2.64 at
+ *                               n = 2 towards sqrt(-ln 0.05) = 1.73: such
  *                               a pixel cannot be significant alone; it is
  *                               untestable per pixel and needs block tests
  *                               (means of blocks of pixels) or more seeds;
