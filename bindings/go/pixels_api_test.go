@@ -142,7 +142,7 @@ func TestPixelsTestThreadsAndBadArguments(t *testing.T) {
 			}
 		}
 	}
-	if in, opt, out := PixelStructSizes(); in != 56 || opt != 16 || out != 128 {
+	if in, opt, out := PixelStructSizes(); in != 56 || opt != 24 || out != 128 {
 		t.Fatalf("struct sizes %d %d %d", in, opt, out)
 	}
 	short := Pixels{F64: x.F64[:n*p-1], N: n, ValueStride: 1, PixelStride: n}

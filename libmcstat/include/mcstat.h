@@ -899,6 +899,52 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
  *                             error. */
 #define MCSTAT_ROWS_NO_INTERVALS 1u
 #define MCSTAT_ROWS_OMIT_NAN 2u
+/*   MCSTAT_PIXELS_RENDER      Welch's test (MCSTAT_TEST_T_2 of
+ *                             mcstat_pixels_test and the _pixels calls
+ *                             only; MCSTAT_EINVAL elsewhere) made valid on
+ *                             renders, whose pixels are often constant on
+ *                             a side (all zeros: lit only by rare paths),
+ *                             zero-inflated or spiky, at a few seeds.  With
+ *                             M = max(|mean x|, |mean y|), d = mean x -
+ *                             mean y - null value, eps the numerical
+ *                             resolution (mcstat_pixels_options.eps):
+ *                             - the numerical floor: each side's variance
+ *                               is at least (eps M)^2; a side whose
+ *                               variance is at most that is constant;
+ *                             - a side that is constant, or shows at most
+ *                               one nonzero value, while the other varies,
+ *                               may hide a rare value (no test of a mean
+ *                               has power against that without
+ *                               assumptions: Bahadur and Savage).  If it
+ *                               hid one at rate pi = 1 - 0.05^(1/n) (the
+ *                               95% upper bound from n draws without it:
+ *                               the rule of three), under H0 its variance
+ *                               would be at least d^2 (1 - pi) / pi, which
+ *                               becomes its variance.  Then |t| <= sqrt(n
+ *                               pi / (1 - pi)), which falls from 2.64 at
+ *                               n = 2 towards sqrt(-ln 0.05) = 1.73: such
+ *                               a pixel cannot be significant alone; it is
+ *                               untestable per pixel and needs block tests
+ *                               (means of blocks of pixels) or more seeds;
+ *                             - the degrees of freedom are Hsu's, min(nx,
+ *                               ny) - 1, where a side with zeros and h >= 2
+ *                               nonzero values counts h - 1 (its spread
+ *                               comes from them): Satterthwaite's
+ *                               estimated df makes the far tails that an
+ *                               image's adjustment reaches too light at a
+ *                               few seeds;
+ *                             - both sides constant: equal within eps M,
+ *                               MCSTAT_EDEGENERATE (untested, as without
+ *                               the flag); different beyond it, a
+ *                               deterministic difference: statistic +-Inf,
+ *                               p-value 0 on its side (1 on the other), df
+ *                               NaN, standard error 0, the interval the
+ *                               difference itself.
+ *                             Pixels that would be tested without it are
+ *                             tested, with these variances and df; the
+ *                             plain Welch test (R's t.test) is the
+ *                             default. */
+#define MCSTAT_PIXELS_RENDER 4u
 
 /* ------------------------------------------------------------------------ */
 /* Per-pixel tests on image stacks.                                          */
@@ -941,9 +987,18 @@ typedef struct mcstat_pixels_options {
                          started unless the caller asks.  Results do not depend
                          on it. */
     int32_t reserved; /* zero */
+    /* (0.3) MCSTAT_PIXELS_RENDER's numerical resolution, relative to the
+       larger |mean| of a pixel's sides: differences and spreads below it
+       are rounding, not evidence.  0 (the default): from the inputs' type,
+       4 * 2^-24 for float32 and 4 * 2^-53 for double (a few units in the
+       last place); else a finite value in [0, 1).  Ignored without the
+       flag. */
+    double eps;
 } mcstat_pixels_options;
 
-#define MCSTAT_PIXELS_OPTIONS_INIT {sizeof(mcstat_pixels_options), 0u, 1, 0}
+#define MCSTAT_PIXELS_OPTIONS_INIT {sizeof(mcstat_pixels_options), 0u, 1, 0, 0.0}
+#define MCSTAT_PIXELS_EPS_FLOAT32 0x1p-22 /* 4 * 2^-24 */
+#define MCSTAT_PIXELS_EPS_FLOAT64 0x1p-51 /* 4 * 2^-53 */
 
 /* Per-pixel results: arrays of the caller's, indexed by pixel (element i is
  * pixel i, whatever range was asked for); any may be NULL, and only what is
@@ -978,6 +1033,7 @@ typedef struct mcstat_pixels_out {
 /* sizeof of each struct in each release that changed it. */
 #define MCSTAT_PIXELS_IN_SIZE_0_2 56u
 #define MCSTAT_PIXELS_OPTIONS_SIZE_0_2 16u
+#define MCSTAT_PIXELS_OPTIONS_SIZE_0_3 24u
 #define MCSTAT_PIXELS_OUT_SIZE_0_2 128u
 MCSTAT_API size_t mcstat_sizeof_pixels_in(void);
 MCSTAT_API size_t mcstat_sizeof_pixels_options(void);

@@ -55,6 +55,8 @@ typedef struct {
     uint64_t nx, ny;  /* the sample sizes of the fast path */
     int first;        /* status of the first failing pixel */
     size_t first_i;   /* and its index */
+    int render;       /* MCSTAT_PIXELS_RENDER */
+    double eps;       /* and its resolution */
 } pix_ctx;
 
 static void put(const pix_ctx *c, size_t i, int st, double p, double t, double df, double se, double mx,
@@ -123,14 +125,18 @@ static double value(const plane *pl, size_t s, size_t i)
 }
 
 /* One pixel's sample into m, GATHER values at a time. */
-static int pixel_moments(const plane *pl, size_t n, size_t i, unsigned flags, mcstat_moments *m)
+/* *nonzero: the values neither 0 nor NaN. */
+static int pixel_moments(const plane *pl, size_t n, size_t i, unsigned flags, mcstat_moments *m, uint64_t *nonzero)
 {
     double buf[GATHER];
     mcstat_moments_init(m);
+    *nonzero = 0;
     for (size_t s0 = 0; s0 < n; s0 += GATHER) {
         size_t k = n - s0 < GATHER ? n - s0 : GATHER;
-        for (size_t j = 0; j < k; j++)
+        for (size_t j = 0; j < k; j++) {
             buf[j] = value(pl, s0 + j, i);
+            *nonzero += buf[j] != 0.0 && !isnan(buf[j]);
+        }
         int st = (flags & MCSTAT_ROWS_OMIT_NAN) ? mcstat_moments_add_array_omit_nan(m, buf, k, NULL)
                                                 : mcstat_moments_add_array(m, buf, k);
         if (st)
@@ -144,10 +150,14 @@ static void slow_pixel(pix_ctx *c, const plane *px, size_t nx, const plane *py, 
 {
     mcstat_moments mx, my;
     mcstat_result r;
-    int st = pixel_moments(px, nx, i, flags, &mx);
+    mcstat__render_guard rg = {c->eps, 0, 0};
+    int st = pixel_moments(px, nx, i, flags, &mx, &rg.hx);
     if (!st)
-        st = pixel_moments(py, ny, i, flags, &my);
-    if (!st)
+        st = pixel_moments(py, ny, i, flags, &my, &rg.hy);
+    if (!st && c->render)
+        st = mcstat__t_test_2_render(&mx, &my, &rg, c->mu0, c->alternative, c->alpha, c->intervals ? &c->qc : NULL,
+                                     &r);
+    else if (!st)
         st = mcstat__t_test_2(&mx, &my, c->mu0, c->alternative, c->alpha, c->intervals ? &c->qc : NULL, &r);
     if (st) {
         fail(c, i, st);
@@ -199,19 +209,42 @@ typedef struct {
     unsigned char kind[PIX_BLOCK], tail_ok[PIX_BLOCK];
 } block_stats;
 
+/* render: the guards of MCSTAT_PIXELS_RENDER (eps, the rule-of-three
+ * ratios rx, ry, the nonzero counts hx, hy), the single call's
+ * mcstat__render_adjust; a pixel both of whose sides are constant goes to
+ * the single call. */
 static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx, const double *m2x, const unsigned char *bx,
                              double ny, const mcstat_dd *my, const double *m2y, const unsigned char *by, double mu0,
+                             int render, double eps, double rx, double ry, const double *hx, const double *hy,
                              block_stats *bs)
 {
     const int px = pow2_count((size_t)nx), py = pow2_count((size_t)ny);
     const double ix = 1.0 / nx, iy = 1.0 / ny;
+    unsigned char both[PIX_BLOCK];
     for (size_t j = 0; j < k; j++) {
-        double vx = m2x[j] / (nx - 1.0), vy = m2y[j] / (ny - 1.0);
-        double a = div_by(vx, nx, ix, px), b = div_by(vy, ny, iy, py), se = sqrt(a + b);
+        double vx = m2x[j] / (nx - 1.0), vy = m2y[j] / (ny - 1.0), dfr = 0.0;
         mcstat_dd diff = dd_add(mx[j], dd_neg(my[j]));
         mcstat_dd sh = dd_add(diff, (mcstat_dd){-mu0, 0.0});
+        both[j] = 0;
+        if (render) { /* loop-invariant: unswitched */
+            mcstat__render_guard rg = {eps, (uint64_t)hx[j], (uint64_t)hy[j]};
+            mcstat__render_welch g;
+            mcstat__render_adjust(&rg, nx, ny, rx, ry, vx, vy, dmax(fabs(mx[j].hi), fabs(my[j].hi)), sh.hi + sh.lo,
+                                  &g);
+            double num = eps * dmax(fabs(mx[j].hi), fabs(my[j].hi));
+            num *= num;
+            /* near the numerical floor the two paths' moments may judge
+             * constancy differently: the single call's decides */
+            int near = (vx > num * (1.0 - 1e-6) && vx < num * (1.0 + 1e-6)) ||
+                       (vy > num * (1.0 - 1e-6) && vy < num * (1.0 + 1e-6));
+            vx = g.vx;
+            vy = g.vy;
+            dfr = g.df;
+            both[j] = (unsigned char)(g.both_constant || near);
+        }
+        double a = div_by(vx, nx, ix, px), b = div_by(vy, ny, iy, py), se = sqrt(a + b);
         double m = dmax(a, b), ra = a / m, rb = b / m;
-        bs->df[j] = (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
+        bs->df[j] = render ? dfr : (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
         bs->t[j] = (sh.hi + sh.lo) / se;
         bs->se[j] = se;
         bs->dhi[j] = diff.hi;
@@ -227,8 +260,10 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
         /* t_test.c's "constant to within rounding"; near its edge, where the
          * two accumulations of M2 might decide differently, the slow path
          * decides */
-        int degenerate = !(bs->se[j] > 0.0) || sdmax < lim * (1.0 - 1e-6);
-        int edge = sdmax < lim * (1.0 + 1e-6);
+        int degenerate = !render && (!(bs->se[j] > 0.0) || sdmax < lim * (1.0 - 1e-6));
+        /* with the guards, both sides constant (their tests' own) or no
+         * spread at all go to the single call */
+        int edge = render ? both[j] || !(bs->se[j] > 0.0) : sdmax < lim * (1.0 + 1e-6);
         bs->kind[j] = (unsigned char)(bx[j] || by[j] || extreme ? PIX_SLOW
                                       : degenerate              ? PIX_DEGENERATE
                                       : edge                    ? PIX_SLOW
@@ -783,6 +818,7 @@ int mcstat__pixels_avx2(void)
 typedef struct {
     mcstat_dd mx[PIX_BLOCK], my[PIX_BLOCK];
     double m2x[PIX_BLOCK], m2y[PIX_BLOCK];
+    double hx[PIX_BLOCK], hy[PIX_BLOCK]; /* nonzero values, with the render guards */
     unsigned char bx[PIX_BLOCK], by[PIX_BLOCK];
     block_stats st;
 } block_work;
@@ -792,7 +828,31 @@ typedef struct {
     const double *xd, *yd, *w;
     size_t nx, xs, xps, ny, ys, yps, ch;
     double mu0;
+    int render;
+    double eps, rx, ry;
 } block_input;
+
+/* The nonzero values of pixels i0..i0+k-1 of one side (a value formed as
+ * the moments' loops and the single call's form it; NaN counts, but such a
+ * pixel is the single call's). */
+#define DEFINE_BLOCK_NONZERO(NAME, T)                                                                      \
+    static PIX_INLINE void NAME(const T *x, size_t n, size_t stride, size_t ps, size_t ch, const double *w, \
+                                size_t i0, size_t k, double *h)                                            \
+    {                                                                                                      \
+        for (size_t j = 0; j < k; j++)                                                                     \
+            h[j] = 0.0;                                                                                    \
+        for (size_t s = 0; s < n; s++) {                                                                   \
+            const T *row = x + s * stride + i0 * ps;                                                       \
+            for (size_t j = 0; j < k; j++) {                                                               \
+                double v = w ? 0.0 : (double)row[j * ps];                                                  \
+                for (size_t c = 0; w && c < ch; c++)                                                       \
+                    v += w[c] * (double)row[j * ps + c];                                                   \
+                h[j] += v != 0.0 ? 1.0 : 0.0;                                                              \
+            }                                                                                              \
+        }                                                                                                  \
+    }
+DEFINE_BLOCK_NONZERO(block_nonzero_f32, float)
+DEFINE_BLOCK_NONZERO(block_nonzero_f64, double)
 
 /* joint: the AVX2 build's central series (central_series8) */
 static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t k, block_work *b, int joint)
@@ -804,7 +864,15 @@ static PIX_INLINE void block_pass_body(const block_input *in, size_t i0, size_t 
         block_moments_f64(in->xd, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->mx, b->m2x, b->bx, joint);
         block_moments_f64(in->yd, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->my, b->m2y, b->by, joint);
     }
-    block_statistics(k, (double)in->nx, b->mx, b->m2x, b->bx, (double)in->ny, b->my, b->m2y, b->by, in->mu0, &b->st);
+    if (in->render && in->xf) {
+        block_nonzero_f32(in->xf, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->hx);
+        block_nonzero_f32(in->yf, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->hy);
+    } else if (in->render) {
+        block_nonzero_f64(in->xd, in->nx, in->xs, in->xps, in->ch, in->w, i0, k, b->hx);
+        block_nonzero_f64(in->yd, in->ny, in->ys, in->yps, in->ch, in->w, i0, k, b->hy);
+    }
+    block_statistics(k, (double)in->nx, b->mx, b->m2x, b->bx, (double)in->ny, b->my, b->m2y, b->by, in->mu0,
+                     in->render, in->eps, in->rx, in->ry, b->hx, b->hy, &b->st);
     unsigned char want[PIX_BLOCK];
     for (size_t j = 0; j < k; j++)
         want[j] = b->st.kind[j] == PIX_FAST;
@@ -835,7 +903,8 @@ __attribute__((target("avx2"))) static void block_pass_avx2(const block_input *i
  * checked the arguments; x and y are of one type and channel weighting).
  * Returns the status of the first pixel that failed. */
 int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, mcstat__work *wk, size_t *first_index,
-                         double mu0, int alternative, double alpha, unsigned flags, const mcstat_pixels_out *out)
+                         double mu0, int alternative, double alpha, unsigned flags, double eps,
+                         const mcstat_pixels_out *out)
 {
     const int f32 = x->type == MCSTAT_VALUE_FLOAT32;
     const float *xf = f32 ? x->data : NULL, *yf = f32 ? y->data : NULL;
@@ -860,10 +929,16 @@ int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, m
     mcstat__qcache_init(&c.qc);
     c.first = MCSTAT_OK;
     c.first_i = 0;
+    c.render = (flags & MCSTAT_PIXELS_RENDER) != 0;
+    c.eps = eps;
     plane px = {xf, xd, x->value_stride, x->pixel_stride, channels, w},
           py = {yf, yd, y->value_stride, y->pixel_stride, channels, w};
     block_input in = {xf, yf, xd, yd, w, nx, x->value_stride, x->pixel_stride, ny, y->value_stride, y->pixel_stride,
-                      channels, mu0};
+                      channels, mu0, c.render, eps, NAN, NAN};
+    if (c.render && nx >= 2 && ny >= 2) {
+        in.rx = mcstat__rule3_ratio((double)nx);
+        in.ry = mcstat__rule3_ratio((double)ny);
+    }
     block_work *b = calloc(1, sizeof *b); /* tens of KiB: not on a caller's thread stack */
     int fast_ok = nx >= 2 && ny >= 2 && b;
 #if PIX_AVX2

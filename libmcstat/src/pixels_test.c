@@ -23,11 +23,11 @@
 #include <stdlib.h>
 
 static const uint32_t IN_SIZES[] = {MCSTAT_PIXELS_IN_SIZE_0_2};
-static const uint32_t OPT_SIZES[] = {MCSTAT_PIXELS_OPTIONS_SIZE_0_2};
+static const uint32_t OPT_SIZES[] = {MCSTAT_PIXELS_OPTIONS_SIZE_0_2, MCSTAT_PIXELS_OPTIONS_SIZE_0_3};
 static const uint32_t OUT_SIZES[] = {MCSTAT_PIXELS_OUT_SIZE_0_2};
 _Static_assert(sizeof(mcstat_pixels_in) == MCSTAT_PIXELS_IN_SIZE_0_2,
                "a grown mcstat_pixels_in needs its size appended to IN_SIZES");
-_Static_assert(sizeof(mcstat_pixels_options) == MCSTAT_PIXELS_OPTIONS_SIZE_0_2,
+_Static_assert(sizeof(mcstat_pixels_options) == MCSTAT_PIXELS_OPTIONS_SIZE_0_3,
                "a grown mcstat_pixels_options needs its size appended to OPT_SIZES");
 _Static_assert(sizeof(mcstat_pixels_out) == MCSTAT_PIXELS_OUT_SIZE_0_2,
                "a grown mcstat_pixels_out needs its size appended to OUT_SIZES");
@@ -119,6 +119,7 @@ typedef struct {
     int test, alternative;
     unsigned flags;
     double null_value, alpha;
+    double eps; /* MCSTAT_PIXELS_RENDER's, resolved from the type */
     mcstat_pixels_in x, y;
     mcstat_pixels_out out;
 } job;
@@ -286,7 +287,7 @@ static int run_work(void *ctx, mcstat__work *wk, size_t *first_index)
     const job *jb = ctx;
     if (jb->test == MCSTAT_TEST_T_2)
         return mcstat__pixels_welch(&jb->x, &jb->y, wk, first_index, jb->null_value, jb->alternative, jb->alpha,
-                                    jb->flags, &jb->out);
+                                    jb->flags, jb->eps, &jb->out);
     return single_call_work(jb, wk, first_index);
 }
 
@@ -309,8 +310,9 @@ int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_
     mcstat_pixels_options o = MCSTAT_PIXELS_OPTIONS_INIT;
     if (opt && mcstat__options_read(&o, sizeof o, opt, OPT_SIZES, N_OF(OPT_SIZES)))
         return MCSTAT_EINVAL;
-    if ((o.flags & ~(uint32_t)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN)) || o.threads < 1 ||
-        o.threads > MAX_THREADS || o.reserved != 0)
+    if ((o.flags & ~(uint32_t)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN | MCSTAT_PIXELS_RENDER)) ||
+        o.threads < 1 || o.threads > MAX_THREADS || o.reserved != 0 || !(o.eps >= 0.0 && o.eps < 1.0) ||
+        ((o.flags & MCSTAT_PIXELS_RENDER) && test != MCSTAT_TEST_T_2))
         return MCSTAT_EINVAL;
     const mcstat_pixels_in none = MCSTAT_PIXELS_IN_INIT;
     jb.x = none;
@@ -338,6 +340,9 @@ int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_
     jb.alpha = alpha;
     jb.null_value = null_value;
     jb.flags = o.flags;
+    jb.eps = o.eps > 0.0                           ? o.eps
+             : jb.x.type == MCSTAT_VALUE_FLOAT32 ? MCSTAT_PIXELS_EPS_FLOAT32
+                                                 : MCSTAT_PIXELS_EPS_FLOAT64;
     if (!po->conf_lo && !po->conf_hi && !po->critical_lo && !po->critical_hi)
         jb.flags |= MCSTAT_ROWS_NO_INTERVALS; /* nothing asks for them */
     return mcstat__run_work(begin, end, o.threads, MIN_PIXELS_PER_THREAD, PIXEL_GRANULE, run_work, &jb);

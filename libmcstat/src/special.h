@@ -62,7 +62,7 @@ typedef struct mcstat__work mcstat__work;
  * the status of its first failed pixel, that pixel's index in *first_index. */
 MCSTAT_HIDDEN int mcstat__pixels_welch(const mcstat_pixels_in *x, const mcstat_pixels_in *y, mcstat__work *wk,
                                        size_t *first_index, double mu0, int alternative, double alpha, unsigned flags,
-                                       const mcstat_pixels_out *out);
+                                       double eps, const mcstat_pixels_out *out);
 /* pixels.c: the two-pass moments of pixels i0..i0+k-1 (k <= 256) of one
  * side, as Welch's block path forms them: mean[j] a double-double, m2[j]
  * the sum of squared deviations, bad[j] = 1 where they are not to be used

@@ -98,8 +98,52 @@ int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, doubl
     return MCSTAT_OK;
 }
 
+/* ---- the render guards (mcstat.h, MCSTAT_PIXELS_RENDER) ----------------------
+ * One formula for the per-pixel block path (pixels.c) and the single call
+ * here, in the units the caller's numbers are in (a scale common to both
+ * sides: it cancels from every comparison and ratio below). */
+double mcstat__rule3_ratio(double n)
+{
+    /* pi = 1 - 0.05^(1/n), the one-sided 95% upper bound on the rate of a
+     * value never seen in n draws; (1 - pi) / pi, pi from expm1 so that
+     * large n keeps its digits */
+    double pi = -expm1(log(0.05) / n);
+    return (1.0 - pi) / pi;
+}
+
+/* Both sides constant and different beyond the numerical floor: a
+ * deterministic difference, known exactly; p = 0 on its side. */
+static int deterministic(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
+                         double alpha, double sh, mcstat_dd ds, int e, mcstat_result *out)
+{
+    mcstat_result r;
+    mcstat__result_clear(&r);
+    r.test = MCSTAT_TEST_T_2;
+    r.method = MCSTAT_METHOD_ANALYTIC;
+    r.alternative = alternative;
+    r.alpha = alpha;
+    r.null_value = mu0;
+    r.n[0] = x->n;
+    r.n[1] = y->n;
+    r.statistic = sh > 0.0 ? INFINITY : -INFINITY;
+    r.df[0] = NAN;
+    r.estimate[0] = x->mean;
+    r.estimate[1] = y->mean;
+    r.std_error = 0.0;
+    int up = sh > 0.0;
+    r.p_value = alternative == MCSTAT_TWO_SIDED ? 0.0 : (alternative == MCSTAT_GREATER) == up ? 0.0 : 1.0;
+    r.reject = r.p_value <= alpha;
+    r.decision = r.reject ? (up ? MCSTAT_DECISION_GREATER : MCSTAT_DECISION_LESS) : MCSTAT_DECISION_EQUAL;
+    double d = scale2(ds.hi + ds.lo, e);
+    r.conf_int[0] = alternative == MCSTAT_LESS ? -INFINITY : d;
+    r.conf_int[1] = alternative == MCSTAT_GREATER ? INFINITY : d;
+    r.critical[0] = r.critical[1] = NAN;
+    *out = r;
+    return MCSTAT_OK;
+}
+
 static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative, double alpha,
-                    int pooled, mcstat_qcache *qc, mcstat_result *out)
+                    int pooled, const mcstat__render_guard *rg, mcstat_qcache *qc, mcstat_result *out)
 {
     if (!x || !y || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
@@ -148,12 +192,36 @@ static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0
         mcstat_dd a = {scale2(mx.hi, -e), scale2(mx.lo, -e)}, b = {scale2(my.hi, -e), scale2(my.lo, -e)};
         ds = dd_add(a, dd_neg(b));
     }
-    /* Both samples constant to within rounding (one constant sample is fine,
-     * as in R): the larger standard deviation below 10 eps max|mean|. */
-    double sdmax = sqrt(fmax(scale2(vx, 2 * (ex - e)), scale2(vy, 2 * (ey - e))));
     double mmax = fmax(fabs(x->mean), fabs(y->mean));
-    if (!(se > 0.0) || sdmax < 10.0 * DBL_EPSILON * scale2(mmax, -e))
-        return MCSTAT_EDEGENERATE;
+    double dfr = NAN; /* the render guards' degrees of freedom */
+    if (rg) {
+        double vxs = scale2(vx, 2 * (ex - e)), vys = scale2(vy, 2 * (ey - e)), sh;
+        if (isfinite(diff.hi))
+            sh = dd_add_scaled(diff, -mu0, e);
+        else {
+            mcstat_dd t0 = dd_add(ds, (mcstat_dd){scale2(-mu0, -e), 0.0});
+            sh = t0.hi + t0.lo;
+        }
+        mcstat__render_welch g;
+        mcstat__render_adjust(rg, nx, ny, mcstat__rule3_ratio(nx), mcstat__rule3_ratio(ny), vxs, vys,
+                              scale2(mmax, -e), sh, &g);
+        if (g.both_constant) {
+            if (g.deterministic)
+                return deterministic(x, y, mu0, alternative, alpha, sh, ds, e, out);
+            return MCSTAT_EDEGENERATE;
+        }
+        a = g.vx / nx;
+        b = g.vy / ny;
+        se = sqrt(a + b);
+        dfr = g.df;
+    } else {
+        /* Both samples constant to within rounding (one constant sample is
+         * fine, as in R): the larger standard deviation below 10 eps
+         * max|mean|. */
+        double sdmax = sqrt(fmax(scale2(vx, 2 * (ex - e)), scale2(vy, 2 * (ey - e))));
+        if (!(se > 0.0) || sdmax < 10.0 * DBL_EPSILON * scale2(mmax, -e))
+            return MCSTAT_EDEGENERATE;
+    }
     if (isfinite(diff.hi)) {
         r.statistic = dd_add_scaled(diff, -mu0, e) / se;
     } else {
@@ -163,7 +231,9 @@ static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0
     /* Welch-Satterthwaite, normalised by the larger term so nothing over- or
      * underflows: df = (a + b)^2 / (a^2/(nx-1) + b^2/(ny-1)). */
     double m = fmax(a, b), ra = a / m, rb = b / m;
-    double df = pooled ? nx + ny - 2.0 : (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
+    double df = pooled ? nx + ny - 2.0
+                : rg       ? dfr
+                           : (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
     r.df[0] = df;
     r.estimate[0] = x->mean;
     r.estimate[1] = y->mean;
@@ -188,13 +258,19 @@ static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0
 int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
                      double alpha, mcstat_qcache *qc, mcstat_result *out)
 {
-    return t_test_2(x, y, mu0, alternative, alpha, 0, qc, out);
+    return t_test_2(x, y, mu0, alternative, alpha, 0, NULL, qc, out);
 }
 
 int mcstat__t_test_2_pooled(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
                             double alpha, mcstat_qcache *qc, mcstat_result *out)
 {
-    return t_test_2(x, y, mu0, alternative, alpha, 1, qc, out);
+    return t_test_2(x, y, mu0, alternative, alpha, 1, NULL, qc, out);
+}
+
+int mcstat__t_test_2_render(const mcstat_moments *x, const mcstat_moments *y, const mcstat__render_guard *rg,
+                            double mu0, int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out)
+{
+    return t_test_2(x, y, mu0, alternative, alpha, 0, rg, qc, out);
 }
 
 /* The public calls: a fresh cache, which still answers the second

@@ -57,6 +57,54 @@ MCSTAT_HIDDEN int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alte
                                    mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0,
                                    int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out);
+/* The per-pixel render guards (mcstat.h, MCSTAT_PIXELS_RENDER): eps, the
+ * numerical floor's relative resolution, and each side's count of nonzero
+ * values. */
+typedef struct {
+    double eps;
+    uint64_t hx, hy;
+} mcstat__render_guard;
+/* Welch's variances and df under the guards: vx, vy floored, df Hsu's; a
+ * pixel both of whose sides are constant is both_constant, and
+ * deterministic when they differ beyond the floor.  All in one scale: vx,
+ * vy the sample variances, mmax the larger |mean|, sh the difference of
+ * the means less the null value. */
+typedef struct {
+    double vx, vy, df;
+    int both_constant, deterministic;
+} mcstat__render_welch;
+MCSTAT_HIDDEN double mcstat__rule3_ratio(double n);
+/* rx, ry: mcstat__rule3_ratio(nx), (ny).  Inline: the per-pixel block
+ * loops (pixels.c) and the single call run this same code. */
+static inline void mcstat__render_adjust(const mcstat__render_guard *rg, double nx, double ny, double rx, double ry,
+                                         double vx, double vy, double mmax, double sh, mcstat__render_welch *g)
+{
+    double num = rg->eps * mmax;
+    num *= num;
+    int cx = vx <= num, cy = vy <= num;
+    g->both_constant = cx && cy;
+    g->deterministic = g->both_constant && fabs(sh) > rg->eps * mmax;
+    /* A side showing at most one value besides zeros says nothing of what
+     * it hides: under H0 whatever it hides makes up the difference sh. */
+    int sx = cx || rg->hx <= 1, sy = cy || rg->hy <= 1;
+    double fx = sh * sh * rx, fy = sh * sh * ry;
+    vx = vx > num ? vx : num;
+    vy = vy > num ? vy : num;
+    g->vx = sx && fx > vx ? fx : vx;
+    g->vy = sy && fy > vy ? fy : vy;
+    /* Hsu's df, min(nx, ny) - 1: Satterthwaite's estimated df is too
+     * liberal in the far tails a whole image's adjustment reaches at a few
+     * seeds; a side with zeros has its spread from its nonzero values. */
+    double nux = sx || (double)rg->hx >= nx ? nx - 1.0 : (double)rg->hx - 1.0;
+    double nuy = sy || (double)rg->hy >= ny ? ny - 1.0 : (double)rg->hy - 1.0;
+    nux = nux < 1.0 ? 1.0 : nux;
+    nuy = nuy < 1.0 ? 1.0 : nuy;
+    g->df = nux < nuy ? nux : nuy;
+}
+/* Welch's test with the guards (the single call's code for such pixels). */
+MCSTAT_HIDDEN int mcstat__t_test_2_render(const mcstat_moments *x, const mcstat_moments *y,
+                                          const mcstat__render_guard *rg, double mu0, int alternative,
+                                          double alpha, mcstat_qcache *qc, mcstat_result *out);
 /* An interval's bound est - c se, scaled by 2^e, in double-double (the
  * t tests' and the per-pixel path's; safe for |c| or c se beyond 2^900). */
 MCSTAT_HIDDEN double mcstat__ci_bound(mcstat_dd est, double c, double se, int e);

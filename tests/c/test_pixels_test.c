@@ -336,7 +336,9 @@ static void test_threads(void)
 static void test_structs(void)
 {
     CHECK_INT(mcstat_sizeof_pixels_in(), MCSTAT_PIXELS_IN_SIZE_0_2);
-    CHECK_INT(mcstat_sizeof_pixels_options(), MCSTAT_PIXELS_OPTIONS_SIZE_0_2);
+    CHECK_INT(mcstat_sizeof_pixels_options(), MCSTAT_PIXELS_OPTIONS_SIZE_0_3);
+    mcstat_pixels_options old = MCSTAT_PIXELS_OPTIONS_INIT; /* 0.2's size stays a known one */
+    CHECK_INT(mcstat_pixels_options_init_size(&old, MCSTAT_PIXELS_OPTIONS_SIZE_0_2), MCSTAT_OK);
     CHECK_INT(mcstat_sizeof_pixels_out(), MCSTAT_PIXELS_OUT_SIZE_0_2);
     mcstat_pixels_in in;
     mcstat_pixels_options op;
@@ -650,6 +652,135 @@ static void test_row_lengths(void)
     }
 }
 
+/* MCSTAT_PIXELS_RENDER against closed forms computed here: a side of zeros
+ * (rule-of-three variance), a side with one nonzero value, both sides
+ * constant (equal: untested; different: p = 0), smooth pixels (Hsu's df);
+ * block path (many pixels) and single call (a pixel with a NaN, omitted)
+ * alike, AVX2 and baseline bit for bit; refused outside Welch's test. */
+#define RP 300
+#define RK 8
+static void test_render_guards(void)
+{
+    static float x[RK * RP], y[RK * RP];
+    uint64_t state = 12345;
+    for (size_t i = 0; i < RP; i++)
+        for (size_t s = 0; s < RK; s++) {
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            double u = (double)(state >> 11) * 0x1p-53;
+            state = state * 6364136223846793005ull + 1442695040888963407ull;
+            double v = (double)(state >> 11) * 0x1p-53;
+            x[s * RP + i] = (float)(1.0 + 0.2 * u);
+            y[s * RP + i] = (float)(1.1 + 0.05 * v);
+        }
+    for (size_t s = 0; s < RK; s++) {
+        x[s * RP + 0] = 0.0f;                         /* a side of zeros */
+        x[s * RP + 1] = s == 3 ? 5.0f : 0.0f;         /* one nonzero value */
+        x[s * RP + 2] = 0.5f, y[s * RP + 2] = 0.75f;  /* both constant, different */
+        x[s * RP + 3] = y[s * RP + 3] = 0.25f;        /* both constant, equal */
+        x[s * RP + 4] = s == 0 ? NAN : 0.0f;          /* zeros and a NaN: the single call */
+    }
+    x[0 * RP + 5] = nextafterf(0.25f, 1.0f);          /* within the floor of y's 0.25 */
+    for (size_t s = 0; s < RK; s++)
+        y[s * RP + 5] = 0.25f, x[s * RP + 5] = s == 0 ? x[5] : 0.25f;
+    mcstat_pixels_in px = MCSTAT_PIXELS_IN_INIT, py;
+    px.type = MCSTAT_VALUE_FLOAT32;
+    px.n = RK;
+    px.value_stride = RP;
+    px.pixel_stride = 1;
+    py = px;
+    px.data = x;
+    py.data = y;
+    mcstat_pixels_options o = MCSTAT_PIXELS_OPTIONS_INIT;
+    o.flags = MCSTAT_PIXELS_RENDER | MCSTAT_ROWS_OMIT_NAN;
+    static double p[2][RP], t[2][RP], df[2][RP], se[2][RP];
+    static int32_t st[2][RP];
+    for (int base = 0; base < 2; base++) {
+        mcstat_pixels_out out = MCSTAT_PIXELS_OUT_INIT;
+        out.p_value = p[base];
+        out.statistic = t[base];
+        out.df = df[base];
+        out.std_error = se[base];
+        out.status = st[base];
+        mcstat__pixels_baseline_only(base);
+        mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py, 0, RP, 0.0, MCSTAT_TWO_SIDED, 0.05, &o, &out);
+        mcstat__pixels_baseline_only(0);
+    }
+    CHECK(memcmp(p[0], p[1], sizeof p[0]) == 0 && memcmp(t[0], t[1], sizeof t[0]) == 0 &&
+          memcmp(df[0], df[1], sizeof df[0]) == 0);
+    const double eps = 0x1p-22;
+    /* pixel 0: x = 0 constant; its variance d^2 (1 - pi) / pi, pi = 1 - 0.05^(1/K) */
+    for (int i = 0; i < 2; i++) {
+        size_t j = i == 0 ? 0 : 4;
+        size_t nx = i == 0 ? RK : RK - 1;
+        double my = 0.0, vy = 0.0;
+        for (size_t s = 0; s < RK; s++)
+            my += y[s * RP + j];
+        my /= RK;
+        for (size_t s = 0; s < RK; s++)
+            vy += (y[s * RP + j] - my) * (y[s * RP + j] - my);
+        vy /= RK - 1;
+        double pi = 1.0 - pow(0.05, 1.0 / (double)nx);
+        double vx = my * my * (1.0 - pi) / pi;
+        double tt = -my / sqrt(vx / (double)nx + vy / RK), want_df = (double)(nx < RK ? nx : RK) - 1.0, pt;
+        mcstat_t_cdf(tt, want_df, 0, &pt);
+        CHECK_INT(st[0][j], MCSTAT_OK);
+        CHECK_REL(t[0][j], tt, 1e-12, "pixel %zu", j);
+        CHECK_REL(df[0][j], want_df, 0.0, "pixel %zu", j);
+        CHECK_REL(p[0][j], 2.0 * pt, 1e-10, "pixel %zu", j);
+        /* the bound: never significant alone */
+        CHECK(fabs(t[0][j]) <= sqrt((double)nx * pi / (1.0 - pi)) * (1.0 + 1e-12));
+    }
+    /* pixel 1: one nonzero value, floored as a constant side: t = d / sqrt(d^2 r / K + vy / K) */
+    {
+        double mx = 5.0 / RK, my = 0.0, vy = 0.0, vx = 0.0;
+        for (size_t s = 0; s < RK; s++)
+            my += y[s * RP + 1];
+        my /= RK;
+        for (size_t s = 0; s < RK; s++) {
+            vy += (y[s * RP + 1] - my) * (y[s * RP + 1] - my);
+            vx += (x[s * RP + 1] - mx) * (x[s * RP + 1] - mx);
+        }
+        vy /= RK - 1;
+        vx /= RK - 1;
+        double pi = 1.0 - pow(0.05, 1.0 / RK), d = mx - my, fl = d * d * (1.0 - pi) / pi;
+        double tt = d / sqrt((fl > vx ? fl : vx) / RK + vy / RK);
+        CHECK_REL(t[0][1], tt, 1e-12, "pixel 1");
+        CHECK_REL(df[0][1], RK - 1.0, 0.0, "pixel 1");
+    }
+    /* pixel 2: deterministic difference; 3 and 5: equal within the floor */
+    CHECK(st[0][2] == MCSTAT_OK && p[0][2] == 0.0 && t[0][2] == -INFINITY && se[0][2] == 0.0);
+    CHECK_INT(st[0][3], MCSTAT_EDEGENERATE);
+    CHECK_MSG(st[0][5] == MCSTAT_EDEGENERATE, "pixel 5: status %d (x differs from y by one float ulp, eps %g)",
+              st[0][5], eps);
+    /* smooth pixels: Welch's t with Hsu's df K - 1 */
+    for (size_t j = 6; j < RP; j++) {
+        double mx = 0, my = 0, vx = 0, vy = 0;
+        for (size_t s = 0; s < RK; s++)
+            mx += x[s * RP + j], my += y[s * RP + j];
+        mx /= RK, my /= RK;
+        for (size_t s = 0; s < RK; s++)
+            vx += (x[s * RP + j] - mx) * (x[s * RP + j] - mx), vy += (y[s * RP + j] - my) * (y[s * RP + j] - my);
+        double tt = (mx - my) / sqrt(vx / (RK - 1) / RK + vy / (RK - 1) / RK), pt;
+        mcstat_t_cdf(-fabs(tt), RK - 1.0, 0, &pt);
+        CHECK_REL(t[0][j], tt, 1e-11, "pixel %zu", j);
+        CHECK_REL(df[0][j], RK - 1.0, 0.0, "pixel %zu", j);
+        CHECK_REL(p[0][j], 2.0 * pt, 1e-9, "pixel %zu", j);
+    }
+    /* without the flag: the plain Welch test (x = 0 constant is a one-sample test of y) */
+    o.flags = MCSTAT_ROWS_OMIT_NAN;
+    mcstat_pixels_out out = MCSTAT_PIXELS_OUT_INIT;
+    out.p_value = p[1];
+    out.status = st[1];
+    mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py, 0, RP, 0.0, MCSTAT_TWO_SIDED, 0.05, &o, &out);
+    CHECK(p[1][0] < 1e-6 && p[0][0] > 0.05 && st[1][2] == MCSTAT_EDEGENERATE);
+    o.flags = MCSTAT_PIXELS_RENDER;
+    CHECK_INT(mcstat_pixels_test(MCSTAT_TEST_T_2_POOLED, &px, &py, 0, RP, 0.0, MCSTAT_TWO_SIDED, 0.05, &o, &out),
+              MCSTAT_EINVAL);
+    o.eps = 1.0;
+    CHECK_INT(mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py, 0, RP, 0.0, MCSTAT_TWO_SIDED, 0.05, &o, &out),
+              MCSTAT_EINVAL);
+}
+
 int main(void)
 {
     fill();
@@ -660,5 +791,6 @@ int main(void)
     test_variance_tails();
     test_threads();
     test_bad_arguments();
+    test_render_guards();
     return h_report("test_pixels_test");
 }

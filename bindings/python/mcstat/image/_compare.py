@@ -107,7 +107,8 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
             nan_policy: str = "raise", block: Optional[int] = None, detect_power: float = 0.8,
             max_detectable_bias: Optional[float] = None,
             max_relative_detectable_bias: Optional[float] = None,
-            bias_quantile: float = 0.9) -> ImageComparison:
+            bias_quantile: float = 0.9, render_guards: bool = True,
+            eps: Optional[float] = None) -> ImageComparison:
     """Welch's test per pixel (and channel) of candidate against reference,
     p-values adjusted together by `method` (``mcstat.p_adjust``'s names;
     BH controls the false discovery rate at `alpha` for independent or
@@ -146,6 +147,27 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     bottom edges smaller when the size does not divide the image's.  With
     ``nan_policy="omit"`` a block holding a non-finite value in any seed is
     not tested.
+
+    `render_guards` (default True; per-seed inputs): libmcstat's
+    MCSTAT_PIXELS_RENDER, which makes the per-pixel test valid on renders.
+    A pixel constant on one side (all zeros: lit only by rare paths) or
+    with at most one nonzero value there carries no information about the
+    rare values that side may hide; its variance is floored by the rule of
+    three (the 95% bound on an unseen value's rate from K seeds), so that
+    such a pixel can never be significant alone: it is untestable per
+    pixel and needs ``block=`` tests or more seeds.  The degrees of freedom
+    are Hsu's conservative min(K) - 1 (a side with zeros counts its nonzero
+    values less one).  Spreads and differences within `eps` of the larger
+    mean (relative; None: 4 * 2^-24 for float32 inputs, 4 * 2^-53 for
+    float64, ``mcstat._core.PIXELS_EPS_FLOAT32`` / ``_FLOAT64``) are
+    rounding: a pixel constant on both sides and equal within it is not
+    tested; different beyond it, it is a deterministic difference
+    (statistic +-inf, p-value 0), counted in ``notes``.  The value used is
+    ``eps`` of the result.  False: the plain Welch test of ``mcstat.t_test``
+    (R's t.test) per pixel.  A side that hides a rare component while its
+    other values vary (a light sampled too rarely to show in K seeds)
+    cannot be detected by any per-pixel test of means (Bahadur and
+    Savage): block tests see it.
 
     `detect_power`: the power behind ``detectable_bias`` (see the module's
     doc).  `max_detectable_bias` (absolute, in the image's units) and
@@ -214,8 +236,12 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         yr = np.ascontiguousarray(ref.data, dtype=dt)
         if weights is None:  # one test per channel: the channels are pixels of their own
             xc, yr = xc.reshape(xc.shape[0], -1), yr.reshape(yr.shape[0], -1)
+        if eps is not None and not (np.isfinite(eps) and 0.0 <= eps < 1.0):
+            raise InvalidArgumentError(f"eps must lie in [0, 1), got {eps}")
+        eps_used = (float(eps) if eps else
+                    _core.PIXELS_EPS_FLOAT32 if dt == np.float32 else _core.PIXELS_EPS_FLOAT64)
         r = _core._t_test_2_pixels(xc, yr, weights, _core._alternative_code(alternative), alpha,
-                                   omit_nan=nan_policy == "omit")
+                                   omit_nan=nan_policy == "omit", render=bool(render_guards), eps=eps_used)
         shp = cand.shape
         # the handed-over renders have been read (see Owned); a side not
         # handed over is the caller's and stays as it is
@@ -271,7 +297,14 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         dec[dec > 0] = 0
     res = ImageComparison(pvalue, padj, stat, dec, tested, est_c, est_r, bg, list(ref.channel_names),
                           alpha, _canonical_method(method), alternative)
+    if isinstance(ref, Samples) and render_guards:
+        ndet = int(np.count_nonzero(tested & np.isinf(stat)))
+        if ndet:
+            notes = notes + [f"{ndet} test(s) constant on both sides and different beyond the numerical floor "
+                             f"(eps {eps_used:.3g}): deterministic differences, p-value 0"]
     res.variance_lost, res.notes = int(lost.sum()) if lost is not None else 0, notes
+    res.render_guards = bool(render_guards) and isinstance(ref, Samples)
+    res.eps = eps_used if res.render_guards else None
     t4 = time.perf_counter()
     m = int(np.count_nonzero(~np.isnan(pvalue)))
     res.level = per_test_level(res.method, alpha, m, res.rejections)

@@ -109,12 +109,14 @@ pub struct mcstat_pixels_options {
     pub flags: u32,
     pub threads: i32,
     pub reserved: i32,
+    /// (0.3) `MCSTAT_PIXELS_RENDER`'s numerical resolution; 0: from the inputs' type.
+    pub eps: f64,
 }
 
 impl mcstat_pixels_options {
     /// `MCSTAT_PIXELS_OPTIONS_INIT`.
     pub fn init() -> Self {
-        mcstat_pixels_options { size: std::mem::size_of::<Self>() as u32, flags: 0, threads: 1, reserved: 0 }
+        mcstat_pixels_options { size: std::mem::size_of::<Self>() as u32, flags: 0, threads: 1, reserved: 0, eps: 0.0 }
     }
 }
 
@@ -172,6 +174,7 @@ impl mcstat_pixels_out {
 /// sizeof of the per-pixel structs in each release that changed them.
 pub const MCSTAT_PIXELS_IN_SIZE_0_2: usize = 56;
 pub const MCSTAT_PIXELS_OPTIONS_SIZE_0_2: usize = 16;
+pub const MCSTAT_PIXELS_OPTIONS_SIZE_0_3: usize = 24;
 pub const MCSTAT_PIXELS_OUT_SIZE_0_2: usize = 128;
 
 pub const MCSTAT_STREAM_VERSION: u32 = 1;
@@ -511,6 +514,9 @@ pub const MCSTAT_KS_OPTIONS_SIZE_0_1: usize = 48;
 
 pub const MCSTAT_ROWS_NO_INTERVALS: c_uint = 1;
 pub const MCSTAT_ROWS_OMIT_NAN: c_uint = 2;
+/// Welch's per-pixel test made valid on renders (mcstat.h): numerical floor, rule-of-three
+/// floor for a constant or one-nonzero side, Hsu's df, deterministic differences.
+pub const MCSTAT_PIXELS_RENDER: c_uint = 4;
 
 // ============================================================================
 // Multiple testing.
@@ -1100,7 +1106,7 @@ const _: () = {
     assert!(size_of::<mcstat_seq_options>() == MCSTAT_SEQ_OPTIONS_SIZE_0_2);
     assert!(size_of::<mcstat_seq>() == 448);
     assert!(size_of::<mcstat_pixels_in>() == MCSTAT_PIXELS_IN_SIZE_0_2);
-    assert!(size_of::<mcstat_pixels_options>() == MCSTAT_PIXELS_OPTIONS_SIZE_0_2);
+    assert!(size_of::<mcstat_pixels_options>() == MCSTAT_PIXELS_OPTIONS_SIZE_0_3);
     assert!(size_of::<mcstat_pixels_out>() == MCSTAT_PIXELS_OUT_SIZE_0_2);
     assert!(size_of::<mcstat_escalation>() == 32);
 };

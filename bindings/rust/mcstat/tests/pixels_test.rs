@@ -108,9 +108,10 @@ fn threads_change_no_bit() {
 
 #[test]
 fn structs_and_bad_arguments() {
-    assert_eq!(pixels_struct_sizes(), (56, 16, 128));
-    let (a, b, c) = pixels_structs_init_size(56, 16, 128).unwrap();
+    assert_eq!(pixels_struct_sizes(), (56, 24, 128));
+    let (a, b, c) = pixels_structs_init_size(56, 24, 128).unwrap();
     assert!(a.size == 56 && b.threads == 1 && c.p_value.is_null());
+    assert!(pixels_structs_init_size(56, 16, 128).is_ok()); // 0.2's options size stays known
     assert!(pixels_structs_init_size(40, 16, 128).is_err());
     let x = data(1, 4, 10);
     let short = &x[..39];
