@@ -133,7 +133,7 @@ def main():
              f"{platform.python_version()}, {platform.machine()}, {os.cpu_count()} CPUs (shared).  "
              "64 x 64 float32 luminance, BH at alpha = 0.05, two-sided.  \"before\": "
              "`compare(..., render_guards=False)` (the plain Welch test per pixel, as before this change); "
-             "\"after\": the default, libmcstat's MCSTAT_PIXELS_RENDER (eps = 4 * 2^-24 from float32).  "
+             "\"after\": the default, libmcstat's MCSTAT_PIXELS_RENDER (resolution 2^-18 from float32).  "
              "Each K uses its own fixed seeds; before and after see the same images.", ""]
     mixes = [("dark 10%, sparse 40%, smooth 35%, firefly 15%", (0.10, 0.40, 0.35, 0.15, 0.0)),
              ("hidden 100% (no per-pixel test can hold its level)", (0, 0, 0, 0, 1.0))]

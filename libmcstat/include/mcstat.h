@@ -212,6 +212,19 @@ MCSTAT_API int mcstat_alternative_parse(const char *name, int *alternative);
 /* "two-sided", "less", "greater", or NULL for an invalid value. */
 MCSTAT_API const char *mcstat_alternative_name(int alternative);
 
+/* ------------------------------------------------------------------------ */
+/* The numerical floor.                                                      */
+/* Differences at the resolution of the caller's arithmetic are rounding,   */
+/* not evidence.  The calls that take data a renderer computed (the renderer */
+/* checks' options and the per-pixel options, field `resolution`) add it as */
+/* a relative error of what they compare; by default it is derived from the  */
+/* data: 64 units in the last place of float32 when every value is a float32 */
+/* (a float formula of a few dozen operations, a normalisation rounded once, */
+/* is off by up to tens of ulps), else of float64.                          */
+/* ------------------------------------------------------------------------ */
+#define MCSTAT_RESOLUTION_FLOAT32 0x1p-18 /* 64 * 2^-24 */
+#define MCSTAT_RESOLUTION_FLOAT64 0x1p-47 /* 64 * 2^-53 */
+
 /* Every test writes an mcstat_result ("The tests and their result"); the stream checks of
  * "Accumulators" do too. */
 typedef struct mcstat_result mcstat_result;
@@ -907,7 +920,7 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
  *                             zero-inflated or spiky, at a few seeds.  With
  *                             M = max(|mean x|, |mean y|), d = mean x -
  *                             mean y - null value, eps the numerical
- *                             resolution (mcstat_pixels_options.eps):
+ *                             floor (mcstat_pixels_options.resolution):
  *                             - the numerical floor: each side's variance
  *                               is at least (eps M)^2; a side whose
  *                               variance is at most that is constant;
@@ -987,18 +1000,16 @@ typedef struct mcstat_pixels_options {
                          started unless the caller asks.  Results do not depend
                          on it. */
     int32_t reserved; /* zero */
-    /* (0.3) MCSTAT_PIXELS_RENDER's numerical resolution, relative to the
-       larger |mean| of a pixel's sides: differences and spreads below it
-       are rounding, not evidence.  0 (the default): from the inputs' type,
-       4 * 2^-24 for float32 and 4 * 2^-53 for double (a few units in the
-       last place); else a finite value in [0, 1).  Ignored without the
-       flag. */
-    double eps;
+    /* (0.3) MCSTAT_PIXELS_RENDER's numerical floor ("The numerical
+       floor"), relative to the larger |mean| of a pixel's sides:
+       differences and spreads below it are rounding, not evidence.  0 (the
+       default): from the inputs' type, MCSTAT_RESOLUTION_FLOAT32 for
+       float32 and MCSTAT_RESOLUTION_FLOAT64 for double; else a finite
+       value in [0, 1).  Ignored without the flag. */
+    double resolution;
 } mcstat_pixels_options;
 
 #define MCSTAT_PIXELS_OPTIONS_INIT {sizeof(mcstat_pixels_options), 0u, 1, 0, 0.0}
-#define MCSTAT_PIXELS_EPS_FLOAT32 0x1p-22 /* 4 * 2^-24 */
-#define MCSTAT_PIXELS_EPS_FLOAT64 0x1p-51 /* 4 * 2^-53 */
 
 /* Per-pixel results: arrays of the caller's, indexed by pixel (element i is
  * pixel i, whatever range was asked for); any may be NULL, and only what is
@@ -2095,9 +2106,9 @@ typedef struct mcstat_check_options {
                               region, of this size each, in the variance of the difference; MASS
                               and CELLS: a relative error of the cubature), and each route reports
                               it.  0 (default): derived from the values the callbacks return,
-                              MCSTAT_CHECK_RESOLUTION_FLOAT32 when every pdf, weight and eval value
+                              MCSTAT_RESOLUTION_FLOAT32 when every pdf, weight and eval value
                               is a float32 (a renderer computing in float), else
-                              MCSTAT_CHECK_RESOLUTION_FLOAT64; > 0: that value, below 0.01 */
+                              MCSTAT_RESOLUTION_FLOAT64; > 0: that value, below 0.01 */
     /* routes must not be 0; reserved fields and the model's must be zero
      * (later releases may give them a meaning): MCSTAT_EINVAL otherwise. */
 } mcstat_check_options;
@@ -2106,12 +2117,6 @@ typedef struct mcstat_check_options {
 #define MCSTAT_CHECK_OPTIONS_INIT \
     {sizeof(mcstat_check_options), MCSTAT_CHECK_ROUTE_ALL, 0, 0, 0, 0, 0, 0, 65536, 1e-3, 1e-4, {0, 0, 0, 0}, -1.0, 0.0}
 
-/* The derived resolutions: 64 units in the last place of float32 and of
- * float64 (2^-18, 2^-47).  A float formula of a few dozen operations
- * (a BSDF's eval, a normalisation 1/(4 pi) rounded once) is off by up to
- * tens of ulps, and an integral of it keeps a mean of those errors. */
-#define MCSTAT_CHECK_RESOLUTION_FLOAT32 0x1p-18
-#define MCSTAT_CHECK_RESOLUTION_FLOAT64 0x1p-47
 
 /* sizeof(mcstat_check_options) in each release that changed it. */
 #define MCSTAT_CHECK_OPTIONS_SIZE_0_2 96u

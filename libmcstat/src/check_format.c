@@ -284,8 +284,8 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
         if (r->route[i].state == MCSTAT_ROUTE_RAN && !isnan(r->route[i].resolution)) {
             double res = r->route[i].resolution;
             put(&t, "numerical floor: differences of %.2g relative are rounding, not evidence%s\n", res,
-                res == MCSTAT_CHECK_RESOLUTION_FLOAT32   ? " (every value a float32)"
-                : res == MCSTAT_CHECK_RESOLUTION_FLOAT64 ? " (float64 values)"
+                res == MCSTAT_RESOLUTION_FLOAT32   ? " (every value a float32)"
+                : res == MCSTAT_RESOLUTION_FLOAT64 ? " (float64 values)"
                                                           : "");
             break;
         }

@@ -915,7 +915,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     /* a medium's values are judged as the caller returned them, not as mapped */
     int not_float32 = kind == MCSTAT_CHECK_KIND_MEDIUM ? mm.not_float32 : r.not_float32;
     r.resolution = r.o.resolution > 0.0 ? r.o.resolution
-                   : (not_float32 ? MCSTAT_CHECK_RESOLUTION_FLOAT64 : MCSTAT_CHECK_RESOLUTION_FLOAT32);
+                   : (not_float32 ? MCSTAT_RESOLUTION_FLOAT64 : MCSTAT_RESOLUTION_FLOAT32);
 
     /* heavy tails first: they decide which mean-based routes can answer */
     out->tail_index[0] = out->tail_index[1] = NAN;

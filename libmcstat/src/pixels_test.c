@@ -311,7 +311,7 @@ int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_
     if (opt && mcstat__options_read(&o, sizeof o, opt, OPT_SIZES, N_OF(OPT_SIZES)))
         return MCSTAT_EINVAL;
     if ((o.flags & ~(uint32_t)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN | MCSTAT_PIXELS_RENDER)) ||
-        o.threads < 1 || o.threads > MAX_THREADS || o.reserved != 0 || !(o.eps >= 0.0 && o.eps < 1.0) ||
+        o.threads < 1 || o.threads > MAX_THREADS || o.reserved != 0 || !(o.resolution >= 0.0 && o.resolution < 1.0) ||
         ((o.flags & MCSTAT_PIXELS_RENDER) && test != MCSTAT_TEST_T_2))
         return MCSTAT_EINVAL;
     const mcstat_pixels_in none = MCSTAT_PIXELS_IN_INIT;
@@ -340,9 +340,9 @@ int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_
     jb.alpha = alpha;
     jb.null_value = null_value;
     jb.flags = o.flags;
-    jb.eps = o.eps > 0.0                           ? o.eps
-             : jb.x.type == MCSTAT_VALUE_FLOAT32 ? MCSTAT_PIXELS_EPS_FLOAT32
-                                                 : MCSTAT_PIXELS_EPS_FLOAT64;
+    jb.eps = o.resolution > 0.0                    ? o.resolution
+             : jb.x.type == MCSTAT_VALUE_FLOAT32 ? MCSTAT_RESOLUTION_FLOAT32
+                                                 : MCSTAT_RESOLUTION_FLOAT64;
     if (!po->conf_lo && !po->conf_hi && !po->critical_lo && !po->critical_hi)
         jb.flags |= MCSTAT_ROWS_NO_INTERVALS; /* nothing asks for them */
     return mcstat__run_work(begin, end, o.threads, MIN_PIXELS_PER_THREAD, PIXEL_GRANULE, run_work, &jb);

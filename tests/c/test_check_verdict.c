@@ -73,8 +73,8 @@ int main(void)
     /* float32 values: the derived floor, and the verdict */
     CHECK_INT(mcstat_check_phase(&m, up, 100000, 0, 0.01, NULL, NULL, 0, &r), MCSTAT_OK);
     CHECK_MSG(!r.reject, "p = %g", r.p_value);
-    CHECK(r.route[MCSTAT_CHECK_ROUTE_INTEGRALS].resolution == MCSTAT_CHECK_RESOLUTION_FLOAT32);
-    CHECK(r.route[MCSTAT_CHECK_ROUTE_ENERGY].resolution == MCSTAT_CHECK_RESOLUTION_FLOAT32);
+    CHECK(r.route[MCSTAT_CHECK_ROUTE_INTEGRALS].resolution == MCSTAT_RESOLUTION_FLOAT32);
+    CHECK(r.route[MCSTAT_CHECK_ROUTE_ENERGY].resolution == MCSTAT_RESOLUTION_FLOAT32);
     CHECK(isnan(r.route[MCSTAT_CHECK_ROUTE_PDF_VALUE].resolution));
     CHECK_INT(mcstat_check_verdict(&r, &v, &open), MCSTAT_OK);
     CHECK(v == MCSTAT_CHECK_CONSISTENT && open == 0);
@@ -86,7 +86,7 @@ int main(void)
     mcstat_check_options o;
     mcstat_check_options_init(&o);
     CHECK(o.size == MCSTAT_CHECK_OPTIONS_SIZE_0_3 && o.resolution == 0.0);
-    o.resolution = MCSTAT_CHECK_RESOLUTION_FLOAT64;
+    o.resolution = MCSTAT_RESOLUTION_FLOAT64;
     CHECK_INT(mcstat_check_phase(&m, up, 100000, 0, 0.01, &o, NULL, 0, &r), MCSTAT_OK);
     CHECK(r.reject && r.route[MCSTAT_CHECK_ROUTE_INTEGRALS].reject);
     CHECK_INT(mcstat_check_verdict(&r, &v, NULL), MCSTAT_OK);
@@ -96,7 +96,7 @@ int main(void)
     CHECK_INT(mcstat_check_options_init_size(&old, MCSTAT_CHECK_OPTIONS_SIZE_0_2), MCSTAT_OK);
     old.resolution = 0.5;
     CHECK_INT(mcstat_check_phase(&m, up, 100000, 0, 0.01, &old, NULL, 0, &r), MCSTAT_OK);
-    CHECK(!r.reject && r.route[MCSTAT_CHECK_ROUTE_INTEGRALS].resolution == MCSTAT_CHECK_RESOLUTION_FLOAT32);
+    CHECK(!r.reject && r.route[MCSTAT_CHECK_ROUTE_INTEGRALS].resolution == MCSTAT_RESOLUTION_FLOAT32);
     double bad[] = {-1e-9, 0.01, 1.0, NAN, INFINITY};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         o.resolution = bad[i];

@@ -776,7 +776,7 @@ static void test_render_guards(void)
     o.flags = MCSTAT_PIXELS_RENDER;
     CHECK_INT(mcstat_pixels_test(MCSTAT_TEST_T_2_POOLED, &px, &py, 0, RP, 0.0, MCSTAT_TWO_SIDED, 0.05, &o, &out),
               MCSTAT_EINVAL);
-    o.eps = 1.0;
+    o.resolution = 1.0;
     CHECK_INT(mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py, 0, RP, 0.0, MCSTAT_TWO_SIDED, 0.05, &o, &out),
               MCSTAT_EINVAL);
 }

@@ -69,22 +69,22 @@ def test_floor_against_closed_form():
     assert plain["status"][2, 2] != 0
     # the numerical floor: float32 resolution, stated on the result
     res = mi.compare(y, x, seed_axis=0)
-    assert res.eps == _core.PIXELS_EPS_FLOAT32 == 4 * 2.0 ** -24
+    assert res.resolution == _core.RESOLUTION_FLOAT32 == 2.0 ** -18
     assert any("deterministic" in n for n in res.notes)
-    assert mi.compare(y.astype(np.float64), x.astype(np.float64), seed_axis=0).eps == 4 * 2.0 ** -53
+    assert mi.compare(y.astype(np.float64), x.astype(np.float64), seed_axis=0).resolution == 2.0 ** -47
 
 
 def test_numerical_floor_spread_at_rounding_is_constant():
     # y constant at 1; x at 1 with one value 1 ulp above (float32): within
     # the floor both sides are constant and equal, so the pixel is not
-    # tested; with a stated eps below the ulp it is a tested (floored) side
+    # tested; with a stated resolution below the ulp it is a tested (floored) side
     k = 8
     y = np.ones((k, 1, 1), np.float32)
     x = y.copy()
     x[0] = np.nextafter(np.float32(1), np.float32(2))
     r = _core._t_test_2_pixels(x, y, None, 0, 0.05, render=True)
     assert r["status"][0, 0] == 4  # MCSTAT_EDEGENERATE
-    r = _core._t_test_2_pixels(x, y, None, 0, 0.05, render=True, eps=1e-9)
+    r = _core._t_test_2_pixels(x, y, None, 0, 0.05, render=True, resolution=1e-9)
     assert r["status"][0, 0] == 0 and r["pvalue"][0, 0] > 0.05
 
 

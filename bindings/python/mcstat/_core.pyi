@@ -451,8 +451,8 @@ def _diagnose(x: Any, k: int, m: int, alpha: float, tolerance: float, tail_k: in
 def _t_size_edgeworth(skewness: float, kurtosis: float, k: int, m: int, alpha: float) -> Tuple[float, float]: ...
 def _batch_size_recommend(skewness: float, kurtosis: float, m: int, alpha: float, tolerance: float) -> int: ...
 # renderer checks (check.cpp)
-CHECK_RESOLUTION_FLOAT32: float
-CHECK_RESOLUTION_FLOAT64: float
+RESOLUTION_FLOAT32: float
+RESOLUTION_FLOAT64: float
 class CheckRoute:
     @property
     def name(self) -> str: ...

@@ -642,8 +642,8 @@ int verdict_of(const mcstat_check_report &r)
 void register_check(py::module_ &mod)
 {
     // the derived numerical floors (mcstat.h), for mcstat.testing's exact estimators
-    mod.attr("CHECK_RESOLUTION_FLOAT32") = py::float_(MCSTAT_CHECK_RESOLUTION_FLOAT32);
-    mod.attr("CHECK_RESOLUTION_FLOAT64") = py::float_(MCSTAT_CHECK_RESOLUTION_FLOAT64);
+    mod.attr("RESOLUTION_FLOAT32") = py::float_(MCSTAT_RESOLUTION_FLOAT32);
+    mod.attr("RESOLUTION_FLOAT64") = py::float_(MCSTAT_RESOLUTION_FLOAT64);
     py::class_<Route>(mod, "CheckRoute", "One route of a renderer check (mcstat_check_route_result).")
         .def_property_readonly("name", [](const Route &r) { return mcstat_check_route_name(r.index); })
         .def_property_readonly("state", [](const Route &r) { return state_name(r.r.state); },

@@ -28,7 +28,7 @@ void register_pixels(py::module_ &mod)
     mod.def(
         "_t_test_2_pixels",
         [](py::array x, py::array y, py::object weights, int alternative, double alpha, double mu0, bool intervals,
-           bool omit_nan, bool render, double eps) {
+           bool omit_nan, bool render, double resolution) {
             if (!(is_f32(x) || is_f64(x)) || !x.dtype().is(y.dtype()))
                 throw_invalid("x and y must both be float32 or both float64 arrays, got " +
                               std::string(py::str(x.dtype())) + " and " + std::string(py::str(y.dtype())));
@@ -92,7 +92,7 @@ void register_pixels(py::module_ &mod)
             mcstat_pixels_options opt = MCSTAT_PIXELS_OPTIONS_INIT;
             opt.flags = flags;
             opt.threads = std::min(num_threads(), 64);
-            opt.eps = eps;
+            opt.resolution = resolution;
             // the arguments first, on an empty range: their errors raise, a
             // pixel's only sets its status
             int st = mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py_, 0, 0, mu0, alternative, alpha, &opt, &out);
@@ -118,14 +118,14 @@ void register_pixels(py::module_ &mod)
         },
         py::arg("x"), py::arg("y"), py::arg("weights") = py::none(), py::arg("alternative") = 0,
         py::arg("alpha") = 0.05, py::arg("mu0") = 0.0, py::arg("intervals") = false, py::arg("omit_nan") = false,
-        py::arg("render") = false, py::arg("eps") = 0.0,
+        py::arg("render") = false, py::arg("resolution") = 0.0,
         "Welch's test per pixel of x against y, (seeds, ...) float32 or float64 C-contiguous arrays read in "
         "place; with weights, the tested value is the weighted sum over the last axis. Returns a dict of arrays "
         "of the pixel shape: pvalue, statistic, df, mean_x, mean_y, std_error, status (and conf_lo, conf_hi with "
-        "intervals). render: libmcstat's MCSTAT_PIXELS_RENDER guards (eps: their numerical resolution, 0 = from "
+        "intervals). render: libmcstat's MCSTAT_PIXELS_RENDER guards (resolution: their numerical floor, 0 = from "
         "the dtype).");
-    mod.attr("PIXELS_EPS_FLOAT32") = MCSTAT_PIXELS_EPS_FLOAT32;
-    mod.attr("PIXELS_EPS_FLOAT64") = MCSTAT_PIXELS_EPS_FLOAT64;
+    mod.attr("RESOLUTION_FLOAT32") = MCSTAT_RESOLUTION_FLOAT32;
+    mod.attr("RESOLUTION_FLOAT64") = MCSTAT_RESOLUTION_FLOAT64;
 }
 
 } // namespace mcs

@@ -108,7 +108,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
             max_detectable_bias: Optional[float] = None,
             max_relative_detectable_bias: Optional[float] = None,
             bias_quantile: float = 0.9, render_guards: bool = True,
-            eps: Optional[float] = None) -> ImageComparison:
+            resolution: Optional[float] = None) -> ImageComparison:
     """Welch's test per pixel (and channel) of candidate against reference,
     p-values adjusted together by `method` (``mcstat.p_adjust``'s names;
     BH controls the false discovery rate at `alpha` for independent or
@@ -157,13 +157,13 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     such a pixel can never be significant alone: it is untestable per
     pixel and needs ``block=`` tests or more seeds.  The degrees of freedom
     are Hsu's conservative min(K) - 1 (a side with zeros counts its nonzero
-    values less one).  Spreads and differences within `eps` of the larger
-    mean (relative; None: 4 * 2^-24 for float32 inputs, 4 * 2^-53 for
-    float64, ``mcstat._core.PIXELS_EPS_FLOAT32`` / ``_FLOAT64``) are
-    rounding: a pixel constant on both sides and equal within it is not
-    tested; different beyond it, it is a deterministic difference
-    (statistic +-inf, p-value 0), counted in ``notes``.  The value used is
-    ``eps`` of the result.  False: the plain Welch test of ``mcstat.t_test``
+    values less one).  Spreads and differences within `resolution` of the
+    larger mean (relative; None: 2^-18, 64 float32 ulps, for float32 inputs,
+    2^-47 for float64, as the renderer checks derive theirs) are rounding: a
+    pixel constant on both sides and equal within it is not tested;
+    different beyond it, it is a deterministic difference (statistic +-inf,
+    p-value 0), counted in ``notes``.  The value used is ``resolution`` of
+    the result.  False: the plain Welch test of ``mcstat.t_test``
     (R's t.test) per pixel.  A side that hides a rare component while its
     other values vary (a light sampled too rarely to show in K seeds)
     cannot be detected by any per-pixel test of means (Bahadur and
@@ -236,12 +236,12 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         yr = np.ascontiguousarray(ref.data, dtype=dt)
         if weights is None:  # one test per channel: the channels are pixels of their own
             xc, yr = xc.reshape(xc.shape[0], -1), yr.reshape(yr.shape[0], -1)
-        if eps is not None and not (np.isfinite(eps) and 0.0 <= eps < 1.0):
-            raise InvalidArgumentError(f"eps must lie in [0, 1), got {eps}")
-        eps_used = (float(eps) if eps else
-                    _core.PIXELS_EPS_FLOAT32 if dt == np.float32 else _core.PIXELS_EPS_FLOAT64)
+        if resolution is not None and not (np.isfinite(resolution) and 0.0 <= resolution < 1.0):
+            raise InvalidArgumentError(f"resolution must lie in [0, 1), got {resolution}")
+        eps_used = (float(resolution) if resolution else
+                    _core.RESOLUTION_FLOAT32 if dt == np.float32 else _core.RESOLUTION_FLOAT64)
         r = _core._t_test_2_pixels(xc, yr, weights, _core._alternative_code(alternative), alpha,
-                                   omit_nan=nan_policy == "omit", render=bool(render_guards), eps=eps_used)
+                                   omit_nan=nan_policy == "omit", render=bool(render_guards), resolution=eps_used)
         shp = cand.shape
         # the handed-over renders have been read (see Owned); a side not
         # handed over is the caller's and stays as it is
@@ -301,10 +301,10 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         ndet = int(np.count_nonzero(tested & np.isinf(stat)))
         if ndet:
             notes = notes + [f"{ndet} test(s) constant on both sides and different beyond the numerical floor "
-                             f"(eps {eps_used:.3g}): deterministic differences, p-value 0"]
+                             f"(resolution {eps_used:.3g}): deterministic differences, p-value 0"]
     res.variance_lost, res.notes = int(lost.sum()) if lost is not None else 0, notes
     res.render_guards = bool(render_guards) and isinstance(ref, Samples)
-    res.eps = eps_used if res.render_guards else None
+    res.resolution = eps_used if res.render_guards else None
     t4 = time.perf_counter()
     m = int(np.count_nonzero(~np.isnan(pvalue)))
     res.level = per_test_level(res.method, alpha, m, res.rejections)

@@ -71,6 +71,10 @@ class ImageComparison:
     # are then at block resolution, reference_luminance and image_shape the image's.
     block: Optional[int] = None
     image_shape: Optional[Tuple[int, int]] = None
+    # per-seed inputs: whether the render guards ran (MCSTAT_PIXELS_RENDER)
+    # and the numerical floor they applied (relative; None without them)
+    render_guards: bool = False
+    resolution: Optional[float] = None
     _bias_stats: Optional[Dict[str, Any]] = field(default=None, repr=False)
 
     @property

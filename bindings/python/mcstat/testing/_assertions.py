@@ -311,7 +311,7 @@ def assert_unbiased(draw: Any, expected: float, *, n: int = 10_000, alpha: Optio
             raise InvalidArgumentError(f"draw(n, seed) returned {x.size} values; {k} were asked for")
         if x.size >= 2 and np.all(np.isfinite(x)) and np.all(x == x[0]):
             single = getattr(np.asarray(raw), "dtype", None) == np.float32
-            res = _core.CHECK_RESOLUTION_FLOAT32 if single else _core.CHECK_RESOLUTION_FLOAT64
+            res = _core.RESOLUTION_FLOAT32 if single else _core.RESOLUTION_FLOAT64
             off = abs(float(x[0]) - expected)
             exact = off <= res * max(abs(expected), abs(float(x[0])))
             text = (f"every one of the {x.size} estimates is {float(x[0])!r}: an exact estimator, "

@@ -109,14 +109,14 @@ pub struct mcstat_pixels_options {
     pub flags: u32,
     pub threads: i32,
     pub reserved: i32,
-    /// (0.3) `MCSTAT_PIXELS_RENDER`'s numerical resolution; 0: from the inputs' type.
-    pub eps: f64,
+    /// (0.3) `MCSTAT_PIXELS_RENDER`'s numerical floor; 0: from the inputs' type.
+    pub resolution: f64,
 }
 
 impl mcstat_pixels_options {
     /// `MCSTAT_PIXELS_OPTIONS_INIT`.
     pub fn init() -> Self {
-        mcstat_pixels_options { size: std::mem::size_of::<Self>() as u32, flags: 0, threads: 1, reserved: 0, eps: 0.0 }
+        mcstat_pixels_options { size: std::mem::size_of::<Self>() as u32, flags: 0, threads: 1, reserved: 0, resolution: 0.0 }
     }
 }
 
@@ -807,8 +807,8 @@ pub struct mcstat_check_options {
     /// differences of integrals at that scale are rounding, not evidence
     /// (the statistical routes add it as an error of what they compare).
     /// 0 (the initialiser's): derived from the values the callbacks return,
-    /// `MCSTAT_CHECK_RESOLUTION_FLOAT32` when every pdf, weight and eval
-    /// value is a float32, else `MCSTAT_CHECK_RESOLUTION_FLOAT64`; > 0: that
+    /// `MCSTAT_RESOLUTION_FLOAT32` when every pdf, weight and eval
+    /// value is a float32, else `MCSTAT_RESOLUTION_FLOAT64`; > 0: that
     /// value, below 0.01.
     pub resolution: f64,
 }
@@ -818,8 +818,8 @@ pub const MCSTAT_CHECK_OPTIONS_SIZE_0_2: usize = 96;
 pub const MCSTAT_CHECK_OPTIONS_SIZE_0_3: usize = 112;
 
 /// The derived resolutions: 64 units in the last place of float32 and float64.
-pub const MCSTAT_CHECK_RESOLUTION_FLOAT32: f64 = 3.814697265625e-06; // 2^-18
-pub const MCSTAT_CHECK_RESOLUTION_FLOAT64: f64 = 7.105427357601002e-15; // 2^-47
+pub const MCSTAT_RESOLUTION_FLOAT32: f64 = 3.814697265625e-06; // 2^-18
+pub const MCSTAT_RESOLUTION_FLOAT64: f64 = 7.105427357601002e-15; // 2^-47
 
 /// Why a route could not answer (`mcstat_check_route_result::why`).
 pub const MCSTAT_CHECK_WHY_NONE: i32 = 0;

@@ -221,13 +221,13 @@ fn layout_matches_the_c_compiler() {
     // the resolutions as their reciprocals (2^18, 2^47)
     v.push((
         "const".to_string(),
-        "(size_t)(1 / MCSTAT_CHECK_RESOLUTION_FLOAT32)".to_string(),
-        (1.0 / MCSTAT_CHECK_RESOLUTION_FLOAT32) as usize,
+        "(size_t)(1 / MCSTAT_RESOLUTION_FLOAT32)".to_string(),
+        (1.0 / MCSTAT_RESOLUTION_FLOAT32) as usize,
     ));
     v.push((
         "const".to_string(),
-        "(size_t)(1 / MCSTAT_CHECK_RESOLUTION_FLOAT64)".to_string(),
-        (1.0 / MCSTAT_CHECK_RESOLUTION_FLOAT64) as usize,
+        "(size_t)(1 / MCSTAT_RESOLUTION_FLOAT64)".to_string(),
+        (1.0 / MCSTAT_RESOLUTION_FLOAT64) as usize,
     ));
     let exprs: Vec<String> = v.iter().map(|e| e.1.clone()).collect();
     let c = c_compiler_layout(&exprs);
