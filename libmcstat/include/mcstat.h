@@ -1947,19 +1947,31 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                is cut at the horizon first); each cell's probability is   */
 /*                the integral of pdf() over it by adaptive cubature (Genz-  */
 /*                Malik 7/5, splitting where the rules disagree) to 5% of    */
-/*                the cell count's sampling sd.  Consecutive cells are       */
-/*                pooled until the expected count is 5, and the remaining    */
-/*                cubature error enters each cell's variance, so an          */
-/*                integration that falls short costs power, never the level. */
+/*                the cell count's sampling sd.  A rectangle where pdf() is  */
+/*                0 at some of its 17 points and 4 corner probes and not at  */
+/*                others holds the support's edge: its error is then bounded */
+/*                by the estimate's distance to area times the least or the  */
+/*                largest value seen, and it is halved across the edge; when */
+/*                the rectangles run out, the largest errors are halved      */
+/*                first.  Consecutive cells are pooled until the expected    */
+/*                count is 5, and the remaining cubature error enters each   */
+/*                cell's variance, so an integration that falls short costs  */
+/*                power, never the level.                                    */
 /*                df = pooled cells - 1.  Blind to: pdf() scaled by a        */
 /*                constant, everything about weights and eval.              */
 /*   MASS         the fraction of samples that succeed equals the integral   */
-/*                of pdf() over the domain: the exact binomial test against */
-/*                the cubature's integral, conservative over 4 times its    */
-/*                error estimate, unless a Monte Carlo estimate at n_eval   */
-/*                points from a table of the cubature (the mean of pdf/     */
-/*                table, unbiased) disagrees with it; then a two-sided z    */
-/*                test against that estimate.  With discrete lobes, the      */
+/*                of pdf() over the domain.  Two estimates: the cubature's  */
+/*                integral C (error e) and the mean M of pdf/table at the   */
+/*                n_eval points of a table of the cubature's rectangles     */
+/*                (each weighing its integral, its error and its share of   */
+/*                the pilot; unbiased, standard error s).  When M's values  */
+/*                are not heavy-tailed (Hill index >= 2.5) and either the   */
+/*                two disagree (|C - M| > 4e + 3s) or M is the more precise  */
+/*                (3s < 4e), a two-sided z test against M; otherwise the    */
+/*                exact binomial test, conservative over the interval that  */
+/*                spans both C +- 4e and M +- 3s (it holds the true integral */
+/*                when either error statement does); p = 0 only when both   */
+/*                ends are above 1.  With discrete lobes, the                */
 /*                smooth successes are tested so, and each lobe's count by  */
 /*                the exact binomial test against n mass[k]; the route's    */
 /*                p-value is the smallest times (lobes + 1) (Bonferroni),   */
@@ -2300,7 +2312,7 @@ MCSTAT_API const char *mcstat_check_verdict_name(int verdict); /* "consistent", 
 /*                         adapt), above it pdf(x) is unbounded at x = 1.    */
 /*                         The report's points (where) are x, not t.         */
 /* Cost: the callbacks are called about n + n_pilot times for samples,      */
-/* n + n_eval times each for eval and pdf, and pdf 17 times per cubature    */
+/* n + n_eval times each for eval and pdf, and pdf 21 times per cubature    */
 /* rectangle (2 to 40 per cell); the check's own work is O(1) per sample   */
 /* besides sorting for KS (figures: bench/RESULTS.md).                      */
 /* Statuses: MCSTAT_EINVAL (NULL model, callbacks or out, a bad domain,      */

@@ -97,7 +97,8 @@ MCSTAT_HIDDEN void mcstat__tree_build(mcstat__tree *tr, const mcstat__domain *d,
 MCSTAT_HIDDEN int32_t mcstat__tree_locate(const mcstat__tree *tr, double s, double t);
 
 /* Adaptive cubature of a density over every cell (Genz-Malik degree 7
- * with its embedded degree 5 rule on rectangles, 17 points each; a halved
+ * with its embedded degree 5 rule on rectangles, 17 points each, and 4
+ * probes just inside the corners; a halved
  * rectangle's halves also carry half the change of the estimate the split
  * made, a second error estimate that sees what the rule alone misses near
  * singular points):
@@ -108,8 +109,13 @@ MCSTAT_HIDDEN int32_t mcstat__tree_locate(const mcstat__tree *tr, double s, doub
  * of the larger fourth difference.  A rule's 17 points can all miss a thin
  * feature (the rim of a cone of directions, a sliver of support), so the
  * pilot points guide it too: a rectangle holding pilot points far beyond
- * what its integral predicts is halved as well.  At most max_rects
- * rectangles.
+ * what its integral predicts is halved as well.  Where the density is 0
+ * at some of a rectangle's 21 points and not at others (the support's
+ * edge), the rules' difference means nothing: the error is at least the
+ * estimate's distance to the further of area * (least, largest value),
+ * and the rectangle is halved across the edge.  At most max_rects
+ * rectangles; when fewer are left than candidates, the largest errors
+ * are halved first.
  * `density` is called with up to `batch` points (x in xbuf, results in
  * fbuf).  Returns the callback's status (non-zero stops). */
 typedef int (*mcstat__density_cb)(void *ctx, const double *x, size_t n, double *out);

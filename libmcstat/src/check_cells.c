@@ -20,6 +20,8 @@
  */
 #include "check.h"
 
+#include <float.h>
+
 /* ---- the tree ------------------------------------------------------------ */
 
 size_t mcstat__tree_max_cells(uint64_t m, int leaf)
@@ -163,14 +165,22 @@ static const double gm_w[5] = {-3816.0 / 19683.0, 980.0 / 6561.0, 1020.0 / 19683
                                6859.0 / 19683.0 / 4.0};
 static const double gm_e[4] = {-971.0 / 729.0, 245.0 / 486.0, 65.0 / 1458.0, 25.0 / 729.0};
 #define GM_POINTS 17
+/* Past the rule's points, the rectangle's corners (just inside, where a
+ * density singular on the domain's edge is still finite): a support whose
+ * edge runs along the rectangle's side, in the margin the rule's points
+ * never reach, shows there. */
+#define GM_PROBE 0.999
+#define RECT_POINTS (GM_POINTS + 4)
 
-/* The 17 points of the rule on rect r, as offsets in half-widths. */
-static const double gm_off[GM_POINTS][2] = {
+/* The 17 points of the rule on rect r, then the 4 probes, as offsets in
+ * half-widths. */
+static const double gm_off[RECT_POINTS][2] = {
     {0, 0},
     {GM_L2, 0}, {-GM_L2, 0}, {0, GM_L2}, {0, -GM_L2},
     {GM_L3, 0}, {-GM_L3, 0}, {0, GM_L3}, {0, -GM_L3},
     {GM_L4, GM_L4}, {GM_L4, -GM_L4}, {-GM_L4, GM_L4}, {-GM_L4, -GM_L4},
     {GM_L5, GM_L5}, {GM_L5, -GM_L5}, {-GM_L5, GM_L5}, {-GM_L5, -GM_L5},
+    {GM_PROBE, GM_PROBE}, {GM_PROBE, -GM_PROBE}, {-GM_PROBE, GM_PROBE}, {-GM_PROBE, -GM_PROBE},
 };
 
 static void rule(mcstat__rect *r, const double *f, double jacobian, int two_d)
@@ -186,12 +196,44 @@ static void rule(mcstat__rect *r, const double *f, double jacobian, int two_d)
     double r23 = (GM_L2 * GM_L2) / (GM_L3 * GM_L3);
     double ds = fabs(f[1] + f[2] - 2 * f[0] - r23 * (f[5] + f[6] - 2 * f[0]));
     double dt = fabs(f[3] + f[4] - 2 * f[0] - r23 * (f[7] + f[8] - 2 * f[0]));
-    if (!two_d)
+    /* Zero at some points and not at others: the support's edge crosses
+     * the rectangle, and a rule's error estimate means nothing across a
+     * jump (both rules can agree while missing most of a sliver).  Between
+     * the smallest and the largest value seen, the integral is anywhere in
+     * [area fmin, area fmax]: the error is at most the estimate's distance
+     * to the further end, which makes such rectangles split until the
+     * edge's strip is below tolerance (or the rectangles run out, the
+     * error then honest). */
+    double least = f[0], most = f[0];
+    int zeros = 0;
+    for (int p = 0; p < RECT_POINTS; p++) {
+        least = fmin(least, f[p]);
+        most = fmax(most, f[p]);
+        zeros += f[p] == 0.0;
+    }
+    int edge = zeros > 0 && zeros < RECT_POINTS;
+    if (edge)
+        r->err = fmax(r->err, fmax(r->est - area * least, area * most - r->est));
+    if (!two_d) {
         r->axis = 0;
-    else if (ds == dt) /* flat in both (or ties): the longer side */
+    } else if (edge) {
+        /* across the edge: the axis whose halves see the jump in fewer of
+         * them (halving along the edge leaves two halves as uncertain as
+         * their parent, the error bound no smaller); ties, the longer side */
+        int mixed[2] = {0, 0};
+        for (int a = 0; a < 2; a++) {
+            int seen[2][2] = {{0, 0}, {0, 0}}; /* [half][zero or not] */
+            for (int p = 0; p < RECT_POINTS; p++)
+                if (gm_off[p][a] != 0.0)
+                    seen[gm_off[p][a] > 0.0][f[p] == 0.0] = 1;
+            mixed[a] = (seen[0][0] && seen[0][1]) + (seen[1][0] && seen[1][1]);
+        }
+        r->axis = mixed[0] != mixed[1] ? (mixed[1] < mixed[0]) : (r->t1 - r->t0) > (r->s1 - r->s0);
+    } else if (ds == dt) { /* flat in both (or ties): the longer side */
         r->axis = (r->t1 - r->t0) > (r->s1 - r->s0) ? 1 : 0;
-    else
+    } else {
         r->axis = dt > ds ? 1 : 0;
+    }
 }
 
 /* Evaluates every rect whose axis is -1 (new or changed), in chunks of at
@@ -199,7 +241,7 @@ static void rule(mcstat__rect *r, const double *f, double jacobian, int two_d)
 static int evaluate_dirty(mcstat__rect *rects, size_t nr, const mcstat__domain *d, mcstat__density_cb density,
                           void *ctx, double *xbuf, double *fbuf, size_t batch)
 {
-    size_t per_chunk = batch / GM_POINTS;
+    size_t per_chunk = batch / RECT_POINTS;
     if (per_chunk == 0)
         per_chunk = 1;
     size_t i = 0;
@@ -211,7 +253,7 @@ static int evaluate_dirty(mcstat__rect *rects, size_t nr, const mcstat__domain *
                 continue;
             double cs = 0.5 * (r->s0 + r->s1), ct = 0.5 * (r->t0 + r->t1);
             double hs = 0.5 * (r->s1 - r->s0), ht = 0.5 * (r->t1 - r->t0);
-            for (int p = 0; p < GM_POINTS; p++, np++)
+            for (int p = 0; p < RECT_POINTS; p++, np++)
                 mcstat__domain_point(d, cs + gm_off[p][0] * hs, ct + gm_off[p][1] * ht, xbuf + np * d->dims);
             got++;
         }
@@ -223,7 +265,7 @@ static int evaluate_dirty(mcstat__rect *rects, size_t nr, const mcstat__domain *
         size_t k = 0;
         for (size_t j = start; j < i; j++)
             if (rects[j].axis == -1) {
-                rule(&rects[j], fbuf + k * GM_POINTS, d->jacobian, d->two_d);
+                rule(&rects[j], fbuf + k * RECT_POINTS, d->jacobian, d->two_d);
                 k++;
             }
     }
@@ -295,6 +337,61 @@ static void sum_cells(mcstat__tree *tr, const mcstat__rect *rects, size_t nr)
     }
 }
 
+/* Whether a rectangle is to be halved, as its priority: its error if it
+ * carries at least its cell's average error in a cell above tolerance; if
+ * the pilot disagrees with it, the larger of its error and the pilot's
+ * estimate of what it misses; 0 otherwise. */
+static double split_priority(const mcstat__tree *tr, const mcstat__rect *r, double tol_scale, double mass,
+                             int *by_pilot)
+{
+    const mcstat__cell *cell = &tr->cells[r->cell];
+    double tol = tol_scale * sqrt(fmax(cell->prob, 0.0)) + 1e-15;
+    *by_pilot = 0;
+    if (cell->err > tol && r->err * cell->n_rects >= cell->err)
+        return r->err;
+    if (!pilot_disagrees(r, tr->n_points, mass))
+        return 0.0;
+    *by_pilot = 1;
+    double seen = fmax(mass, 0.0) * (double)(r->p1 - r->p0) / (double)tr->n_points;
+    return fmax(fmax(r->err, fabs(seen - r->est)), DBL_MIN);
+}
+
+/* The least priority halved this round: 0 while the rectangles left can
+ * halve every candidate; otherwise the largest errors go first, wherever
+ * they are (in index order, the budget would go to whichever cells come
+ * first, and a support's edge in a later cell would keep its error). */
+static double split_threshold(const mcstat__tree *tr, const mcstat__rect *rects, size_t nr, size_t room, double tol_scale,
+                              double mass)
+{
+    size_t count = 0;
+    double lo = INFINITY, hi = 0.0;
+    int by_pilot;
+    for (size_t i = 0; i < nr; i++) {
+        double p = split_priority(tr, &rects[i], tol_scale, mass, &by_pilot);
+        if (p > 0.0) {
+            count++;
+            lo = fmin(lo, p);
+            hi = fmax(hi, p);
+        }
+    }
+    if (count <= room)
+        return 0.0;
+    /* bisect (geometrically) for the least threshold that fits the room */
+    for (int it = 0; it < 100 && lo < hi; it++) {
+        double mid = sqrt(lo) * sqrt(hi);
+        if (!(mid > lo && mid < hi))
+            break;
+        size_t above = 0;
+        for (size_t i = 0; i < nr; i++)
+            above += split_priority(tr, &rects[i], tol_scale, mass, &by_pilot) >= mid;
+        if (above > room)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return hi;
+}
+
 int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__density_cb density, void *ctx,
                             double tol_scale, mcstat__rect *rects, size_t max_rects, double *xbuf, double *fbuf,
                             size_t batch, size_t *rects_used)
@@ -317,20 +414,18 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
         for (int32_t c = 0; c < nc; c++)
             mass += fmax(tr->cells[c].prob, 0.0);
         size_t n_split = 0, nr0 = nr;
+        double least = split_threshold(tr, rects, nr0, max_rects - nr, tol_scale, mass);
         for (size_t i = 0; i < nr0 && nr < max_rects; i++) {
             mcstat__rect *r = &rects[i];
-            const mcstat__cell *cell = &tr->cells[r->cell];
-            double tol = tol_scale * sqrt(fmax(cell->prob, 0.0)) + 1e-15;
-            int refine = cell->err > tol && r->err * cell->n_rects >= cell->err;
-            if (!refine) {
-                if (!pilot_disagrees(r, tr->n_points, mass))
-                    continue;
-                /* the rule saw nothing of what the pilot found: halve across
-                 * the axis along which the points are most concentrated, so
-                 * that a sliver (a lobe against the horizon) gets isolated */
-                if (d->two_d && r->p1 - r->p0 >= 2)
-                    r->axis = pilot_axis(tr->st, r);
-            }
+            int by_pilot;
+            double priority = split_priority(tr, r, tol_scale, mass, &by_pilot);
+            if (!(priority > 0.0) || priority < least)
+                continue;
+            /* the rule saw nothing of what the pilot found: halve across
+             * the axis along which the points are most concentrated, so
+             * that a sliver (a lobe against the horizon) gets isolated */
+            if (by_pilot && d->two_d && r->p1 - r->p0 >= 2)
+                r->axis = pilot_axis(tr->st, r);
             mcstat__rect b = *r;
             if (r->axis == 0) {
                 double mid = 0.5 * (r->s0 + r->s1);

@@ -298,7 +298,10 @@ static void route_mass(run *r, const sums *sm, double level)
         rr->effect = rr->detectable = rr->n_for_1pct = NAN;
         return;
     }
-    if (!agree && tail >= 2.5) {
+    /* The cubature's error is a bound where it saw a support's edge, and
+     * can be large there (its rectangles run out before the edge is
+     * resolved): then the unbiased estimate is the more precise one. */
+    if (tail >= 2.5 && (!agree || 3.0 * sqrt(var_m) < 4.0 * r->out->mass_error)) {
         double mc = fmin(fmax(mhat, 1.0 / (double)n), 1.0 - 1.0 / (double)n);
         double sd = sqrt(mc * (1.0 - mc) / (double)n + var_m);
         double d = phat - mhat;
@@ -310,15 +313,17 @@ static void route_mass(run *r, const sums *sm, double level)
                                     : INFINITY;
     } else {
         double mass = r->out->mass, err = 4.0 * r->out->mass_error;
-        /* The cubature above 1 beyond its error while the unbiased estimate is
-         * not significantly above 1: the error estimate fell short (a density
-         * with a sharp edge, such as a cone's rim), not pdf().  Widen it to
-         * the two estimates' disagreement before judging. */
-        if (mass - err > 1.0 && !(mhat - 3.0 * sqrt(var_m) > 1.0))
-            err = fmax(err, fabs(mass - mhat) + 3.0 * sqrt(var_m));
-        double p_lo = fmin(fmax(mass - err, 0.0), 1.0), p_hi = fmin(fmax(mass + err, 0.0), 1.0);
+        /* The two estimates can agree only because the unbiased one is
+         * noisy while the cubature's error estimate fell short (a support's
+         * edge its points missed): a narrow interval around the cubature
+         * then excludes the truth, and a sampler whose samples all succeed
+         * is rejected at p = 0.  The interval covers both estimates' (the
+         * truth is in it when either error statement holds). */
+        double lo = fmin(mass - err, mhat - 3.0 * sqrt(var_m)), hi = fmax(mass + err, mhat + 3.0 * sqrt(var_m));
+        err = fmax(mass - lo, hi - mass);
+        double p_lo = fmin(fmax(lo, 0.0), 1.0), p_hi = fmin(fmax(hi, 0.0), 1.0);
         rr->effect = mass > 0.0 ? (phat - mass) / mass : NAN;
-        if (mass - err > 1.0) {
+        if (lo > 1.0) {
             p = 0.0; /* pdf() integrates above 1 by both estimates: no sampler can match it */
         } else if (phat >= p_lo && phat <= p_hi) {
             p = 1.0;

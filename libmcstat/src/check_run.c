@@ -618,16 +618,23 @@ static int eval_only(run *r, sums *sm)
      * pdf's integral over it, mixed 9:1 with its area, and uniform inside.
      * Following pdf closely keeps eval/table close to the sample weights,
      * so the estimator is nearly as tight as the sampler's and its mean
-     * close to normal at moderate n. */
+     * close to normal at moderate n.  Each rectangle weighs its integral
+     * plus its error plus its share of the pilot: where the cubature is
+     * unsure (a support's edge it could not resolve) or saw nothing where
+     * the sampler goes, the table must not fall far below pdf, or pdf/table
+     * grows a heavy tail and its mean, though unbiased, is mostly short
+     * with a standard error that says otherwise. */
     size_t nr = r->n_rects;
     const mcstat__rect *rects = r->s.rects;
+    double pilot = r->tr.n_points > 0 ? 1.0 / (double)r->tr.n_points : 0.0;
     double mass = 0.0;
     for (size_t i = 0; i < nr; i++)
-        mass += fmax(rects[i].est, 0.0);
+        mass += fmax(rects[i].est, 0.0) + rects[i].err + pilot * (double)(rects[i].p1 - rects[i].p0);
     double acc = 0.0;
     for (size_t i = 0; i < nr; i++) {
         double area = (rects[i].s1 - rects[i].s0) * (rects[i].t1 - rects[i].t0);
-        acc += mass > 0.0 ? (1.0 - DEFENSIVE) * fmax(rects[i].est, 0.0) / mass + DEFENSIVE * area : area;
+        double weight = fmax(rects[i].est, 0.0) + rects[i].err + pilot * (double)(rects[i].p1 - rects[i].p0);
+        acc += mass > 0.0 ? (1.0 - DEFENSIVE) * weight / mass + DEFENSIVE * area : area;
         r->s.cdf[i] = acc;
     }
     double total = acc;

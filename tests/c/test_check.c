@@ -243,6 +243,43 @@ static mcstat_check_model lobe_model(lobe *L)
     return m;
 }
 
+/* On the square: 1/BAND on the strip s < BAND, 0 elsewhere.  The strip
+ * lies in the margin the rule's points never reach (beyond 0.949 of the
+ * half-width): all 17 of them see 0. */
+#define BAND 0.02
+static int edge_strip(void *ctx, const double *x, size_t n, double *out)
+{
+    (void)ctx;
+    for (size_t k = 0; k < n; k++)
+        out[k] = x[2 * k] < BAND ? 1.0 / BAND : 0.0;
+    return 0;
+}
+
+static void test_cubature_edge(void)
+{
+    static double xbuf[2 * 4096], fbuf[4096];
+    static mcstat__node nodes[4];
+    static mcstat__cell cells[2];
+    static mcstat__rect rects[2000];
+    double st[2] = {0.01, 0.5}; /* one pilot point: one cell, the square */
+    mcstat__domain d;
+    mcstat__domain_get(MCSTAT_DOMAIN_SQUARE, &d);
+    mcstat__tree tr = {nodes, cells, 0, 0, 4, 2, NULL, 0};
+    mcstat__tree_build(&tr, &d, st, 1, 32, 0);
+    CHECK(tr.n_cells == 1);
+    tr.n_points = 0; /* the rule and its probes alone, no pilot to guide them */
+    size_t used = 0;
+    CHECK(mcstat__cells_integrate(&tr, &d, edge_strip, NULL, 1e-4, rects, 2000, xbuf, fbuf, 4096, &used) == 0);
+    const mcstat__cell *c = &tr.cells[0];
+    /* the edge is seen, resolved to tolerance, and the error bounds the error */
+    CHECK_MSG(fabs(c->prob - 1.0) <= c->err, "integral %.17g, error %.3g", c->prob, c->err);
+    CHECK_MSG(c->err < 1e-3, "error %.3g after %zu rectangles", c->err, used);
+    /* with too few rectangles to resolve it, the error is honest, not 0 */
+    CHECK(mcstat__cells_integrate(&tr, &d, edge_strip, NULL, 1e-4, rects, 3, xbuf, fbuf, 4096, &used) == 0);
+    CHECK(used == 3);
+    CHECK_MSG(fabs(c->prob - 1.0) <= c->err, "3 rectangles: integral %.17g, error %.3g", c->prob, c->err);
+}
+
 static void test_lobe_bugs(void)
 {
     const double wi[3] = {0.5, 0.1, 0.86};
@@ -434,6 +471,7 @@ int main(void)
     test_domains();
     test_keys();
     test_cubature();
+    test_cubature_edge();
     test_lobe_bugs();
     test_lobe_mass();
     test_warps();
