@@ -2034,7 +2034,9 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /* The numerical floor: differences at the resolution of the caller's       */
 /* arithmetic are not evidence.  The statistical routes add the options'    */
 /* resolution (derived from the values by default: float32 or float64) as a */
-/* relative error of what they compare, and report it.                      */
+/* relative error of what they compare (CELLS: of each cell's probability; */
+/* MASS: of the mass; INTEGRALS: a common and a per-region error; ENERGY: */
+/* of the albedo), and report it.                                           */
 /* ------------------------------------------------------------------------ */
 enum mcstat_check_route {
     MCSTAT_CHECK_ROUTE_CELLS = 0,
@@ -2113,11 +2115,11 @@ typedef struct mcstat_check_options {
                               MCSTAT_WEIGHT_OVER_PDF */
     double resolution;     /* the relative resolution of the caller's arithmetic: differences of
                               integrals at that scale are rounding, not evidence.  The statistical
-                              routes add it as an error of the integrals they compare (INTEGRALS
-                              and ENERGY: a relative error common to all regions and one of each
-                              region, of this size each, in the variance of the difference; MASS
-                              and CELLS: a relative error of the cubature), and each route reports
-                              it.  0 (default): derived from the values the callbacks return,
+                              routes add it as an error of what they compare (INTEGRALS: a
+                              relative error common to all regions and one of each region, of
+                              this size each, in the variance of the difference; ENERGY: one of
+                              the albedo; MASS and CELLS: one of the mass and of each cell's
+                              probability), and each route reports it.  0 (default): derived from the values the callbacks return,
                               MCSTAT_RESOLUTION_FLOAT32 when every pdf, weight and eval value
                               is a float32 (a renderer computing in float), else
                               MCSTAT_RESOLUTION_FLOAT64; > 0: that value, below 0.01 */

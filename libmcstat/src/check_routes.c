@@ -155,6 +155,7 @@ static void route_cells(run *r, const sums *sm, double level)
         double diff = fabs(r->tr.cells[c].prob - p_mc);
         if (diff > 3.0 * se && diff > err)
             err = diff;
+        err += r->resolution * fabs(r->tr.cells[c].prob); /* the numerical floor */
         O += r->s.counts[c];
         E += N * fmax(r->tr.cells[c].prob, 0.0) / mass;
         V += N * err / mass;
@@ -182,6 +183,7 @@ static void route_cells(run *r, const sums *sm, double level)
         return;
     }
     double df = groups - 1;
+    rr->resolution = r->resolution;
     if (!ran_chisq(rr, x2, df))
         return;
     rr->effect = sqrt(x2 / N);
@@ -291,6 +293,7 @@ static void route_mass(run *r, const sums *sm, double level)
     rr->count = x;
     rr->state = MCSTAT_ROUTE_RAN;
     rr->statistic = phat;
+    rr->resolution = r->resolution;
     int agree = fabs(r->out->mass - mhat) <= 3.0 * sqrt(var_m) + 4.0 * r->out->mass_error;
     if (!isfinite(r->out->mass) || !isfinite(mhat)) {
         /* pdf() so large that its integral overflowed: no sampler can match it */
@@ -303,7 +306,7 @@ static void route_mass(run *r, const sums *sm, double level)
      * resolved): then the unbiased estimate is the more precise one. */
     if (tail >= 2.5 && (!agree || 3.0 * sqrt(var_m) < 4.0 * r->out->mass_error)) {
         double mc = fmin(fmax(mhat, 1.0 / (double)n), 1.0 - 1.0 / (double)n);
-        double sd = sqrt(mc * (1.0 - mc) / (double)n + var_m);
+        double sd = sqrt(mc * (1.0 - mc) / (double)n + var_m + (r->resolution * mhat) * (r->resolution * mhat));
         double d = phat - mhat;
         p = sd > 0.0 ? erfc(fabs(d) / sd / sqrt(2.0)) : (fabs(d) <= 1e-12 ? 1.0 : 0.0);
         rr->effect = mhat > 0.0 ? d / mhat : NAN;
@@ -312,7 +315,7 @@ static void route_mass(run *r, const sums *sm, double level)
         rr->n_for_1pct = room > 0.0 ? z * z * (mc * (1.0 - mc) + var_m * m_eval) / (0.01 * mhat * 0.01 * mhat)
                                     : INFINITY;
     } else {
-        double mass = r->out->mass, err = 4.0 * r->out->mass_error;
+        double mass = r->out->mass, err = 4.0 * r->out->mass_error + r->resolution * fabs(r->out->mass);
         /* The two estimates can agree only because the unbiased one is
          * noisy while the cubature's error estimate fell short (a support's
          * edge its points missed): a narrow interval around the cubature
@@ -336,7 +339,9 @@ static void route_mass(run *r, const sums *sm, double level)
             p = res.p_value;
         }
         double mm = fmin(fmax(mass, 1e-300), 1.0);
-        rr->detectable = (z * sqrt(mm * (1.0 - mm) / (double)n) + err) / mm;
+        /* near mass 1 the binomial's spread vanishes: a loss q is seen once
+         * some sample fails, with probability 0.8 when n q >= -ln(0.2) */
+        rr->detectable = (fmax(z * sqrt(mm * (1.0 - mm) / (double)n), -log(0.2) / (double)n) + err) / mm;
         double room = 0.01 * mm - err;
         rr->n_for_1pct = room > 0.0 ? fmax(z * z * mm * (1.0 - mm) / (room * room), -log(0.2) / 0.01) : INFINITY;
     }

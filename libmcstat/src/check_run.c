@@ -609,6 +609,21 @@ static int tested_sample(run *r, sums *sm)
 
 /* ---- stage 3: the eval-only estimator ------------------------------------ */
 
+/* The share of the pilot a rectangle's cell holds beyond what its integral
+ * and error predict, when significant (beyond 3 Poisson sds and 3 points),
+ * split over the cell's rectangles by their pilot points; else 0. */
+static double pilot_excess(const run *r, const mcstat__rect *rect)
+{
+    double np = (double)r->tr.n_points;
+    if (!(np > 0.0) || rect->p1 == rect->p0)
+        return 0.0;
+    const mcstat__cell *c = &r->tr.cells[rect->cell];
+    double k = (double)c->p_count, e = np * (fmax(c->prob, 0.0) + c->err);
+    if (!(k > e + 3.0 * sqrt(e) + 3.0))
+        return 0.0;
+    return (k - e) / np * (double)(rect->p1 - rect->p0) / k;
+}
+
 static int eval_only(run *r, sums *sm)
 {
     const plan *pl = &r->pl;
@@ -619,23 +634,29 @@ static int eval_only(run *r, sums *sm)
      * Following pdf closely keeps eval/table close to the sample weights,
      * so the estimator is nearly as tight as the sampler's and its mean
      * close to normal at moderate n.  Each rectangle weighs its integral
-     * plus its error plus its share of the pilot: where the cubature is
-     * unsure (a support's edge it could not resolve) or saw nothing where
-     * the sampler goes, the table must not fall far below pdf, or pdf/table
-     * grows a heavy tail and its mean, though unbiased, is mostly short
-     * with a standard error that says otherwise. */
+     * plus its error, plus, in a cell holding significantly more pilot
+     * points than its integral predicts (support the cubature missed), the
+     * excess in proportion to the rectangle's pilot points: where the
+     * cubature is unsure or blind, the table must not fall far below pdf,
+     * or pdf/table grows a heavy tail and its mean, though unbiased, is
+     * mostly short with a standard error that says otherwise.  Only a
+     * significant excess counts: the pilot's counts are noisy (32 points
+     * a cell), and following them everywhere would cost the estimator the
+     * precision of following pdf. */
     size_t nr = r->n_rects;
     const mcstat__rect *rects = r->s.rects;
-    double pilot = r->tr.n_points > 0 ? 1.0 / (double)r->tr.n_points : 0.0;
-    double mass = 0.0;
-    for (size_t i = 0; i < nr; i++)
-        mass += fmax(rects[i].est, 0.0) + rects[i].err + pilot * (double)(rects[i].p1 - rects[i].p0);
-    double acc = 0.0;
-    for (size_t i = 0; i < nr; i++) {
-        double area = (rects[i].s1 - rects[i].s0) * (rects[i].t1 - rects[i].t0);
-        double weight = fmax(rects[i].est, 0.0) + rects[i].err + pilot * (double)(rects[i].p1 - rects[i].p0);
-        acc += mass > 0.0 ? (1.0 - DEFENSIVE) * weight / mass + DEFENSIVE * area : area;
-        r->s.cdf[i] = acc;
+    double mass = 0.0, acc = 0.0;
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t i = 0; i < nr; i++) {
+            double weight = fmax(rects[i].est, 0.0) + rects[i].err + pilot_excess(r, &rects[i]);
+            if (pass == 0) {
+                mass += weight;
+                continue;
+            }
+            double area = (rects[i].s1 - rects[i].s0) * (rects[i].t1 - rects[i].t0);
+            acc += mass > 0.0 ? (1.0 - DEFENSIVE) * weight / mass + DEFENSIVE * area : area;
+            r->s.cdf[i] = acc;
+        }
     }
     double total = acc;
     for (uint64_t first = 0; first < pl->n_eval; first += pl->batch) {
