@@ -114,7 +114,8 @@ def _image_test(a: argparse.Namespace) -> int:
         raise E.UsageError(f"--bias-quantile must lie in [0, 1], got {a.bias_quantile}")
     res = run(a.reference, a.candidate, png=a.png, json_path=a.json, worst=a.worst, alpha=a.alpha,
               method=a.adjust, alternative=a.alternative, channels=a.channels, seed_axis=a.seed_axis,
-              nan_policy=a.nan, spp=a.spp, bias_png=a.bias_png, block=a.block, detect_power=a.detect_power,
+              nan_policy=a.nan, spp=a.spp, layer=a.layer, bias_png=a.bias_png, block=a.block,
+              detect_power=a.detect_power,
               max_detectable_bias=a.max_detectable_bias,
               max_relative_detectable_bias=a.max_relative_detectable_bias, bias_quantile=a.bias_quantile)
     if not a.quiet:
@@ -160,6 +161,9 @@ def _add_image_test(sub) -> None:
                     help="test the luminance, or each channel (default: %(default)s)")
     it.add_argument("--alternative", choices=("two-sided", "less", "greater"), default="two-sided",
                     help="a claim about the candidate (default: %(default)s)")
+    it.add_argument("--layer", default=None, metavar="NAME",
+                    help="the layer of one-image-per-seed EXR files (default: the unprefixed R, G, B, else "
+                         "Blender's Combined, else the only colour layer; the output says which)")
     it.add_argument("--seed-axis", type=int, default=None,
                     help="the seeds axis of a .npy stack, -1 for (H, W, seeds) (default: from the shapes; "
                          "an ambiguous stack is refused)")

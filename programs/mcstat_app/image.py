@@ -38,7 +38,7 @@ import os
 import time
 import zipfile
 import zlib
-from typing import Callable, Dict, List, Optional, Sequence, Union
+from typing import Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -101,40 +101,83 @@ def _read_pfm(path: str) -> np.ndarray:
     return data.reshape(h, w, c)[::-1].astype(np.float32)
 
 
-def _read_exr(path: str) -> np.ndarray:
+def exr_layers(names: Sequence[str]) -> Dict[str, List[str]]:
+    """The colour layers of an EXR's channel names: layer -> its channels
+    (R, G, B[, A] or Y), "" for the unprefixed ones (``R``, ``G``, ``B``)."""
+    layers: Dict[str, List[str]] = {}
+    for n in names:
+        layer, _, comp = n.rpartition(".")
+        layers.setdefault(layer, []).append(comp)
+    return {k: v for k, v in layers.items() if {"R", "G", "B"} <= set(v) or "Y" in v}
+
+
+def choose_exr_layer(path: str, names: Sequence[str], layer: Optional[str] = None) -> str:
+    """The layer a comparison reads, by rule: the one asked for; else the
+    unprefixed R, G, B (Mitsuba's and most renderers' beauty pass); else
+    the one layer named ``Combined`` (Blender's ``ViewLayer.Combined``);
+    else the only colour layer.  Anything else is ambiguous: refused,
+    naming the layers the file holds."""
+    layers = exr_layers(names)
+    if layer is not None:
+        if layer not in layers:
+            raise ImageInputError(f"{path}: no colour layer {layer!r}; it holds {_layer_list(layers)}")
+        return layer
+    if "" in layers:
+        return ""
+    combined = [k for k in layers if k.rpartition(".")[2] == "Combined"]
+    if len(combined) == 1:
+        return combined[0]
+    if len(layers) == 1:
+        return next(iter(layers))
+    why = "several Combined layers (view layers)" if combined else "no unprefixed R, G, B and no Combined layer"
+    raise ImageInputError(f"{path}: which layer holds the render is ambiguous ({why}); it holds "
+                          f"{_layer_list(layers)}: choose one with --layer NAME (layer=NAME)")
+
+
+def _layer_list(layers: Dict[str, List[str]]) -> str:
+    return ", ".join(repr(k) if k else "the unprefixed R, G, B" for k in sorted(layers)) or "no colour layer"
+
+
+def _read_exr(path: str, layer: Optional[str] = None) -> Tuple[np.ndarray, str]:
+    """One EXR image as (H, W, C) and the layer read (see choose_exr_layer)."""
     OpenEXR = require("OpenEXR", f"{path}: reading EXR", MissingReaderError)  # the ASWF package
     try:
-        with OpenEXR.File(path) as f:
-            ch = f.channels()
-            if "RGB" in ch:
-                return np.asarray(ch["RGB"].pixels)
-            if "RGBA" in ch:
-                return np.asarray(ch["RGBA"].pixels)[..., :3]
-            for name in ("Y", "L", "R"):
-                if name in ch:
-                    return np.asarray(ch[name].pixels)
-            first = sorted(ch)[0]
-            return np.asarray(ch[first].pixels)
-    except ImageInputError:
-        raise
+        with OpenEXR.File(path, separate_channels=True) as f:
+            ch = {k: np.asarray(v.pixels) for k, v in f.channels().items()}
     except Exception as e:  # OpenEXR raises plain exceptions for unreadable files
         raise ImageInputError(f"{path}: cannot read EXR: {e}") from e
+    chosen = choose_exr_layer(path, list(ch), layer)
+    comps = exr_layers(list(ch))[chosen]
+    prefix = chosen + "." if chosen else ""
+    order = ["R", "G", "B"] if {"R", "G", "B"} <= set(comps) else ["Y"]
+    return np.stack([ch[prefix + c] for c in order], axis=-1), chosen
 
 
 def _read_npy_image(path: str) -> np.ndarray:
     return np.load(path, allow_pickle=False)
 
 
-def read_image(path: str) -> np.ndarray:
-    """One image as ``(H, W, C)`` float (EXR, PFM or .npy)."""
+def read_image(path: str, layer: Optional[str] = None) -> np.ndarray:
+    """One image as ``(H, W, C)`` float (EXR, PFM or .npy); `layer`: an
+    EXR's layer (default: by `choose_exr_layer`'s rule)."""
+    return read_image_layer(path, layer)[0]
+
+
+def read_image_layer(path: str, layer: Optional[str] = None) -> Tuple[np.ndarray, Optional[str]]:
+    """`read_image` and the EXR layer it read (None for other formats)."""
     ext = os.path.splitext(path)[1].lower()
-    readers: Dict[str, Callable[[str], np.ndarray]] = {".exr": _read_exr, ".pfm": _read_pfm, ".npy": _read_npy_image}
-    if ext not in readers:
+    readers: Dict[str, Callable[[str], np.ndarray]] = {".pfm": _read_pfm, ".npy": _read_npy_image}
+    if ext != ".exr" and ext not in readers:
         raise ImageInputError(f"{path}: unknown image format {ext!r} (use .exr, .pfm or .npy)")
+    if layer is not None and ext != ".exr":
+        raise ImageInputError(f"{path}: a layer ({layer!r}) is an EXR's; this is a {ext} file")
     if not os.path.exists(path):
         raise ImageInputError(f"{path}: no such file")
     try:
-        return _as_hwc(readers[ext](path), path)
+        if ext == ".exr":
+            img, chosen = _read_exr(path, layer)
+            return _as_hwc(img, path), chosen
+        return _as_hwc(readers[ext](path), path), None
     except ImageInputError:
         raise
     except _READ_ERRORS as e:
@@ -211,18 +254,28 @@ def _read_summary_npz(path: str) -> Summary:
 _READERS: Dict[str, Callable[..., Side]] = {
     "stack": lambda paths, seed_axis, **_: _read_stack_npy(paths[0], seed_axis),
     "summary": lambda paths, seed_axis, **_: _read_summary_npz(paths[0]),
-    "images": lambda paths, seed_axis, **_: _stack_images(paths),
+    "images": lambda paths, seed_axis, layer=None, **_: _stack_images(paths, layer),
     "exr-moment": lambda paths, seed_axis, spp=None, **_: image_exr.read_moment(paths[0], spp),
     "exr-seeds": lambda paths, seed_axis, **_: image_exr.read_seed_layers(paths[0]),
 }
 
 
-def _stack_images(paths: Sequence[str]) -> Samples:
-    imgs = [read_image(p) for p in paths]
+def _stack_images(paths: Sequence[str], layer: Optional[str] = None) -> Samples:
+    read = [read_image_layer(p, layer) for p in paths]
+    imgs = [im for im, _ in read]
     for p, im in zip(paths, imgs):
         if im.shape != imgs[0].shape:
             raise ImageInputError(f"{p}: shape {im.shape} differs from {paths[0]}'s {imgs[0].shape}")
-    return Samples(np.stack(imgs), channel_names(imgs[0].shape[-1]))
+    chosen = {c for _, c in read}
+    if len(chosen) > 1:
+        raise ImageInputError(f"{paths[0]} and the side's other files hold different layers by the rule "
+                              f"({', '.join(sorted(repr(c) for c in chosen if c is not None))}): give --layer NAME")
+    source = ""
+    c = next(iter(chosen))
+    if c is not None:
+        what = f"layer {c!r}" if c else "the unprefixed R, G, B channels"
+        source = f"read {what} of {len(paths)} EXR file(s) ({os.path.basename(paths[0])}, ...)"
+    return Samples(np.stack(imgs), channel_names(imgs[0].shape[-1]), source=source)
 
 
 def _kind_of(paths: Sequence[str]) -> str:
@@ -242,37 +295,43 @@ def _kind_of(paths: Sequence[str]) -> str:
 
 
 def load_side(paths: Union[str, Sequence[str]], *, seed_axis: Optional[int] = None,
-              spp: Optional[int] = None) -> Side:
+              spp: Optional[int] = None, layer: Optional[str] = None) -> Side:
     """Reads one side of a comparison (see the module's doc for the inputs);
-    `spp`: the samples per pixel of a Mitsuba moment EXR."""
+    `spp`: the samples per pixel of a Mitsuba moment EXR; `layer`: the
+    layer of one-image-per-seed EXRs (default: by `choose_exr_layer`'s
+    rule, and the text says which)."""
     if isinstance(paths, (str, os.PathLike)):
         paths = [os.fspath(paths)]
     paths = [os.fspath(p) for p in paths]
     kind = _kind_of(paths)
+    if layer is not None and kind != "images":
+        raise ImageInputError(f"{paths[0]}: --layer applies to one image per seed (EXR files); this input is {kind}")
     try:
-        return _READERS[kind](paths, seed_axis, spp=spp)
+        return _READERS[kind](paths, seed_axis, spp=spp, layer=layer)
     except ImageInputError:
         raise
     except _READ_ERRORS as e:  # a corrupt .npy / .npz (the image files' readers name their file)
         raise ImageInputError(f"{paths[0]}: cannot read: {_reason(e)}") from e
 
 
-def compare(reference, candidate, *, seed_axis: Optional[int] = None, spp=None, **kw) -> ImageComparison:
+def compare(reference, candidate, *, seed_axis: Optional[int] = None, spp=None, layer: Optional[str] = None,
+            **kw) -> ImageComparison:
     """``mcstat.image.compare`` whose sides may also be file paths
     (`load_side`); `spp`: the samples per pixel of moment EXRs, one value
-    for both sides or (reference, candidate)."""
+    for both sides or (reference, candidate); `layer`: the EXR layer of
+    one-image-per-seed files (default: by rule; the notes say which)."""
     t0 = time.perf_counter()
     spp_r, spp_c = image_exr.spp_pair(spp)
     # what this function loaded is handed over, not kept here (compare drops
     # it once tested); the caller's own arrays are passed as they are
-    sides = _load(reference, seed_axis, spp_r), _load(candidate, seed_axis, spp_c)
+    sides = _load(reference, seed_axis, spp_r, layer), _load(candidate, seed_axis, spp_c, layer)
     t_load = time.perf_counter() - t0
     res = _compare(*sides, seed_axis=seed_axis, **kw)
     res.timings["load_and_channels"] += t_load
     return res
 
 
-def _load(x, seed_axis: Optional[int], spp: Optional[int] = None):
+def _load(x, seed_axis: Optional[int], spp: Optional[int] = None, layer: Optional[str] = None):
     """A side given by file paths, loaded and handed over (`Owned`); any
     other side as it is."""
     if isinstance(x, (str, os.PathLike)) or (isinstance(x, (list, tuple)) and
@@ -282,7 +341,7 @@ def _load(x, seed_axis: Optional[int], spp: Optional[int] = None):
             # the array as it is: the comparison settles its seeds axis
             # with the other side's shape in view
             return Owned(_load_stack_npy(paths[0]))
-        return Owned(load_side(paths, seed_axis=seed_axis, spp=spp))
+        return Owned(load_side(paths, seed_axis=seed_axis, spp=spp, layer=layer))
     return x
 
 

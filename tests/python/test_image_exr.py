@@ -8,6 +8,7 @@ import sys
 import numpy as np
 import pytest
 
+import mcstat
 from mcstat import image as mi
 from mcstat_app import image as app_image
 from mcstat_app import image_exr
@@ -179,3 +180,83 @@ def test_moment_exr_without_package(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "OpenEXR", None)
     with pytest.raises(app_image.MissingReaderError, match="pip install OpenEXR"):
         app_image.load_side(p, spp=SPP)
+
+
+# ---- which layer of a multilayer EXR (one image per seed) -------------------------------
+def blender_seeds(tmp_path, name, scale, k=8, layers=("ViewLayer.AO", "ViewLayer.Combined"), seed=0):
+    """k files as Blender writes a multilayer EXR: an AO layer and the
+    Combined render (its R, G, B scaled by `scale`), each seed's noise."""
+    rng = np.random.default_rng(seed)
+    paths = []
+    for i in range(k):
+        ch = {}
+        for layer in layers:
+            img = rng.normal(1.0, 0.05, size=(6, 7, 3)).astype(np.float32)
+            if layer.endswith("Combined"):
+                img = (img * scale).astype(np.float32)
+            for c, comp in enumerate("RGB"):
+                ch[f"{layer}.{comp}"] = img[..., c]
+            ch[f"{layer}.A"] = np.ones((6, 7), np.float32)
+        ch["ViewLayer.Depth.Z"] = np.zeros((6, 7), np.float32)
+        paths.append(write_exr(tmp_path / f"{name}{i}.exr", ch))
+    return paths
+
+
+def test_blender_multilayer_reads_combined_and_says_so(tmp_path):
+    ref = blender_seeds(tmp_path, "ref", 1.0, seed=1)
+    cand = blender_seeds(tmp_path, "cand", 1.5, seed=2)
+    code, out, _ = run_cli("image-test", "-r", *ref, "-c", *cand, "--fail-on-reject")
+    # the AO layer is identical in distribution: reading it would say "equal"
+    assert code == 1 and "different" in out, out
+    assert "reference: read layer 'ViewLayer.Combined' of 8 EXR file(s)" in out
+    assert "candidate: read layer 'ViewLayer.Combined'" in out
+    code, out, _ = run_cli("image-test", "-r", *ref, "-c", *cand, "--layer", "ViewLayer.AO", "--fail-on-reject")
+    assert code == 0 and "read layer 'ViewLayer.AO'" in out, out
+
+
+def test_ambiguous_layers_are_refused_with_their_names(tmp_path):
+    ref = blender_seeds(tmp_path, "ref", 1.0, layers=("A.Diffuse", "A.Glossy"), k=3)
+    with pytest.raises(mi.ImageInputError, match=r"ambiguous .*'A.Diffuse', 'A.Glossy'.*--layer NAME"):
+        app_image.load_side(ref)
+    with pytest.raises(mi.ImageInputError, match="no colour layer 'B'"):
+        app_image.load_side(ref, layer="B")
+    two = blender_seeds(tmp_path, "two", 1.0, layers=("V1.Combined", "V2.Combined"), k=3)
+    with pytest.raises(mi.ImageInputError, match="several Combined layers"):
+        app_image.load_side(two)
+    # unprefixed R, G, B (Mitsuba's default) win, and are named as such
+    plain = [write_exr(tmp_path / f"p{i}.exr", {c: np.full((2, 3), 1.0 + i, np.float32) for c in "RGB"})
+             for i in range(3)]
+    side = app_image.load_side(plain)
+    assert "unprefixed R, G, B" in side.source and side.data.shape == (3, 2, 3, 3)
+
+
+def test_low_bit_depth_stacks_are_noted():
+    rng = np.random.default_rng(0)
+    a = rng.integers(0, 256, size=(8, 5, 5), dtype=np.uint8)
+    b = rng.integers(0, 256, size=(8, 5, 5), dtype=np.uint8)
+    res = mi.compare(a, b, seed_axis=0)
+    assert any("uint8 values (8 bits): a display image" in n for n in res.notes)
+
+
+def test_block_larger_than_the_image_is_refused():
+    a = np.ones((4, 6, 7)) + np.random.default_rng(0).normal(0, 0.1, (4, 6, 7))
+    with pytest.raises(mcstat.InvalidArgumentError, match="larger than the image"):
+        mi.compare(a, a + 0.01, seed_axis=0, block=8)
+    assert mi.compare(a, a + 0.01, seed_axis=0, block=7).block == 7
+
+
+def test_one_word_for_each_channel():
+    rng = np.random.default_rng(0)
+    a, b = rng.normal(1, 0.1, (6, 5, 5, 3)), rng.normal(1, 0.1, (6, 5, 5, 3))
+    assert mi.compare(a, b, seed_axis=0, channels="all").shape == mi.compare(a, b, seed_axis=0,
+                                                                               channels="rgb").shape
+    e_all = mi.equivalence(a, b, margin=0.5, seed_axis=0, channels="all")
+    e_rgb = mi.equivalence(a, b, margin=0.5, seed_axis=0, channels="rgb")
+    assert e_all.equivalent == e_rgb.equivalent
+
+
+def test_ambiguous_seed_axis_names_the_command_line_option(tmp_path):
+    p = tmp_path / "stack.npy"
+    np.save(p, np.ones((32, 32, 16)))
+    code, _, err = run_cli("image-test", "-r", p, "-c", p)
+    assert code != 0 and "--seed-axis 0" in err, err

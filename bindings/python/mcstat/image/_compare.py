@@ -52,7 +52,7 @@ def _block_means(s: Samples, n: int, nan_policy: str, name: str) -> Samples:
         badb = np.add.reduceat(np.add.reduceat(bad.astype(np.int64), ys, axis=0), xs, axis=1) > 0
         means[:, badb] = np.nan
     if isinstance(s, _WeightedSamples):  # luminance: the channels' block means, weighted by the test
-        return _WeightedSamples(means, list(s.channel_names), s.weights)
+        return _WeightedSamples(means, list(s.channel_names), weights=s.weights)
     return Samples(means, list(s.channel_names))
 
 
@@ -196,6 +196,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         seed_axis = _infer_seed_axis(reference, candidate)
     ref = _as_side(reference, seed_axis)
     cand = _as_side(candidate, seed_axis)
+    reference_in, candidate_in = ref, cand  # before channel selection and blocks: their sources and types
     if not (0.0 < alpha < 1.0):
         raise InvalidArgumentError(f"alpha must lie in (0, 1), got {alpha}")
     if isinstance(ref, Samples) != isinstance(cand, Samples):
@@ -211,6 +212,9 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     ref = _select(ref, channels)
     cand = _select(cand, channels)
     image_shape = (ref.shape[0], ref.shape[1])
+    if block is not None and block > max(image_shape):
+        raise InvalidArgumentError(f"block {block} is larger than the image ({image_shape[0]} x {image_shape[1]}): "
+                                   "it would be one block; give a block side at most the image's")
     if block is not None:
         if not isinstance(ref, Samples) or not isinstance(cand, Samples):
             raise ImageInputError("block tests need per-seed renders: a block mean's variance needs the covariances "
@@ -265,6 +269,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         if np.any((ref.n < 2) | (cand.n < 2)):
             raise TooFewObservationsError("a per-pixel summary has n < 2; Welch's test needs at least 2 per side")
     lost, notes = _variance_lost(ref, cand)
+    notes = _input_notes(reference_in, candidate_in, ref, cand) + notes
     if lost is not None:
         pvalue, stat = np.where(lost, np.nan, pvalue), np.where(lost, np.nan, stat)
         status = np.where(lost, -1, status)
@@ -321,6 +326,23 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     res.timings = {"load_and_channels": t1 - t0, "tests": t2 - t1, "adjust": t3 - t2,
                    "decisions": t4 - t3, "detectable_bias": time.perf_counter() - t4}
     return res
+
+
+def _input_notes(ref_in: Side, cand_in: Side, ref: Side, cand: Side) -> List[str]:
+    """What each side was read from (a file's layer), and inputs of a
+    low bit depth: integer or half values are clipped, tone-mapped or
+    quantised renders, whose means are not the radiance's."""
+    out = []
+    for name, s in (("reference", ref_in), ("candidate", cand_in)):
+        src = getattr(s, "source", "")
+        if src:
+            out.append(f"{name}: {src}")
+        data = s.data if isinstance(s, Samples) else None
+        if data is not None and (np.issubdtype(data.dtype, np.integer) or data.dtype == np.float16):
+            out.append(f"{name}: {data.dtype} values ({np.dtype(data.dtype).itemsize * 8} bits): a display "
+                       "image (clipped, tone-mapped or quantised) is compared, not radiance; render to "
+                       "float32 (EXR, PFM, .npy) for a test of the renderer's estimates")
+    return out
 
 
 def _variance_lost(ref: Side, cand: Side) -> Tuple[Optional[np.ndarray], List[str]]:

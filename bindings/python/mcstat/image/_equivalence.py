@@ -128,7 +128,7 @@ class ImageEquivalence:
 
 
 def _stack(x: Any, seed_axis: Optional[int], channels: str, name: str) -> Tuple[np.ndarray, List[str]]:
-    from ._inputs import LUMINANCE_WEIGHTS, Samples, _as_side
+    from ._inputs import CHANNELS_EACH, LUMINANCE_WEIGHTS, Samples, _as_side
 
     side = _as_side(x, seed_axis)
     if not isinstance(side, Samples):
@@ -141,8 +141,8 @@ def _stack(x: Any, seed_axis: Optional[int], channels: str, name: str) -> Tuple[
         if d.shape[-1] < 3:
             raise InvalidArgumentError(f"{name}: luminance needs RGB images, got {d.shape[-1]} channels")
         return np.einsum("...c,c->...", d[..., :3], np.asarray(LUMINANCE_WEIGHTS))[..., None], ["Y"]
-    if channels != "all":
-        raise InvalidArgumentError(f"channels must be 'all' or 'luminance', got {channels!r}")
+    if channels not in CHANNELS_EACH:
+        raise InvalidArgumentError(f"channels must be 'luminance' or 'rgb' (each channel; also 'all'), got {channels!r}")
     return d, list(side.channel_names)
 
 

@@ -25,10 +25,13 @@ class ImageInputError(InvalidArgumentError):
 
 @dataclass
 class Samples:
-    """Per-seed renders: ``data`` is ``(seeds, H, W, C)``."""
+    """Per-seed renders: ``data`` is ``(seeds, H, W, C)``.  ``source``:
+    what was read, when it came from files (e.g. the EXR layer), which
+    `compare` states in its notes."""
 
     data: np.ndarray
     channel_names: List[str]
+    source: str = ""
 
     @property
     def shape(self) -> Tuple[int, int, int]:
@@ -111,7 +114,8 @@ def _ambiguous(shape: Tuple[int, ...], what: str) -> ImageInputError:
     last = "(H, W, C, seeds)" if nd == 4 else "(H, W, seeds)"
     return ImageInputError(
         f"cannot tell which axis of {what} of shape {_fmt_tuple(shape)} holds the seeds: pass seed_axis=0 "
-        f"if it is (seeds, H, W{', C' if nd == 4 else ''}), seed_axis=-1 if it is {last}, or the axis it is "
+        f"(command line: --seed-axis 0) if it is (seeds, H, W{', C' if nd == 4 else ''}), seed_axis=-1 "
+        f"(--seed-axis -1) if it is {last}, or the axis it is "
         "(seeds first is assumed only when the first axis is shorter than both image axes, or the image "
         "is square" + (", with at most 4 channels last" if nd == 4 else "") + ")")
 
@@ -231,7 +235,12 @@ def _luminance_samples(s: Samples) -> Samples:
         return Samples(s.data, ["Y"])
     if c < 3:
         raise ImageInputError(f"luminance needs RGB images, got {c} channels")
-    return _WeightedSamples(s.data, ["Y"], tuple(LUMINANCE_WEIGHTS) + (0.0,) * (c - 3))
+    return _WeightedSamples(s.data, ["Y"], weights=tuple(LUMINANCE_WEIGHTS) + (0.0,) * (c - 3))
+
+
+# the words for "test each channel": compare's 'rgb' and equivalence's 'all'
+# mean the same, and both functions take either
+CHANNELS_EACH = ("rgb", "all", "channels")
 
 
 def _select(side: Side, channels: str) -> Side:
@@ -248,6 +257,6 @@ def _select(side: Side, channels: str) -> Side:
                                       "use channels='rgb' (per channel) or give luminance summaries")
             return dataclasses.replace(side, channel_names=["Y"])
         return _luminance_samples(side)
-    if channels in ("rgb", "channels"):
+    if channels in CHANNELS_EACH:
         return side
-    raise InvalidArgumentError(f"channels must be 'luminance' or 'rgb' (per channel), got {channels!r}")
+    raise InvalidArgumentError(f"channels must be 'luminance' or 'rgb' (each channel; also 'all'), got {channels!r}")
