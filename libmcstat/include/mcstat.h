@@ -459,8 +459,8 @@ MCSTAT_API size_t mcstat_sizeof_stream(void);
 /* interval, critical values, the reject flag and the paper's three-way     */
 /* decision; mcstat_result_format prints R's block.  The t, chi-squared and */
 /* F tests come on arrays and on accumulators (_moments); the               */
-/* Kolmogorov-Smirnov test needs the values themselves.  Equivalence (6)    */
-/* and goodness of fit (9) fill the same struct.                            */
+/* Kolmogorov-Smirnov test needs the values themselves.  The sections      */
+/* "Equivalence" and "Goodness of fit" fill the same struct.                */
 /* ======================================================================== */
 
 /* ------------------------------------------------------------------------ */
