@@ -85,12 +85,19 @@
  *     every element, failed ones marked by a status or NaN; the text calls
  *     (*_format) write a NUL-terminated prefix with MCSTAT_EBUFSIZE and the
  *     full length through *length; a renderer check's report carries its
- *     message with MCSTAT_ECALLBACK.
+ *     message with MCSTAT_ECALLBACK; mcstat_seq_finish writes the test's
+ *     state with MCSTAT_EHEAVYTAIL (a sequential test never allowed to
+ *     decide: its result says how far it got).
  *   - Arguments come in one order: the data (arrays and their sizes),
  *     the null value, the alternative, alpha, an options struct (NULL for
- *     the defaults), scratch memory, then the outputs.  One call breaks it,
- *     mcstat_gof_chisq_test (options before alpha, as 0.1.0's
- *     mcstat_chisq_gof it replaced): a swap there does not compile.
+ *     the defaults), scratch memory, then the outputs.  A call on an object
+ *     the caller keeps (an accumulator, a stream, a sequential test) takes
+ *     the object first, as the target of what it does (mcstat_moments_add,
+ *     _merge: dst then src; mcstat_stream_merge; mcstat_seq_push_*); the
+ *     per-pixel tests take the test first, then the two sides and the range
+ *     of pixels.  One call breaks the order otherwise, mcstat_gof_chisq_test
+ *     (options before alpha, as 0.1.0's mcstat_chisq_gof it replaced): a
+ *     swap there does not compile.
  *   - Nothing here calls abort() or exit(), nothing touches GSL's process-wide
  *     error handler (see mcstat_gsl_handler_off), and no call changes any
  *     global state: every function is thread-safe on distinct objects.  (The
