@@ -196,7 +196,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         seed_axis = _infer_seed_axis(reference, candidate)
     ref = _as_side(reference, seed_axis)
     cand = _as_side(candidate, seed_axis)
-    reference_in, candidate_in = ref, cand  # before channel selection and blocks: their sources and types
+    input_notes = _input_notes(ref, cand)  # before channel selection and blocks: their sources and types
     if not (0.0 < alpha < 1.0):
         raise InvalidArgumentError(f"alpha must lie in (0, 1), got {alpha}")
     if isinstance(ref, Samples) != isinstance(cand, Samples):
@@ -269,7 +269,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         if np.any((ref.n < 2) | (cand.n < 2)):
             raise TooFewObservationsError("a per-pixel summary has n < 2; Welch's test needs at least 2 per side")
     lost, notes = _variance_lost(ref, cand)
-    notes = _input_notes(reference_in, candidate_in, ref, cand) + notes
+    notes = input_notes + notes
     if lost is not None:
         pvalue, stat = np.where(lost, np.nan, pvalue), np.where(lost, np.nan, stat)
         status = np.where(lost, -1, status)
@@ -328,7 +328,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     return res
 
 
-def _input_notes(ref_in: Side, cand_in: Side, ref: Side, cand: Side) -> List[str]:
+def _input_notes(ref_in: Side, cand_in: Side) -> List[str]:
     """What each side was read from (a file's layer), and inputs of a
     low bit depth: integer or half values are clipped, tone-mapped or
     quantised renders, whose means are not the radiance's."""

@@ -114,10 +114,10 @@ def _ambiguous(shape: Tuple[int, ...], what: str) -> ImageInputError:
     last = "(H, W, C, seeds)" if nd == 4 else "(H, W, seeds)"
     return ImageInputError(
         f"cannot tell which axis of {what} of shape {_fmt_tuple(shape)} holds the seeds: pass seed_axis=0 "
-        f"(command line: --seed-axis 0) if it is (seeds, H, W{', C' if nd == 4 else ''}), seed_axis=-1 "
-        f"(--seed-axis -1) if it is {last}, or the axis it is "
-        "(seeds first is assumed only when the first axis is shorter than both image axes, or the image "
-        "is square" + (", with at most 4 channels last" if nd == 4 else "") + ")")
+        f"if it is (seeds, H, W{', C' if nd == 4 else ''}), seed_axis=-1 if it is {last}, or the axis it is "
+        "(on the command line: --seed-axis 0, --seed-axis -1; seeds first is assumed only when the first "
+        "axis is shorter than both image axes, or the image is square"
+        + (", with at most 4 channels last" if nd == 4 else "") + ")")
 
 
 def seed_axis_of(shape: Tuple[int, ...], what: str = "an image stack") -> int:
