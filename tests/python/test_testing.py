@@ -271,3 +271,30 @@ def test_images_equivalent_assertion_spends_its_share():
         mt.assert_unbiased(_normal_draw(0.0), 0.0, n=100)
     assert [rec.decision for rec in sc.records] == ["pass", "reject", "pass"]
     assert [rec.spends_budget for rec in sc.records] == [False, False, True]
+
+
+def test_a_failed_check_says_what_failed_in_a_few_lines(tmp_path):
+    """The message keeps the routes that failed and the decision (the
+    library's lines); the whole report goes to the artifacts and the
+    record."""
+    def sample(wi, u):  # the cosine-weighted hemisphere, weights 10% high
+        r, phi = np.sqrt(u[:, 0]), 2 * np.pi * u[:, 1]
+        wo = np.stack([r * np.cos(phi), r * np.sin(phi), np.sqrt(1 - u[:, 0])], axis=1)
+        return wo, np.full(len(u), 0.88), wo[:, 2] / np.pi
+
+    def pdf(wi, wo):
+        return np.maximum(wo[:, 2], 0) / np.pi
+
+    def ev(wi, wo):
+        return 0.8 * pdf(wi, wo)
+
+    suite = mt.Suite(alpha=0.01, artifacts=str(tmp_path))
+    suite.allocate([("t", 1.0, 1)])
+    with mt._budget._enter(suite.scope("t")), pytest.raises(mt.StatisticalAssertionError) as e:
+        mt.assert_bsdf_consistent(sample, ev, pdf, [0, 0, 1.0], n=20_000, domain="hemisphere")
+    msg = str(e.value)
+    assert len(msg.splitlines()) <= 15, msg
+    assert "weight      FAIL" in msg and "INCONSISTENT" in msg and "smallest departure" not in msg
+    assert "the whole report: " + str(tmp_path) in msg
+    full = e.value.record.message
+    assert "smallest departure each route detects" in full and "weight      FAIL" in full

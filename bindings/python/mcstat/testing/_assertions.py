@@ -64,6 +64,7 @@ class _Stage:
     inconclusive: str = ""  # why there is no answer ("" when there is one)
     pictures: Dict[str, bytes] = field(default_factory=dict)
     payload: Any = None
+    brief: str = ""  # the failure message's form of `text` ("" : text itself); text goes to the artifacts
 
 
 @dataclass
@@ -162,8 +163,9 @@ def _decide(kind: str, plan: _Plan, n: int, stage: Callable[[int, int, float], _
     if decision == "pass":
         return last
     share = "this check's share of the suite's budget" if plan.scope else "given"
-    head = (f"{describe}: {'rejected' if decision == 'reject' else 'inconclusive (' + last.inconclusive + ')'} "
-            f"at alpha {_g(plan.alpha)} ({share})")
+    verdict = "rejected" if decision == "reject" else (
+        "inconclusive" if last.brief else f"inconclusive ({last.inconclusive})")  # a brief report says why
+    head = f"{describe}: {verdict} at alpha {_g(plan.alpha)} ({share}; each stage's level below)"
     if plan.scope is not None and plan.scope.suite is not None:
         su = plan.scope.suite
         where = f"cd {shlex.quote(su.rootdir)} && " if su.rootdir else ""
@@ -173,11 +175,17 @@ def _decide(kind: str, plan: _Plan, n: int, stage: Callable[[int, int, float], _
                  "(the same seeds and the same share)")
     else:
         repro = f"reproduce: the same call with seed={plan.seed}"
-    msg = "\n".join([head] + lines + [last.text, repro])
-    rec.message = msg
+    full = "\n".join([head] + lines + [last.text, repro])
+    rec.message = full
     root = plan.scope.suite.artifacts if plan.scope is not None and plan.scope.suite is not None else None
-    _artifacts.write(root, name, plan.index, kind, msg, last.pictures)
-    raise StatisticalAssertionError(msg, rec)
+    written = _artifacts.write(root, name, plan.index, kind, full, last.pictures)
+    if not last.brief:
+        raise StatisticalAssertionError(full, rec)
+    # the message keeps what failed; the whole report (every route, what
+    # each could detect) goes to the artifacts and the record
+    more = (f"the whole report: {written[0]}" if written else
+            "the whole report: the exception's record.message (or --mcstat-artifacts DIR)")
+    raise StatisticalAssertionError("\n".join([head] + lines + [last.brief, more, repro]), rec)
 
 
 # ---- renderer checks ---------------------------------------------------------------
@@ -194,11 +202,33 @@ def _check_stage(run: Callable[..., Any], allow_inconclusive: bool) -> Callable[
         why = ""
         if rep.verdict == "inconclusive" and not allow_inconclusive:
             why = "; ".join(f"{name} could not answer: {rep.route(name).why}" for name in rep.unanswered)
-        return _Stage(p=float(rep.pvalue), text=str(rep), samples=int(rep.n + rep.n_pilot + rep.n_eval),
+        text = str(rep)
+        return _Stage(p=float(rep.pvalue), text=text, samples=int(rep.n + rep.n_pilot + rep.n_eval),
                       could_hide=("detectable: " + hide) if hide else "",
                       inconclusive=why,
-                      payload=rep)
+                      payload=rep, brief=_brief_report(text))
     return stage
+
+
+def _brief_report(text: str) -> str:
+    """A check report's lines that say what failed: its title, what was
+    checked, the routes that rejected or could not answer, and the decision
+    with its reasons (the library's own lines, none composed here)."""
+    lines = [x for x in text.splitlines() if x.strip()]
+    out, in_routes, in_decision = [], False, False
+    for i, x in enumerate(lines):
+        if i < 2:
+            out.append(x.strip())  # the title and what was checked
+        elif x == "routes:":
+            in_routes = True
+        elif x.startswith("smallest departure"):
+            in_routes = False
+        elif x.startswith("decision at alpha"):
+            in_decision = True
+            out.append(x)
+        elif in_decision or (in_routes and (" FAIL " in x or "no answer" in x)):
+            out.append(x)
+    return "\n".join(out)
 
 
 def assert_bsdf_consistent(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], wi: Any,
