@@ -358,6 +358,64 @@ static void compare(run *r, int route, const double *x, double a, double b)
     }
 }
 
+/* ---- rounding at the sampled point ----------------------------------------------
+ * A float32 renderer computes a sample's pdf and weight from the direction it
+ * holds and returns that direction rounded to float32; where the formula is
+ * ill-conditioned (at grazing incidence the half vector of two nearly
+ * opposite directions loses digits) pdf() and eval() at the returned point
+ * differ from the reported values by far more than rtol, for a correct BSDF.
+ * So a point beyond rtol whose coordinates are float32 values is also
+ * evaluated at its float32 neighbours (one ulp down and up in each
+ * coordinate): a difference within a few ulps' worth of the value's change
+ * there is rounding, not evidence.  At most rounding_cap points are re-evaluated (a wrong model puts
+ * every point beyond rtol; past the cap they count as they are). */
+
+#define ROUNDING_ULPS 4.0
+
+static double float32_step(double v, double toward)
+{
+    return (double)nextafterf((float)v, (float)toward);
+}
+
+/* The reference to compare `claim` with: `at_x`, the quantity at x (pdf(),
+ * ps < 0; or eval()/ps, the weight's reference), or `claim` itself when the
+ * difference is within what ROUNDING_ULPS ulps of x change the quantity by
+ * (measured at x's float32 neighbours). */
+static int rounding_nearest(run *r, const double *x, double claim, double at_x, double ps, double *out)
+{
+    *out = at_x;
+    int dims = r->pl.d.dims;
+    double diff = fabs(claim - at_x), scale = fmax(fabs(claim), fabs(at_x));
+    if (!(diff > r->rtol * scale) || r->rounding_checks >= r->rounding_cap)
+        return MCSTAT_OK;
+    for (int c = 0; c < dims; c++)
+        if (!is_float32(x[c]))
+            return MCSTAT_OK;
+    r->rounding_checks++;
+    double pts[2 * 3 * 3], v[2 * 3];
+    size_t k = 0;
+    for (int c = 0; c < dims; c++)
+        for (int side = 0; side < 2; side++, k++) {
+            memcpy(pts + k * (size_t)dims, x, (size_t)dims * sizeof(double));
+            pts[k * (size_t)dims + (size_t)c] = float32_step(x[c], side ? INFINITY : -INFINITY);
+        }
+    int st = ps < 0.0 ? call_density(r, r->m->pdf, "pdf", pts, k, v) : call_density(r, r->m->eval, "eval", pts, k, v);
+    if (st)
+        return st;
+    /* the value's change per ulp of the point, at most: a renderer's
+     * direction carries a few ulps of its own arithmetic (a normalisation,
+     * a rotation into the shading frame), ROUNDING_ULPS of them here */
+    double per_ulp = 0.0;
+    for (size_t j = 0; j < k; j++) {
+        double val = ps < 0.0 ? v[j] : v[j] / ps;
+        if (isfinite(val))
+            per_ulp = fmax(per_ulp, fabs(val - at_x));
+    }
+    if (diff <= r->rtol * scale + ROUNDING_ULPS * per_ulp)
+        *out = claim; /* explained by rounding at the point */
+    return MCSTAT_OK;
+}
+
 /* ---- discrete lobes ---------------------------------------------------------- */
 
 /* The lobe a sampled direction lies on, or -1 (a smooth sample). */
@@ -564,13 +622,23 @@ static int tested_sample(run *r, sums *sm)
         for (size_t i = 0; i < ns; i++) {
             const double *x = r->s.xs + i * dims;
             double w = r->s.ws[i], ps = r->s.ps[i], p = r->s.p2[i];
-            if (pl->reports && deterministic)
-                compare(r, MCSTAT_CHECK_ROUTE_PDF_VALUE, x, ps, p);
+            if (pl->reports && deterministic) {
+                double ref;
+                int s4 = rounding_nearest(r, x, ps, p, -1.0, &ref);
+                if (s4)
+                    return s4;
+                compare(r, MCSTAT_CHECK_ROUTE_PDF_VALUE, x, ps, ref);
+            }
             if (!pl->has_eval)
                 continue;
             double f = r->s.f[i];
-            if (deterministic)
-                compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, f / ps);
+            if (deterministic) {
+                double ref;
+                int s4 = ps > 0.0 ? rounding_nearest(r, x, w, f / ps, ps, &ref) : (ref = f / ps, 0);
+                if (s4)
+                    return s4;
+                compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, ref);
+            }
             r->zero_weight += w == 0.0 && f > 0.0;
             compare(r, MCSTAT_CHECK_ROUTE_SUPPORT, x, f > 0.0 && p == 0.0 ? f : 0.0, 0.0);
             if (p > 0.0 && f == 0.0)
@@ -892,6 +960,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     r.wi = has_wi ? wi : NULL;
     r.out = out;
     r.rtol = r.o.rtol;
+    r.rounding_cap = 1000 + (uint64_t)n / 20;
     r.key_pilot = mcstat__stream_key(seed, STREAM_PILOT);
     r.key_test = mcstat__stream_key(seed, STREAM_TEST);
     r.key_eval = mcstat__stream_key(seed, STREAM_EVAL);

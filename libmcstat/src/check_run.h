@@ -59,6 +59,9 @@ typedef struct run {
     uint64_t n_keys_a, n_keys_b;
     double rtol;
     double resolution; /* the numerical floor the statistical routes apply (options' resolution) */
+    /* deterministic routes: points beyond rtol re-evaluated at their float32
+     * neighbours (check_run.c's rounding_nearest), and the most allowed */
+    uint64_t rounding_checks, rounding_cap;
     int not_float32;   /* a value a callback returned is not a float32 */
     /* deterministic comparisons: points beyond tolerance and the worst */
     uint64_t bad[MCSTAT_CHECK_ROUTE_COUNT], checked[MCSTAT_CHECK_ROUTE_COUNT];
