@@ -1990,7 +1990,12 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                lost, a lobe chosen at a rate other than its pdf says.    */
 /*   PDF_VALUE    the pdf sample() reports equals pdf() at the sampled point */
 /*                (deterministic: relative tolerance rtol at every sample); */
-/*                on a discrete lobe, its mass.                              */
+/*                on a discrete lobe, its mass.  A point whose coordinates  */
+/*                are float32 values (a float renderer's) passes when the   */
+/*                difference is within rtol plus 4 ulps' worth of pdf()'s   */
+/*                change at the point's float32 neighbours: rounding where  */
+/*                pdf() is ill-conditioned (grazing half vectors).  WEIGHT   */
+/*                likewise.                                                  */
 /*   WEIGHT       the weight equals eval/pdf (deterministic, as PDF_VALUE);  */
 /*                a failed sample has weight 0; on a discrete lobe, value/   */
 /*                mass.                                                      */
