@@ -1861,11 +1861,11 @@ MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, dou
 /* Callbacks (each returns 0 on success, anything else to stop the check:   */
 /* MCSTAT_ECALLBACK then names it), called only from the calling thread,    */
 /* n points at a time (n <= the options' batch):                             */
-/*   sample(user, wi, u, n, x, weight, pdf): for k < n, from the uniforms   */
-/*     u[k*n_uniforms ..] in [0, 1) (multiples of 2^-53: a float renderer   */
-/*     that converts them must clamp, as those above 1 - 2^-25 round to     */
-/*     1.0f, outside [0, 1): min(u, nextafterf(1, 0)) keeps its contract),  */
-/*     point x[k*dims ..], the sample weight                                */
+/*   sample(user, wi, u, n, x, weight, pdf): for k < n, from the uniforms    */
+/*     u[k*n_uniforms ..] in [0, 1) (multiples of 2^-53: a float renderer    */
+/*     that converts them must clamp, as those above 1 - 2^-25 round to      */
+/*     1.0f, outside [0, 1): min(u, nextafterf(1, 0)) keeps its contract),   */
+/*     point x[k*dims ..], the sample weight                                 */
 /*     weight[k] and the density pdf[k] the renderer's sampler reports.  A   */
 /*     sample that failed (the renderer's "invalid sample") has pdf 0 and    */
 /*     weight 0; x is then ignored.  With MCSTAT_WEIGHT_OVER_PDF (Mitsuba's  */
