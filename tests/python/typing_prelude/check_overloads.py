@@ -1,6 +1,6 @@
 # What the stubs promise, checked by mypy and pyright (test_typing.py):
 # the result kind of t_test and var_test follows the input.
-from typing import Any, Tuple, assert_type
+from typing import Any, Optional, Tuple, assert_type
 
 import numpy as np
 
@@ -28,3 +28,18 @@ assert_type(mcstat.Stream().push(one).check_mean(0.0, tolerance=0.1), mcstat.Tes
 assert_type(mcstat.power("t", n=20, effect=0.5).power, float)
 assert_type(mcstat.equivalence_test(one, margin=0.1).pvalues, Tuple[float, float])
 assert_type(mcstat.diagnostics.tail_index(one), Tuple[float, float])
+
+
+# the renderer checks: every keyword typed (a misspelt one or a wrong type is an error)
+def _f(*a: Any) -> Any: ...
+
+
+assert_type(mcstat.check_bsdf(_f, _f, _f, [0.0, 0.0, 1.0], n=1000, alpha=0.01, seed=1, domain="hemisphere",
+                              weight="value", routes=["cells", "weight"], rtol=1e-3, resolution=2.0**-18),
+            mcstat.CheckReport)
+assert_type(mcstat.check_emitter(_f, _f, _f, n_uniforms=2, cells=64), mcstat.CheckReport)
+assert_type(mcstat.check_warp(_f, _f, domain="disk", n_pilot=128), mcstat.CheckReport)
+assert_type(mcstat.check_phase(_f, _f, _f, one, reciprocal=True, energy=False), mcstat.CheckReport)
+assert_type(mcstat.check_medium(_f, _f, _f, sigma_ref=2.0, transmittance=0.5, batch=4096), mcstat.CheckReport)
+assert_type(mcstat.check_bsdf(_f, _f, _f, one).verdict, str)
+assert_type(mcstat.check_bsdf(_f, _f, _f, one).route("mass").why, Optional[str])
