@@ -1963,7 +1963,10 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                by the estimate's distance to area times the least or the  */
 /*                largest value seen, and it is halved across the edge; when */
 /*                the rectangles run out, the largest errors are halved      */
-/*                first.  Consecutive cells are pooled until the expected    */
+/*                first.  Rectangles on a pole of the sphere (the disk's     */
+/*                centre: lines of the square) start as layers shrinking by  */
+/*                4 toward it, so that a narrow peak there is integrated.    */
+/*                Consecutive cells are pooled until the expected            */
 /*                count is 5, and the remaining cubature error enters each   */
 /*                cell's variance, so an integration that falls short costs  */
 /*                power, never the level.                                    */
@@ -1973,8 +1976,10 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                of pdf() over the domain.  Two estimates: the cubature's  */
 /*                integral C (error e) and the mean M of pdf/table at the   */
 /*                n_eval points of a table of the cubature's rectangles     */
-/*                (each weighing its integral, its error and its share of   */
-/*                the pilot; unbiased, standard error s).  When M's values  */
+/*                (each weighing its integral and its error, plus its share */
+/*                of a cell's significant excess of pilot points over the   */
+/*                cell's integral; unbiased, standard error s).  When M's   */
+/*                values                                                    */
 /*                are not heavy-tailed (Hill index >= 2.5) and either the   */
 /*                two disagree (|C - M| > 4e + 3s) or M is the more precise  */
 /*                (3s < 4e), a two-sided z test against M; otherwise the    */

@@ -392,6 +392,62 @@ static double split_threshold(const mcstat__tree *tr, const mcstat__rect *rects,
     return hi;
 }
 
+/* The poles of the sphere (the hemisphere's pole, the disk's centre) are
+ * the lines s = 0 and s = 1 of the equal-area square: a feature a
+ * thousandth of a radian across there is a strip 1e-6 wide spanning every
+ * t, cut among many cells, each piece too thin for its rectangle's rule
+ * and holding too few pilot points to be noticed (a narrow specular peak
+ * at normal incidence).  Rectangles on such a line start as layers whose
+ * widths shrink by 4 toward it, down to 4^-POLE_LAYERS of the cell's; the
+ * rules and the halving go on from there.  Returns the rectangles in use. */
+#define POLE_LAYERS 10
+static size_t pole_layers(mcstat__tree *tr, const mcstat__domain *d, mcstat__rect *rects, size_t nr,
+                          size_t max_rects)
+{
+    int low = d->kind == MCSTAT_DOMAIN_SPHERE || d->kind == MCSTAT_DOMAIN_HEMISPHERE || d->kind == MCSTAT_DOMAIN_DISK;
+    int high = d->kind == MCSTAT_DOMAIN_SPHERE;
+    size_t n0 = nr;
+    for (size_t i = 0; i < n0 && nr + POLE_LAYERS <= max_rects; i++) {
+        mcstat__rect *r = &rects[i];
+        int at_low = low && r->s0 == 0.0, at_high = !at_low && high && r->s1 == 1.0;
+        if (!at_low && !at_high)
+            continue;
+        double w = r->s1 - r->s0, inner = 0.0;
+        uint64_t q = r->p0;
+        for (int k = POLE_LAYERS; k >= 1; k--) { /* innermost first */
+            double outer = w * pow(0.25, k);
+            mcstat__rect b = *r;
+            if (at_low) {
+                b.s0 = r->s0 + inner;
+                b.s1 = r->s0 + outer;
+            } else {
+                b.s0 = r->s1 - outer;
+                b.s1 = r->s1 - inner;
+            }
+            /* the pilot points nearer the line than `outer` follow the layer */
+            b.p0 = q;
+            for (uint64_t j = q; j < r->p1; j++) {
+                double dist = at_low ? tr->st[2 * j] - r->s0 : r->s1 - tr->st[2 * j];
+                if (dist < outer)
+                    swap_pair(tr->st, j, q++);
+            }
+            b.p1 = q;
+            b.axis = -1;
+            b.est = b.err = b.parent = 0.0;
+            b.sibling = -1;
+            rects[nr++] = b;
+            inner = outer;
+        }
+        /* the rectangle keeps the rest, beyond the outermost layer */
+        if (at_low)
+            r->s0 += inner;
+        else
+            r->s1 -= inner;
+        r->p0 = q;
+    }
+    return nr;
+}
+
 int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__density_cb density, void *ctx,
                             double tol_scale, mcstat__rect *rects, size_t max_rects, double *xbuf, double *fbuf,
                             size_t batch, size_t *rects_used)
@@ -404,6 +460,7 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
                           cell->p_first, cell->p_first + cell->p_count, 0.0, -1};
         rects[nr++] = r;
     }
+    nr = pole_layers(tr, d, rects, nr, max_rects);
     int st = evaluate_dirty(rects, nr, d, density, ctx, xbuf, fbuf, batch);
     for (int round = 0; st == 0 && round < 64; round++) {
         /* per cell: probability, error, the error of its worst rect */
