@@ -299,9 +299,9 @@ def bsdf_models():
     # combinations
     for th in (45, 89.9):
         M.append(bsdf_model("blendbsdf", {"type": "blendbsdf", "weight": 0.3, "a": {"type": "diffuse"},
-                                          "b": {"type": "roughconductor", "alpha": 0.05}}, th, domain="hemisphere",
+                                          "b": {"type": "roughconductor", "distribution": "ggx", "alpha": 0.05}}, th, domain="hemisphere",
                             params="0.7 diffuse + 0.3 ggx conductor alpha 0.05"))
-    M.append(bsdf_model("twosided", {"type": "twosided", "bsdf": {"type": "roughconductor", "alpha": 0.2}}, 135,
+    M.append(bsdf_model("twosided", {"type": "twosided", "bsdf": {"type": "roughconductor", "distribution": "ggx", "alpha": 0.2}}, 135,
                         domain="sphere", params="ggx conductor alpha 0.2, seen from the back"))
     M.append(bsdf_model("pplastic", {"type": "pplastic", "alpha": 0.2}, 45, domain="hemisphere",
                         params="alpha 0.2 (unpolarised variant)"))
