@@ -404,7 +404,7 @@ def cls_excluded(seeds=20, sizes=(20000, 80000)):
     print(f"Each case's callables as cases.py makes them (mitsuba_adapters, {mi.variant()}), checked directly "
           f"(check_emitter / check_bsdf, alpha 0.01, no escalation) at seeds 0..{seeds - 1}, at n = 20000 (the "
           "suite's stage 1) and 80000 (its stage 2).\n")
-    print("| case | n | rejected | routes (runs) | mass reported: min / median / max | success share: min / max "
+    print("| case | n | rejected | routes (runs) | mass (cubature): min / median / max | mass (Monte Carlo at the table points): min / max "
           "| s per check |")
     print("|---|---|---|---|---|---|---|")
     for cid in cases.EXCLUDED:

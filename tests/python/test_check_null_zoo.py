@@ -21,6 +21,12 @@ failure is shown beside a control that passes.
   evaluated exactly in float64 (pdf() equals the sampler's density on the
   triangle, so it integrates to 1), is rejected by mass in about half of
   20 seeds; a triangle 42 degrees across is not.
+- the demo suite's excluded rectangle light (emitter-rectangle-far4):
+  the same light in float64, pdf() exact; mcstat's cubature gives its
+  pdf() a mass of 0.995-0.998 and mass rejects it at n = 80000.
+- nothing smooth to test: a perfect mirror (through lobes=) and a black
+  diffuse BSDF are correct, and their verdict is "inconclusive" at every
+  seed (routes without an answer counted as needed).
 """
 import numpy as np
 import pytest
@@ -273,3 +279,124 @@ def test_large_triangle_light_is_calibrated():
                    "triangle away from the pole fails as often)")
 def test_small_triangle_light_is_calibrated():
     assert _emitter_rejections(_SMALL) <= 2
+
+
+# ---- verdicts of models with nothing smooth to test ------------------------------------
+
+class Mirror:
+    """A perfect mirror of reflectance R: one discrete lobe (lobes=), no smooth part."""
+
+    def __init__(self, R=0.9):
+        self.R = R
+
+    def lobes(self, wi):
+        return np.array([[-wi[0], -wi[1], wi[2]]]), np.array([1.0]), np.array([self.R])
+
+    def sample(self, wi, u):
+        k = len(u)
+        return np.tile([-wi[0], -wi[1], wi[2]], (k, 1)), np.full(k, self.R), np.ones(k)
+
+    def eval(self, wi, wo):
+        return np.zeros(len(wo))
+
+    def pdf(self, wi, wo):
+        return np.zeros(len(wo))
+
+
+class Black:
+    """A black diffuse BSDF (albedo 0): cosine-weighted samples of weight 0, eval 0."""
+
+    def sample(self, wi, u):
+        r, phi = np.sqrt(u[:, 1]), 2 * np.pi * u[:, 2]
+        wo = np.stack([r * np.cos(phi), r * np.sin(phi), np.sqrt(1 - u[:, 1])], axis=1)
+        return wo, np.zeros(len(u)), wo[:, 2] / np.pi
+
+    def eval(self, wi, wo):
+        return np.zeros(len(wo))
+
+    def pdf(self, wi, wo):
+        return np.maximum(np.asarray(wo)[:, 2], 0) / np.pi
+
+
+_WI45 = np.array([0.5, 0.3, np.sqrt(1 - 0.34)])
+
+
+@pytest.mark.xfail(strict=True, reason="a purely discrete BSDF leaves cells, integrals and ks without an answer, and "
+                   "the verdict counts them as needed: a correct mirror (or Mitsuba's dielectric, conductor, "
+                   "thindielectric through lobes=) is 'inconclusive' at every seed, so mcstat.testing's "
+                   "assertions fail on it unless told to allow inconclusive checks")
+def test_pure_mirror_is_consistent():
+    m = Mirror()
+    r = mcstat.check_bsdf(m.sample, m.eval, m.pdf, _WI45, lobes=m.lobes, n=20000, seed=0, alpha=0.01,
+                          domain="hemisphere")
+    assert r.verdict == "consistent", str(r)
+
+
+@pytest.mark.xfail(strict=True, reason="with albedo 0 every weight and eval() is 0: ks has nothing to resample and "
+                   "integrals nothing to compare, and the verdict is 'inconclusive' at every seed (null zoo: "
+                   "diffuse with reflectance 0, media with albedo 0)")
+def test_black_bsdf_is_consistent():
+    m = Black()
+    r = mcstat.check_bsdf(m.sample, m.eval, m.pdf, _WI45, n=20000, seed=0, alpha=0.01, domain="hemisphere")
+    assert r.verdict == "consistent", str(r)
+
+
+# ---- the demo suite's excluded rectangle light -------------------------------------------
+
+def _rotation(axis, deg):
+    a = np.radians(deg)
+    c, s = np.cos(a), np.sin(a)
+    if axis == "x":
+        return np.array([[1, 0, 0], [0, c, -s], [0, s, c]])
+    return np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+
+
+class RectangleLight:
+    """mitsuba_adapters.emitter_scene("rectangle") in float64: a 1 x 1.6
+    rectangle at height 1 facing down, tilted 20 degrees, radiance 2, sampled
+    uniformly by area; pdf() t^2 / (|cos| A) on its front side (so it
+    integrates to 1 exactly), seen from `ref`."""
+
+    _M = _rotation("y", 20) @ _rotation("x", 180) @ np.diag([0.5, 0.8, 1.0])
+    _P0 = np.array([0.2, -0.1, 1.0]) + _M @ np.array([-1.0, -1.0, 0.0])
+    _E1, _E2 = _M @ np.array([2.0, 0, 0]), _M @ np.array([0, 2.0, 0])
+    _N = np.cross(_E1, _E2)
+    _A = np.linalg.norm(_N)
+    _N = _N / _A
+
+    def __init__(self, ref):
+        self.o = np.asarray(ref, dtype=np.float64)
+
+    def _hit(self, d):
+        den = d @ self._N
+        t = ((self._P0 - self.o) @ self._N) / den
+        x = self.o + t[:, None] * d - self._P0
+        u, v = (x @ self._E1) / (self._E1 @ self._E1), (x @ self._E2) / (self._E2 @ self._E2)
+        return (t > 0) & (u >= 0) & (u <= 1) & (v >= 0) & (v <= 1) & (den < 0), t
+
+    def pdf(self, d):
+        d = np.asarray(d)
+        ok, t = self._hit(d)
+        return np.where(ok, t * t / (np.abs(d @ self._N) * self._A), 0.0)
+
+    def eval(self, d):
+        return np.where(self._hit(np.asarray(d))[0], 2.0, 0.0)
+
+    def sample(self, u):
+        x = self._P0 + u[:, :1] * self._E1 + u[:, 1:2] * self._E2 - self.o
+        t = np.linalg.norm(x, axis=1)
+        d = x / t[:, None]
+        p = t * t / (np.abs(d @ self._N) * self._A)
+        front = (d @ self._N) < 0
+        return d, np.where(front, 2.0 / p, 0.0), np.where(front, p, 0.0)
+
+
+@pytest.mark.xfail(strict=True, reason="mcstat's cubature of pdf() over the rectangle light seen from (-0.5, 0.2, -0.2) "
+                   "comes out 0.995-0.998 where the exact integral is 1 (every sample succeeds), and at n = 80000 "
+                   "mass rejects the correct light at nearly every seed (the demo suite's excluded "
+                   "emitter-rectangle-far4; Mitsuba's pdf() there integrates to 1.0000 by dense quadrature)")
+def test_rectangle_light_far4_is_calibrated():
+    m = RectangleLight((-0.5, 0.2, -0.2))
+    rejected = sum(mcstat.check_emitter(m.sample, m.eval, m.pdf, n=80000, seed=s, alpha=0.01).reject
+                   for s in range(5))
+    assert rejected <= 1  # P(Binomial(5, 0.01) >= 2) = 0.001
