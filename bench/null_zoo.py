@@ -299,10 +299,11 @@ def bsdf_models():
     # combinations
     for th in (45, 89.9):
         M.append(bsdf_model("blendbsdf", {"type": "blendbsdf", "weight": 0.3, "a": {"type": "diffuse"},
-                                          "b": {"type": "roughconductor", "distribution": "ggx", "alpha": 0.05}}, th, domain="hemisphere",
-                            params="0.7 diffuse + 0.3 ggx conductor alpha 0.05"))
-    M.append(bsdf_model("twosided", {"type": "twosided", "bsdf": {"type": "roughconductor", "distribution": "ggx", "alpha": 0.2}}, 135,
-                        domain="sphere", params="ggx conductor alpha 0.2, seen from the back"))
+                                          "b": {"type": "roughconductor", "distribution": "ggx", "alpha": 0.05}},
+                            th, domain="hemisphere", params="0.7 diffuse + 0.3 ggx conductor alpha 0.05"))
+    M.append(bsdf_model("twosided", {"type": "twosided",
+                                     "bsdf": {"type": "roughconductor", "distribution": "ggx", "alpha": 0.2}},
+                        135, domain="sphere", params="ggx conductor alpha 0.2, seen from the back"))
     M.append(bsdf_model("pplastic", {"type": "pplastic", "alpha": 0.2}, 45, domain="hemisphere",
                         params="alpha 0.2 (unpolarised variant)"))
     # delta lobes through lobes=
@@ -661,7 +662,8 @@ def main(argv=None):
         f"- CPU: {cpu} ({os.cpu_count()} cores, shared; one process, one thread)",
         f"- Mitsuba {mi.__version__}, variant {mi.variant()}; mcstat {mcstat.__version__}, commit {commit}",
         f"- n = {a.n} samples per check ({a.n_emitter} for emitters), alpha = {ALPHA}, seeds 0..{a.seeds - 1}",
-        f"- models: {len(models)} (" + ", ".join(f"{k} {v}" for k, v in fam.items()) + f"); wall time {total / 60:.1f} min",
+        f"- models: {len(models)} (" + ", ".join(f"{k} {v}" for k, v in fam.items())
+        + f"); wall time {total / 60:.1f} min",
         f"- meta-test: battery_test(rejections, {ALPHA}, n={a.seeds}, alternative=\"greater\"), meta_alpha "
         f"{META_ALPHA} / {len(models)} models = {meta:.3g} (Bonferroni): a model is OUTSIDE when its p-value "
         "is at most that",

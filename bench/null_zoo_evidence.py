@@ -6,7 +6,8 @@ pdf() under one-ulp perturbations of its float32 directions).
 
     .venv/bin/python bench/null_zoo_evidence.py CLASS [CLASS ...]
 
-CLASS: float32, beckmann, spike, energy, sggx, isotropic, excluded (or all).
+CLASS: float32, beckmann, spike, cubature, energy, sggx, isotropic, excluded,
+excluded-quad (or all).
 Each prints its own Markdown block; scalar_rgb, one thread.
 """
 import math
@@ -152,14 +153,18 @@ def cls_float32(n=20000):
     print("| model | points beyond 1e-3 | largest \\|bs.pdf/pdf() - 1\\| | \\|pdf()/float64 - 1\\| (median / largest) "
           "| \\|bs.pdf/float64 - 1\\| | median one-ulp spread of pdf() at those points |")
     print("|---|---|---|---|---|---|")
-    cases = [("roughconductor ggx alpha 0.01 theta 89.9", {"type": "roughconductor", "alpha": 0.01, "distribution": "ggx"}, 89.9, 0.01, "ggx"),
-             ("roughconductor ggx alpha 0.001 theta 89.9", {"type": "roughconductor", "alpha": 0.001, "distribution": "ggx"}, 89.9, 0.001,
+    cases = [("roughconductor ggx alpha 0.01 theta 89.9",
+              {"type": "roughconductor", "alpha": 0.01, "distribution": "ggx"}, 89.9, 0.01, "ggx"),
+             ("roughconductor ggx alpha 0.001 theta 89.9",
+              {"type": "roughconductor", "alpha": 0.001, "distribution": "ggx"}, 89.9, 0.001,
               "ggx"),
              ("roughconductor ggx alpha 0.3 sample_visible false theta 89.9",
-              {"type": "roughconductor", "alpha": 0.3, "sample_visible": False, "distribution": "ggx"}, 89.9, 0.3, "ggx-all"),
+              {"type": "roughconductor", "alpha": 0.3, "sample_visible": False, "distribution": "ggx"}, 89.9, 0.3,
+              "ggx-all"),
              ("roughconductor beckmann alpha 0.001 theta 89.9",
               {"type": "roughconductor", "alpha": 0.001, "distribution": "beckmann"}, 89.9, 0.001, "beckmann"),
-             ("roughdielectric ggx alpha 0.01 theta 89.9", {"type": "roughdielectric", "alpha": 0.01, "distribution": "ggx"},
+             ("roughdielectric ggx alpha 0.01 theta 89.9",
+              {"type": "roughdielectric", "alpha": 0.01, "distribution": "ggx"},
               89.9, None, None),
              ("roughdielectric beckmann alpha 0.01 eta 1.0001 theta 45",
               {"type": "roughdielectric", "alpha": 0.01, "int_ior": 1.0001, "ext_ior": 1.0}, 45, None, None),
@@ -196,12 +201,13 @@ def cls_float32(n=20000):
     rel = np.abs(bpdf / pp - 1)
     idx = np.flatnonzero(rel > 1e-3)
     g = 0.99
-    cos = -(wo @ wi)  # Mitsuba's hg: wi points back along the ray
+    cos = -(wo @ wi)  # Mitsuba's hg: wi points back along the ray (cosine to the forward direction)
     p64 = (1 - g * g) / (4 * math.pi * (1 + g * g + 2 * g * (wo @ wi)) ** 1.5)
     e1, e2 = np.abs(pp[idx] / p64[idx] - 1), np.abs(bpdf[idx] / p64[idx] - 1)
     spreads = [ulp_spread(ph.pdf, wi, wo[i])[1] for i in idx[:40]]
     print(f"| phase hg g 0.99 | {len(idx)} of {len(wo)} ({len(idx) / len(wo):.2%}) | {np.max(rel):.2g} "
-          f"| {np.median(e1):.2g} / {np.max(e1):.2g} | {np.median(e2):.2g} / {np.max(e2):.2g} | {np.median(spreads) if spreads else float('nan'):.2g} |")
+          f"| {np.median(e1):.2g} / {np.max(e1):.2g} | {np.median(e2):.2g} / {np.max(e2):.2g} "
+          f"| {np.median(spreads) if spreads else float('nan'):.2g} |")
     print(f"\n(hg: cos theta between the scattered and the forward direction at the worst point: "
           f"{cos[idx[np.argmax(rel[idx])]] if len(idx) else float('nan'):.9f})")
 
@@ -322,7 +328,8 @@ def cls_sggx(n=200000):
         print(f"- eval / closed form with {label}: median {np.median(ev / c):.5f}, range "
               f"[{np.min(ev / c):.4g}, {np.max(ev / c):.4g}]")
     print(f"- eval / pdf: range [{np.min(ev / pd):.6g}, {np.max(ev / pd):.6g}]")
-    print(f"- integral of Mitsuba's pdf() over the sphere: {quad_sphere(lambda x: ph.pdf(wi, x), below=True, n_phi=360):.5f}")
+    total = quad_sphere(lambda x: ph.pdf(wi, x), below=True, n_phi=360)
+    print(f"- integral of Mitsuba's pdf() over the sphere: {total:.5f}")
     u = np.random.default_rng(2).random((n, 3))
     wo, w, bpdf = ph.sample(wi, u)
     edges = np.linspace(-1, 1, 21)
@@ -404,7 +411,8 @@ def cls_excluded(seeds=20, sizes=(20000, 80000)):
     print(f"Each case's callables as cases.py makes them (mitsuba_adapters, {mi.variant()}), checked directly "
           f"(check_emitter / check_bsdf, alpha 0.01, no escalation) at seeds 0..{seeds - 1}, at n = 20000 (the "
           "suite's stage 1) and 80000 (its stage 2).\n")
-    print("| case | n | rejected | routes (runs) | mass (cubature): min / median / max | mass (Monte Carlo at the table points): min / max "
+    print("| case | n | rejected | routes (runs) | mass (cubature): min / median / max "
+          "| mass (Monte Carlo at the table points): min / max "
           "| s per check |")
     print("|---|---|---|---|---|---|---|")
     for cid in cases.EXCLUDED:
@@ -461,7 +469,6 @@ def cls_excluded_quad(refs=None, title="The excluded lights' pdf() by dense quad
         a = np.cross(c, [1.0, 0, 0] if abs(c[0]) < 0.9 else [0, 1.0, 0])
         a /= np.linalg.norm(a)
         b = np.cross(c, a)
-        total = 0.0
         ring = np.empty(len(t))
         for i, ti in enumerate(t):
             dirs = (np.cos(ti) * c[None, :] + np.sin(ti) * (np.cos(ph)[:, None] * a + np.sin(ph)[:, None] * b))
@@ -490,7 +497,8 @@ def cls_cubature(n=400000):
               + ", ".join(f"{m:.4f}" for m in ms) + " |", flush=True)
 
 
-CLASSES = {"cubature": cls_cubature, "float32": cls_float32, "beckmann": cls_beckmann, "spike": cls_spike, "energy": cls_energy,
+CLASSES = {"cubature": cls_cubature, "float32": cls_float32, "beckmann": cls_beckmann, "spike": cls_spike,
+           "energy": cls_energy,
            "sggx": cls_sggx, "isotropic": cls_isotropic, "excluded": cls_excluded, "excluded-quad": cls_excluded_quad}
 
 if __name__ == "__main__":

@@ -391,7 +391,8 @@ class RectangleLight:
         return d, np.where(front, 2.0 / p, 0.0), np.where(front, p, 0.0)
 
 
-@pytest.mark.xfail(strict=True, reason="mcstat's cubature of pdf() over the rectangle light seen from (-0.5, 0.2, -0.2) "
+@pytest.mark.xfail(strict=True, reason="mcstat's cubature of pdf() over the rectangle light seen from "
+                   "(-0.5, 0.2, -0.2) "
                    "comes out 0.995-0.998 where the exact integral is 1 (every sample succeeds), and at n = 80000 "
                    "mass rejects the correct light at nearly every seed (the demo suite's excluded "
                    "emitter-rectangle-far4; Mitsuba's pdf() there integrates to 1.0000 by dense quadrature)")
