@@ -2089,7 +2089,8 @@ enum mcstat_check_why {
     MCSTAT_CHECK_WHY_HEAVY_TAIL = 1,  /* a tail index below 2: the mean it tests has no finite variance */
     MCSTAT_CHECK_WHY_TOO_FEW = 2,     /* too few samples, cells, regions or kept points */
     MCSTAT_CHECK_WHY_ENVELOPE = 3,    /* KS: a ratio beyond the resampling envelope */
-    MCSTAT_CHECK_WHY_NOTHING = 4,     /* nothing to compare: eval() and the weights are 0 wherever looked */
+    MCSTAT_CHECK_WHY_NOTHING = 4,     /* nothing to compare: eval() and the weights are 0 wherever looked,
+                                         or no smooth part is claimed or sampled (a purely discrete BSDF) */
     MCSTAT_CHECK_WHY_NUMERIC = 5,     /* a numerical step failed */
     MCSTAT_CHECK_WHY_INTEGRATION = 6  /* the integral of pdf() is not known well enough to test against */
 };

@@ -137,6 +137,9 @@ static void route_cells(run *r, const sums *sm, double level)
     double N = (double)sm->n_succ;
     if (!(mass > 0.0) || sm->n_succ < 2) {
         rr->state = MCSTAT_ROUTE_INVALID;
+        /* no smooth part claimed and none sampled (a purely discrete BSDF):
+         * nothing to compare, not too little */
+        rr->why = !(mass > 0.0) && sm->n_succ == 0 ? MCSTAT_CHECK_WHY_NOTHING : MCSTAT_CHECK_WHY_TOO_FEW;
         return;
     }
     /* pool consecutive cells to an expected count of 5; each pooled cell's
@@ -565,7 +568,9 @@ static void route_ks(run *r, double level)
     }
     if (na < 50 || nb < 50) {
         rr->state = MCSTAT_ROUTE_INVALID;
-        rr->why = MCSTAT_CHECK_WHY_TOO_FEW;
+        /* every weight and every eval() 0 (albedo 0, or no smooth part):
+         * nothing to resample on either side */
+        rr->why = !(r->w_envelope > 0.0) && !(r->v_largest > 0.0) ? MCSTAT_CHECK_WHY_NOTHING : MCSTAT_CHECK_WHY_TOO_FEW;
         return;
     }
     mcstat_ks_options ko;

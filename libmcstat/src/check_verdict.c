@@ -15,7 +15,7 @@ static const char *const why_texts[] = {
     "too little to test (too few samples, cells, regions or kept points): more samples (n) would",
     "a ratio exceeded the resampling envelope the pilot set, so the kept points would not follow eval(); "
     "another seed or a larger pilot (n_pilot) would, as would the integrals route, which checks the same claim",
-    "eval() and the weights are 0 wherever either estimator looked: nothing to compare",
+    "nothing to compare: eval() and the weights are 0 wherever looked, or no smooth part is claimed or sampled",
     "a numerical step failed",
     "the integral of pdf() is not known well enough to test against (its cubature and its Monte Carlo "
     "estimate disagree beyond their errors): more cells or eval-only points (n_eval) would"};
@@ -35,14 +35,16 @@ const char *mcstat_check_verdict_name(int verdict)
 /* A route could not answer, and its claim is not answered by another:
  * KS and INTEGRALS both check eval() against the sampler, and KS's
  * envelope fails by chance on correct models, so KS counts only when
- * INTEGRALS gave no answer either.  A route with nothing to compare (eval
- * and the weights zero wherever looked) has no claim left open. */
+ * INTEGRALS could not answer either (and had something to compare).  A
+ * route with nothing to compare (eval and the weights zero wherever
+ * looked, no smooth part claimed or sampled) has no claim left open. */
 static int unanswered(const mcstat_check_report *r, int i)
 {
     const mcstat_check_route_result *rr = &r->route[i];
     if (rr->state != MCSTAT_ROUTE_INVALID || rr->why == MCSTAT_CHECK_WHY_NOTHING)
         return 0;
-    if (i == MCSTAT_CHECK_ROUTE_KS && r->route[MCSTAT_CHECK_ROUTE_INTEGRALS].state == MCSTAT_ROUTE_RAN)
+    const mcstat_check_route_result *in = &r->route[MCSTAT_CHECK_ROUTE_INTEGRALS];
+    if (i == MCSTAT_CHECK_ROUTE_KS && (in->state == MCSTAT_ROUTE_RAN || in->why == MCSTAT_CHECK_WHY_NOTHING))
         return 0;
     return 1;
 }
