@@ -955,11 +955,13 @@ MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, siz
  *                               few seeds;
  *                             - both sides constant: equal within eps M,
  *                               MCSTAT_EDEGENERATE (untested, as without
- *                               the flag); different beyond it, a
- *                               deterministic difference: statistic +-Inf,
- *                               p-value 0 on its side (1 on the other), df
- *                               NaN, standard error 0, the interval the
- *                               difference itself.
+ *                               the flag); different beyond it, both take
+ *                               the rule-of-three variance: at a few
+ *                               samples per pixel each seed's count of hits
+ *                               on a light's edge can be the same by
+ *                               chance (a correct pair of Cycles renders
+ *                               at 4 spp shows 300 against 400 in every
+ *                               seed), so constancy is not determinism.
  *                             Pixels that would be tested without it are
  *                             tested, with these variances and df; the
  *                             plain Welch test (R's t.test) is the

@@ -111,37 +111,6 @@ double mcstat__rule3_ratio(double n)
     return (1.0 - pi) / pi;
 }
 
-/* Both sides constant and different beyond the numerical floor: a
- * deterministic difference, known exactly; p = 0 on its side. */
-static int deterministic(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative,
-                         double alpha, double sh, mcstat_dd ds, int e, mcstat_result *out)
-{
-    mcstat_result r;
-    mcstat__result_clear(&r);
-    r.test = MCSTAT_TEST_T_2;
-    r.method = MCSTAT_METHOD_ANALYTIC;
-    r.alternative = alternative;
-    r.alpha = alpha;
-    r.null_value = mu0;
-    r.n[0] = x->n;
-    r.n[1] = y->n;
-    r.statistic = sh > 0.0 ? INFINITY : -INFINITY;
-    r.df[0] = NAN;
-    r.estimate[0] = x->mean;
-    r.estimate[1] = y->mean;
-    r.std_error = 0.0;
-    int up = sh > 0.0;
-    r.p_value = alternative == MCSTAT_TWO_SIDED ? 0.0 : (alternative == MCSTAT_GREATER) == up ? 0.0 : 1.0;
-    r.reject = r.p_value <= alpha;
-    r.decision = r.reject ? (up ? MCSTAT_DECISION_GREATER : MCSTAT_DECISION_LESS) : MCSTAT_DECISION_EQUAL;
-    double d = scale2(ds.hi + ds.lo, e);
-    r.conf_int[0] = alternative == MCSTAT_LESS ? -INFINITY : d;
-    r.conf_int[1] = alternative == MCSTAT_GREATER ? INFINITY : d;
-    r.critical[0] = r.critical[1] = NAN;
-    *out = r;
-    return MCSTAT_OK;
-}
-
 static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative, double alpha,
                     int pooled, const mcstat__render_guard *rg, mcstat_qcache *qc, mcstat_result *out)
 {
@@ -205,11 +174,8 @@ static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0
         mcstat__render_welch g;
         mcstat__render_adjust(rg, nx, ny, mcstat__rule3_ratio(nx), mcstat__rule3_ratio(ny), vxs, vys,
                               scale2(mmax, -e), sh, &g);
-        if (g.both_constant) {
-            if (g.deterministic)
-                return deterministic(x, y, mu0, alternative, alpha, sh, ds, e, out);
+        if (g.both_constant && !g.differ)
             return MCSTAT_EDEGENERATE;
-        }
         a = g.vx / nx;
         b = g.vy / ny;
         se = sqrt(a + b);

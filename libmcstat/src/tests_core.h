@@ -65,13 +65,15 @@ typedef struct {
     uint64_t hx, hy;
 } mcstat__render_guard;
 /* Welch's variances and df under the guards: vx, vy floored, df Hsu's; a
- * pixel both of whose sides are constant is both_constant, and
- * deterministic when they differ beyond the floor.  All in one scale: vx,
+ * pixel both of whose sides are constant is both_constant (untested when
+ * they do not differ beyond the floor; when they do, both sides take the
+ * rule-of-three floor: at a few samples per pixel a light's edge gives the
+ * same count of hits in every seed by chance).  All in one scale: vx,
  * vy the sample variances, mmax the larger |mean|, sh the difference of
  * the means less the null value. */
 typedef struct {
     double vx, vy, df;
-    int both_constant, deterministic;
+    int both_constant, differ;
 } mcstat__render_welch;
 MCSTAT_HIDDEN double mcstat__rule3_ratio(double n);
 /* rx, ry: mcstat__rule3_ratio(nx), (ny).  Inline: the per-pixel block
@@ -83,7 +85,7 @@ static inline void mcstat__render_adjust(const mcstat__render_guard *rg, double 
     num *= num;
     int cx = vx <= num, cy = vy <= num;
     g->both_constant = cx && cy;
-    g->deterministic = g->both_constant && fabs(sh) > rg->eps * mmax;
+    g->differ = g->both_constant && fabs(sh) > rg->eps * mmax;
     /* A side showing at most one value besides zeros says nothing of what
      * it hides: under H0 whatever it hides makes up the difference sh. */
     int sx = cx || rg->hx <= 1, sy = cy || rg->hy <= 1;

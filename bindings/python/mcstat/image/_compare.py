@@ -161,9 +161,10 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     larger mean (relative; None: 2^-18, 64 float32 ulps, for float32 inputs,
     2^-47 for float64, as the renderer checks derive theirs) are rounding: a
     pixel constant on both sides and equal within it is not tested;
-    different beyond it, it is a deterministic difference (statistic +-inf,
-    p-value 0), counted in ``notes``.  The value used is ``resolution`` of
-    the result.  False: the plain Welch test of ``mcstat.t_test``
+    different beyond it, both sides take the rule-of-three variance (at a
+    few samples per pixel a light's edge gives every seed the same count of
+    hits by chance: constant is not deterministic).  The value used is
+    ``resolution`` of the result.  False: the plain Welch test of ``mcstat.t_test``
     (R's t.test) per pixel.  A side that hides a rare component while its
     other values vary (a light sampled too rarely to show in K seeds)
     cannot be detected by any per-pixel test of means (Bahadur and
@@ -302,11 +303,6 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         dec[dec > 0] = 0
     res = ImageComparison(pvalue, padj, stat, dec, tested, est_c, est_r, bg, list(ref.channel_names),
                           alpha, _canonical_method(method), alternative)
-    if isinstance(ref, Samples) and render_guards:
-        ndet = int(np.count_nonzero(tested & np.isinf(stat)))
-        if ndet:
-            notes = notes + [f"{ndet} test(s) constant on both sides and different beyond the numerical floor "
-                             f"(resolution {eps_used:.3g}): deterministic differences, p-value 0"]
     res.variance_lost, res.notes = int(lost.sum()) if lost is not None else 0, notes
     res.render_guards = bool(render_guards) and isinstance(ref, Samples)
     res.resolution = eps_used if res.render_guards else None
