@@ -6,13 +6,16 @@ The scene (no assets): a Cornell-like room (2 x 2 x 2, open towards the
 camera, black world) split by a partition into
   left   lit by a small ceiling area light: a tall diffuse box (the
          albedo change's surface), a glossy metal sphere, red left wall;
-  right  lit only by a lamp inside a glass sphere (an emissive sphere in
-         a clear glass shell): its light reaches the diffuse surfaces only
-         through caustic paths (shadow rays do not pass glass, so next
-         event estimation never sees it), found by BSDF sampling alone, and
-         by indirect light from the left part that comes round the front
-         of the partition.  Deep in the right part pixels are zero in most
-         renders: lit by rare paths only.
+  right  lit by a dim point light high up, and by a lamp inside a glass
+         sphere (an emissive sphere in a clear glass shell): its light
+         reaches the diffuse surfaces only through caustic paths (shadow
+         rays do not pass glass, so next event estimation never sees it),
+         found by BSDF sampling alone, and by indirect light from the left
+         part that comes round the front of the partition.  Without the
+         light tree, next event estimation picks the dim light rarely
+         (the lamp's ~2300 emissive triangles and the ceiling light
+         compete for the picks): its pixels are zero in most renders at a
+         few samples per pixel, lit by rare paths only.
 Everything is rendered linear (Combined pass, float32 EXR read back), no
 denoising, no adaptive sampling, no clamping (Cycles' default indirect
 clamp of 10 is a bias that differs between samplers), no glossy filter,
@@ -25,7 +28,8 @@ path guiding off):
   base          light tree on, path guiding off
   lt_off        light tree off
   guide_on      path guiding on (surface guiding, deterministic guiding)
-  light_x1.02   the ceiling light's power x1.02
+  light_x1.02   the ceiling light's and the dim light's power x1.02
+                (the lamp in glass unchanged)
   albedo_x1.05  the tall box's base colour x1.05
   lamp_off      the glass-shelled lamp off (the ceiling light's share of
                 each pixel: where the light change is a 2% change)
@@ -57,6 +61,8 @@ OFFSET = {"base": 0, "lt_off": 100000, "guide_on": 200000, "light_x1.02": 300000
 LIGHT_POWER = 60.0      # W, the ceiling area light
 LAMP_STRENGTH = 400.0   # emission strength of the lamp inside the glass sphere
 BOX_ALBEDO = 0.6
+DIM_LIGHT_POWER = 3.0   # W, the point light in the right part
+N_AWAY_LIGHTS = 64      # spot lights behind the back wall, pointing away
 
 
 def _material(name, color=None, *, emission=None, metallic=0.0, roughness=0.5, glass=False):
@@ -136,6 +142,28 @@ def build_scene(size, spp):
     light.data.shape = "SQUARE"
     light.data.size = 0.3
     light.data.energy = LIGHT_POWER
+    # a dim point light high in the right part: the light tree picks it for
+    # the right part's pixels; without the tree it competes with the
+    # ceiling light and the lamp's ~2300 emissive triangles, and is rarely
+    # picked (its pixels zero in most renders, bright when picked)
+    bpy.ops.object.light_add(type="POINT", location=(0.7, 0.1, 1.75))
+    nook = bpy.context.active_object
+    nook.name = "dim_light"
+    nook.data.shadow_soft_size = 0.02
+    nook.data.energy = DIM_LIGHT_POWER
+    # many lights that light nothing the camera can see: spot lights behind
+    # the back wall pointing away from the room (a scene with many lights
+    # elsewhere).  The light tree's cone bounds never pick them for the
+    # room's points; without the tree they take most of next event
+    # estimation's picks, and the room's lights are picked rarely.
+    for i in range(N_AWAY_LIGHTS):
+        x, z = -0.9 + 1.8 * (i % 8) / 7, 0.1 + 1.8 * (i // 8) / max(1, (N_AWAY_LIGHTS - 1) // 8)
+        bpy.ops.object.light_add(type="SPOT", location=(x, 1.4, z), rotation=(math.radians(-90), 0, 0))
+        sp = bpy.context.active_object
+        sp.name = f"away_{i}"
+        sp.data.energy = DIM_LIGHT_POWER
+        sp.data.spot_size = math.radians(30)
+        sp.data.shadow_soft_size = 0.02
     bpy.ops.object.camera_add(location=(0, -3.2, 1.0), rotation=(math.radians(90), 0, 0))
     cam = bpy.context.active_object
     cam.data.lens = 38
@@ -183,7 +211,9 @@ def apply_setting(sc, name):
         c.use_surface_guiding = True
         c.use_volume_guiding = False
         c.use_deterministic_guiding = True
-    bpy.data.objects["ceiling_light"].data.energy = LIGHT_POWER * (1.02 if name == "light_x1.02" else 1.0)
+    f = 1.02 if name == "light_x1.02" else 1.0
+    bpy.data.objects["ceiling_light"].data.energy = LIGHT_POWER * f
+    bpy.data.objects["dim_light"].data.energy = DIM_LIGHT_POWER * f
     lamp = bpy.data.materials["lamp"].node_tree.nodes["Emission"]
     lamp.inputs["Strength"].default_value = 0.0 if name == "lamp_off" else LAMP_STRENGTH
     a = BOX_ALBEDO * (1.05 if name == "albedo_x1.05" else 1.0)
@@ -219,6 +249,9 @@ def render_mask(sc, size, cache, spp):
         if o.type == "MESH":
             o.data.materials[0] = white_em if o.name == "tall_box" else black
     bpy.data.objects["ceiling_light"].hide_render = True
+    for o in bpy.data.objects:
+        if o.type == "LIGHT":
+            o.hide_render = True
     c = sc.cycles
     c.max_bounces, c.samples = 0, 64
     with tempfile.TemporaryDirectory() as td:
@@ -270,7 +303,9 @@ def main():
     with open(meta, "w") as f:
         json.dump({"blender": bpy.app.version_string, "build_hash": bpy.app.build_hash.decode(),
                    "spp": a.spp, "size": a.size, "offsets": OFFSET, "light_power": LIGHT_POWER,
-                   "lamp_strength": LAMP_STRENGTH, "box_albedo": BOX_ALBEDO, "threads": 1,
+                   "lamp_strength": LAMP_STRENGTH, "box_albedo": BOX_ALBEDO,
+                   "dim_light_power": DIM_LIGHT_POWER,
+                   "away_lights": N_AWAY_LIGHTS, "threads": 1,
                    "device": "CPU"}, f, indent=1)
     if "mask_albedo" in names:
         render_mask(sc, a.size, a.cache, a.spp)
