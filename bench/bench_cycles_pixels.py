@@ -439,6 +439,14 @@ def summary(summ, blocks):
     return out + [""]
 
 
+def _commit():
+    """The checkout's commit: the results are that code's."""
+    import subprocess
+    r = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                       cwd=os.path.dirname(os.path.abspath(__file__)))
+    return r.stdout.strip() or "unknown"
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--cache", default="/work/cycles-cache")
@@ -466,7 +474,8 @@ def main():
              f"--blocks {a.blocks}", "",
              f"Environment: {machine()}; Blender {meta['blender']} (the `bpy` wheel from PyPI under CPython 3.13, "
              "`pip install bpy` in its own venv, no system packages needed; its Cycles is built with path "
-             "guiding), Cycles on the CPU, 1 thread; mcstat {mcstat.__version__}, NumPy {np.__version__}, SciPy "
+             f"guiding), Cycles on the CPU, 1 thread; mcstat {mcstat.__version__} (commit {_commit()}), NumPy "
+             f"{np.__version__}, SciPy "
              f"{scipy.__version__}, Python {platform.python_version()}.  Combined pass, linear float32 (K, H, W, 3), "
              "no denoising, no adaptive sampling, no clamping, no glossy filter, the default pixel filter; each "
              "setting rendered with its own seeds (disjoint).  Luminance, BH at alpha = 0.05, two-sided.  "
