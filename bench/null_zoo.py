@@ -618,8 +618,9 @@ def main(argv=None):
     ap.add_argument("--seeds", type=int, default=20)
     ap.add_argument("--n", type=int, default=20000, help="samples per check (BSDFs, phase functions, media)")
     ap.add_argument("--n-emitter", type=int, default=5000, help="samples per emitter check")
-    ap.add_argument("--only", default="", help="only the models whose 'family/name params' matches this "
-                                                "(a glob, or a substring)")
+    ap.add_argument("--only", action="append", default=[],
+                    help="only the models whose 'family/name params' matches this (a glob, or a substring; "
+                         "repeat for several)")
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "RESULTS_null_zoo.md"))
     ap.add_argument("--list", action="store_true", help="list the models and exit")
     a = ap.parse_args(argv)
@@ -630,8 +631,8 @@ def main(argv=None):
         models += m
         na += x
     if a.only:
-        pat = a.only if any(c in a.only for c in "*?[") else f"*{a.only}*"
-        models = [m for m in models if fnmatch.fnmatch(m.key, pat)]
+        pats = [p if any(c in p for c in "*?[") else f"*{p}*" for p in a.only]
+        models = [m for m in models if any(fnmatch.fnmatch(m.key, p) for p in pats)]
     if a.list:
         for m in models:
             print(m.key)
