@@ -550,35 +550,35 @@ class CheckReport:
     @property
     def routes(self) -> List[CheckRoute]: ...
     def route(self, name: str) -> CheckRoute: ...
-_Routes = Optional[Sequence[Literal["cells", "mass", "pdf_value", "weight", "support", "integrals", "energy",
+_CheckRoutes = Optional[Sequence[Literal["cells", "mass", "pdf_value", "weight", "support", "integrals", "energy",
                                      "reciprocity", "ks"]]]
-_Weight = Literal["over_pdf", "value"]
+_CheckWeight = Literal["over_pdf", "value"]
 def check_bsdf(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], wi: npt.ArrayLike, *,
                n: int = 100_000, alpha: float = 0.01, seed: int = 0,
-               domain: Literal["sphere", "hemisphere"] = "sphere", n_uniforms: int = 3, weight: _Weight = "over_pdf",
+               domain: Literal["sphere", "hemisphere"] = "sphere", n_uniforms: int = 3, weight: _CheckWeight = "over_pdf",
                stochastic: bool = False, reciprocal: bool = False, lobes: Optional[Callable[..., Any]] = None,
-               energy: bool = True, routes: _Routes = None, cells: int = 0, n_pilot: int = 0, n_eval: int = 0,
+               energy: bool = True, routes: _CheckRoutes = None, cells: int = 0, n_pilot: int = 0, n_eval: int = 0,
                batch: int = 65536, rtol: float = 1e-3, tolerated: float = 1e-4,
                resolution: float = 0.0) -> CheckReport: ...
 def check_emitter(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], *,
                   n: int = 100_000, alpha: float = 0.01, seed: int = 0,
                   domain: Literal["sphere", "hemisphere"] = "sphere", n_uniforms: int = 2,
-                  weight: _Weight = "over_pdf", routes: _Routes = None, cells: int = 0, n_pilot: int = 0,
+                  weight: _CheckWeight = "over_pdf", routes: _CheckRoutes = None, cells: int = 0, n_pilot: int = 0,
                   n_eval: int = 0, batch: int = 65536, rtol: float = 1e-3, tolerated: float = 1e-4,
                   resolution: float = 0.0) -> CheckReport: ...
 def check_warp(sample: Callable[..., Any], pdf: Callable[..., Any], *, n: int = 100_000, alpha: float = 0.01,
                seed: int = 0, domain: Literal["sphere", "hemisphere", "square", "disk", "interval"] = "square",
-               n_uniforms: int = 2, routes: _Routes = None, cells: int = 0, n_pilot: int = 0, n_eval: int = 0,
+               n_uniforms: int = 2, routes: _CheckRoutes = None, cells: int = 0, n_pilot: int = 0, n_eval: int = 0,
                batch: int = 65536, rtol: float = 1e-3, tolerated: float = 1e-4,
                resolution: float = 0.0) -> CheckReport: ...
 def check_phase(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], wi: npt.ArrayLike, *,
                 n: int = 100_000, alpha: float = 0.01, seed: int = 0, n_uniforms: int = 2,
-                weight: _Weight = "over_pdf", stochastic: bool = False, reciprocal: bool = False, energy: bool = True,
-                routes: _Routes = None, cells: int = 0, n_pilot: int = 0, n_eval: int = 0, batch: int = 65536,
+                weight: _CheckWeight = "over_pdf", stochastic: bool = False, reciprocal: bool = False, energy: bool = True,
+                routes: _CheckRoutes = None, cells: int = 0, n_pilot: int = 0, n_eval: int = 0, batch: int = 65536,
                 rtol: float = 1e-3, tolerated: float = 1e-4, resolution: float = 0.0) -> CheckReport: ...
 def check_medium(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], *, sigma_ref: float,
                  transmittance: Optional[float] = None, n: int = 100_000, alpha: float = 0.01, seed: int = 0,
-                 n_uniforms: int = 1, weight: _Weight = "over_pdf", routes: _Routes = None, cells: int = 0,
+                 n_uniforms: int = 1, weight: _CheckWeight = "over_pdf", routes: _CheckRoutes = None, cells: int = 0,
                  n_pilot: int = 0, n_eval: int = 0, batch: int = 65536, rtol: float = 1e-3, tolerated: float = 1e-4,
                  resolution: float = 0.0) -> CheckReport: ...
 # t, chi-squared and F distributions over arrays (distributions.cpp), wrapped by mcstat.distributions
