@@ -53,8 +53,10 @@ def cone(scale=1.0):
 def test_cubature_short_at_the_rim_is_not_a_pdf_above_one():
     r = mcstat.check_warp(*cone(), domain="sphere", n=20000, seed=SEED, alpha=0.005)
     m = r.route("mass")
-    if ma.is_jit():  # the numbers of the finding (llvm_ad_rgb's float32 rounding of the rim)
-        assert r.mass - 4 * r.mass_error > 1.0, (r.mass, r.mass_error)
+    # the finding (llvm_ad_rgb's float32 rounding of the rim made the old
+    # cubature integrate above 1 beyond its error): the edge-aware cubature's
+    # interval now holds 1
+    assert r.mass - 4 * r.mass_error <= 1.0, (r.mass, r.mass_error)
     assert abs(r.mass_sampled - 1.0) < 3 * r.mass_sampled_se
     assert m.pvalue > 0.01 and not r.reject, str(r)
 
