@@ -169,14 +169,30 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int is_var = test == MCSTAT_TEST_VAR_1 || test == MCSTAT_TEST_VAR_2;
     int invalid = test == 0 || test == 99 || end < begin || bad_w || !isfinite(nv) || (is_var && !(nv > 0.0)) ||
                   !fz_alpha_valid(alpha) || (alt != MCSTAT_TWO_SIDED && alt != MCSTAT_LESS && alt != MCSTAT_GREATER) ||
-                  (flags & ~(unsigned)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN)) || threads < 1 ||
-                  threads > 64 || (test == MCSTAT_TEST_T_PAIRED && nx != ny);
+                  (flags & ~(unsigned)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN | MCSTAT_PIXELS_RENDER)) ||
+                  ((flags & MCSTAT_PIXELS_RENDER) && test != MCSTAT_TEST_T_2) || threads < 1 || threads > 64 ||
+                  (test == MCSTAT_TEST_T_PAIRED && nx != ny);
     int written = 0;
     for (size_t i = 0; i < MAXPIX; i++)
         written |= status[i] != -7 || p[i] != -7.0 || dec[i] != -7;
     if (invalid) {
         FZ_ASSERT(st == MCSTAT_EINVAL, "invalid arguments: status %d", st);
         FZ_ASSERT(!written, "invalid arguments: outputs written");
+        return 0;
+    }
+    if (flags & MCSTAT_PIXELS_RENDER) {
+        /* the render guards' numbers are not the single call's (their closed
+         * forms: tests/c/test_pixels_test.c): the range, the statuses, the
+         * p-values' domain */
+        for (size_t i = 0; i < MAXPIX; i++) {
+            if (i < begin || i >= end) {
+                FZ_ASSERT(status[i] == -7 && p[i] == -7.0, "render: pixel %zu outside the range written", i);
+                continue;
+            }
+            FZ_ASSERT(status[i] >= 0 && status[i] <= MCSTAT_EHEAVYTAIL, "render: pixel %zu status %d", i,
+                      (int)status[i]);
+            FZ_ASSERT(status[i] != MCSTAT_OK || (p[i] >= 0.0 && p[i] <= 1.0), "render: pixel %zu p %g", i, p[i]);
+        }
         return 0;
     }
     int first = MCSTAT_OK;
