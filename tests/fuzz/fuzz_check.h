@@ -222,4 +222,21 @@ static inline void fz_check_result(int st, const mcstat_result *r, int test, int
     }
 }
 
+/* Per-pixel outputs under MCSTAT_PIXELS_RENDER, whose numbers are not the
+ * plain Welch reference's (their closed forms: tests/c/test_pixels_test.c):
+ * pixels outside [begin, end) untouched (-7 sentinels), every status a known
+ * one, every successful pixel's p-value in [0, 1]. */
+static inline void fz_check_render_pixels(const int32_t *status, const double *p, size_t count, size_t begin,
+                                          size_t end)
+{
+    for (size_t i = 0; i < count; i++) {
+        if (i < begin || i >= end) {
+            FZ_ASSERT(status[i] == -7 && p[i] == -7.0, "render: pixel %zu outside the range written", i);
+            continue;
+        }
+        FZ_ASSERT(status[i] >= 0 && status[i] <= MCSTAT_EHEAVYTAIL, "render: pixel %zu status %d", i, (int)status[i]);
+        FZ_ASSERT(status[i] != MCSTAT_OK || (p[i] >= 0.0 && p[i] <= 1.0), "render: pixel %zu p %g", i, p[i]);
+    }
+}
+
 #endif /* MCSTAT_FUZZ_CHECK_H */

@@ -107,18 +107,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     if (flags & MCSTAT_PIXELS_RENDER) {
-        /* the render guards' numbers are not the plain Welch reference's
-         * (tests/c/test_pixels_test.c holds their closed forms): the range,
-         * the statuses and the p-values' domain */
-        for (size_t i = 0; i < MAXPIX; i++) {
-            if (i < begin || i >= end) {
-                FZ_ASSERT(status[i] == -7 && p[i] == -7.0, "render: pixel %zu outside the range written", i);
-                continue;
-            }
-            FZ_ASSERT(status[i] >= 0 && status[i] <= MCSTAT_EHEAVYTAIL, "render: pixel %zu status %d", i,
-                      (int)status[i]);
-            FZ_ASSERT(status[i] != MCSTAT_OK || (p[i] >= 0.0 && p[i] <= 1.0), "render: pixel %zu p %g", i, p[i]);
-        }
+        fz_check_render_pixels(status, p, MAXPIX, begin, end);
         return 0;
     }
     int first = MCSTAT_OK, intervals = !(flags & MCSTAT_ROWS_NO_INTERVALS);

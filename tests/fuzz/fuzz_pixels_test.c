@@ -181,18 +181,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     if (flags & MCSTAT_PIXELS_RENDER) {
-        /* the render guards' numbers are not the single call's (their closed
-         * forms: tests/c/test_pixels_test.c): the range, the statuses, the
-         * p-values' domain */
-        for (size_t i = 0; i < MAXPIX; i++) {
-            if (i < begin || i >= end) {
-                FZ_ASSERT(status[i] == -7 && p[i] == -7.0, "render: pixel %zu outside the range written", i);
-                continue;
-            }
-            FZ_ASSERT(status[i] >= 0 && status[i] <= MCSTAT_EHEAVYTAIL, "render: pixel %zu status %d", i,
-                      (int)status[i]);
-            FZ_ASSERT(status[i] != MCSTAT_OK || (p[i] >= 0.0 && p[i] <= 1.0), "render: pixel %zu p %g", i, p[i]);
-        }
+        fz_check_render_pixels(status, p, MAXPIX, begin, end);
         return 0;
     }
     int first = MCSTAT_OK;
