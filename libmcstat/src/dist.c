@@ -95,6 +95,8 @@ static int t_central(double df, double x, double y, double *s, double *logk)
  * prefactor, for the quantile solver. */
 int mcstat__t_tails(double t, double df, mcstat_tails *out)
 {
+    if (isnan(t) || !(df > 0.0)) /* a caller's statistic gone wrong: never a NaN p-value with OK */
+        return MCSTAT_ENUMERIC;
     if (t == 0.0) {
         out->p = out->q = 0.5;
         out->logp = out->logq = LOG_HALF;

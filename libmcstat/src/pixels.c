@@ -261,9 +261,10 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
          * two accumulations of M2 might decide differently, the slow path
          * decides */
         int degenerate = !render && (!(bs->se[j] > 0.0) || sdmax < lim * (1.0 - 1e-6));
-        /* with the guards, both sides constant (their tests' own) or no
-         * spread at all go to the single call */
-        int edge = render ? both[j] || !(bs->se[j] > 0.0) : sdmax < lim * (1.0 + 1e-6);
+        /* with the guards, both sides constant (their tests' own), no
+         * spread at all or a floor that overflowed (a shift beyond 2^512
+         * squared) go to the single call, which scales */
+        int edge = render ? both[j] || !(bs->se[j] > 0.0 && bs->se[j] < INFINITY) : sdmax < lim * (1.0 + 1e-6);
         bs->kind[j] = (unsigned char)(bx[j] || by[j] || extreme ? PIX_SLOW
                                       : degenerate              ? PIX_DEGENERATE
                                       : edge                    ? PIX_SLOW

@@ -141,6 +141,15 @@ static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0
     mcstat__moments_var_scaled(x, &vx, &ex);
     mcstat__moments_var_scaled(y, &vy, &ey);
     int e = ex > ey ? ex : ey;
+    if (rg) {
+        /* The guards floor a side's variance at the squared shift: in units
+         * of 2^e, |mean_x - mean_y - mu0| must square without overflow even
+         * when the spread is far below the means or mu0 (constant sides of
+         * 1e-296 against mu0 = -2e303 made the statistic inf/inf). */
+        double big = fmax(fmax(fabs(x->mean), fabs(y->mean)), fabs(mu0));
+        int eb = big > 0.0 ? ilogb(big) - 480 : e;
+        e = eb > e ? eb : e;
+    }
     double a = scale2(vx / nx, 2 * (ex - e)), b = scale2(vy / ny, 2 * (ey - e));
     double se = sqrt(a + b); /* units of 2^e */
     if (pooled) {

@@ -792,6 +792,57 @@ static void test_render_guards(void)
               MCSTAT_EINVAL);
 }
 
+/* The guards at the ends of the exponent range: a floor of (shift)^2 that
+ * overflows unscaled, here against mu0 = -2e303.  Pixel 0: sides constant
+ * at 1e-296 and 1e-149 (the statistic was inf/inf, a NaN p-value with
+ * status OK; found by tests/fuzz/fuzz_pixels): t = 1 / sqrt(2 r / K)
+ * whatever the scale.  Pixel 1: one nonzero value against a smooth side
+ * (the fast path's floor overflowed to an infinite standard error, t = 0):
+ * the same t, df and p as the data and mu0 scaled by 2^-1000. */
+static void test_render_guards_extreme(void)
+{
+    enum { K = 4, EP = 2 };
+    const double mu0 = -2e303;
+    double x[K * EP], y[K * EP], xs[K * EP], ys[K * EP];
+    for (size_t s = 0; s < K; s++) {
+        x[s * EP + 0] = 1e-296, y[s * EP + 0] = 1e-149;
+        x[s * EP + 1] = s == 2 ? 5.0 : 0.0, y[s * EP + 1] = 1.0 + 0.125 * (double)s;
+    }
+    for (size_t i = 0; i < K * EP; i++)
+        xs[i] = ldexp(x[i], -1000), ys[i] = ldexp(y[i], -1000);
+    mcstat_pixels_in px = MCSTAT_PIXELS_IN_INIT, py;
+    px.type = MCSTAT_VALUE_FLOAT64;
+    px.n = K;
+    px.value_stride = EP;
+    px.pixel_stride = 1;
+    py = px;
+    mcstat_pixels_options o = MCSTAT_PIXELS_OPTIONS_INIT;
+    o.flags = MCSTAT_PIXELS_RENDER;
+    double p[2][EP], t[2][EP], df[2][EP];
+    int32_t st[2][EP];
+    for (int c = 0; c < 2; c++) {
+        px.data = c ? xs : x;
+        py.data = c ? ys : y;
+        mcstat_pixels_out out = MCSTAT_PIXELS_OUT_INIT;
+        out.p_value = p[c];
+        out.statistic = t[c];
+        out.df = df[c];
+        out.status = st[c];
+        mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py, 0, EP, c ? ldexp(mu0, -1000) : mu0, MCSTAT_TWO_SIDED, 0.05,
+                           &o, &out);
+    }
+    double pi = 1.0 - pow(0.05, 1.0 / K), r = (1.0 - pi) / pi;
+    CHECK_INT(st[0][0], MCSTAT_OK);
+    CHECK_REL(t[0][0], 1.0 / sqrt(2.0 * r / K), 1e-12, "pixel 0");
+    CHECK(p[0][0] > 0.05 && p[0][0] <= 1.0);
+    CHECK_INT(st[0][1], MCSTAT_OK);
+    CHECK_INT(st[1][1], MCSTAT_OK);
+    CHECK_REL(t[0][1], t[1][1], 1e-12, "pixel 1");
+    CHECK_REL(df[0][1], df[1][1], 0.0, "pixel 1");
+    CHECK_REL(p[0][1], p[1][1], 1e-10, "pixel 1");
+    CHECK(t[0][1] > 1.0);
+}
+
 int main(void)
 {
     fill();
@@ -803,5 +854,6 @@ int main(void)
     test_threads();
     test_bad_arguments();
     test_render_guards();
+    test_render_guards_extreme();
     return h_report("test_pixels_test");
 }

@@ -92,6 +92,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                  : mcstat_t_test_2_pixels(xd, nx, plane, yd, ny, plane, ch, wp, begin, end, mu0, alt, alpha, flags,
                                           &out);
     fz_check_status(st);
+    FZ_IEEE_SCOPE(); /* the reference below in the library's arithmetic */
     int bad_w = 0;
     for (size_t c = 0; c < ch && weighted; c++)
         bad_w |= !isfinite(w[c]);

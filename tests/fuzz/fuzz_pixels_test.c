@@ -163,6 +163,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     out.decision = dec;
     int st = mcstat_pixels_test(test, &px, two ? &py : NULL, begin, end, nv, alt, alpha, &opt, &out);
     fz_check_status(st);
+    FZ_IEEE_SCOPE(); /* the reference below in the library's arithmetic */
     int bad_w = 0;
     for (size_t c = 0; c < ch && weighted; c++)
         bad_w |= !isfinite(w[c]);
