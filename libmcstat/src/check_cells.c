@@ -392,6 +392,68 @@ static double split_threshold(const mcstat__tree *tr, const mcstat__rect *rects,
     return hi;
 }
 
+#define TWO_PI 6.283185307179586476925286766559
+
+/* A rectangle's sides as lengths on the domain (radians on the sphere's
+ * surface), from the map's metric at its centre: with z = 1 - k s (k = 1
+ * the hemisphere, 2 the sphere) and rho = sin(theta), the polar side is
+ * k ds / rho and the azimuthal 2 pi rho dt; the disk's r = sqrt(s) gives
+ * ds / (2 r) and 2 pi r dt; the square is its own. */
+static void rect_sides(const mcstat__domain *d, const mcstat__rect *r, double *ls, double *lt)
+{
+    double s = 0.5 * (r->s0 + r->s1), ds = r->s1 - r->s0, dt = r->t1 - r->t0, rho;
+    switch (d->kind) {
+    case MCSTAT_DOMAIN_SPHERE: rho = 2.0 * sqrt(s * (1.0 - s)); *ls = 2.0 * ds / rho; *lt = TWO_PI * rho * dt; break;
+    case MCSTAT_DOMAIN_HEMISPHERE: rho = sqrt(s * (2.0 - s)); *ls = ds / rho; *lt = TWO_PI * rho * dt; break;
+    case MCSTAT_DOMAIN_DISK: rho = sqrt(s); *ls = ds / (2.0 * rho); *lt = TWO_PI * rho * dt; break;
+    default: *ls = ds, *lt = dt; break;
+    }
+}
+
+/* The tree's cells are slabs wherever the pilot is dense along s: a cell
+ * 0.01 by 0.6 of the hemisphere's square is 0.01 rad by 3.5 rad of
+ * azimuth, and a rule's seven points along 3.5 rad miss a lobe a tenth of a
+ * radian wide (its error estimate, seeing nothing, is tiny, so nothing
+ * halves it).  Before the rules run, rectangles whose azimuthal side is more
+ * than ASPECT_MAX times their polar side are halved across it, in passes
+ * over all of them, for at most ASPECT_PASSES passes and an eighth of the
+ * rectangles' budget (the rest is the halving's).  Only across t: cells
+ * long in s are the pole's (layered apart below) or a lobe's own shape (a
+ * mirror-like lobe at grazing incidence is 1e-6 across in azimuth and a
+ * tenth of a radian in elevation; cutting it along s only spends the
+ * budget its halving needs). */
+#define ASPECT_MAX 4.0
+#define ASPECT_PASSES 3
+static size_t aspect_cuts(mcstat__tree *tr, const mcstat__domain *d, mcstat__rect *rects, size_t nr,
+                          size_t max_rects)
+{
+    if (!d->two_d)
+        return nr;
+    size_t budget = nr + max_rects / 8 < max_rects ? nr + max_rects / 8 : max_rects;
+    for (int pass = 0; pass < ASPECT_PASSES; pass++) {
+        size_t n0 = nr;
+        for (size_t i = 0; i < n0 && nr < budget; i++) {
+            mcstat__rect *r = &rects[i];
+            double ls, lt;
+            rect_sides(d, r, &ls, &lt);
+            if (!(lt > ASPECT_MAX * ls))
+                continue;
+            mcstat__rect b = *r;
+            double mid = 0.5 * (r->t0 + r->t1);
+            r->t1 = b.t0 = mid;
+            uint64_t q = r->p0;
+            for (uint64_t j = r->p0; j < r->p1; j++)
+                if (tr->st[2 * j + 1] < mid)
+                    swap_pair(tr->st, j, q++);
+            r->p1 = b.p0 = q;
+            rects[nr++] = b;
+        }
+        if (nr == n0)
+            break;
+    }
+    return nr;
+}
+
 /* The poles of the sphere (the hemisphere's pole, the disk's centre) are
  * the lines s = 0 and s = 1 of the equal-area square: a feature a
  * thousandth of a radian across there is a strip 1e-6 wide spanning every
@@ -460,6 +522,7 @@ int mcstat__cells_integrate(mcstat__tree *tr, const mcstat__domain *d, mcstat__d
                           cell->p_first, cell->p_first + cell->p_count, 0.0, -1};
         rects[nr++] = r;
     }
+    nr = aspect_cuts(tr, d, rects, nr, max_rects);
     nr = pole_layers(tr, d, rects, nr, max_rects);
     int st = evaluate_dirty(rects, nr, d, density, ctx, xbuf, fbuf, batch);
     for (int round = 0; st == 0 && round < 64; round++) {
