@@ -364,17 +364,24 @@ static void compare(run *r, int route, const double *x, double a, double b)
  * ill-conditioned (at grazing incidence the half vector of two nearly
  * opposite directions loses digits) pdf() and eval() at the returned point
  * differ from the reported values by far more than rtol, for a correct BSDF.
- * So a point beyond rtol whose coordinates are float32 values is also
- * evaluated at its float32 neighbours (one ulp down and up in each
- * coordinate): a difference within a few ulps' worth of the value's change
+ * So a point beyond rtol whose coordinates are float32 values, or whose
+ * model returns float32 values, is also evaluated at its float32
+ * neighbours (one float32 ulp down and up in each coordinate): a difference within a few ulps' worth of the value's change
  * there is rounding, not evidence.  At most rounding_cap points are re-evaluated (a wrong model puts
  * every point beyond rtol; past the cap they count as they are). */
 
 #define ROUNDING_ULPS 4.0
 
+/* v moved by one float32 ulp toward `toward`: to the float32 neighbour of
+ * a float32 value; by the ulp of float32 at |v| otherwise (a direction a
+ * caller renormalised in double after a float32 renderer computed it). */
 static double float32_step(double v, double toward)
 {
-    return (double)nextafterf((float)v, (float)toward);
+    if (is_float32(v))
+        return (double)nextafterf((float)v, (float)toward);
+    float a = fabsf((float)v);
+    double ulp = (double)nextafterf(a, INFINITY) - (double)a;
+    return toward > v ? v + ulp : v - ulp;
 }
 
 /* The reference to compare `claim` with: `at_x`, the quantity at x (pdf(),
@@ -388,7 +395,10 @@ static int rounding_nearest(run *r, const double *x, double claim, double at_x, 
     double diff = fabs(claim - at_x), scale = fmax(fabs(claim), fabs(at_x));
     if (!(diff > r->rtol * scale) || r->rounding_checks >= r->rounding_cap)
         return MCSTAT_OK;
-    for (int c = 0; c < dims; c++)
+    /* a float32 point, or a point of a model whose values are all float32
+     * so far (its point computed in float32, then perhaps renormalised) */
+    int f32_values = r->o.resolution > 0.0 ? r->o.resolution >= MCSTAT_RESOLUTION_FLOAT32 : !r->not_float32;
+    for (int c = 0; c < dims && !f32_values; c++)
         if (!is_float32(x[c]))
             return MCSTAT_OK;
     r->rounding_checks++;

@@ -119,6 +119,10 @@ def mcstat_float32_resolution():
     return 2.0 ** -18
 
 
+def mcstat_float64_resolution():
+    return 2.0 ** -47
+
+
 @pytest.mark.parametrize("bad", [-1e-6, 0.01, 0.5, float("nan"), float("inf")])
 def test_resolution_out_of_range_is_refused(bad):
     with pytest.raises(mcstat.InvalidArgumentError, match="resolution"):
@@ -188,3 +192,79 @@ def test_assertion_fails_on_inconclusive_unless_allowed():
         mt.assert_bsdf_consistent(m.sample, m.eval, m.pdf, WI, **kw)
     rep = mt.assert_bsdf_consistent(m.sample, m.eval, m.pdf, WI, allow_inconclusive=True, **kw)
     assert rep.verdict == "inconclusive"
+
+
+# ---- a float32 peak through a caller's float64 renormalisation ---------------------
+
+class HenyeyGreenstein32:
+    """Henyey-Greenstein at g = 0.99 as a float32 renderer computes it (the
+    sample's pdf from the cosine it drew; pdf() from the float32 dot product
+    of the direction it is given), behind an adapter that renormalises the
+    returned directions in float64, as examples/mitsuba's phase adapter
+    did.  Near the forward peak the pdf changes by ~0.2% per float32 ulp of
+    the cosine, so the two pdfs differ by 0.35% at a correct sample, and
+    pdf_value and weight rejected at every seed (Mitsuba's hg, g = 0.99,
+    20 of 20 in the null zoo).  pdf_g: pdf() and eval() with another g
+    (the sampler then no longer draws what they claim)."""
+
+    def __init__(self, g=0.99, pdf_g=None):
+        self.g, self.pg = F32(g), F32(g if pdf_g is None else pdf_g)
+
+    @staticmethod
+    def _hg(c, g):
+        t = F32(1) + g * g - F32(2) * g * c
+        return (F32(1) - g * g) / (F32(4 * np.pi) * t * np.sqrt(t))
+
+    @staticmethod
+    def _frame(d):
+        a = np.array([1, 0, 0], F32) if abs(d[0]) < 0.9 else np.array([0, 1, 0], F32)
+        t1 = np.cross(d, a).astype(F32)
+        t1 /= np.sqrt(np.sum(t1 * t1, dtype=F32))
+        return t1, np.cross(d, t1).astype(F32)
+
+    def sample(self, wi, u):
+        u = np.minimum(u.astype(F32), np.nextafter(F32(1), F32(0)))
+        g = self.g
+        s = (F32(1) - g * g) / (F32(1) - g + F32(2) * g * u[:, 0])
+        c = np.clip((F32(1) + g * g - s * s) / (F32(2) * g), F32(-1), F32(1)).astype(F32)
+        r = np.sqrt(np.maximum(F32(0), F32(1) - c * c))
+        phi = F32(2 * np.pi) * u[:, 1]
+        d = (-np.asarray(wi, F32)).astype(F32)  # forward scattering continues along -wi
+        t1, t2 = self._frame(d)
+        wo = ((r * np.cos(phi))[:, None] * t1 + (r * np.sin(phi))[:, None] * t2 + c[:, None] * d).astype(F32)
+        wo = wo.astype(np.float64)
+        wo /= np.linalg.norm(wo, axis=1)[:, None]  # the adapter's renormalisation, in float64
+        return wo, np.ones(len(u)), self._hg(c, g).astype(np.float64)
+
+    def pdf(self, wi, wo):
+        wo = np.asarray(wo).astype(F32)
+        c = np.sum(-np.asarray(wi, F32) * wo, axis=1, dtype=F32)
+        return self._hg(np.clip(c, F32(-1), F32(1)), self.pg).astype(np.float64)
+
+    def eval(self, wi, wo):
+        return self.pdf(wi, wo)
+
+
+HG_WI = np.array([0.604023, 0.219846, 0.766044]) / np.linalg.norm([0.604023, 0.219846, 0.766044])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_float32_hg_peak_renormalised_in_float64_is_not_rejected(seed):
+    m = HenyeyGreenstein32()
+    r = mcstat.check_phase(m.sample, m.eval, m.pdf, HG_WI, n=20_000, seed=seed, alpha=0.01)
+    assert not r.route("pdf_value").reject and not r.route("weight").reject, str(r)
+
+
+def test_float32_hg_peak_with_the_float64_floor_is_rejected():
+    """The control: the same model judged at float64's resolution (no
+    float32 rounding allowed) is rejected, so the allowance is what passes it."""
+    m = HenyeyGreenstein32()
+    r = mcstat.check_phase(m.sample, m.eval, m.pdf, HG_WI, n=20_000, seed=0, alpha=0.01,
+                           resolution=mcstat_float64_resolution())
+    assert r.route("pdf_value").reject, str(r)
+
+
+def test_float32_hg_with_a_wrong_g_is_still_caught():
+    m = HenyeyGreenstein32(pdf_g=0.985)
+    r = mcstat.check_phase(m.sample, m.eval, m.pdf, HG_WI, n=20_000, seed=0, alpha=0.01)
+    assert r.reject and r.route("pdf_value").reject, str(r)
