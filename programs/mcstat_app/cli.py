@@ -101,8 +101,44 @@ def _test(a: argparse.Namespace) -> int:
     return 1 if (a.fail_on_reject and r.reject) else 0
 
 
+def _image_equivalence(a: argparse.Namespace) -> int:
+    from .image import run_equivalence
+
+    if not 0.0 <= a.equivalence < 1.0:
+        raise E.UsageError(f"--equivalence (the relative margin) must lie in [0, 1), got {a.equivalence}")
+    if not (a.atol >= 0.0):
+        raise E.UsageError(f"--atol must be >= 0, got {a.atol}")
+    if a.equivalence == 0.0 and a.atol == 0.0:
+        raise E.UsageError("--equivalence 0 needs --atol > 0: no difference could be shown inside a zero margin")
+    if not 0.0 < a.alpha < 0.5:
+        raise E.UsageError(f"--alpha must lie in (0, 0.5) with --equivalence (two one-sided tests), got {a.alpha}")
+    unused = [f"--{n.replace('_', '-')}" for n in ("png", "bias_png", "max_detectable_bias",
+                                                   "max_relative_detectable_bias", "spp")
+              if getattr(a, n) is not None]
+    unused += ["--alternative"] if a.alternative != "two-sided" else []
+    unused += ["--adjust"] if a.adjust != "BH" else []
+    if unused:
+        raise E.UsageError(f"{', '.join(unused)} belong to the difference test; --equivalence writes its summary "
+                           "with --json")
+    res, sources = run_equivalence(a.reference, a.candidate, margin=a.equivalence, atol=a.atol, block=a.block,
+                                   alpha=a.alpha, channels=a.channels, seed_axis=a.seed_axis, nan_policy=a.nan,
+                                   layer=a.layer, json_path=a.json, worst=a.worst)
+    if not a.quiet:
+        sys.stdout.write(res.text(a.worst) + "\n")
+        if sources:
+            print("read:\n" + "\n".join(sources))
+        if a.json:
+            print(f"summary: {a.json}")
+    if not a.fail_on_reject:
+        return E.EXIT_OK
+    return E.EXIT_OK if res.equivalent else E.EXIT_REJECTED
+
+
 def _image_test(a: argparse.Namespace) -> int:
     from .image import run
+
+    if a.equivalence is not None:
+        return _image_equivalence(a)
 
     for name in ("block", "max_detectable_bias", "max_relative_detectable_bias"):
         v = getattr(a, name)
@@ -190,9 +226,17 @@ def _add_image_test(sub) -> None:
     it.add_argument("--bias-quantile", type=float, default=0.9,
                     help="the quantile of the passing pixels' detectable bias that the limits apply to "
                          "(default: %(default)s)")
+    it.add_argument("--equivalence", type=float, default=None, metavar="MARGIN",
+                    help="instead of a difference test: is the candidate the reference within MARGIN (relative) "
+                         "+ --atol, shown at --alpha?  Two one-sided Welch tests per block of per-seed means "
+                         "(--block, default 32), every block shown or the verdict is 'not shown equivalent' "
+                         "(an intersection-union test: level alpha, no adjustment); per-seed inputs only")
+    it.add_argument("--atol", type=float, default=0.0,
+                    help="with --equivalence, an absolute margin added to the relative one (default: %(default)s)")
     it.add_argument("--fail-on-reject", action="store_true",
                     help="exit with the verdict: 0 equal, 1 different (some pixel differs after the adjustment), "
-                         "6 inconclusive (nothing tested, or a larger bias than --max-detectable-bias could hide)")
+                         "6 inconclusive (nothing tested, or a larger bias than --max-detectable-bias could hide); "
+                         "with --equivalence: 0 equivalent, 1 not shown equivalent")
     it.set_defaults(func=_image_test)
 
 

@@ -671,3 +671,34 @@ def run(reference, candidate, *, png: Optional[str] = None, json_path: Optional[
         except OSError as e:
             raise OutputError(f"{json_path}: cannot write the summary: {_reason(e)}") from e
     return res
+
+
+def run_equivalence(reference, candidate, *, margin: float, atol: float = 0.0, block: Optional[int] = None,
+                    alpha: float = 0.05, channels: str = "luminance", seed_axis: Optional[int] = None,
+                    nan_policy: str = "raise", layer: Optional[str] = None, json_path: Optional[str] = None,
+                    worst: int = 10):
+    """``mcstat image-test --equivalence``: `mcstat.image.equivalence` on
+    per-seed inputs read as `load_side` reads them (summaries and moment
+    files are refused: the blocks need the seeds), the sources read (EXR
+    layers) and the JSON summary.  Returns (result, the sources' lines)."""
+    from mcstat.image import equivalence
+
+    sides, sources = [], []
+    for name, x in (("reference", reference), ("candidate", candidate)):
+        side = load_side(x, seed_axis=seed_axis, layer=layer)
+        if not isinstance(side, Samples):
+            raise ImageInputError(f"{name}: --equivalence needs per-seed renders (a .npy stack or one image per "
+                                  "seed), not per-pixel summaries or moments")
+        sides.append(side)
+        if side.source:
+            sources.append(f"  {name}: {side.source}")
+    res = equivalence(sides[0], sides[1], margin=margin, atol=atol, block=32 if block is None else block,
+                      alpha=alpha, channels=channels, nan_policy=nan_policy)
+    if json_path:
+        try:
+            with open(json_path, "w") as f:
+                json.dump(res.summary(worst), f, indent=1)
+        except OSError as e:
+            raise OutputError(f"{json_path}: cannot write the summary: {_reason(e)}") from e
+    return res, sources
+

@@ -30,13 +30,14 @@ decided exactly: equivalent when the constants satisfy the margin.
 """
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any, List, Optional, Tuple
 
 import numpy as np
 
 from .. import _core
-from .._errors import InvalidArgumentError
+from .._errors import InvalidArgumentError, NonFiniteError
 
 __all__ = ["ImageEquivalence", "equivalence"]
 
@@ -62,6 +63,8 @@ class ImageEquivalence:
     #: per pixel (H, W, C): the TOST p-value, and BH-adjusted
     pixel_pvalue: np.ndarray
     pixel_p_adjusted: np.ndarray
+    #: "raise" or "omit" (NaN values left out of their pixel's and block's samples)
+    nan_policy: str = "raise"
 
     @property
     def pixels_shown_equivalent(self) -> np.ndarray:
@@ -123,6 +126,32 @@ class ImageEquivalence:
                              f"p {b['pvalue']:.3g}, relative difference {b['relative_difference']:+.3g}")
         return "\n".join(lines)
 
+    def summary(self, worst: int = 5) -> dict:
+        """The result as plain data (``mcstat image-test --equivalence --json``)."""
+        h, w, c = self.shape
+
+        def num(v: float) -> Optional[float]:
+            return None if np.isnan(v) else float(v)
+        return {
+            "test": "equivalence",
+            "image": {"height": h, "width": w, "channels": self.channel_names},
+            "seeds": {"reference": self.seeds[0], "candidate": self.seeds[1]},
+            "margin": self.margin,
+            "atol": self.atol,
+            "alpha": self.alpha,
+            "block": self.block,
+            "nan_policy": self.nan_policy,
+            "verdict": "equivalent" if self.equivalent else "not shown equivalent",
+            "blocks": int(self.block_pvalue.size),
+            "blocks_shown": self.blocks_shown,
+            "blocks_untestable": self.blocks_untestable,
+            "margin_shown": num(self.margin_shown),
+            "pixels_shown_equivalent": int(self.pixels_shown_equivalent.sum()),
+            "pixels": int(self.pixel_pvalue.size),
+            "worst_blocks": [dict(b, pvalue=num(b["pvalue"]), relative_difference=num(b["relative_difference"]))
+                             for b in self.worst(worst)],
+        }
+
     def __str__(self) -> str:
         return self.text()
 
@@ -156,17 +185,21 @@ def _blocks(d: np.ndarray, n: int) -> np.ndarray:
     return sums / (cy[:, None] * cx[None, :]).astype(np.float64)[None, :, :, None]
 
 
-def _tost(ref: np.ndarray, cand: np.ndarray, margin: float, atol: float) -> Tuple[np.ndarray, np.ndarray]:
-    """Per unit: the TOST p-value and about the smallest margin shown at level `level` (see below)."""
+def _tost(ref: np.ndarray, cand: np.ndarray, margin: float, atol: float,
+          nan_policy: str = "raise") -> Tuple[np.ndarray, np.ndarray]:
+    """Per unit: the TOST p-value and whether both sides are constant."""
     r = ref.astype(np.float64, copy=False)
     lo = _core.t_test(cand, (1.0 - margin) * r, axis=0, mu=-atol, alternative="greater", intervals=False,
-                      on_error="nan")
+                      on_error="nan", nan_policy=nan_policy)
     hi = _core.t_test(cand, (1.0 + margin) * r, axis=0, mu=atol, alternative="less", intervals=False,
-                      on_error="nan")
+                      on_error="nan", nan_policy=nan_policy)
     p = np.maximum(np.asarray(lo.pvalue), np.asarray(hi.pvalue))
     # both sides constant: decided exactly
-    cr, cc = r[0], cand[0].astype(np.float64)
-    const = np.all(r == cr, axis=0) & np.all(cand == cand[0], axis=0)
+    # (NaN omitted: constant over the values left; a unit with none left stays untestable)
+    with np.errstate(invalid="ignore"):
+        cr, cc = np.nanmax(r, axis=0), np.nanmax(cand, axis=0).astype(np.float64)
+        const = (np.all((r == cr) | np.isnan(r), axis=0) & np.all((cand == cc) | np.isnan(cand), axis=0)
+                 & np.isfinite(cr) & np.isfinite(cc))
     if const.any():
         inside = (cc > (1.0 - margin) * cr - atol) & (cc < (1.0 + margin) * cr + atol)
         p = np.where(const, np.where(inside, 0.0, 1.0), p)
@@ -174,15 +207,21 @@ def _tost(ref: np.ndarray, cand: np.ndarray, margin: float, atol: float) -> Tupl
 
 
 def equivalence(reference: Any, candidate: Any, *, margin: float, atol: float = 0.0, block: int = 32,
-                alpha: float = 0.05, seed_axis: Optional[int] = None, channels: str = "all") -> ImageEquivalence:
+                alpha: float = 0.05, seed_axis: Optional[int] = None, channels: str = "all",
+                nan_policy: str = "raise") -> ImageEquivalence:
     """Is the candidate the reference up to ``margin`` (relative) + ``atol``,
     shown at level alpha?  Both sides per-seed renders, ``(seeds, H, W[,
     C])`` (``seed_axis`` as in `compare`), at least 2 seeds each.
 
     ``block``: the verdict's unit, n x n blocks of per-seed means (1: every
     pixel); see the module's text for what the verdict and the per-pixel
-    map claim.  Returns `ImageEquivalence` (``equivalent``, per-block and
-    per-pixel p-values, ``margin_shown``, ``text()``).
+    map claim.  ``nan_policy``: NaN values raise `InvalidArgumentError`
+    ("raise"), or are left out ("omit"): of their pixel's sample, and a
+    seed whose block holds a NaN leaves that block's sample (a unit with
+    fewer than 2 values left on a side is untestable, so the verdict is
+    not "equivalent"); infinities are refused either way.  Returns
+    `ImageEquivalence` (``equivalent``, per-block and per-pixel p-values,
+    ``margin_shown``, ``text()``, ``summary()``).
     """
     if not (isinstance(margin, (int, float)) and np.isfinite(margin) and 0.0 <= margin < 1.0):
         raise InvalidArgumentError(f"margin must be in [0, 1), got {margin!r}")
@@ -201,22 +240,32 @@ def equivalence(reference: Any, candidate: Any, *, margin: float, atol: float = 
     if r.shape[0] < 2 or c.shape[0] < 2:
         raise InvalidArgumentError(f"equivalence needs at least 2 seeds per side, got {r.shape[0]} reference and "
                                    f"{c.shape[0]} candidate")
-    if not (np.isfinite(r).all() and np.isfinite(c).all()):
-        raise InvalidArgumentError("reference and candidate must hold finite values only")
+    if nan_policy not in ("raise", "omit"):
+        raise InvalidArgumentError(f"nan_policy must be 'raise' or 'omit', got {nan_policy!r}")
+    for d, name in ((r, "reference"), (c, "candidate")):
+        bad = np.isinf(d) if nan_policy == "omit" else ~np.isfinite(d)
+        if bad.any():
+            s_, y, x, ch = (int(i) for i in np.argwhere(bad)[0])
+            what = "an infinity" if np.isinf(d[s_, y, x, ch]) else "NaN"
+            hint = ("" if nan_policy == "omit" or np.isinf(d[s_, y, x, ch])
+                    else "; pass nan_policy='omit' (--nan omit) to leave NaN values out")
+            raise NonFiniteError(f"{name} holds {what} at seed {s_}, x={x}, y={y} ({names[ch]}){hint}")
     block = int(block)
-    pp, _ = _tost(r, c, margin, atol)
+    pp, _ = _tost(r, c, margin, atol, nan_policy)
     rb, cb = _blocks(r, block), _blocks(c, block)
-    bp, _ = _tost(rb, cb, margin, atol)
-    mr, mc = rb.mean(axis=0), cb.mean(axis=0)
+    bp, _ = _tost(rb, cb, margin, atol, nan_policy)
     with np.errstate(divide="ignore", invalid="ignore"):
+        mr, mc = np.nanmean(rb, axis=0), np.nanmean(cb, axis=0)
         rel = (mc - mr) / mr
         # the margin shown, about: (|d| + atol-free t_{1-alpha} se) / mean_ref with the
         # contrast's se at margin 0 (the exact one grows with the margin, slightly)
-        se = np.sqrt(rb.var(axis=0, ddof=1) / rb.shape[0] + cb.var(axis=0, ddof=1) / cb.shape[0])
-        nr, nc = rb.shape[0], cb.shape[0]
-        vr, vc = rb.var(axis=0, ddof=1) / nr, cb.var(axis=0, ddof=1) / nc
+        nr, nc = np.sum(~np.isnan(rb), axis=0), np.sum(~np.isnan(cb), axis=0)
+        with warnings.catch_warnings():  # a unit left with one value: NaN, untestable
+            warnings.simplefilter("ignore", RuntimeWarning)
+            vr, vc = np.nanvar(rb, axis=0, ddof=1) / nr, np.nanvar(cb, axis=0, ddof=1) / nc
+        se = np.sqrt(vr + vc)
         df = (vr + vc) ** 2 / (vr ** 2 / (nr - 1) + vc ** 2 / (nc - 1))
-        df = np.where(np.isfinite(df), df, float(nr + nc - 2))
+        df = np.where(np.isfinite(df), df, np.maximum(nr + nc - 2, 1).astype(float))
         tq = np.asarray(_core._t_quantiles(alpha, df.ravel(), True)).reshape(df.shape)
         shown = (np.abs(mc - mr) + tq * se) / mr
         shown = np.where(mr > 0, shown, np.nan)
@@ -227,5 +276,5 @@ def equivalence(reference: Any, candidate: Any, *, margin: float, atol: float = 
         equivalent=equivalent, margin=float(margin), atol=float(atol), alpha=float(alpha), block=block,
         shape=tuple(r.shape[1:]), channel_names=names, seeds=(int(r.shape[0]), int(c.shape[0])),  # type: ignore[arg-type]
         block_pvalue=bp, block_relative_difference=rel, block_margin_shown=shown, pixel_pvalue=pp,
-        pixel_p_adjusted=padj,
+        pixel_p_adjusted=padj, nan_policy=nan_policy,
     )
