@@ -189,9 +189,13 @@ static void put_budget(text *t, const mcstat_check_report *r, int i)
     put(t, "  %-12s", route_names[i]);
     switch (i) {
     case MCSTAT_CHECK_ROUTE_CELLS:
+        /* w in the sampler's terms: moving a share q of the probability
+         * from one half of the domain to the other gives w = 2 q */
         put(t, "Cohen's w ");
         put_g(t, "%.3g", rr->detectable);
-        put(t, " (measured ");
+        put(t, ", a sampler moving ");
+        put_g(t, "%.3g", 50.0 * rr->detectable);
+        put(t, "%% of its probability between two halves of the domain (measured w ");
         put_g(t, "%.3g", rr->effect);
         put(t, "); w = 0.01 needs ");
         put_g(t, "%.3g", rr->n_for_1pct);
@@ -199,13 +203,17 @@ static void put_budget(text *t, const mcstat_check_report *r, int i)
         break;
     case MCSTAT_CHECK_ROUTE_MASS:
     case MCSTAT_CHECK_ROUTE_INTEGRALS:
-        put(t, "relative ");
+        put(t, i == MCSTAT_CHECK_ROUTE_MASS ? "pdf() off its integral by a relative " : "integrals off by a relative ");
         put_g(t, "%.3g", rr->detectable);
         put(t, " (measured ");
         put_g(t, "%.3g", rr->effect);
-        put(t, "); 1%% needs ");
-        put_g(t, "%.3g", rr->n_for_1pct);
-        put(t, " samples\n");
+        if (isinf(rr->n_for_1pct))
+            put(t, "); 1%% is within the integrals' own error, whatever n (more cells or n_eval)\n");
+        else {
+            put(t, "); 1%% needs ");
+            put_g(t, "%.3g", rr->n_for_1pct);
+            put(t, " samples\n");
+        }
         break;
     case MCSTAT_CHECK_ROUTE_KS:
         put(t, "a sup distance of about ");
