@@ -202,6 +202,16 @@ enum mcstat_status {
 /* A sentence describing status (static storage; never NULL). */
 MCSTAT_API const char *mcstat_strerror(int status);
 
+/* Why the last call on this thread refused its arguments, naming the
+ * argument and its value ("options.cells must be 0 (automatic) or
+ * 2..1048576, got 1"), or "" when it gave no reason.  Functions that give
+ * reasons clear it when they start, so after one of them it belongs to
+ * that call: in 0.3.0 the renderer checks (mcstat_check_bsdf, _emitter,
+ * _warp, _phase, _medium, mcstat_check_work_size), for every MCSTAT_EINVAL
+ * and MCSTAT_ETOOBIG they return.  Thread-local storage, valid until the
+ * thread's next call of such a function; never NULL.  (Since 0.3.) */
+MCSTAT_API const char *mcstat_last_error(void);
+
 /* ------------------------------------------------------------------------ */
 /* Alternatives and tails.                                                   */
 /* An alternative is a claim about the first sample: MCSTAT_LESS means       */

@@ -99,62 +99,97 @@ static int carve(const plan *pl, char *base, scratch *s, size_t *bytes)
     TAKE(s->rects, pl->max_rects, mcstat__rect);
 #undef TAKE
     if (overflow)
-        return MCSTAT_ETOOBIG;
+        return mcstat__refuse(MCSTAT_ETOOBIG, "the check's work memory for n = %llu and these options would pass "
+                              "SIZE_MAX", (unsigned long long)pl->n);
     *bytes = off;
     return MCSTAT_OK;
 }
 
+static const char *kind_name(int kind)
+{
+    switch (kind) {
+    case MCSTAT_CHECK_KIND_BSDF: return "a BSDF";
+    case MCSTAT_CHECK_KIND_EMITTER: return "an emitter";
+    case MCSTAT_CHECK_KIND_PHASE: return "a phase function";
+    case MCSTAT_CHECK_KIND_MEDIUM: return "a medium";
+    default: return "a warp";
+    }
+}
+
+/* Every refusal says why (mcstat_last_error), naming the field as a C
+ * caller writes it; the bindings pass the text on. */
+#define REFUSE(...) return mcstat__refuse(MCSTAT_EINVAL, __VA_ARGS__)
+
 static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcstat_check_options *o, plan *pl)
 {
-    if (!m || !m->sample || !m->pdf)
-        return MCSTAT_EINVAL;
+    if (!m)
+        REFUSE("model is NULL");
+    if (!m->sample || !m->pdf)
+        REFUSE("model.%s is NULL: every check calls sample() and pdf()", m->sample ? "pdf" : "sample");
     if (mcstat__domain_get(m->domain, &pl->d) != MCSTAT_OK)
-        return MCSTAT_EINVAL;
+        REFUSE("model.domain %d is not a domain (MCSTAT_DOMAIN_*)", m->domain);
+    const char *dom = mcstat_check_domain_name(m->domain);
     if (m->n_uniforms < 1 || m->n_uniforms > MCSTAT_CHECK_MAX_UNIFORMS)
-        return MCSTAT_EINVAL;
+        REFUSE("model.n_uniforms must be in 1..%d, got %d", MCSTAT_CHECK_MAX_UNIFORMS, m->n_uniforms);
     if (m->weight != MCSTAT_WEIGHT_OVER_PDF && m->weight != MCSTAT_WEIGHT_VALUE)
-        return MCSTAT_EINVAL;
+        REFUSE("model.weight must be MCSTAT_WEIGHT_OVER_PDF or MCSTAT_WEIGHT_VALUE, got %d", m->weight);
     if (m->sample_reports != 0 && m->sample_reports != 1)
-        return MCSTAT_EINVAL;
-    if (kind != MCSTAT_CHECK_KIND_WARP && (!m->eval || !m->sample_reports))
-        return MCSTAT_EINVAL; /* BSDFs and emitters have an integrand and weights */
-    if ((kind == MCSTAT_CHECK_KIND_EMITTER) &&
+        REFUSE("model.sample_reports must be 0 or 1, got %d", m->sample_reports);
+    if (kind != MCSTAT_CHECK_KIND_WARP && !m->eval) /* BSDFs and emitters have an integrand and weights */
+        REFUSE("model.eval is NULL: the check of %s integrates eval()", kind_name(kind));
+    if (kind != MCSTAT_CHECK_KIND_WARP && !m->sample_reports)
+        REFUSE("model.sample_reports is 0: the check of %s needs each sample's pdf and weight from sample()",
+               kind_name(kind));
+    if ((kind == MCSTAT_CHECK_KIND_EMITTER || kind == MCSTAT_CHECK_KIND_BSDF) &&
         m->domain != MCSTAT_DOMAIN_SPHERE && m->domain != MCSTAT_DOMAIN_HEMISPHERE)
-        return MCSTAT_EINVAL;
-    if (kind == MCSTAT_CHECK_KIND_BSDF && pl->d.dims != 3)
-        return MCSTAT_EINVAL;
+        REFUSE("model.domain of %s must be sphere or hemisphere (directions), got %s", kind_name(kind), dom);
     if (kind == MCSTAT_CHECK_KIND_PHASE && m->domain != MCSTAT_DOMAIN_SPHERE)
-        return MCSTAT_EINVAL; /* a phase function is normalised over the whole sphere */
+        REFUSE("model.domain of a phase function must be sphere (it is normalised over the whole sphere), got %s",
+               dom);
     if (kind == MCSTAT_CHECK_KIND_MEDIUM && m->domain != MCSTAT_DOMAIN_INTERVAL)
-        return MCSTAT_EINVAL; /* distances, mapped to [0, 1] */
+        REFUSE("model.domain of a medium must be interval (distances mapped to [0, 1]), got %s", dom);
     if (n < 1000)
-        return MCSTAT_EINVAL;
+        REFUSE("n must be at least 1000, got %zu", n);
     if ((uint64_t)n > (1ull << 48))
-        return MCSTAT_ETOOBIG;
+        return mcstat__refuse(MCSTAT_ETOOBIG, "n must be at most 2^48, got %zu", n);
     if (o->routes == 0 || (o->routes & ~MCSTAT_CHECK_ROUTE_ALL))
-        return MCSTAT_EINVAL;
+        REFUSE("options.routes must be a nonzero set of MCSTAT_CHECK_ROUTE_* bits, got 0x%x", (unsigned)o->routes);
     for (int i = 0; i < 4; i++)
-        if ((i < 3 && m->reserved_rest[i] != 0.0) || o->reserved[i] != 0.0)
-            return MCSTAT_EINVAL; /* kept zero, so that later releases can give them a meaning */
+        if ((i < 3 && m->reserved_rest[i] != 0.0) || o->reserved[i] != 0.0) /* kept zero for later releases */
+            REFUSE("%s[%d] must be 0 (reserved for later releases)",
+                   i < 3 && m->reserved_rest[i] != 0.0 ? "model.reserved_rest" : "options.reserved", i);
     if (m->lobes && kind != MCSTAT_CHECK_KIND_BSDF)
-        return MCSTAT_EINVAL;
-    if (isnan(o->escape_transmittance) || o->escape_transmittance > 1.0 ||
-        (o->escape_transmittance >= 0.0 && (kind != MCSTAT_CHECK_KIND_MEDIUM || m->weight != MCSTAT_WEIGHT_OVER_PDF)))
-        return MCSTAT_EINVAL;
+        REFUSE("model.lobes is set in the check of %s: discrete lobes are a BSDF's", kind_name(kind));
+    if (isnan(o->escape_transmittance) || o->escape_transmittance > 1.0)
+        REFUSE("options.escape_transmittance must be negative (off) or in [0, 1], got %g", o->escape_transmittance);
+    if (o->escape_transmittance >= 0.0 && kind != MCSTAT_CHECK_KIND_MEDIUM)
+        REFUSE("options.escape_transmittance is %g in the check of %s: it is a medium's", o->escape_transmittance,
+               kind_name(kind));
+    if (o->escape_transmittance >= 0.0 && m->weight != MCSTAT_WEIGHT_OVER_PDF)
+        REFUSE("options.escape_transmittance needs model.weight = MCSTAT_WEIGHT_OVER_PDF (an escape's weight is "
+               "what it carries on)");
     if (o->reserved_i != 0)
-        return MCSTAT_EINVAL;
-    if ((o->stochastic != 0 && o->stochastic != 1) || (o->reciprocal != 0 && o->reciprocal != 1))
-        return MCSTAT_EINVAL;
+        REFUSE("options.reserved_i must be 0 (reserved for later releases), got %d", o->reserved_i);
+    if (o->stochastic != 0 && o->stochastic != 1)
+        REFUSE("options.stochastic must be 0 or 1, got %d", o->stochastic);
+    if (o->reciprocal != 0 && o->reciprocal != 1)
+        REFUSE("options.reciprocal must be 0 or 1, got %d", o->reciprocal);
     if (o->cells < 0 || o->cells == 1 || o->cells > (1 << 20))
-        return MCSTAT_EINVAL;
+        REFUSE("options.cells must be 0 (automatic) or 2..1048576, got %d", o->cells);
     if (o->batch < 64 || o->batch > ((uint64_t)1 << 32))
-        return MCSTAT_EINVAL;
-    if (!(o->rtol > 0.0 && o->rtol < 1.0) || !(o->tolerated >= 0.0 && o->tolerated < 1.0))
-        return MCSTAT_EINVAL;
+        REFUSE("options.batch must be in 64..2^32, got %llu", (unsigned long long)o->batch);
+    if (!(o->rtol > 0.0 && o->rtol < 1.0))
+        REFUSE("options.rtol must be in (0, 1), got %g", o->rtol);
+    if (!(o->tolerated >= 0.0 && o->tolerated < 1.0))
+        REFUSE("options.tolerated must be in [0, 1), got %g", o->tolerated);
     if (!(o->resolution >= 0.0 && o->resolution < 0.01))
-        return MCSTAT_EINVAL;
-    if (o->n_pilot > (1ull << 40) || o->n_eval > (1ull << 48))
-        return MCSTAT_ETOOBIG;
+        REFUSE("options.resolution must be 0 (derived from the values) or in (0, 0.01), got %g", o->resolution);
+    if (o->n_pilot > (1ull << 40))
+        return mcstat__refuse(MCSTAT_ETOOBIG, "options.n_pilot must be at most 2^40, got %llu",
+                              (unsigned long long)o->n_pilot);
+    if (o->n_eval > (1ull << 48))
+        return mcstat__refuse(MCSTAT_ETOOBIG, "options.n_eval must be at most 2^48, got %llu",
+                              (unsigned long long)o->n_eval);
     pl->kind = kind;
     pl->nu = m->n_uniforms;
     pl->reports = m->sample_reports;
@@ -169,10 +204,11 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
     pl->cells_target = k;
     pl->n_pilot = o->n_pilot ? o->n_pilot : LEAF_POINTS * k;
     if (pl->n_pilot < 2 * LEAF_POINTS)
-        return MCSTAT_EINVAL;
+        REFUSE("options.n_pilot must be 0 (automatic) or at least %d, got %llu", 2 * LEAF_POINTS,
+               (unsigned long long)pl->n_pilot);
     pl->n_eval = o->n_eval ? o->n_eval : n;
     if (pl->n_eval < 1000)
-        return MCSTAT_EINVAL;
+        REFUSE("options.n_eval must be 0 (n) or at least 1000, got %llu", (unsigned long long)pl->n_eval);
     uint64_t most = n > pl->n_pilot ? n : pl->n_pilot;
     if (pl->n_eval > most)
         most = pl->n_eval;
@@ -189,18 +225,22 @@ static int read_options(const mcstat_check_options *opt, mcstat_check_options *o
     *o = defaults;
     if (!opt)
         return MCSTAT_OK;
-    return mcstat__options_read(o, sizeof *o, opt, known_sizes, sizeof known_sizes / sizeof known_sizes[0]);
+    if (mcstat__options_read(o, sizeof *o, opt, known_sizes, sizeof known_sizes / sizeof known_sizes[0]))
+        REFUSE("options.size %u is not a size of mcstat_check_options this version knows (MCSTAT_CHECK_OPTIONS_INIT "
+               "sets it)", (unsigned)opt->size);
+    return MCSTAT_OK;
 }
 
 int mcstat_check_work_size(const mcstat_check_model *model, size_t n, const mcstat_check_options *opt,
                            size_t *bytes)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     mcstat_check_options o;
     plan pl;
     scratch s;
     if (!bytes)
-        return MCSTAT_EINVAL;
+        REFUSE("bytes is NULL");
     int st = read_options(opt, &o);
     if (st)
         return st;
@@ -919,8 +959,10 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
                      uint64_t seed, double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
                      mcstat_check_report *out)
 {
-    if (!out || !valid_alpha(alpha))
-        return MCSTAT_EINVAL;
+    if (!out)
+        REFUSE("out (the report) is NULL");
+    if (!valid_alpha(alpha))
+        REFUSE("alpha must be in (0, 1), got %g", alpha);
     run r;
     memset(&r, 0, sizeof r);
     int st = read_options(opt, &r.o);
@@ -932,11 +974,13 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     double wi[3] = {NAN, NAN, NAN};
     int has_wi = kind == MCSTAT_CHECK_KIND_BSDF || kind == MCSTAT_CHECK_KIND_PHASE;
     if (has_wi) {
-        if (!wi_in || !isfinite(wi_in[0]) || !isfinite(wi_in[1]) || !isfinite(wi_in[2]))
-            return MCSTAT_EINVAL;
+        if (!wi_in)
+            REFUSE("wi is NULL");
+        if (!isfinite(wi_in[0]) || !isfinite(wi_in[1]) || !isfinite(wi_in[2]))
+            REFUSE("wi must be a finite, non-zero direction, got (%g, %g, %g)", wi_in[0], wi_in[1], wi_in[2]);
         double len = sqrt(wi_in[0] * wi_in[0] + wi_in[1] * wi_in[1] + wi_in[2] * wi_in[2]);
         if (!(len > 0.0) || !isfinite(len))
-            return MCSTAT_EINVAL;
+            REFUSE("wi must be a finite, non-zero direction, got (%g, %g, %g)", wi_in[0], wi_in[1], wi_in[2]);
         for (int c = 0; c < 3; c++)
             wi[c] = wi_in[c] / len;
     }
@@ -950,8 +994,10 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
         if (!owned)
             return MCSTAT_ENOMEM;
         work = owned;
-    } else if (work_bytes < need || ((uintptr_t)work & 15u)) {
-        return MCSTAT_EINVAL;
+    } else if (work_bytes < need) {
+        REFUSE("work holds %zu bytes; the check needs %zu (mcstat_check_work_size)", work_bytes, need);
+    } else if ((uintptr_t)work & 15u) {
+        REFUSE("work must be 16-byte aligned");
     }
     carve(&r.pl, work, &r.s, &need);
 
@@ -1106,6 +1152,7 @@ int mcstat_check_bsdf(const mcstat_check_model *model, const double wi[3], size_
                       const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     return run_check(MCSTAT_CHECK_KIND_BSDF, model, wi, 0.0, n, seed, alpha, opt, work, work_bytes, out);
 }
 
@@ -1113,6 +1160,7 @@ int mcstat_check_emitter(const mcstat_check_model *model, size_t n, uint64_t see
                          const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     return run_check(MCSTAT_CHECK_KIND_EMITTER, model, NULL, 0.0, n, seed, alpha, opt, work, work_bytes, out);
 }
 
@@ -1120,6 +1168,7 @@ int mcstat_check_warp(const mcstat_check_model *model, size_t n, uint64_t seed, 
                       const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     return run_check(MCSTAT_CHECK_KIND_WARP, model, NULL, 0.0, n, seed, alpha, opt, work, work_bytes, out);
 }
 
@@ -1127,6 +1176,7 @@ int mcstat_check_phase(const mcstat_check_model *model, const double wi[3], size
                        const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     return run_check(MCSTAT_CHECK_KIND_PHASE, model, wi, 0.0, n, seed, alpha, opt, work, work_bytes, out);
 }
 
@@ -1134,7 +1184,8 @@ int mcstat_check_medium(const mcstat_check_model *model, double sigma_ref, size_
                         const mcstat_check_options *opt, void *work, size_t work_bytes, mcstat_check_report *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     if (!(sigma_ref > 0.0) || !isfinite(sigma_ref))
-        return MCSTAT_EINVAL;
+        REFUSE("sigma_ref must be finite and > 0, got %g", sigma_ref);
     return run_check(MCSTAT_CHECK_KIND_MEDIUM, model, NULL, sigma_ref, n, seed, alpha, opt, work, work_bytes, out);
 }

@@ -28,6 +28,14 @@ static inline int valid_alpha(double alpha)
     return alpha > 0.0 && alpha < 1.0; /* false for NaN */
 }
 
+/* ---- reasons for refusals (status.c) --------------------------------------
+ * mcstat__refuse writes the reason mcstat_last_error() returns and returns
+ * status: `return mcstat__refuse(MCSTAT_EINVAL, "alpha must be in (0, 1),
+ * got %g", alpha);`.  A function that gives reasons clears the last one
+ * when it starts (mcstat__error_clear), so no earlier call's shows. */
+MCSTAT_HIDDEN int mcstat__refuse(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+MCSTAT_HIDDEN void mcstat__error_clear(void);
+
 /* One header per concern, in dependency order. */
 #include "fpenv.h"      /* IEEE semantics and the caller's FP mode */
 #include "dd.h"         /* double-double arithmetic */

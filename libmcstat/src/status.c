@@ -1,11 +1,13 @@
 /*
- * status.c - status texts and the names of the enums (alternatives,
- * decisions).
+ * status.c - status texts, the last refusal's reason and the names of the
+ * enums (alternatives, decisions).
  *
  * Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
  */
 #include "internal.h"
 
+#include <stdarg.h>
+#include <stdio.h>
 #include <string.h>
 
 const char *mcstat_strerror(int status)
@@ -25,6 +27,29 @@ const char *mcstat_strerror(int status)
     case MCSTAT_EHEAVYTAIL: return "the data's tails are too heavy for a decision within the samples seen (the kurtosis gate never opened)";
     default: return "unknown status code";
     }
+}
+
+/* One reason per thread: a refusal is written where it is decided and
+ * read by the caller (or a binding) right after the call returns. */
+static _Thread_local char last_error[320];
+
+const char *mcstat_last_error(void)
+{
+    return last_error;
+}
+
+void mcstat__error_clear(void)
+{
+    last_error[0] = '\0';
+}
+
+int mcstat__refuse(int status, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(last_error, sizeof last_error, fmt, ap);
+    va_end(ap);
+    return status;
 }
 
 int mcstat_alternative_parse(const char *name, int *alternative)

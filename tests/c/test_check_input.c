@@ -258,6 +258,15 @@ static int untouched(const mcstat_check_report *r) { return memcmp(r, &sentinel,
         CHECK_MSG(st_ == MCSTAT_EINVAL, "%s: status %d (%s), want MCSTAT_EINVAL", what, st_,      \
                   mcstat_strerror(st_));                                                          \
         CHECK_MSG(untouched(&rep), "%s: *out written on failure", what);                          \
+        CHECK_MSG(mcstat_last_error()[0] != '\0', "%s: no reason (mcstat_last_error() is empty)", what); \
+    } while (0)
+
+/* ... and the reason names `word` (the argument, as a C caller spells it) */
+#define CHECK_EINVAL_WHY(call, what, word)                                                        \
+    do {                                                                                          \
+        CHECK_EINVAL(call, what);                                                                 \
+        CHECK_MSG(strstr(mcstat_last_error(), word) != NULL, "%s: reason '%s' does not name %s", what, \
+                  mcstat_last_error(), word);                                                     \
     } while (0)
 
 static void test_einval_arguments(void)
@@ -270,20 +279,20 @@ static void test_einval_arguments(void)
     int st = mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep);
     CHECK_MSG(st == MCSTAT_OK, "valid model: %s (%s)", mcstat_strerror(st), rep.message);
 
-    CHECK_EINVAL(mcstat_check_bsdf(NULL, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL model");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(NULL, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL model", "model is NULL");
     CHECK_INT(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, NULL, NULL, 0, NULL), MCSTAT_EINVAL);
-    CHECK_EINVAL(mcstat_check_bsdf(&model, NULL, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL wi");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, NULL, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL wi", "wi is NULL");
 
     mcstat_check_model bad = model;
     bad.sample = NULL;
-    CHECK_EINVAL(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL sample");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL sample", "model.sample");
     bad = model;
     bad.pdf = NULL;
     CHECK_EINVAL(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL pdf");
     bad = model;
     bad.eval = NULL; /* a BSDF has an integrand */
     CHECK_EINVAL(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL eval (BSDF)");
-    CHECK_EINVAL(mcstat_check_emitter(&bad, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL eval (emitter)");
+    CHECK_EINVAL_WHY(mcstat_check_emitter(&bad, N, SEED, ALPHA, NULL, NULL, 0, &rep), "NULL eval (emitter)", "model.eval");
 
     const int domains[] = {-1, 5, 1000};
     for (size_t i = 0; i < sizeof domains / sizeof domains[0]; i++) {
@@ -295,19 +304,19 @@ static void test_einval_arguments(void)
     /* an emitter's points are directions */
     mock mw;
     mcstat_check_model square = make_model(&mw, MCSTAT_DOMAIN_SQUARE, F_NONE);
-    CHECK_EINVAL(mcstat_check_emitter(&square, N, SEED, ALPHA, NULL, NULL, 0, &rep), "emitter on the square");
+    CHECK_EINVAL_WHY(mcstat_check_emitter(&square, N, SEED, ALPHA, NULL, NULL, 0, &rep), "emitter on the square", "model.domain");
 
     const int uniforms[] = {0, -1, MCSTAT_CHECK_MAX_UNIFORMS + 1};
     for (size_t i = 0; i < sizeof uniforms / sizeof uniforms[0]; i++) {
         bad = model;
         bad.n_uniforms = uniforms[i];
-        CHECK_EINVAL(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "bad n_uniforms");
+        CHECK_EINVAL_WHY(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "bad n_uniforms", "model.n_uniforms");
     }
     const int weights[] = {-1, 2};
     for (size_t i = 0; i < sizeof weights / sizeof weights[0]; i++) {
         bad = model;
         bad.weight = weights[i];
-        CHECK_EINVAL(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "bad weight enum");
+        CHECK_EINVAL_WHY(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "bad weight enum", "model.weight");
     }
     bad = model;
     bad.sample_reports = 0; /* a BSDF's sampler reports its weight and pdf */
@@ -317,7 +326,7 @@ static void test_einval_arguments(void)
     bad.sample_reports = 2;
     CHECK_EINVAL(mcstat_check_bsdf(&bad, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep), "sample_reports 2");
 
-    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, 999, SEED, ALPHA, NULL, NULL, 0, &rep), "n = 999");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, WI, 999, SEED, ALPHA, NULL, NULL, 0, &rep), "n = 999", "n must be at least 1000, got 999");
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, 0, SEED, ALPHA, NULL, NULL, 0, &rep), "n = 0");
     CHECK_EINVAL(mcstat_check_warp(&square, 999, SEED, ALPHA, NULL, NULL, 0, &rep), "n = 999 (warp)");
     fill(&rep);
@@ -350,7 +359,7 @@ static void test_einval_options_and_work(void)
     for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++) {
         o = opt;
         o.size = sizes[i];
-        CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "unknown options size");
+        CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "unknown options size", "options.size");
     }
     /* every released size is read */
     o = opt;
@@ -359,22 +368,22 @@ static void test_einval_options_and_work(void)
     /* bad options */
     o = opt;
     o.batch = 0;
-    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "batch 0");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "batch 0", "options.batch");
     o = opt;
     o.rtol = -1e-3;
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "rtol < 0");
     o = opt;
     o.rtol = NAN;
-    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "rtol NaN");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "rtol NaN", "options.rtol");
     o = opt;
     o.cells = -1;
-    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "cells < 0");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "cells < 0", "options.cells");
     o = opt;
     o.routes = 1u << MCSTAT_CHECK_ROUTE_COUNT;
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "an unknown route bit");
     o = opt;
     o.routes = 0;
-    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "no route at all");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "no route at all", "options.routes");
     o = opt;
     o.reserved[2] = 1.0;
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &o, NULL, 0, &rep), "options reserved not zero");
@@ -407,8 +416,9 @@ static void test_einval_options_and_work(void)
     unsigned char *aligned = buf + ((16 - (uintptr_t)buf % 16) % 16);
     int st = mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &opt, aligned, bytes, &rep);
     CHECK_MSG(st == MCSTAT_OK, "work of mcstat_check_work_size bytes: %s", mcstat_strerror(st));
-    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &opt, aligned, bytes - 1, &rep), "work too small");
-    CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &opt, aligned + 8, bytes, &rep), "work misaligned");
+    CHECK_MSG(mcstat_last_error()[0] == '\0', "a check that succeeded left the reason '%s'", mcstat_last_error());
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &opt, aligned, bytes - 1, &rep), "work too small", "work holds");
+    CHECK_EINVAL_WHY(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &opt, aligned + 8, bytes, &rep), "work misaligned", "aligned");
     CHECK_EINVAL(mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, &opt, aligned, 0, &rep), "work of 0 bytes");
     free(buf);
 }

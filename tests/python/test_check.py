@@ -275,7 +275,7 @@ def test_bad_arguments():
         mcstat.check_bsdf(*args, WI, n=10)
     with pytest.raises(mcstat.InvalidArgumentError, match="alpha"):
         mcstat.check_bsdf(*args, WI, alpha=1.5)
-    with pytest.raises(mcstat.InvalidArgumentError, match="wi must be finite and non-zero"):
+    with pytest.raises(mcstat.InvalidArgumentError, match=r"wi must be a finite, non-zero direction, got \(0, 0, 0\)"):
         mcstat.check_bsdf(*args, [0, 0, 0])
     with pytest.raises(mcstat.InvalidArgumentError, match="wi must be a direction of 3 numbers"):
         mcstat.check_bsdf(*args, [0, 1])

@@ -37,6 +37,10 @@ const char *status_text(int status);
 // Invalid argument with a message of its own (InvalidArgumentError): the
 // message alone, e.g. "alpha must be in (0, 1), got 5".
 [[noreturn]] void throw_invalid(const std::string &message);
+// Raises status's exception with C's reason (mcstat_last_error), the
+// field's C prefix ("options.", "model.") dropped since Python spells the
+// same names as keywords; without a reason, throw_status(status, fallback).
+[[noreturn]] void throw_refusal(int status, const std::string &fallback = std::string());
 
 // ---- argument parsing (tests.cpp) -------------------------------------------
 // repr() of a Python object, for messages.

@@ -3,6 +3,8 @@
 // Copyright (C) 2026 the mcstat developers. GPL-3.0-or-later.
 #include "common.hpp"
 
+#include <cstring>
+
 namespace mcs {
 
 namespace {
@@ -48,6 +50,18 @@ void throw_status(int status, const std::string &detail)
     if (!detail.empty())
         msg += " (" + detail + ")";
     PyErr_SetString(error_class(status).ptr(), msg.c_str());
+    throw py::error_already_set();
+}
+
+void throw_refusal(int status, const std::string &fallback)
+{
+    std::string why = mcstat_last_error();
+    if (why.empty())
+        throw_status(status, fallback);
+    for (const char *prefix : {"options.", "model."})
+        if (why.compare(0, std::strlen(prefix), prefix) == 0)
+            why.erase(0, std::strlen(prefix));
+    PyErr_SetString(error_class(status).ptr(), why.c_str());
     throw py::error_already_set();
 }
 
