@@ -97,7 +97,12 @@ private:
 inline SampledSpectrum operator*(Float a, const SampledSpectrum &s) { return s * a; }
 
 enum class TransportMode { Radiance, Importance };
-enum class BxDFReflTransFlags { Unset = 0, Reflection = 1 << 0, Transmission = 1 << 1, All = Reflection | Transmission };
+enum class BxDFReflTransFlags {
+    Unset = 0,
+    Reflection = 1 << 0,
+    Transmission = 1 << 1,
+    All = Reflection | Transmission
+};
 inline int operator&(BxDFReflTransFlags a, BxDFReflTransFlags b) { return int(a) & int(b); }
 enum BxDFFlags {
     Unset = 0,

@@ -257,7 +257,10 @@ template <class V, class F, class P, class M, class S> struct v4_api {
     {
         return double(F(reduce(b.f(wo, wi, mode))) * F(std::abs(vector_traits<V>::z(wi))));
     }
-    template <class B> double pdf(const B &b, const V &wo, const V &wi) const { return double(b.PDF(wo, wi, mode, all())); }
+    template <class B> double pdf(const B &b, const V &wo, const V &wi) const
+    {
+        return double(b.PDF(wo, wi, mode, all()));
+    }
 };
 
 template <class V, class F, class P, class T> struct v3_api {
@@ -494,7 +497,7 @@ private:
                 return self->fail(2, "the lobes function gave " + std::to_string(lobes.size()) +
                                          " lobes, more than MCSTAT_CHECK_MAX_LOBES");
             for (size_t k = 0; k < lobes.size(); k++) {
-                for (int c = 0; c < 3; c++)
+                for (size_t c = 0; c < 3; c++)
                     x[3 * k + c] = lobes[k].direction[c];
                 mass[k] = lobes[k].mass;
                 value[k] = lobes[k].value;
