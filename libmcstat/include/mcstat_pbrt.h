@@ -31,10 +31,11 @@
  *            the member `type` (optional) gives the domain and, as pbrt-v3's
  *            BSDF does, the initial *sampledType and which side f() counts
  *            on (Reflection: wo.z wi.z > 0; Transmission: the other).
- * A class whose Sample_f is overloaded or a template (pbrt-v4's BSDF, in
- * render space) names its interface instead: Adapter<B, v4_api<Vector3f,
- * Float, Point2f, TransportMode, BxDFReflTransFlags>> (or v3_api<Vector3f,
- * Float, Point2f, BxDFType>); check its BxDF, in the local frame, rather.
+ * A class whose Sample_f is overloaded or a template names its interface
+ * instead: Adapter<B, v4_api<Vector3f, Float, Point2f, TransportMode,
+ * BxDFReflTransFlags>> (or v3_api<Vector3f, Float, Point2f, BxDFType>).
+ * Directions are in the shading frame (the cosine is |wi.z|): pbrt's BSDF
+ * works in render space, so check its BxDF.
  *
  * What the adapter converts, and why:
  *   - Names.  pbrt's f(wo, wi) keeps wo (towards the camera) fixed and
