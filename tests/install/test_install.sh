@@ -16,7 +16,9 @@ mkdir -p "$work"
 cmake --install "$build" --prefix "$stage" > "$work/install.log"
 
 fail() { echo "install test FAILED: $*" >&2; exit 1; }
-for f in include/mcstat.h include/mcstat_check.h; do [ -f "$stage/$f" ] || fail "missing $f"; done
+for f in include/mcstat.h include/mcstat_check.h include/mcstat_testing.h include/mcstat_pbrt.h; do
+    [ -f "$stage/$f" ] || fail "missing $f"
+done
 libdir=$(dirname "$(find "$stage" -name libmcstat.a | head -1)")
 [ -f "$libdir/libmcstat.a" ] || fail "no static library"
 ls "$libdir"/libmcstat.so.* > /dev/null || fail "no versioned shared library"
@@ -76,6 +78,20 @@ $cc -O2 -static -o "$work/power-pc-static" tests/install/power_consumer.c $(pkg-
     2> "$work/power-static.log" || { cat "$work/power-static.log"; fail "static power consumer through pkg-config --static"; }
 if has NEEDED readelf -d "$work/power-pc-static"; then fail "power consumer: not a static executable"; fi
 "$work/power-pc-static" > /dev/null || fail "power consumer (static)"
-echo "install test: headers, shared + static libraries, CMake package (shared, static, checks) and"
-echo "pkg-config (shared, fully static) consumers built from $stage and run"
+# 4. the pbrt adapter as a pbrt user builds it: the drop-in GoogleTest file
+# against the installed mcstat_pbrt.h and mcstat_testing.h (its stand-in
+# BxDFs from the source tree), when GoogleTest is there
+cxx=${CXX:-c++}
+if command -v "$cxx" > /dev/null && printf '#include <gtest/gtest.h>\n' | "$cxx" -E -x c++ - > /dev/null 2>&1; then
+    # shellcheck disable=SC2046
+    "$cxx" -std=c++17 -O2 -o "$work/pbrt-dropin" examples/pbrt/test_pbrt_bsdf.cpp $(pkg-config --cflags --libs mcstat) \
+        -Wl,-rpath,"$libdir" -lgtest -lgtest_main -pthread 2> "$work/pbrt.log" || { cat "$work/pbrt.log"; fail "pbrt drop-in test"; }
+    MCSTAT_SEED=0 MCSTAT_SUITE_ALPHA=1e-3 "$work/pbrt-dropin" > "$work/pbrt-run.log" 2>&1 \
+        || { cat "$work/pbrt-run.log"; fail "pbrt drop-in test failed"; }
+    pbrt="and the pbrt adapter's drop-in test"
+else
+    pbrt="(no GoogleTest: the pbrt adapter's drop-in test skipped)"
+fi
+echo "install test: headers, shared + static libraries, CMake package (shared, static, checks),"
+echo "pkg-config (shared, fully static) consumers $pbrt built from $stage and run"
 echo "1 passed, 0 failed"

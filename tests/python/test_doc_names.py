@@ -1,6 +1,6 @@
 """The documents name only what exists: every mcstat_* / MCSTAT_* name in the
 tree's Markdown files is declared by a public header (mcstat.h,
-mcstat_check.h, mcstat_testing.h, mcest.h), or is one of the build options,
+mcstat_check.h, mcstat_testing.h, mcstat_pbrt.h, mcest.h), or is one of the build options,
 environment variables and programs listed here, each of which must itself
 appear in the tree's sources.  A name the header keeps only as deprecated
 (its last section) may be named by the CHANGELOG alone.  A prefix written
@@ -14,7 +14,8 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 HEADERS = ["libmcstat/include/mcstat.h", "libmcstat/include/mcstat_check.h",
-           "libmcstat/include/mcstat_testing.h", "estimators/include/mcest.h"]
+           "libmcstat/include/mcstat_testing.h", "libmcstat/include/mcstat_pbrt.h",
+           "estimators/include/mcest.h"]
 DEPRECATED_MARK = re.compile(r"^/\* \d+\. Deprecated names\.", re.M)  # mcstat.h's last section
 NAME = re.compile(r"\b(?:mcstat|MCSTAT)_\w*")
 
