@@ -26,6 +26,21 @@ TEST(Seeds, SameAsPython)
               0x551afa00b31cf359ull);
 }
 
+TEST(Seeds, DataSeedSameAsPython)
+{
+    // python: mcstat.testing._seeds.data_seed(7, "Seeds.DataSeedSameAsPython", "estimates") and label ""
+    EXPECT_EQ(mcstat_testing::data_seed(7, "Seeds.DataSeedSameAsPython", "estimates"), 0xd289fad8deaaf501ull);
+    EXPECT_EQ(mcstat_testing::data_seed(7, "Seeds.DataSeedSameAsPython", ""), 0x7c029715620f6239ull);
+    // the running test's, under the run's MCSTAT_SEED, is never one of its checks' seeds
+    uint64_t own = MCSTAT_DATA_SEED("estimates");
+    EXPECT_EQ(own, mcstat_testing::data_seed(mcstat_testing::suite().settings.master, "Seeds.DataSeedSameAsPython",
+                                             "estimates"));
+    for (unsigned j = 0; j < 8; j++)
+        EXPECT_NE(own, mcstat_testing::check_seed(mcstat_testing::suite().settings.master,
+                                                  "Seeds.DataSeedSameAsPython", j));
+    EXPECT_NE(own, MCSTAT_DATA_SEED("other"));
+}
+
 static void two_checks_one_declared()
 {
     std::vector<double> v = example::cosine_estimates(2000, 3);

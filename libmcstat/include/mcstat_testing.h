@@ -57,7 +57,10 @@
  * Seeds.  MCSTAT_SEED (default 0) is the master seed; check j (0, 1, ...) of
  * the test named N ("Suite.Name" in GoogleTest, the test case's name in
  * Catch2) draws from splitmix64(master ^ fnv1a64(N + "#" + j)), and stage 2
- * of an escalated check from splitmix64(seed + 1).
+ * of an escalated check from splitmix64(seed + 1).  A test's own data (an
+ * estimator's samples it draws before MCSTAT_EXPECT_UNBIASED) seeds from
+ * MCSTAT_DATA_SEED("label"): splitmix64(master ^ fnv1a64(N + "#data:" +
+ * label)), so a failure's rerun line draws the same data again.
  *
  * Escalation (the check_* forms, which draw their own uniforms).  Stage 1
  * runs at n and decides with mcstat_escalation_design(share, 1/2, alpha0):
@@ -125,6 +128,15 @@ inline uint64_t check_seed(uint64_t master, const std::string &name, unsigned in
 }
 
 inline uint64_t stage2_seed(uint64_t seed) { return splitmix64(seed + 1); }
+
+// The seed of a test's own data (what it draws itself, apart from the
+// checks' uniforms), `label` naming the draw: never a check's seed (their
+// keys end in a number, these in "#data:label"); mcstat.testing's
+// Scope.data_seed gives the same for the same master seed and test name.
+inline uint64_t data_seed(uint64_t master, const std::string &name, const std::string &label)
+{
+    return splitmix64(master ^ fnv1a64(name + "#data:" + label));
+}
 
 // ---- the run's settings, from the environment ---------------------------------------
 struct Settings {
@@ -275,6 +287,12 @@ inline void declare_checks(unsigned k)
     s.used = 0;
     s.declared = k < 1 ? 1 : k;
     s.allow_inconclusive = false;
+}
+
+// The running test's data seed under the run's MCSTAT_SEED (MCSTAT_DATA_SEED).
+inline uint64_t test_data_seed(const char *label)
+{
+    return data_seed(suite().settings.master, current_test_name(), label ? label : "");
 }
 
 // The running test's renderer checks pass when their verdict is
@@ -554,6 +572,7 @@ inline long framework_test_count()
 
 #define MCSTAT_TEST_CHECKS(k) ::mcstat_testing::declare_checks(k)
 #define MCSTAT_ALLOW_INCONCLUSIVE() ::mcstat_testing::allow_inconclusive()
+#define MCSTAT_DATA_SEED(label) ::mcstat_testing::test_data_seed(label)
 
 #define MCSTAT_EXPECT_BSDF_CONSISTENT(model, wi, n) \
     MCSTAT_TESTING_FAIL_(::mcstat_testing::check(MCSTAT_CHECK_KIND_BSDF, (model), (wi), 0.0, (n)), false)

@@ -34,6 +34,17 @@ def test_splitmix64_known_values():
     assert _seeds.splitmix64(2 * g % 2**64) == 0x06C45D188009454F
 
 
+def test_data_seed_same_as_cpp_and_apart_from_the_checks():
+    # examples/testing_cpp/gtest_header.cpp holds the same two values
+    assert _seeds.data_seed(7, "Seeds.DataSeedSameAsPython", "estimates") == 0xD289FAD8DEAAF501
+    assert _seeds.data_seed(7, "Seeds.DataSeedSameAsPython", "") == 0x7C029715620F6239
+    assert _seeds.data_seed(7, "n", "a") == _seeds.splitmix64(7 ^ _seeds.fnv1a64(b"n#data:a"))
+    sc = mt.Scope(name="t.py::test_x", alpha=0.01, master_seed=5)
+    assert sc.data_seed("a") == _seeds.data_seed(5, "t.py::test_x", "a") != sc.data_seed("b")
+    assert sc.data_seed() not in {mt.check_seed(5, "t.py::test_x", j) for j in range(16)}
+    assert sc.rng("a").random() == sc.rng("a").random()
+
+
 def test_check_seed_is_a_function_of_master_name_index():
     s = mt.check_seed(7, "t.py::test_x[1]", 0)
     assert s == _seeds.splitmix64(7 ^ _seeds.fnv1a64(b"t.py::test_x[1]#0"))

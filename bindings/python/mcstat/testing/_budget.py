@@ -25,10 +25,10 @@ import contextlib
 import contextvars
 import math
 from dataclasses import dataclass, field
-from typing import Dict, Iterator, List, Optional, Tuple
+from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from .._errors import InvalidArgumentError
-from ._seeds import check_seed
+from ._seeds import check_seed, data_seed
 
 __all__ = ["CheckRecord", "Suite", "Scope", "scope", "current_scope", "BudgetError"]
 
@@ -182,6 +182,18 @@ class Scope:
         j = self.used
         self.used += 1
         return j, self.alpha / self.checks, check_seed(self.master_seed, self.name, j)
+
+    def data_seed(self, label: str = "") -> int:
+        """A seed for the test's own data, derived from the suite's master
+        seed and the test's name (`_seeds.data_seed`): a failure's reproduce
+        line (the same master seed) draws the same data again."""
+        return data_seed(self.master_seed, self.name, label)
+
+    def rng(self, label: str = "") -> Any:
+        """``numpy.random.default_rng(self.data_seed(label))``."""
+        import numpy as np
+
+        return np.random.default_rng(self.data_seed(label))
 
     def record(self, r: CheckRecord) -> None:
         self.records.append(r)

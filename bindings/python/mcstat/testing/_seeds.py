@@ -44,3 +44,16 @@ def check_seed(master: int, name: str, index: int) -> int:
 def stage2_seed(seed: int) -> int:
     """The seed of an escalated check's second stage: independent of stage 1's draws."""
     return splitmix64((seed + 1) & _MASK)
+
+
+def data_seed(master: int, name: str, label: str = "") -> int:
+    """The seed of a test's own data (what the test draws itself, apart
+    from the checks' uniforms): ``label`` names the draw, so a test with
+    several gets independent seeds.  Never a check's seed (their keys end
+    in a number, these in ``#data:label``); the same in mcstat_testing.h
+    (``mcstat_testing::data_seed``), so a printed master seed reproduces
+    the data in either language."""
+    if not 0 <= master <= _MASK:
+        raise ValueError(f"master seed must be in [0, 2**64), got {master}")
+    return splitmix64(master ^ fnv1a64(f"{name}#data:{label}".encode("utf-8")))
+
