@@ -397,11 +397,12 @@ def assert_same_distribution(draw_a: Any, draw_b: Any, *, n: int = 10_000, alpha
 
 # ---- images ---------------------------------------------------------------------
 def assert_images_equivalent(reference: Any, candidate: Any, *, margin: float, atol: float = 0.0, block: int = 32,
-                             alpha: float = 0.05, seed_axis: Optional[int] = None, channels: str = "all") -> Any:
+                             alpha: float = 0.05, seed_axis: Optional[int] = None, channels: str = "all",
+                             nan_policy: str = "raise") -> Any:
     """The candidate renders the reference up to ``margin`` (relative) +
     ``atol`` in every block (``mcstat.image.equivalence``: TOST per block,
     an intersection-union verdict).  Both sides per-seed stacks ``(seeds,
-    H, W[, C])``.  Returns the ImageEquivalence.
+    H, W[, C])``; ``nan_policy`` as equivalence's.  Returns the ImageEquivalence.
 
     Here alpha is the other error: the probability of passing images that
     differ by more than the margin somewhere.  So this check spends nothing
@@ -413,7 +414,7 @@ def assert_images_equivalent(reference: Any, candidate: Any, *, margin: float, a
 
     sc = current_scope()
     e = equivalence(reference, candidate, margin=margin, atol=atol, block=block, alpha=alpha, seed_axis=seed_axis,
-                    channels=channels)
+                    channels=channels, nan_policy=nan_policy)
     name = sc.name if sc else "(no suite)"
     index = len(sc.records) if sc else 0
     p = 1.0 if e.blocks_untestable else float(np.max(e.block_pvalue))
