@@ -409,7 +409,7 @@ class Homogeneous(pm.MitsubaMedium):
 
     def check(self, n, seed):
         return mcstat.check_medium(self.sample, self.eval, self.pdf, sigma_ref=self.sigma_t, n=n, seed=seed,
-                                   alpha=ALPHA, transmittance=float(np.exp(-self.sigma_t * self.tmax)))
+                                   alpha=ALPHA, escape_transmittance=float(np.exp(-self.sigma_t * self.tmax)))
 
 
 def medium_models():

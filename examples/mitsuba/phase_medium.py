@@ -22,7 +22,7 @@ sample_interaction, an interaction at t < TMAX a scattering with the
 weight sigma_s T / pdf from transmittance_eval_pdf and
 get_scattering_coefficients (what Mitsuba's volumetric path tracer
 multiplies by), one that passes TMAX an escape (pdf 0) with the weight 1
-it carries on, checked against T(TMAX) (check_medium's transmittance=);
+it carries on, checked against T(TMAX) (check_medium's escape_transmittance=);
 pdf(t) and eval(t) (sigma_s T) come from transmittance_eval_pdf at an
 interaction moved to t.
 
@@ -182,7 +182,7 @@ class MitsubaMedium:
 
     def check(self, n, seed):
         return mcstat.check_medium(self.sample, self.eval, self.pdf, sigma_ref=SIGMA_T, n=n, seed=seed, alpha=ALPHA,
-                                   transmittance=float(np.exp(-SIGMA_T * TMAX)))
+                                   escape_transmittance=float(np.exp(-SIGMA_T * TMAX)))
 
 
 # A heterogeneous medium: a random 8 x 4 x 4 grid of densities in [0.2, 1]
@@ -282,7 +282,7 @@ class MitsubaHeterogeneous:
 
     def check(self, n, seed):
         return mcstat.check_medium(self.sample, self.eval, self.pdf, sigma_ref=2.0, n=n, seed=seed, alpha=ALPHA,
-                                   n_uniforms=2, transmittance=float(np.exp(-self.tau[-1])))
+                                   n_uniforms=2, escape_transmittance=float(np.exp(-self.tau[-1])))
 
 
 CASES = [

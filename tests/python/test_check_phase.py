@@ -258,7 +258,7 @@ class Weighted:
 
 
 def weighted_check(m, **kw):
-    return mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, transmittance=m.claim(), **kw)
+    return mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, escape_transmittance=m.claim(), **kw)
 
 
 @pytest.mark.parametrize("sigma_d", [2.0, 1.2, 3.0])
@@ -296,16 +296,29 @@ def test_analog_escapes_weigh_one():
     assert r.escape_weight == pytest.approx(r.n_failed / r.n, rel=1e-12)
 
 
-def test_transmittance_bad_arguments():
+def test_escape_transmittance_bad_arguments():
     m = Weighted()
-    for bad in (-0.1, 1.5, float("nan")):
-        with pytest.raises(mcstat.InvalidArgumentError, match="transmittance"):
-            mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, transmittance=bad, n=2000)
-    with pytest.raises(mcstat.InvalidArgumentError, match="over_pdf"):
-        mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, transmittance=0.5, weight="value", n=2000)
+    for bad, shown in ((1.5, "1.5"), (float("nan"), "nan")):
+        with pytest.raises(mcstat.InvalidArgumentError) as e:
+            mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, escape_transmittance=bad, n=2000)
+        assert str(e.value) == f"escape_transmittance must be negative (off) or in [0, 1], got {shown}"
+    with pytest.raises(mcstat.InvalidArgumentError, match="MCSTAT_WEIGHT_OVER_PDF"):
+        mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, escape_transmittance=0.5, weight="value",
+                            n=2000)
     ph = Phase("hg", 0.3)
-    with pytest.raises(TypeError, match="unexpected keyword argument 'transmittance'"):
-        mcstat.check_phase(ph.sample, ph.eval, ph.pdf, WI, transmittance=0.5, n=2000)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'escape_transmittance'"):
+        mcstat.check_phase(ph.sample, ph.eval, ph.pdf, WI, escape_transmittance=0.5, n=2000)
+
+
+def test_transmittance_is_a_deprecated_alias():
+    """0.3's Python name: the same check, with a DeprecationWarning; both names at once are refused."""
+    m = Weighted()
+    with pytest.warns(DeprecationWarning, match="escape_transmittance"):
+        old = mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, transmittance=m.claim(), n=5000, seed=2)
+    new = weighted_check(m, n=5000, seed=2)
+    assert old.escape_weight == new.escape_weight and old.route("mass").pvalue == new.route("mass").pvalue
+    with pytest.raises(TypeError, match="both escape_transmittance and its old name"):
+        mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, transmittance=0.5, escape_transmittance=0.5)
 
 
 def test_medium_bad_arguments():

@@ -577,10 +577,11 @@ def check_phase(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Calla
                 routes: _CheckRoutes = None, cells: int = 0, n_pilot: int = 0, n_eval: int = 0, batch: int = 65536,
                 rtol: float = 1e-3, tolerated: float = 1e-4, resolution: float = 0.0) -> CheckReport: ...
 def check_medium(sample: Callable[..., Any], eval: Callable[..., Any], pdf: Callable[..., Any], *, sigma_ref: float,
-                 transmittance: Optional[float] = None, n: int = 100_000, alpha: float = 0.01, seed: int = 0,
+                 escape_transmittance: Optional[float] = None, n: int = 100_000, alpha: float = 0.01, seed: int = 0,
                  n_uniforms: int = 1, weight: _CheckWeight = "over_pdf", routes: _CheckRoutes = None, cells: int = 0,
                  n_pilot: int = 0, n_eval: int = 0, batch: int = 65536, rtol: float = 1e-3, tolerated: float = 1e-4,
-                 resolution: float = 0.0) -> CheckReport: ...
+                 resolution: float = 0.0, transmittance: Optional[float] = None) -> CheckReport:
+    """``transmittance=``: escape_transmittance's deprecated name (until 0.4)."""
 # t, chi-squared and F distributions over arrays (distributions.cpp), wrapped by mcstat.distributions
 def _distribution(name: str, a: Any, b: Any, c: Any, upper: bool) -> Any: ...
 def _t_quantiles(p: float, df: npt.ArrayLike, upper: bool = True) -> npt.NDArray[np.float64]: ...

@@ -376,15 +376,22 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     o.tolerated = get_double(get("tolerated", py::float_(1e-4)).ptr(), "tolerated");
     o.resolution = get_double(get("resolution", py::float_(0.0)).ptr(), "resolution");
 
+    // escape_transmittance, as C, Rust and Go name it; transmittance, 0.3's
+    // Python name, is a deprecated alias until 0.4
+    const char *esc = "escape_transmittance";
     if (kw.contains("transmittance") && !py::object(kw["transmittance"]).is_none()) {
+        if (kw.contains(esc) && !py::object(kw[esc]).is_none())
+            throw py::type_error(std::string(fname) + "() got both escape_transmittance and its old name transmittance");
+        if (PyErr_WarnEx(PyExc_DeprecationWarning,
+                         "transmittance= is now escape_transmittance= (its name in C, Rust and Go); the old name "
+                         "goes in 0.4", 1) < 0)
+            throw py::error_already_set();
+        esc = "transmittance";
+    }
+    if (kw.contains(esc) && !py::object(kw[esc]).is_none()) {
         if (kind != MCSTAT_CHECK_KIND_MEDIUM)
-            throw py::type_error(std::string(fname) + "() got an unexpected keyword argument 'transmittance'");
-        o.escape_transmittance = get_double(py::object(kw["transmittance"]).ptr(), "transmittance");
-        if (!(o.escape_transmittance >= 0.0 && o.escape_transmittance <= 1.0))
-            throw_invalid("transmittance must be in [0, 1] (the transmittance to the surface), got " +
-                          repr(py::object(kw["transmittance"]).ptr()));
-        if (m.weight != MCSTAT_WEIGHT_OVER_PDF)
-            throw_invalid("transmittance needs weight='over_pdf' (an escape's weight is what it carries on)");
+            throw py::type_error(std::string(fname) + "() got an unexpected keyword argument '" + esc + "'");
+        o.escape_transmittance = get_double(py::object(kw[esc]).ptr(), esc); // its range is C's
     }
     uint64_t n = get_count(get("n", py::int_(100000)), "n");
     uint64_t seed = mcs_kwargs::to_u64(get("seed", py::int_(0)).ptr(), "seed",
@@ -409,7 +416,8 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     for (auto item : kw) {
         static const char *known[] = {"domain", "n_uniforms", "weight", "routes", "energy", "stochastic",
                                       "reciprocal", "cells", "n_pilot", "n_eval", "batch", "rtol", "tolerated", "n",
-                                      "seed", "alpha", "sigma_ref", "lobes", "transmittance", "resolution"};
+                                      "seed", "alpha", "sigma_ref", "lobes", "transmittance", "escape_transmittance",
+                                      "resolution"};
         std::string k = py::str(item.first);
         if (k == "sigma_ref" && kind != MCSTAT_CHECK_KIND_MEDIUM)
             throw py::type_error(std::string(fname) + "() got an unexpected keyword argument 'sigma_ref'");
@@ -578,7 +586,7 @@ the phase function is given (the renderer's convention: mcstat only holds it
 fixed).
 )doc";
 
-const char *MEDIUM_DOC = R"doc(check_medium(sample, eval, pdf, *, sigma_ref, transmittance=None, n=100_000, alpha=0.01, seed=0, n_uniforms=1, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4, resolution=0)
+const char *MEDIUM_DOC = R"doc(check_medium(sample, eval, pdf, *, sigma_ref, escape_transmittance=None, n=100_000, alpha=0.01, seed=0, n_uniforms=1, weight="over_pdf", routes=None, cells=0, n_pilot=0, n_eval=0, batch=65536, rtol=1e-3, tolerated=1e-4, resolution=0)
 
 Does a medium's distance sampling along a ray agree with its density and
 its weights?  ``sample(u) -> (t, weight, pdf)``: t (k,) distances >= 0 of
@@ -595,7 +603,7 @@ weight, support, integrals, energy (albedo <= 1), ks.  sigma_ref: a
 positive coefficient near the medium's sigma_t (e.g. the majorant); t may
 be asked at +inf.
 
-transmittance: None (default), the weight of a flight that passed the
+escape_transmittance: None (default), the weight of a flight that passed the
 surface is not checked (it must be 0).  A number in [0, 1], T(tmax), the
 transmittance to the surface: such a flight reports pdf 0 and the weight
 it carries on (1 for analog tracking, T(tmax)/P(escape) when the distances
@@ -715,7 +723,7 @@ void register_check(py::module_ &mod)
         .def_property_readonly("lobe_albedo", [](const Report &r) { return r.r.lobe_albedo; },
                                "The sum of the discrete lobes' values: the discrete part of the albedo.")
         .def_property_readonly("escape_weight", [](const Report &r) { return nan_to_none(r.r.escape_weight); },
-                               "check_medium with transmittance=: the mean over the n flights of the escapes' "
+                               "check_medium with escape_transmittance=: the mean over the n flights of the escapes' "
                                "weights (0 for a scattering), tested against it by the mass route (None otherwise).")
         .def_property_readonly("escape_weight_se", [](const Report &r) { return nan_to_none(r.r.escape_weight_se); },
                                "Its standard error (None with fewer than 2 escapes of weight > 0).")

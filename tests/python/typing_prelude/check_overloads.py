@@ -40,6 +40,6 @@ assert_type(mcstat.check_bsdf(_f, _f, _f, [0.0, 0.0, 1.0], n=1000, alpha=0.01, s
 assert_type(mcstat.check_emitter(_f, _f, _f, n_uniforms=2, cells=64), mcstat.CheckReport)
 assert_type(mcstat.check_warp(_f, _f, domain="disk", n_pilot=128), mcstat.CheckReport)
 assert_type(mcstat.check_phase(_f, _f, _f, one, reciprocal=True, energy=False), mcstat.CheckReport)
-assert_type(mcstat.check_medium(_f, _f, _f, sigma_ref=2.0, transmittance=0.5, batch=4096), mcstat.CheckReport)
+assert_type(mcstat.check_medium(_f, _f, _f, sigma_ref=2.0, escape_transmittance=0.5, batch=4096), mcstat.CheckReport)
 assert_type(mcstat.check_bsdf(_f, _f, _f, one).verdict, str)
 assert_type(mcstat.check_bsdf(_f, _f, _f, one).route("mass").why, Optional[str])

@@ -291,7 +291,7 @@ def assert_medium_consistent(sample: Callable[..., Any], eval: Callable[..., Any
                              alpha0: Optional[float] = None, allow_inconclusive: bool = False,
                              **check_kwargs: Any) -> Any:
     """``mcstat.check_medium`` as an assertion: a medium's distance
-    sampling, its density and its weights agree (``transmittance=`` also
+    sampling, its density and its weights agree (``escape_transmittance=`` also
     checks the escapes' weights).  See `assert_bsdf_consistent`."""
     __tracebackhide__ = True
     plan = _plan("medium", alpha, seed, escalate, alpha0)
