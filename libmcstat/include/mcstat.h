@@ -137,6 +137,22 @@ extern "C" {
 #else
 #  define MCSTAT_API
 #endif
+/* MCSTAT_NODISCARD marks the calls that return a status: the compiler warns
+ * when one is ignored ([[nodiscard]] in C23 and C++17, where a (void) cast
+ * says it was meant; Clang's warn_unused_result before them; nothing for
+ * GCC before C23, whose attribute a (void) cast cannot silence).  Define
+ * MCSTAT_NO_NODISCARD before including this header to turn it off. */
+#if defined(MCSTAT_NO_NODISCARD)
+#  define MCSTAT_NODISCARD
+#elif defined(__cplusplus) && __cplusplus >= 201703L
+#  define MCSTAT_NODISCARD [[nodiscard]]
+#elif !defined(__cplusplus) && defined(__STDC_VERSION__) && __STDC_VERSION__ > 201710L
+#  define MCSTAT_NODISCARD [[nodiscard]]
+#elif defined(__clang__)
+#  define MCSTAT_NODISCARD __attribute__((warn_unused_result))
+#else
+#  define MCSTAT_NODISCARD
+#endif
 /* MCSTAT_DEPRECATED marks a name this release replaced (section "Deprecated names"): it
  * still links and gives the same results, and the compiler names the
  * replacement.  Define MCSTAT_DISABLE_DEPRECATE_WARNINGS before including
@@ -225,7 +241,7 @@ enum mcstat_alternative {
 };
 
 /* Parses "two-sided" (also "two.sided", "two_sided"), "less", "greater". */
-MCSTAT_API int mcstat_alternative_parse(const char *name, int *alternative);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_alternative_parse(const char *name, int *alternative);
 /* "two-sided", "less", "greater", or NULL for an invalid value. */
 MCSTAT_API const char *mcstat_alternative_name(int alternative);
 
@@ -293,15 +309,15 @@ MCSTAT_API int mcstat_moments_init(mcstat_moments *m);
 /* Adding and merging refuse with MCSTAT_ETOOBIG (m unchanged) when the
  * count n would pass 2^64 - 1. */
 /* Adds one value. MCSTAT_ENONFINITE (m unchanged) for NaN or +-Inf. */
-MCSTAT_API int mcstat_moments_add(mcstat_moments *m, double x);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_add(mcstat_moments *m, double x);
 /* Adds n values. MCSTAT_ENONFINITE (m unchanged) if any is NaN or +-Inf. */
-MCSTAT_API int mcstat_moments_add_array(mcstat_moments *m, const double *x, size_t n);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_add_array(mcstat_moments *m, const double *x, size_t n);
 /* Like mcstat_moments_add_array, but NaN values are skipped (+-Inf is still
  * an error).  *n_omitted (may be NULL) receives the number skipped. */
-MCSTAT_API int mcstat_moments_add_array_omit_nan(mcstat_moments *m, const double *x,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_add_array_omit_nan(mcstat_moments *m, const double *x,
                                                  size_t n, size_t *n_omitted);
 /* dst <- dst merged with src (src may equal dst). */
-MCSTAT_API int mcstat_moments_merge(mcstat_moments *dst, const mcstat_moments *src);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_merge(mcstat_moments *dst, const mcstat_moments *src);
 
 /* Derived quantities; each returns NaN when undefined (e.g. n < 2). */
 MCSTAT_API double mcstat_moments_mean(const mcstat_moments *m);
@@ -313,8 +329,8 @@ MCSTAT_API double mcstat_moments_kurtosis(const mcstat_moments *m); /* excess g2
 /* Versioned, little-endian serialization (MCSTAT_MOMENTS_BYTES bytes, with a
  * magic number and a checksum).  from_bytes returns MCSTAT_ECORRUPT for bytes
  * that are truncated, corrupt, of another version or internally inconsistent. */
-MCSTAT_API int mcstat_moments_to_bytes(const mcstat_moments *m, unsigned char *buf, size_t size);
-MCSTAT_API int mcstat_moments_from_bytes(const unsigned char *buf, size_t size, mcstat_moments *m);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_to_bytes(const mcstat_moments *m, unsigned char *buf, size_t size);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_from_bytes(const unsigned char *buf, size_t size, mcstat_moments *m);
 
 /* *out <- an accumulator holding a summary: n values whose mean is `mean`
  * and whose sum of squared deviations is m2 (M2 = (n-1) var), as read from
@@ -329,7 +345,7 @@ MCSTAT_API int mcstat_moments_from_bytes(const unsigned char *buf, size_t size, 
  * MCSTAT_EINVAL (m2 < 0), MCSTAT_ETOOFEW (n == 0: an empty summary is
  * mcstat_moments_init; or n == 1 with m2 != 0), MCSTAT_ETOOBIG (mean +-
  * sqrt(M2/n) overflows). */
-MCSTAT_API int mcstat_moments_from_summary(uint64_t n, double mean, double m2, mcstat_moments *out);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_from_summary(uint64_t n, double mean, double m2, mcstat_moments *out);
 
 /* ------------------------------------------------------------------------ */
 /* Arrays of accumulators: one mcstat_moments per pixel.                     */
@@ -344,7 +360,7 @@ MCSTAT_API int mcstat_moments_from_summary(uint64_t n, double mean, double m2, m
 /* ------------------------------------------------------------------------ */
 
 /* Empties m[0..rows).  MCSTAT_EINVAL for m NULL with rows > 0. */
-MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
 
 /* Adds n values to each of rows accumulators: row i's values are the n
  * contiguous doubles at x + i * x_stride (strides in elements), and m[i]
@@ -359,7 +375,7 @@ MCSTAT_API int mcstat_moments_init_rows(mcstat_moments *m, size_t rows);
  * Returns MCSTAT_OK, the status of the first row that failed, or
  * MCSTAT_EINVAL (nothing changed) for NULL pointers, unknown flags or an
  * uninitialised accumulator. */
-MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, size_t n,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const double *x, size_t n,
                                        size_t x_stride, unsigned flags, int32_t *status);
 
 /* dst[i] <- dst[i] merged with src[i], for i < rows (mcstat_moments_merge
@@ -367,19 +383,19 @@ MCSTAT_API int mcstat_moments_add_rows(mcstat_moments *m, size_t rows, const dou
  * MCSTAT_EINVAL (nothing changed) for NULL pointers or an uninitialised
  * accumulator in either array, MCSTAT_ETOOBIG (nothing changed) when a
  * row's count would pass 2^64 - 1. */
-MCSTAT_API int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_merge_rows(mcstat_moments *dst, const mcstat_moments *src, size_t rows);
 
 /* The array as rows * MCSTAT_MOMENTS_BYTES bytes: the records of
  * mcstat_moments_to_bytes concatenated in row order, no header (each record
  * carries its own magic, version and checksum; the count is size / 96; the
  * image's shape is the caller's).  MCSTAT_EBUFSIZE when size is smaller,
  * MCSTAT_EINVAL for NULL pointers or an uninitialised accumulator. */
-MCSTAT_API int mcstat_moments_to_bytes_rows(const mcstat_moments *m, size_t rows, unsigned char *buf,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_to_bytes_rows(const mcstat_moments *m, size_t rows, unsigned char *buf,
                                             size_t size);
 /* Reads rows accumulators from exactly rows * MCSTAT_MOMENTS_BYTES bytes.
  * MCSTAT_ECORRUPT (m unchanged) when size differs or any record is corrupt
  * (see mcstat_moments_from_bytes); MCSTAT_EINVAL for NULL pointers. */
-MCSTAT_API int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t size, size_t rows,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_moments_from_bytes_rows(const unsigned char *buf, size_t size, size_t rows,
                                               mcstat_moments *m);
 
 /* ------------------------------------------------------------------------ */
@@ -427,16 +443,16 @@ MCSTAT_API int mcstat_stream_init(mcstat_stream *s);
  * uninitialised stream.  MCSTAT_ETOOBIG when the count would pass 2^64 - 1:
  * the buffered values are then left out and counted in n_overflow, and every
  * check on the stream returns MCSTAT_ETOOBIG. */
-MCSTAT_API int mcstat_stream_flush(mcstat_stream *s);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_stream_flush(mcstat_stream *s);
 /* dst <- dst merged with src: its moments, its buffered values and its
  * non-finite count; src is not modified (it may equal dst).  Merging a
  * thread's stream into a frame total and re-initialising the thread's
  * stream is the end-of-frame step.  MCSTAT_EINVAL; MCSTAT_ETOOBIG (dst
  * unchanged) when a count would pass 2^64 - 1. */
-MCSTAT_API int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_stream_merge(mcstat_stream *dst, const mcstat_stream *src);
 /* *out <- the moments of every value s has seen (flushed or buffered),
  * without modifying s.  MCSTAT_EINVAL. */
-MCSTAT_API int mcstat_stream_moments(const mcstat_stream *s, mcstat_moments *out);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_stream_moments(const mcstat_stream *s, mcstat_moments *out);
 
 /* Adds one value: a store and a counter in the common case, a flush once
  * every MCSTAT_STREAM_CAPACITY values.  s must have been initialised.  FFI
@@ -459,14 +475,14 @@ static inline void mcstat_stream_add(mcstat_stream *s, double x)
  *   that is itself approximate, which enough samples would otherwise detect.
  * out->reject == 1 means the check failed.  Statuses as mcstat_t_test_1,
  * plus MCSTAT_ENONFINITE when the stream has seen a NaN or an infinity. */
-MCSTAT_API int mcstat_stream_check_mean(const mcstat_stream *s, double reference, double tolerance,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_stream_check_mean(const mcstat_stream *s, double reference, double tolerance,
                                         double alpha, mcstat_result *out);
 /* Check that the variance of the values is below `bound` (> 0): the
  * one-sample chi-squared test of var == bound against var > bound at level
  * alpha; out->reject == 1 (the variance is significantly above the bound)
  * means the check failed.  Statuses as mcstat_var_test_1, plus
  * MCSTAT_ENONFINITE as above. */
-MCSTAT_API int mcstat_stream_check_var(const mcstat_stream *s, double bound, double alpha,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_stream_check_var(const mcstat_stream *s, double bound, double alpha,
                                        mcstat_result *out);
 MCSTAT_API size_t mcstat_sizeof_stream(void);
 
@@ -634,7 +650,7 @@ struct mcstat_result {
  * NULL) receives the length of the full text, without the terminating NUL;
  * MCSTAT_EBUFSIZE when it does not fit in size bytes (buf then holds a
  * NUL-terminated prefix). */
-MCSTAT_API int mcstat_result_format(const mcstat_result *r, const char *x_name,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_result_format(const mcstat_result *r, const char *x_name,
                                     const char *y_name, char *buf, size_t size,
                                     size_t *length);
 
@@ -651,7 +667,7 @@ MCSTAT_API const char *mcstat_decision_name(int decision);
  * (unweighted), else log(p_value) (exact and simulated p-values carry no
  * more).  MCSTAT_EINVAL for NULL, an unknown test or a result whose fields
  * are NaN (a failed row). */
-MCSTAT_API int mcstat_result_log_p_value(const mcstat_result *r, double *log_p);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_result_log_p_value(const mcstat_result *r, double *log_p);
 
 /* conf_int <- r's confidence interval at confidence_level in (0, 1) in
  * place of 1 - alpha, for the same alternative (one-sided ones keep their
@@ -671,7 +687,7 @@ MCSTAT_API int mcstat_result_log_p_value(const mcstat_result *r, double *log_p);
  * for NULL, a level outside (0, 1) (or NaN), a test with no parameter
  * interval (K-S, chi-squared goodness of fit) or a result whose fields are
  * NaN; MCSTAT_ENUMERIC if a bound cannot be formed. */
-MCSTAT_API int mcstat_result_conf_int(const mcstat_result *r, double confidence_level, double conf_int[2]);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_result_conf_int(const mcstat_result *r, double confidence_level, double conf_int[2]);
 
 /* ------------------------------------------------------------------------ */
 /* The tests.                                                                */
@@ -688,16 +704,16 @@ MCSTAT_API int mcstat_result_conf_int(const mcstat_result *r, double confidence_
 /* ------------------------------------------------------------------------ */
 
 /* One-sample t test of mean(x) against mu0 (section 2.1, eq. 1). */
-MCSTAT_API int mcstat_t_test_1(const double *x, size_t n, double mu0, int alternative,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_1(const double *x, size_t n, double mu0, int alternative,
                                double alpha, mcstat_result *out);
-MCSTAT_API int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative,
                                        double alpha, mcstat_result *out);
 
 /* Welch's two-sample t test of mean(x) - mean(y) against mu0 (section 2.3,
  * eq. 3, Welch-Satterthwaite degrees of freedom). */
-MCSTAT_API int mcstat_t_test_2(const double *x, size_t nx, const double *y, size_t ny,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_2(const double *x, size_t nx, const double *y, size_t ny,
                                double mu0, int alternative, double alpha, mcstat_result *out);
-MCSTAT_API int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
                                        double mu0, int alternative, double alpha,
                                        mcstat_result *out);
 
@@ -706,9 +722,9 @@ MCSTAT_API int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_mom
  * standard error s_p sqrt(1/nx + 1/ny), df = nx + ny - 2; test
  * MCSTAT_TEST_T_2_POOLED, estimates as Welch's.  MCSTAT_EDEGENERATE only
  * when both samples are constant (as Welch). */
-MCSTAT_API int mcstat_t_test_2_pooled(const double *x, size_t nx, const double *y, size_t ny,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_2_pooled(const double *x, size_t nx, const double *y, size_t ny,
                                       double mu0, int alternative, double alpha, mcstat_result *out);
-MCSTAT_API int mcstat_t_test_2_pooled_moments(const mcstat_moments *x, const mcstat_moments *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_2_pooled_moments(const mcstat_moments *x, const mcstat_moments *y,
                                               double mu0, int alternative, double alpha,
                                               mcstat_result *out);
 
@@ -720,22 +736,22 @@ MCSTAT_API int mcstat_t_test_2_pooled_moments(const mcstat_moments *x, const mcs
  * estimate[0] the mean difference; df = n - 1.  MCSTAT_ENONFINITE for NaN
  * or +-Inf in x or y, MCSTAT_ETOOFEW for n < 2, MCSTAT_EDEGENERATE when the
  * differences are constant. */
-MCSTAT_API int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0,
                                     int alternative, double alpha, mcstat_result *out);
 
 /* One-sample chi-squared test of var(x) against sigma2 > 0: statistic
  * (n-1) s^2 / sigma2 on n-1 degrees of freedom (section 2.2, eq. 2). */
-MCSTAT_API int mcstat_var_test_1(const double *x, size_t n, double sigma2, int alternative,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_var_test_1(const double *x, size_t n, double sigma2, int alternative,
                                  double alpha, mcstat_result *out);
-MCSTAT_API int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2,
                                          int alternative, double alpha, mcstat_result *out);
 
 /* Two-sample F test of var(x)/var(y) against ratio > 0: statistic
  * (s_x^2 / s_y^2) / ratio on (nx-1, ny-1) degrees of freedom (section 2.4). */
-MCSTAT_API int mcstat_var_test_2(const double *x, size_t nx, const double *y, size_t ny,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_var_test_2(const double *x, size_t nx, const double *y, size_t ny,
                                  double ratio, int alternative, double alpha,
                                  mcstat_result *out);
-MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
                                          double ratio, int alternative, double alpha,
                                          mcstat_result *out);
 
@@ -779,7 +795,7 @@ MCSTAT_API int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_m
 /* batch times are accepted: an exact cost (operation counts) contributes no */
 /* error.                                                                    */
 /* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_efficiency_test(const mcstat_moments *x, const mcstat_moments *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_efficiency_test(const mcstat_moments *x, const mcstat_moments *y,
                                       const mcstat_moments *time_x, const mcstat_moments *time_y,
                                       double ratio, int alternative, double alpha, mcstat_result *out);
 
@@ -855,11 +871,11 @@ enum mcstat_ks_weight {
  * max_bytes, the least recently used entries are dropped. */
 typedef struct mcstat_ks_cache mcstat_ks_cache;
 /* MCSTAT_EINVAL (cache NULL), MCSTAT_ENOMEM. */
-MCSTAT_API int mcstat_ks_cache_new(size_t max_bytes, mcstat_ks_cache **cache);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_ks_cache_new(size_t max_bytes, mcstat_ks_cache **cache);
 /* Frees the cache (NULL is a no-op); no test may be using it. */
 MCSTAT_API void mcstat_ks_cache_free(mcstat_ks_cache *cache);
 /* Lookups that found an entry, lookups that did not, entries held (any may be NULL). */
-MCSTAT_API int mcstat_ks_cache_stats(const mcstat_ks_cache *cache, uint64_t *hits,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_ks_cache_stats(const mcstat_ks_cache *cache, uint64_t *hits,
                                      uint64_t *misses, uint64_t *entries);
 
 /* Options; grows by appending fields ("Conventions", compatibility), so
@@ -904,7 +920,7 @@ MCSTAT_API size_t mcstat_sizeof_ks_options(void);
  * MCSTAT_ENONFINITE (NaN in the data; +-Inf are ordinary, ordered values),
  * MCSTAT_ETOOBIG (nx*ny >= 2^62, or EXACT beyond MCSTAT_KS_EXACT_MAX_WORK),
  * MCSTAT_ENOMEM. */
-MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, const double *y, size_t ny,
                                 int alternative, double alpha, const mcstat_ks_options *opt,
                                 mcstat_result *out);
 
@@ -1122,18 +1138,18 @@ MCSTAT_API int mcstat_pixels_out_init_size(mcstat_pixels_out *out, size_t size);
  * results of the SSE2 code); MCSTAT_NO_AVX2=1 in the environment when the
  * library first runs them keeps them to SSE2 (for tools that do not decode
  * every AVX2 instruction, such as valgrind 3.19). */
-MCSTAT_API int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_in *y, size_t begin,
                                   size_t end, double null_value, int alternative, double alpha,
                                   const mcstat_pixels_options *opt, const mcstat_pixels_out *out);
 
 /* Welch's test per pixel on seeds-major stacks: mcstat_pixels_test(
  * MCSTAT_TEST_T_2, ...) with value s of pixel i at x[s * x_seed_stride +
  * i * channels + c], one thread, flags as in mcstat_pixels_options. */
-MCSTAT_API int mcstat_t_test_2_pixels(const double *x, size_t nx, size_t x_seed_stride, const double *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_2_pixels(const double *x, size_t nx, size_t x_seed_stride, const double *y,
                                       size_t ny, size_t y_seed_stride, size_t channels, const double *weights,
                                       size_t begin, size_t end, double mu0, int alternative, double alpha,
                                       unsigned flags, const mcstat_pixels_out *out);
-MCSTAT_API int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_seed_stride, const float *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_seed_stride, const float *y,
                                           size_t ny, size_t y_seed_stride, size_t channels,
                                           const double *weights, size_t begin, size_t end, double mu0,
                                           int alternative, double alpha, unsigned flags,
@@ -1159,16 +1175,16 @@ MCSTAT_API int mcstat_t_test_2_pixels_f32(const float *x, size_t nx, size_t x_se
 /* writes arrays instead of structs and runs Welch's test by blocks of      */
 /* pixels: several times faster, within the bounds given there.             */
 /* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_t_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows, double mu0,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows, double mu0,
                                       int alternative, double alpha, unsigned flags, mcstat_result *out,
                                       int32_t *status);
-MCSTAT_API int mcstat_t_test_2_matrix(const double *x, size_t nx, size_t x_stride, const double *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_2_matrix(const double *x, size_t nx, size_t x_stride, const double *y,
                                       size_t ny, size_t y_stride, size_t rows, double mu0, int alternative,
                                       double alpha, unsigned flags, mcstat_result *out, int32_t *status);
-MCSTAT_API int mcstat_var_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_var_test_1_matrix(const double *x, size_t n, size_t x_stride, size_t rows,
                                         double sigma2, int alternative, double alpha, unsigned flags,
                                         mcstat_result *out, int32_t *status);
-MCSTAT_API int mcstat_var_test_2_matrix(const double *x, size_t nx, size_t x_stride, const double *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_var_test_2_matrix(const double *x, size_t nx, size_t x_stride, const double *y,
                                         size_t ny, size_t y_stride, size_t rows, double ratio,
                                         int alternative, double alpha, unsigned flags, mcstat_result *out,
                                         int32_t *status);
@@ -1182,15 +1198,15 @@ MCSTAT_API int mcstat_var_test_2_matrix(const double *x, size_t nx, size_t x_str
  * no meaning here and is MCSTAT_EINVAL.  Returns MCSTAT_OK when every row
  * succeeded, else the first failing row's status; MCSTAT_EINVAL (nothing
  * written) for NULL pointers or unknown flags. */
-MCSTAT_API int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_1_moments_rows(const mcstat_moments *x, size_t rows, double mu0, int alternative,
                                             double alpha, unsigned flags, mcstat_result *out, int32_t *status);
-MCSTAT_API int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
                                             double mu0, int alternative, double alpha, unsigned flags,
                                             mcstat_result *out, int32_t *status);
-MCSTAT_API int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_var_test_1_moments_rows(const mcstat_moments *x, size_t rows, double sigma2,
                                               int alternative, double alpha, unsigned flags, mcstat_result *out,
                                               int32_t *status);
-MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_var_test_2_moments_rows(const mcstat_moments *x, const mcstat_moments *y, size_t rows,
                                               double ratio, int alternative, double alpha, unsigned flags,
                                               mcstat_result *out, int32_t *status);
 
@@ -1231,7 +1247,7 @@ enum mcstat_p_adjust_method {
  * "fdrn", "fdrcorr"; "e-BH" (also "ebh", "e_bh").  Case is ignored (ASCII).  MCSTAT_EINVAL for anything
  * else, statsmodels' methods this library lacks included ("sidak",
  * "holm-sidak", "fdr_tsbh", "fdr_tsbky", "fdr_gbs", ...). */
-MCSTAT_API int mcstat_p_adjust_method_parse(const char *name, int *method);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_p_adjust_method_parse(const char *name, int *method);
 /* R's name of a method ("BH", "holm", ...), or NULL for an invalid value. */
 MCSTAT_API const char *mcstat_p_adjust_method_name(int method);
 /* *bytes <- the workspace mcstat_p_adjust needs for n p-values: 0 for none
@@ -1239,7 +1255,7 @@ MCSTAT_API const char *mcstat_p_adjust_method_name(int method);
  * mcstat_e_bh), 40 n for hommel (on
  * 64-bit machines).  MCSTAT_EINVAL (bad method, bytes NULL), MCSTAT_ETOOBIG
  * (the size does not fit in a size_t). */
-MCSTAT_API int mcstat_p_adjust_work_size(size_t n, int method, size_t *bytes);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_p_adjust_work_size(size_t n, int method, size_t *bytes);
 /* adjusted[0..n) <- the adjusted p[0..n) (adjusted may equal p: in place).
  * work: work_bytes of scratch aligned for double (mcstat_p_adjust_work_size),
  * or NULL, in which case the call allocates it with malloc and frees it
@@ -1247,7 +1263,7 @@ MCSTAT_API int mcstat_p_adjust_work_size(size_t n, int method, size_t *bytes);
  * a bad method, a p-value outside [0, 1] other than NaN, misaligned work;
  * nothing written), MCSTAT_EBUFSIZE (work_bytes too small), MCSTAT_ENOMEM
  * (work NULL and the allocation failed), MCSTAT_ETOOBIG. */
-MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work, size_t work_bytes,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work, size_t work_bytes,
                                double *adjusted);
 /* e-BH (Wang & Ramdas 2022): FDR control from e-values, valid under any
  * dependence among them.  With e_(1) >= ... >= e_(n) it rejects the k*
@@ -1267,7 +1283,7 @@ MCSTAT_API int mcstat_p_adjust(const double *p, size_t n, int method, void *work
  * adjusted values are never larger.
  * On p-values BY is the more powerful of the two; mcstat_e_bh is for
  * e-values proper (likelihood ratios, sequential tests' betting wealth). */
-MCSTAT_API int mcstat_e_bh(const double *e, size_t n, void *work, size_t work_bytes, double *adjusted);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_e_bh(const double *e, size_t n, void *work, size_t work_bytes, double *adjusted);
 
 /* ------------------------------------------------------------------------ */
 /* Escalation instead of reruns: a two-stage test (Bauer & Koehne 1994).     */
@@ -1305,14 +1321,14 @@ enum mcstat_escalation_decision {
  * ranges, NaN included, or when alpha0 is so close to alpha1 that stage 2
  * could not spend the rest (c > alpha1, i.e. alpha0 < alpha1
  * e^((1 - share1) / share1)); nothing written then. */
-MCSTAT_API int mcstat_escalation_design(double alpha, double share1, double alpha0, mcstat_escalation *out);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_escalation_design(double alpha, double share1, double alpha0, mcstat_escalation *out);
 /* *decision <- the design's decision (enum mcstat_escalation_decision) on
  * stage 1's p1 alone (p2 NaN), or on both stages (p2 in [0, 1]: valid only
  * when stage 1 said MCSTAT_ESCALATION_CONTINUE, MCSTAT_EINVAL otherwise).
  * MCSTAT_EINVAL: design or decision NULL, a design mcstat_escalation_design
  * would not make, p1 outside [0, 1] (NaN included), p2 neither NaN nor in
  * [0, 1]. */
-MCSTAT_API int mcstat_escalation_decide(const mcstat_escalation *design, double p1, double p2, int *decision);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_escalation_decide(const mcstat_escalation *design, double p1, double p2, int *decision);
 
 /* ======================================================================== */
 /* 6. Equivalence.                                                          */
@@ -1352,16 +1368,16 @@ MCSTAT_API int mcstat_escalation_decide(const mcstat_escalation *design, double 
 /* ------------------------------------------------------------------------ */
 /* Is mean(x) within [mu0 + lower, mu0 + upper]?  (lower < upper; typically
  * lower = -margin < 0 < upper = margin.) */
-MCSTAT_API int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lower,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_equivalence_test_1(const double *x, size_t n, double mu0, double lower,
                                          double upper, double alpha, mcstat_result *out);
-MCSTAT_API int mcstat_equivalence_test_1_moments(const mcstat_moments *x, double mu0,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_equivalence_test_1_moments(const mcstat_moments *x, double mu0,
                                                  double lower, double upper, double alpha,
                                                  mcstat_result *out);
 /* Is mean(x) - mean(y) within [lower, upper]?  (Welch: unequal variances.) */
-MCSTAT_API int mcstat_equivalence_test_2(const double *x, size_t nx, const double *y, size_t ny,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_equivalence_test_2(const double *x, size_t nx, const double *y, size_t ny,
                                          double lower, double upper, double alpha,
                                          mcstat_result *out);
-MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const mcstat_moments *y,
                                                  double lower, double upper, double alpha,
                                                  mcstat_result *out);
 
@@ -1399,9 +1415,9 @@ MCSTAT_API int mcstat_equivalence_test_2_moments(const mcstat_moments *x, const 
 /* MCSTAT_ENUMERIC if an iteration fails (never in the range above: the      */
 /* fuzz harness treats it as a failure there).                               */
 /* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_t_cdf(double x, double df, int upper, double *p);
-MCSTAT_API int mcstat_t_logcdf(double x, double df, int upper, double *logp);
-MCSTAT_API int mcstat_t_quantile(double p, double df, int upper, double *x);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_cdf(double x, double df, int upper, double *p);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_logcdf(double x, double df, int upper, double *logp);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_quantile(double p, double df, int upper, double *x);
 /* ------------------------------------------------------------------------ */
 /* mcstat_t_quantiles: x[i] = mcstat_t_quantile(p, df[i], upper, ...) for   */
 /* n values of df at one level, to the same accuracy, fast where many df    */
@@ -1416,13 +1432,13 @@ MCSTAT_API int mcstat_t_quantile(double p, double df, int upper, double *x);
 /* MCSTAT_EINVAL for p NaN or outside [0, 1], or NULL arrays with n > 0.    */
 /* Reentrant: callers split large arrays over their own threads.            */
 /* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *x);
-MCSTAT_API int mcstat_chisq_cdf(double x, double df, int upper, double *p);
-MCSTAT_API int mcstat_chisq_logcdf(double x, double df, int upper, double *logp);
-MCSTAT_API int mcstat_chisq_quantile(double p, double df, int upper, double *x);
-MCSTAT_API int mcstat_f_cdf(double x, double df1, double df2, int upper, double *p);
-MCSTAT_API int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *logp);
-MCSTAT_API int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_t_quantiles(double p, const double *df, size_t n, int upper, double *x);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_chisq_cdf(double x, double df, int upper, double *p);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_chisq_logcdf(double x, double df, int upper, double *logp);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_chisq_quantile(double p, double df, int upper, double *x);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_f_cdf(double x, double df1, double df2, int upper, double *p);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_f_logcdf(double x, double df1, double df2, int upper, double *logp);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_f_quantile(double p, double df1, double df2, int upper, double *x);
 
 /* ======================================================================== */
 /* 8. Sizes, versions and GSL's handler.                                    */
@@ -1591,7 +1607,7 @@ MCSTAT_API size_t mcstat_sizeof_power_options(void);
 /* *power <- the power at o->n, o->effect, o->alpha (o->power is ignored).
  * MCSTAT_EINVAL (NULL, bad enum or size, n < 2, ny < 2, an effect out of
  * its domain, alpha outside (0, 1)), MCSTAT_ENUMERIC. */
-MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power);
 /* *out <- *o with the field named by `unknown` (enum mcstat_power_unknown)
  * solved for; the other three must be valid (the unknown's field is
  * ignored); out receives o->size bytes, the caller's version of the
@@ -1599,12 +1615,12 @@ MCSTAT_API int mcstat_power_compute(const mcstat_power_options *o, double *power
  * power at that n (>= the target).  MCSTAT_EINVAL as above, and when no
  * value reaches the power (an effect of 0; a power at or below what alpha
  * alone gives; n beyond 1e15); MCSTAT_ENUMERIC. */
-MCSTAT_API int mcstat_power_solve(const mcstat_power_options *o, int unknown,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_power_solve(const mcstat_power_options *o, int unknown,
                                   mcstat_power_options *out);
 /* R's print.power.htest block ("Two-sample t test power calculation", the
  * named values aligned, NOTE lines) for a solved *o, into buf as
  * mcstat_result_format does.  MCSTAT_EINVAL, MCSTAT_EBUFSIZE. */
-MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, size_t size,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_power_format(const mcstat_power_options *o, char *buf, size_t size,
                                    size_t *length);
 
 /* ------------------------------------------------------------------------ */
@@ -1702,24 +1718,24 @@ MCSTAT_API size_t mcstat_sizeof_diagnostics(void);
  * tolerance outside (0,1), tail_threshold <= 0, k > n), MCSTAT_ETOOFEW
  * (n < 8, n < 2 tail_k + 2, or fewer than 2 batch means), MCSTAT_ENONFINITE,
  * MCSTAT_EDEGENERATE (constant data), MCSTAT_ENOMEM. */
-MCSTAT_API int mcstat_diag_compute(const double *x, size_t n, const mcstat_diag_options *opt,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_diag_compute(const double *x, size_t n, const mcstat_diag_options *opt,
                                    mcstat_diagnostics *out);
 /* Hill's tail index of each tail (index[0] lower, index[1] upper) from
  * tail_k order statistics (0: the default), as above.  Statuses:
  * MCSTAT_EINVAL, MCSTAT_ETOOFEW (n < 2 tail_k + 2), MCSTAT_ENONFINITE,
  * MCSTAT_ENOMEM. */
-MCSTAT_API int mcstat_diag_tail_index(const double *x, size_t n, size_t tail_k, double index[2]);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_diag_tail_index(const double *x, size_t n, size_t tail_k, double index[2]);
 /* The Edgeworth-predicted rejection rates size[0] (lower tail: "less") and
  * size[1] (upper: "greater") of the two-sided t test at alpha on m batch
  * means of k values whose skewness and excess kurtosis are given.
  * MCSTAT_EINVAL (non-finite shape, kurtosis < -2, alpha, k == 0),
  * MCSTAT_ETOOFEW (m < 2). */
-MCSTAT_API int mcstat_diag_t_size(double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_diag_t_size(double skewness, double kurtosis, uint64_t k, uint64_t m, double alpha,
                                   double size[2]);
 /* The batch size rule: the smallest k whose predicted tail rates are within
  * tolerance * alpha/2 of alpha/2 for m batch means.  MCSTAT_EINVAL,
  * MCSTAT_ETOOFEW (m < 2), MCSTAT_ETOOBIG (k beyond 2^53). */
-MCSTAT_API int mcstat_diag_batch_size(double skewness, double kurtosis, uint64_t m, double alpha,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_diag_batch_size(double skewness, double kurtosis, uint64_t m, double alpha,
                                       double tolerance, uint64_t *k);
 
 /* ======================================================================== */
@@ -1807,7 +1823,7 @@ MCSTAT_API double mcstat_gof_default_min_expected(void);
 
 /* Pearson's test of observed[0..k) against expected[0..k) as above.  opt may
  * be NULL (the defaults). */
-MCSTAT_API int mcstat_gof_chisq_test(const double *observed, const double *expected, size_t k,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_gof_chisq_test(const double *observed, const double *expected, size_t k,
                                      const mcstat_gof_options *opt, double alpha, mcstat_result *out);
 
 /* ------------------------------------------------------------------------ */
@@ -1835,19 +1851,19 @@ MCSTAT_API int mcstat_gof_chisq_test(const double *observed, const double *expec
 /* (n > 2^53), MCSTAT_ENUMERIC.  Cost: O(log^2 n) incomplete-beta and       */
 /* density evaluations (the critical counts are bisections).                */
 /* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_binom_test(uint64_t x, uint64_t n, double p, int alternative, double alpha,
                                  mcstat_result *out);
 /* The battery meta-test: `rejections` among k tests each at level `level`
  * in (0, 1), tested against the rate `level` (mcstat_binom_test(rejections,
  * k, level, ...)); reject == 1 means the count is not consistent with the
  * level (GREATER: too many rejections, the usual question).  Statuses as
  * mcstat_binom_test, plus MCSTAT_EINVAL for level outside (0, 1). */
-MCSTAT_API int mcstat_battery_test(uint64_t rejections, uint64_t k, double level, int alternative,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_battery_test(uint64_t rejections, uint64_t k, double level, int alternative,
                                    double alpha, mcstat_result *out);
 /* The same from the battery's k p-values: a test rejects when its p-value
  * is <= level.  MCSTAT_ENONFINITE for a NaN p-value, MCSTAT_EINVAL for one
  * outside [0, 1] (or p_values NULL with k > 0), MCSTAT_ETOOFEW for k == 0. */
-MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_battery_test_pvalues(const double *p_values, size_t k, double level, int alternative,
                                            double alpha, mcstat_result *out);
 
 
@@ -1954,7 +1970,7 @@ typedef struct mcstat_check_model {
 /* Coordinates per point of a domain (3, 3, 2, 2, 1); 0 for a bad domain. */
 MCSTAT_API int mcstat_check_domain_dims(int domain);
 /* "sphere", "hemisphere", "square", "disk", "interval" and back. */
-MCSTAT_API int mcstat_check_domain_parse(const char *name, int *domain);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_domain_parse(const char *name, int *domain);
 MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid */
 
 /* ------------------------------------------------------------------------ */
@@ -2086,7 +2102,7 @@ enum mcstat_check_route {
 /* "cells", "mass", "pdf_value", "weight", "support", "integrals", "energy",
  * "reciprocity", "ks" and back. */
 MCSTAT_API const char *mcstat_check_route_name(int route); /* NULL if invalid */
-MCSTAT_API int mcstat_check_route_parse(const char *name, int *route);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_route_parse(const char *name, int *route);
 
 enum mcstat_check_state {
     MCSTAT_ROUTE_RAN = 0,
@@ -2293,7 +2309,7 @@ enum mcstat_check_verdict {
  * (1u << route) for each route that could not answer and counts toward
  * INCONCLUSIVE.  MCSTAT_EINVAL for NULL report or verdict, or a report
  * whose states are not those of a check. */
-MCSTAT_API int mcstat_check_verdict(const mcstat_check_report *report, int *verdict, uint32_t *unanswered);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_verdict(const mcstat_check_report *report, int *verdict, uint32_t *unanswered);
 MCSTAT_API const char *mcstat_check_verdict_name(int verdict); /* "consistent", ...; NULL if invalid */
 
 /* ------------------------------------------------------------------------ */
@@ -2369,21 +2385,21 @@ MCSTAT_API const char *mcstat_check_verdict_name(int verdict); /* "consistent", 
 /* report's routes that need samples say "no answer", and MASS compares     */
 /* the failures with the mass of pdf().                                     */
 /* ------------------------------------------------------------------------ */
-MCSTAT_API int mcstat_check_work_size(const mcstat_check_model *model, size_t n, const mcstat_check_options *opt,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_work_size(const mcstat_check_model *model, size_t n, const mcstat_check_options *opt,
                                       size_t *bytes);
-MCSTAT_API int mcstat_check_bsdf(const mcstat_check_model *model, const double wi[3], size_t n, uint64_t seed,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_bsdf(const mcstat_check_model *model, const double wi[3], size_t n, uint64_t seed,
                                  double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
                                  mcstat_check_report *out);
-MCSTAT_API int mcstat_check_emitter(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_emitter(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
                                     const mcstat_check_options *opt, void *work, size_t work_bytes,
                                     mcstat_check_report *out);
-MCSTAT_API int mcstat_check_warp(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_warp(const mcstat_check_model *model, size_t n, uint64_t seed, double alpha,
                                  const mcstat_check_options *opt, void *work, size_t work_bytes,
                                  mcstat_check_report *out);
-MCSTAT_API int mcstat_check_phase(const mcstat_check_model *model, const double wi[3], size_t n, uint64_t seed,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_phase(const mcstat_check_model *model, const double wi[3], size_t n, uint64_t seed,
                                   double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
                                   mcstat_check_report *out);
-MCSTAT_API int mcstat_check_medium(const mcstat_check_model *model, double sigma_ref, size_t n, uint64_t seed,
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_medium(const mcstat_check_model *model, double sigma_ref, size_t n, uint64_t seed,
                                    double alpha, const mcstat_check_options *opt, void *work, size_t work_bytes,
                                    mcstat_check_report *out);
 
@@ -2392,7 +2408,7 @@ MCSTAT_API int mcstat_check_medium(const mcstat_check_model *model, double sigma
  * 1% error needs) into buf; *length (may be NULL) receives the full
  * length.  MCSTAT_EINVAL, MCSTAT_EBUFSIZE (buf holds a NUL-terminated
  * prefix). */
-MCSTAT_API int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, size_t *length);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, size_t *length);
 /* One sentence saying what route `route` checks (static storage; NULL if
  * invalid), and one saying what it cannot see. */
 MCSTAT_API const char *mcstat_check_route_meaning(int route);
@@ -2530,7 +2546,7 @@ typedef struct mcstat_seq {
  * eps < 0 or not finite, eps > 0 with VAR_* or a one-sided alternative,
  * t_opt <= 0 or not finite, kurtosis_gate or var_ucb_z negative or not
  * finite, min_n < 2, null_value not finite (and <= 0 for VAR_*). */
-MCSTAT_API int mcstat_seq_init(mcstat_seq *s, int kind, double null_value, const mcstat_seq_options *opt);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_seq_init(mcstat_seq *s, int kind, double null_value, const mcstat_seq_options *opt);
 /* One look after adding a batch of x (MEAN_1, VAR_1): an accumulator, an
  * array, or a stream's values (mcstat_stream_moments; MCSTAT_ENONFINITE if
  * the stream has seen NaN or Inf).  The two-sample kinds take a batch of
@@ -2538,11 +2554,11 @@ MCSTAT_API int mcstat_seq_init(mcstat_seq *s, int kind, double null_value, const
  * (NULL, an uninitialised s or batch, the wrong kind for the call),
  * MCSTAT_ENONFINITE (NaN or +-Inf in a batch), MCSTAT_ETOOBIG (a count
  * would pass 2^64 - 1). */
-MCSTAT_API int mcstat_seq_push_moments(mcstat_seq *s, const mcstat_moments *batch);
-MCSTAT_API int mcstat_seq_push_array(mcstat_seq *s, const double *x, size_t n);
-MCSTAT_API int mcstat_seq_push_stream(mcstat_seq *s, const mcstat_stream *frame);
-MCSTAT_API int mcstat_seq_push_2_moments(mcstat_seq *s, const mcstat_moments *bx, const mcstat_moments *by);
-MCSTAT_API int mcstat_seq_push_2_array(mcstat_seq *s, const double *x, size_t nx, const double *y, size_t ny);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_seq_push_moments(mcstat_seq *s, const mcstat_moments *batch);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_seq_push_array(mcstat_seq *s, const double *x, size_t n);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_seq_push_stream(mcstat_seq *s, const mcstat_stream *frame);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_seq_push_2_moments(mcstat_seq *s, const mcstat_moments *bx, const mcstat_moments *by);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_seq_push_2_array(mcstat_seq *s, const double *x, size_t nx, const double *y, size_t ny);
 /* *out <- the test at the last look (test MCSTAT_TEST_SEQ_*, method
  * MCSTAT_METHOD_ASYMPTOTIC): statistic the z of the last look, p_value the
  * anytime p-value, conf_int the confidence sequence (on the parameter's
@@ -2554,13 +2570,13 @@ MCSTAT_API int mcstat_seq_push_2_array(mcstat_seq *s, const double *x, size_t nx
  * seq_* fields as in mcstat_result.  mcstat_result_format prints R's
  * layout with the looks, the sequence and "continue" or the decision.
  * MCSTAT_EINVAL for NULL or an uninitialised s. */
-MCSTAT_API int mcstat_seq_result(const mcstat_seq *s, mcstat_result *out);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_seq_result(const mcstat_seq *s, mcstat_result *out);
 /* The test at the end of the caller's budget: *out as mcstat_seq_result;
  * returns MCSTAT_OK when decided, or undecided with the data allowing a
  * decision (not enough evidence yet: more samples may decide), and
  * MCSTAT_EHEAVYTAIL (out still written) when the kurtosis gate was closed
  * at the last look: the tails never allowed a decision in this budget. */
-MCSTAT_API int mcstat_seq_finish(const mcstat_seq *s, mcstat_result *out);
+MCSTAT_NODISCARD MCSTAT_API int mcstat_seq_finish(const mcstat_seq *s, mcstat_result *out);
 /* The name of a kind ("mean", "mean2", "var", "var2"), NULL if invalid. */
 MCSTAT_API const char *mcstat_seq_kind_name(int kind);
 MCSTAT_API size_t mcstat_sizeof_seq(void);

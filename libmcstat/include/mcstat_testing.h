@@ -387,7 +387,8 @@ inline Outcome decide(const char *kind, size_t n, bool escalatable,
         if (last.status != MCSTAT_OK)
             return failed(std::string(kind) + ": " + mcstat_strerror(last.status) + "\n" + last.text);
         unsigned long long total = last.samples;
-        mcstat_escalation_decide(&d, last.p, NAN, &decision);
+        if (mcstat_escalation_decide(&d, last.p, NAN, &decision) != MCSTAT_OK)
+            return failed(std::string(kind) + ": stage 1's p-value " + g(last.p) + " cannot be decided on");
         lines += "  stage 1: n " + std::to_string(n) + ", seed " + std::to_string(p.seed) + ": p " + g(last.p) +
                  " (rejects at <= " + g(d.alpha1) + ", passes above " + g(d.alpha0) + ")\n";
         if (decision == MCSTAT_ESCALATION_CONTINUE) {
@@ -398,7 +399,8 @@ inline Outcome decide(const char *kind, size_t n, bool escalatable,
             if (last.status != MCSTAT_OK)
                 return failed(std::string(kind) + ": " + mcstat_strerror(last.status) + "\n" + last.text);
             total += last.samples;
-            mcstat_escalation_decide(&d, p1, last.p, &decision);
+            if (mcstat_escalation_decide(&d, p1, last.p, &decision) != MCSTAT_OK)
+                return failed(std::string(kind) + ": stage 2's p-value " + g(last.p) + " cannot be decided on");
             stages = 2;
             lines += "  stage 2 (escalated): n " + std::to_string(n2) + ", seed " + std::to_string(s2) + ": p " +
                      g(last.p) + "; p1 p2 = " + g(p1 * last.p) +
@@ -435,9 +437,11 @@ inline Outcome decide(const char *kind, size_t n, bool escalatable,
 inline std::string check_text(const mcstat_check_report &r)
 {
     size_t len = 0;
-    mcstat_check_format(&r, nullptr, 0, &len);
+    (void)mcstat_check_format(&r, nullptr, 0, &len); // MCSTAT_EBUFSIZE, and the length
     std::string t(len + 1, '\0');
-    mcstat_check_format(&r, &t[0], t.size(), nullptr);
+    int st = mcstat_check_format(&r, &t[0], t.size(), nullptr);
+    if (st != MCSTAT_OK)
+        return std::string("(the report could not be formatted: ") + mcstat_strerror(st) + ")";
     t.resize(len);
     return t;
 }
@@ -487,9 +491,11 @@ inline Outcome check(int kind, const mcstat_check_model &model, const double *wi
 inline std::string result_text(const mcstat_result &r)
 {
     size_t len = 0;
-    mcstat_result_format(&r, nullptr, nullptr, nullptr, 0, &len);
+    (void)mcstat_result_format(&r, nullptr, nullptr, nullptr, 0, &len); // MCSTAT_EBUFSIZE, and the length
     std::string t(len + 1, '\0');
-    mcstat_result_format(&r, nullptr, nullptr, &t[0], t.size(), nullptr);
+    int st = mcstat_result_format(&r, nullptr, nullptr, &t[0], t.size(), nullptr);
+    if (st != MCSTAT_OK)
+        return std::string("(the result could not be formatted: ") + mcstat_strerror(st) + ")";
     t.resize(len);
     return t;
 }

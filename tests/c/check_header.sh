@@ -31,8 +31,24 @@ printf '#include <mcstat.h>\nint exp_use(mcstat_gof_options *o);\n' > "$tmp/exp.
 if "$cc" -std=c11 -DMCSTAT_NO_EXPERIMENTAL -I "$inc" -c "$tmp/exp.c" -o "$tmp/exp.o" 2> /dev/null; then
     echo "mcstat.h: MCSTAT_NO_EXPERIMENTAL leaves the experimental names in"; exit 1
 fi
+# an ignored status warns where the language has [[nodiscard]] (C++17 here);
+# a (void) cast says it was meant
+cat > "$tmp/status.cpp" <<'SRC'
+#include <mcstat.h>
+double ignored(const double *x, mcstat_result *r);
+double ignored(const double *x, mcstat_result *r)
+{
+    IGNORE mcstat_t_test_1(x, 10, 0.0, MCSTAT_TWO_SIDED, 0.05, r);
+    return r->p_value;
+}
+SRC
 for cxx in c++ g++ clang++; do
     if command -v "$cxx" > /dev/null 2>&1; then
+        if "$cxx" -std=c++17 -Werror=unused-result -DIGNORE= -I "$inc" -c "$tmp/status.cpp" -o "$tmp/s.o" 2> /dev/null; then
+            echo "mcstat.h: an ignored status does not warn in C++17 ($cxx)"; exit 1
+        fi
+        "$cxx" -std=c++17 -Wall -Wextra -Werror -D'IGNORE=(void)' -I "$inc" -c "$tmp/status.cpp" -o "$tmp/s.o" \
+            || { echo "mcstat.h: a (void) cast does not silence an ignored status in C++17 ($cxx)"; exit 1; }
         cp "$tmp/use.c" "$tmp/use.cpp"
         "$cxx" -std=c++11 -Wall -Wextra -Wpedantic -Werror -I "$inc" -c "$tmp/use.cpp" -o "$tmp/use.o" \
             || { echo "mcstat.h: warnings as C++11 ($cxx)"; exit 1; }
