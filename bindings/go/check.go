@@ -45,6 +45,8 @@ import "C"
 
 import (
 	"fmt"
+	"math"
+	"runtime"
 	"runtime/cgo"
 	"unsafe"
 )
@@ -248,6 +250,11 @@ type Model struct {
 }
 
 // CheckOptions are the checks' options; start from DefaultCheckOptions.
+// Their ranges are libmcstat's: a check refuses a value outside them with
+// an *Error matching ErrInvalidArgument whose Message is C's reason, which
+// names the field as C spells it ("options.n_pilot must be 0 (automatic) or
+// at least 64, got 10" for NPilot; options.rtol for RTol, options.cells for
+// Cells, and so on).
 type CheckOptions struct {
 	Routes     RouteSet
 	Stochastic bool    // weight and pdf are estimates (layered BSDFs)
@@ -313,21 +320,15 @@ func (opt *CheckOptions) toC() C.struct_mcstat_check_options {
 	return o
 }
 
-// escapeTransmittance checks opt.EscapeTransmittance for check (m nil:
-// its value only), as the Python binding does, with messages naming it;
-// C's EINVAL would say nothing, and takes a negative value as off.
-func escapeTransmittance(opt *CheckOptions, check string, m *Model) error {
+// escapeTransmittance checks the value of opt.EscapeTransmittance: C takes
+// a negative value as off (nil here), so it would pass -0.5 unseen.  Where
+// it is allowed is C's to say (CheckMedium with WeightOverPDF).
+func escapeTransmittance(opt *CheckOptions) error {
 	if opt == nil || opt.EscapeTransmittance == nil {
 		return nil
 	}
-	t := *opt.EscapeTransmittance
-	switch {
-	case check != "" && check != "CheckMedium":
-		return invalid(check + ": EscapeTransmittance is CheckMedium's only")
-	case !(t >= 0 && t <= 1):
+	if t := *opt.EscapeTransmittance; !(t >= 0 && t <= 1) {
 		return invalid(fmt.Sprintf("EscapeTransmittance must be in [0, 1] (the transmittance to the surface), got %v", t))
-	case m != nil && m.Weight != WeightOverPDF:
-		return invalid("EscapeTransmittance needs WeightOverPDF (an escape's weight is what it carries on)")
 	}
 	return nil
 }
@@ -521,9 +522,11 @@ type checkCall struct {
 
 // withModel builds the C model of m, whose callbacks reach m through a
 // handle kept in C memory (a Go pointer may not be stored in C memory), and
-// runs f with it.
-func withModel(m *Model, f func(cm *C.struct_mcstat_check_model) C.int) (*checkCall, C.int) {
-	call := &checkCall{model: m, dims: m.Domain.Dims(), nu: m.NUniforms}
+// runs f with it.  On a refusal, why is C's reason (mcstat_last_error).
+// That is the OS thread's, and a goroutine may move to another thread
+// between two cgo calls: the call and the read share one locked thread.
+func withModel(m *Model, f func(cm *C.struct_mcstat_check_model) C.int) (call *checkCall, st C.int, why string) {
+	call = &checkCall{model: m, dims: m.Domain.Dims(), nu: m.NUniforms}
 	h := cgo.NewHandle(call)
 	defer h.Delete()
 	slot := (*C.uintptr_t)(C.malloc(C.size_t(unsafe.Sizeof(C.uintptr_t(0)))))
@@ -535,7 +538,12 @@ func withModel(m *Model, f func(cm *C.struct_mcstat_check_model) C.int) (*checkC
 	cm.weight = C.int32_t(m.Weight)
 	cm.sample_reports = C.int32_t(b2i(m.SampleReports))
 	C.gomcstat_model_callbacks(&cm, unsafe.Pointer(slot), b2i(m.Eval != nil), b2i(m.Lobes != nil))
-	return call, f(&cm)
+	runtime.LockOSThread()
+	defer runtime.UnlockOSThread()
+	if st = f(&cm); st != C.MCSTAT_OK {
+		why = C.GoString(C.mcstat_last_error())
+	}
+	return call, st, why
 }
 
 func validModel(m *Model) error {
@@ -550,50 +558,42 @@ func validModel(m *Model) error {
 	return nil
 }
 
-// noLobes refuses a model with Lobes in the checks other than CheckBSDF.
-func noLobes(m *Model, check string) error {
-	if m != nil && m.Lobes != nil {
-		return invalid(check + ": the model has Lobes, which only CheckBSDF takes")
-	}
-	return nil
-}
-
 func runCheck(m *Model, f func(cm *C.struct_mcstat_check_model, out *C.struct_mcstat_check_report) C.int) (*CheckReport, error) {
-	if err := validModel(m); err != nil {
-		return nil, err
-	}
 	var out C.struct_mcstat_check_report
-	call, st := withModel(m, func(cm *C.struct_mcstat_check_model) C.int { return f(cm, &out) })
+	call, st, why := withModel(m, func(cm *C.struct_mcstat_check_model) C.int { return f(cm, &out) })
 	if st == C.MCSTAT_ECALLBACK {
 		return nil, &CallbackError{Callback: call.callback, Message: C.GoString(&out.message[0]), Err: call.err}
 	}
-	if err := check(st); err != nil {
-		return nil, err
+	if st != C.MCSTAT_OK {
+		return nil, refusal(st, why)
 	}
 	return reportFromC(&out), nil
 }
 
-func checkN(n int) error {
-	if n < 0 {
-		return invalid("n < 0")
-	}
-	return nil
-}
+// fitsInt32 is false for a Go int that C's int32_t field would wrap.
+func fitsInt32(v int) bool { return v >= math.MinInt32 && v <= math.MaxInt32 }
 
-// checkArgs refuses, naming what is wrong, what C would refuse with a bare
-// EINVAL (Lobes outside CheckBSDF, a bad EscapeTransmittance, n < 0), and
-// gives the C options.
-func checkArgs(check string, m *Model, n int, opt *CheckOptions) (C.struct_mcstat_check_options, error) {
-	if check != "CheckBSDF" {
-		if err := noLobes(m, check); err != nil {
-			return C.struct_mcstat_check_options{}, err
-		}
+// checkArgs gives the C options, refusing only what C cannot see: a model
+// without Go functions, and values the conversion would change (n < 0, a
+// Cells or NUniforms past int32, a negative EscapeTransmittance, which C
+// takes for off).  The ranges are C's, and so are the reasons it refuses
+// them with (refusal).
+func checkArgs(m *Model, n int, opt *CheckOptions) (C.struct_mcstat_check_options, error) {
+	fail := func(err error) (C.struct_mcstat_check_options, error) { return C.struct_mcstat_check_options{}, err }
+	if err := validModel(m); err != nil {
+		return fail(err)
 	}
-	if err := escapeTransmittance(opt, check, m); err != nil {
-		return C.struct_mcstat_check_options{}, err
+	if n < 0 {
+		return fail(invalid(fmt.Sprintf("n must be >= 0 (a size_t), got %d", n)))
 	}
-	if err := checkN(n); err != nil {
-		return C.struct_mcstat_check_options{}, err
+	if !fitsInt32(m.NUniforms) {
+		return fail(invalid(fmt.Sprintf("Model.NUniforms %d does not fit C's int32_t", m.NUniforms)))
+	}
+	if opt != nil && !fitsInt32(opt.Cells) {
+		return fail(invalid(fmt.Sprintf("CheckOptions.Cells %d does not fit C's int32_t", opt.Cells)))
+	}
+	if err := escapeTransmittance(opt); err != nil {
+		return fail(err)
 	}
 	return opt.toC(), nil
 }
@@ -602,7 +602,7 @@ func checkArgs(check string, m *Model, n int, opt *CheckOptions) (C.struct_mcsta
 // incident direction wi with n >= 1000 samples at battery level alpha;
 // opt nil means DefaultCheckOptions().  Reproducible for a given seed.
 func CheckBSDF(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	o, err := checkArgs("CheckBSDF", m, n, opt)
+	o, err := checkArgs(m, n, opt)
 	if err != nil {
 		return nil, err
 	}
@@ -615,7 +615,7 @@ func CheckBSDF(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *
 // CheckEmitter checks an emitter's direction sampling (domain Sphere or
 // Hemisphere; the reference point is the callbacks' business).
 func CheckEmitter(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	o, err := checkArgs("CheckEmitter", m, n, opt)
+	o, err := checkArgs(m, n, opt)
 	if err != nil {
 		return nil, err
 	}
@@ -626,7 +626,7 @@ func CheckEmitter(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions
 
 // CheckWarp checks a warp (a sampler and its density; Eval is ignored).
 func CheckWarp(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	o, err := checkArgs("CheckWarp", m, n, opt)
+	o, err := checkArgs(m, n, opt)
 	if err != nil {
 		return nil, err
 	}
@@ -639,7 +639,7 @@ func CheckWarp(m *Model, n int, seed uint64, alpha float64, opt *CheckOptions) (
 // no cosine): the routes of CheckBSDF, with RouteEnergy testing albedo == 1
 // (two-sided) and RouteReciprocity (when asked) p(wi, wo) == p(wo, wi).
 func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	o, err := checkArgs("CheckPhase", m, n, opt)
+	o, err := checkArgs(m, n, opt)
 	if err != nil {
 		return nil, err
 	}
@@ -655,7 +655,7 @@ func CheckPhase(m *Model, wi [3]float64, n int, seed uint64, alpha float64, opt 
 // (pdf 0, weight 0), or with opt.EscapeTransmittance one that reports pdf
 // 0 and the weight it carries on; Eval is sigma_s T(t).
 func CheckMedium(m *Model, sigmaRef float64, n int, seed uint64, alpha float64, opt *CheckOptions) (*CheckReport, error) {
-	o, err := checkArgs("CheckMedium", m, n, opt)
+	o, err := checkArgs(m, n, opt)
 	if err != nil {
 		return nil, err
 	}
@@ -666,24 +666,19 @@ func CheckMedium(m *Model, sigmaRef float64, n int, seed uint64, alpha float64, 
 }
 
 // CheckWorkSize is the scratch memory, in bytes, a check of m with n
-// samples allocates (and frees) inside the call.
+// samples allocates (and frees) inside the call.  It refuses what the
+// checks refuse, with C's reason.
 func CheckWorkSize(m *Model, n int, opt *CheckOptions) (int, error) {
-	if err := validModel(m); err != nil {
+	o, err := checkArgs(m, n, opt)
+	if err != nil {
 		return 0, err
 	}
-	if err := checkN(n); err != nil {
-		return 0, err
-	}
-	if err := escapeTransmittance(opt, "", nil); err != nil {
-		return 0, err
-	}
-	o := opt.toC()
 	var bytes C.size_t
-	_, st := withModel(m, func(cm *C.struct_mcstat_check_model) C.int {
+	_, st, why := withModel(m, func(cm *C.struct_mcstat_check_model) C.int {
 		return C.mcstat_check_work_size(cm, C.size_t(n), &o, &bytes)
 	})
-	if err := check(st); err != nil {
-		return 0, err
+	if st != C.MCSTAT_OK {
+		return 0, refusal(st, why)
 	}
 	return int(bytes), nil
 }

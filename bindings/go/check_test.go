@@ -513,16 +513,15 @@ func TestCheckMediumEscapesRefused(t *testing.T) {
 			t.Errorf("CheckWorkSize, EscapeTransmittance %v: %v", bad, err)
 		}
 	}
+	// where escapes are allowed is C's to say, in its words
 	value := escaping(1)
 	value.Weight = WeightValue
 	_, err := CheckMedium(value, 2.0, 20000, 1, 0.01, withEscapes(0.5))
-	if !errors.Is(err, ErrInvalidArgument) || !strings.Contains(err.Error(), "WeightOverPDF") {
-		t.Errorf("WeightValue: %v", err)
-	}
+	wantReason(t, "WeightValue", err, ErrInvalidArgument, "options.escape_transmittance needs model.weight = "+
+		"MCSTAT_WEIGHT_OVER_PDF (an escape's weight is what it carries on)")
 	_, err = CheckPhase(isotropic(1), [3]float64{0, 0.6, 0.8}, 5000, 1, 0.01, withEscapes(0.5))
-	if !errors.Is(err, ErrInvalidArgument) || !strings.Contains(err.Error(), "CheckPhase") {
-		t.Errorf("CheckPhase with EscapeTransmittance: %v", err)
-	}
+	wantReason(t, "CheckPhase with EscapeTransmittance", err, ErrInvalidArgument,
+		"options.escape_transmittance is 0.5 in the check of a phase function: it is a medium's")
 }
 
 // an isotropic phase function sampled uniformly; bug: eval and weight 0.9 p
@@ -687,13 +686,12 @@ func TestCheckLobesFailures(t *testing.T) {
 			t.Errorf("the callback's error is not wrapped: %v", err)
 		}
 	}
-	// lobes are a BSDF's
+	// lobes are a BSDF's (C's reason)
 	m := isotropic(1)
 	m.Lobes = coatedLobes
-	if _, err := CheckPhase(m, [3]float64{0, 0.6, 0.8}, 5000, 1, 0.01, nil); !errors.Is(err, ErrInvalidArgument) ||
-		!strings.Contains(err.Error(), "only CheckBSDF") {
-		t.Errorf("lobes in a phase check: %v", err)
-	}
+	_, err := CheckPhase(m, [3]float64{0, 0.6, 0.8}, 5000, 1, 0.01, nil)
+	wantReason(t, "lobes in a phase check", err, ErrInvalidArgument,
+		"model.lobes is set in the check of a phase function: discrete lobes are a BSDF's")
 	// the check still works after the failures
 	m = coated(1)
 	m.Lobes = coatedLobes

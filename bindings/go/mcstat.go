@@ -8,7 +8,8 @@
 //
 // The numbers, decisions and R-style text are computed by libmcstat; this
 // package converts types and errors.  Errors are *Error values carrying the
-// C status and its sentence; compare with errors.Is against the Err*
+// C status and its sentence (for a renderer check's refusal, C's reason,
+// naming the field and its value); compare with errors.Is against the Err*
 // sentinels:
 //
 //	r, err := mcstat.TTest2(newEst, trusted, 0, mcstat.TwoSided, 0.05)
@@ -77,7 +78,15 @@ import (
 
 // ---- errors --------------------------------------------------------------------
 
-// Error is a non-zero libmcstat status with mcstat_strerror's sentence.
+// Error is a non-zero libmcstat status with a message: mcstat_strerror's
+// sentence, or one naming what is wrong.  The renderer checks (CheckBSDF,
+// CheckEmitter, CheckWarp, CheckPhase, CheckMedium, CheckWorkSize) give
+// libmcstat's reason for every ErrInvalidArgument and ErrTooBig they
+// return (C's mcstat_last_error(), read on the OS thread of the call),
+// verbatim: it names the field as C spells it, with C's prefix, e.g.
+// "options.cells must be 0 (automatic) or 2..1048576, got 1" for
+// CheckOptions.Cells, "model.n_uniforms must be in 1..8, got 9" for
+// Model.NUniforms, "alpha must be in (0, 1), got 1.5".
 type Error struct {
 	Status  int
 	Message string
@@ -117,6 +126,17 @@ func check(status C.int) error {
 		return nil
 	}
 	return newError(status)
+}
+
+// refusal is the error of a failing status of a function that gives
+// reasons: why is its mcstat_last_error(), read on the OS thread of the
+// call (withModel), or "" for none, which leaves the status's sentence.
+func refusal(status C.int, why string) error {
+	e := newError(status)
+	if why != "" {
+		e.Message = why
+	}
+	return e
 }
 
 // Version of the linked library, "MAJOR.MINOR.PATCH".

@@ -1114,6 +1114,12 @@ const _: () = {
 extern "C" {
     // ---- conventions ------------------------------------------------------
     pub fn mcstat_strerror(status: c_int) -> *const c_char;
+    /// Why the last call on this thread refused its arguments ("" when it
+    /// gave no reason): the renderer checks and `mcstat_check_work_size`
+    /// clear it when they start and set it for every `MCSTAT_EINVAL` and
+    /// `MCSTAT_ETOOBIG`.  Thread-local; read it on the calling thread right
+    /// after the call.  Never NULL.  (Since 0.3.)
+    pub fn mcstat_last_error() -> *const c_char;
     pub fn mcstat_alternative_parse(name: *const c_char, alternative: *mut c_int) -> c_int;
     pub fn mcstat_alternative_name(alternative: c_int) -> *const c_char;
 

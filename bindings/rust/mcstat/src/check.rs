@@ -8,6 +8,12 @@
 //! error or panic message (panics are caught at the FFI boundary: they
 //! never unwind into C).
 //!
+//! The ranges of the arguments and options are libmcstat's: a check that
+//! refuses them fails with [`Error::InvalidArgument`] (or
+//! [`Error::TooBig`]) whose message is libmcstat's reason, naming the field
+//! as C spells it, the same as here (`"options.rtol must be in (0, 1), got
+//! 0"`, `"n must be at least 1000, got 10"`); see [`Error`].
+//!
 //! A BSDF with specular (delta) parts gives them through
 //! [`CheckModel::lobes`]; its `pdf` and `eval` are then the smooth part.
 //! A medium whose escaping flights carry a weight on (analog or weighted
@@ -39,7 +45,7 @@
 //! println!("{report}");
 //! # Ok::<(), mcstat::Error>(())
 //! ```
-use crate::{c_name, format_with, static_str, sys, Error, Result};
+use crate::{c_name, format_with, refusal, static_str, sys, Error, Result};
 use std::fmt;
 use std::mem::{size_of, MaybeUninit};
 use std::os::raw::{c_int, c_void};
@@ -316,10 +322,10 @@ impl CheckOptions {
         o.routes = self.routes.0;
         o.stochastic = self.stochastic as i32;
         o.reciprocal = self.reciprocal as i32;
+        // conversions only: the ranges are C's, and its reasons name them
         o.cells = match self.cells {
             None => 0,
-            Some(c) if c <= i32::MAX as u32 => c as i32,
-            Some(c) => return Err(Error::invalid(format!("cells {c} is too large"))),
+            Some(c) => i32::try_from(c).map_err(|_| Error::invalid(format!("options.cells {c} does not fit C's int32_t")))?,
         };
         o.n_pilot = self.n_pilot.unwrap_or(0);
         o.n_eval = self.n_eval.unwrap_or(0);
@@ -327,7 +333,8 @@ impl CheckOptions {
         o.rtol = self.rtol;
         o.tolerated = self.tolerated;
         if let Some(t) = self.escape_transmittance {
-            // NaN fails the test too; C would take a negative value as "off"
+            // C takes a negative value as "off" (None here), so Some(-0.5)
+            // would pass it unseen; NaN fails the test too
             if !(0.0..=1.0).contains(&t) {
                 return Err(Error::invalid(format!(
                     "escape_transmittance must be in [0, 1] (the transmittance to the surface), got {t}"
@@ -580,16 +587,12 @@ unsafe extern "C" fn lobes_trampoline(
 }
 
 fn raw_model(model: &CheckModel, user: *mut c_void) -> Result<sys::mcstat_check_model> {
-    if model.n_uniforms > sys::MCSTAT_CHECK_MAX_UNIFORMS as usize {
-        return Err(Error::invalid(format!(
-            "n_uniforms {} is above {}",
-            model.n_uniforms,
-            sys::MCSTAT_CHECK_MAX_UNIFORMS
-        )));
-    }
+    // a conversion only: the range is C's (its reason names model.n_uniforms)
+    let n_uniforms = i32::try_from(model.n_uniforms)
+        .map_err(|_| Error::invalid(format!("model.n_uniforms {} does not fit C's int32_t", model.n_uniforms)))?;
     Ok(sys::mcstat_check_model {
         domain: model.domain.raw(),
-        n_uniforms: model.n_uniforms as i32,
+        n_uniforms,
         weight: match model.weight {
             WeightConvention::OverPdf => sys::MCSTAT_WEIGHT_OVER_PDF,
             WeightConvention::Value => sys::MCSTAT_WEIGHT_VALUE,
@@ -614,7 +617,10 @@ pub fn check_work_size(model: &CheckModel, n: usize, opt: &CheckOptions) -> Resu
     let m = raw_model(model, ptr::null_mut())?;
     let o = opt.raw()?;
     let mut bytes = 0usize;
-    crate::check(unsafe { sys::mcstat_check_work_size(&m, n, &o, &mut bytes) })?;
+    let st = unsafe { sys::mcstat_check_work_size(&m, n, &o, &mut bytes) };
+    if st != sys::MCSTAT_OK {
+        return Err(refusal(st));
+    }
     Ok(bytes)
 }
 
@@ -640,7 +646,8 @@ fn run_check(
         }
         return Err(Error::Callback(msg));
     }
-    Err(Error::from_status(st))
+    // C's reason, on this thread: nothing since the call has called libmcstat
+    Err(refusal(st))
 }
 
 fn message(r: &sys::mcstat_check_report) -> String {
@@ -652,40 +659,19 @@ fn message(r: &sys::mcstat_check_report) -> String {
 /// Checks a BSDF at the incident direction `wi` with `n` samples (>= 1000)
 /// at battery level `alpha`; the seed makes it reproducible.
 pub fn check_bsdf(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
-    no_escapes(opt, "check_bsdf")?;
     run_check(model, opt, |m, o, out| unsafe {
         sys::mcstat_check_bsdf(m, wi.as_ptr(), n, seed, alpha, o, ptr::null_mut(), 0, out)
     })
 }
 
-/// Discrete lobes are a BSDF's: the other checks refuse a model with them.
-fn no_lobes(model: &CheckModel, check: &str) -> Result<()> {
-    if model.lobes.is_some() {
-        return Err(Error::invalid(format!("{check}: the model has lobes, which only check_bsdf takes")));
-    }
-    Ok(())
-}
-
-/// Escapes are a medium's: the other checks refuse escape_transmittance.
-fn no_escapes(opt: &CheckOptions, check: &str) -> Result<()> {
-    if opt.escape_transmittance.is_some() {
-        return Err(Error::invalid(format!("{check}: escape_transmittance is check_medium's only")));
-    }
-    Ok(())
-}
-
 /// Checks an emitter's sampling of directions from a reference point (the
 /// closures hold the point): domain sphere or hemisphere.
 pub fn check_emitter(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
-    no_lobes(model, "check_emitter")?;
-    no_escapes(opt, "check_emitter")?;
     run_check(model, opt, |m, o, out| unsafe { sys::mcstat_check_emitter(m, n, seed, alpha, o, ptr::null_mut(), 0, out) })
 }
 
 /// Checks a warp (a sampler and its density, no integrand).
 pub fn check_warp(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
-    no_lobes(model, "check_warp")?;
-    no_escapes(opt, "check_warp")?;
     run_check(model, opt, |m, o, out| unsafe { sys::mcstat_check_warp(m, n, seed, alpha, o, ptr::null_mut(), 0, out) })
 }
 
@@ -693,8 +679,6 @@ pub fn check_warp(model: &mut CheckModel, n: usize, seed: u64, alpha: f64, opt: 
 /// the routes of `check_bsdf`, with energy testing albedo == 1 (two-sided)
 /// and reciprocity (when asked) p(wi, wo) == p(wo, wi).
 pub fn check_phase(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
-    no_lobes(model, "check_phase")?;
-    no_escapes(opt, "check_phase")?;
     run_check(model, opt, |m, o, out| unsafe {
         sys::mcstat_check_phase(m, wi.as_ptr(), n, seed, alpha, o, ptr::null_mut(), 0, out)
     })
@@ -706,12 +690,6 @@ pub fn check_phase(model: &mut CheckModel, wi: [f64; 3], n: usize, seed: u64, al
 /// or with [`CheckOptions::escape_transmittance`] one that reports pdf 0 and
 /// the weight it carries on; eval is sigma_s T(t).
 pub fn check_medium(model: &mut CheckModel, sigma_ref: f64, n: usize, seed: u64, alpha: f64, opt: &CheckOptions) -> Result<CheckReport> {
-    no_lobes(model, "check_medium")?;
-    if opt.escape_transmittance.is_some() && model.weight != WeightConvention::OverPdf {
-        return Err(Error::invalid(
-            "escape_transmittance needs WeightConvention::OverPdf (an escape's weight is what it carries on)",
-        ));
-    }
     run_check(model, opt, |m, o, out| unsafe {
         sys::mcstat_check_medium(m, sigma_ref, n, seed, alpha, o, ptr::null_mut(), 0, out)
     })

@@ -60,8 +60,22 @@ pub use seq::{SeqHold, SeqKind, SeqOptions, SeqOutcome, SequentialTest};
 // ---- errors --------------------------------------------------------------------
 
 /// What went wrong: one variant per libmcstat status code, each with a
-/// message (libmcstat's sentence, or what the binding found wrong with an
-/// argument, or what a renderer check's callback did).
+/// message: libmcstat's sentence for the status, or what the binding found
+/// wrong with an argument, or what a renderer check's callback did, or why
+/// a renderer check refused its arguments.
+///
+/// The renderer checks ([`check_bsdf`], [`check_emitter`], [`check_warp`],
+/// [`check_phase`], [`check_medium`], [`check::check_work_size`]) give
+/// libmcstat's reason for each [`InvalidArgument`](Error::InvalidArgument)
+/// and [`TooBig`](Error::TooBig) they return, verbatim (C's
+/// `mcstat_last_error()`, read on the calling thread right after the call):
+/// it names the field as C spells it, which is the Rust name too
+/// (`"options.cells must be 0 (automatic) or 2..1048576, got 1"` for
+/// [`CheckOptions::cells`], `"model.n_uniforms must be in 1..8, got 9"` for
+/// [`CheckModel::new`]'s `n_uniforms`, `"alpha must be in (0, 1), got 1.5"`);
+/// where C says 0 means automatic, `None` is the Rust spelling.
+/// [`message`](Error::message) is that text; `Display` adds the status, as
+/// for every error.  The ranges are checked once, in libmcstat.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Error {
     /// MCSTAT_EINVAL: an invalid argument.
@@ -175,7 +189,9 @@ impl Error {
             Error::Other { status, .. } => ErrorKind::Other(*status),
         }
     }
-    /// The message: libmcstat's sentence for the status, or a more precise one.
+    /// The message: libmcstat's sentence for the status, or a more precise
+    /// one (a renderer check's refusal: libmcstat's reason, naming the
+    /// argument and its value).
     pub fn message(&self) -> &str {
         match self {
             Error::InvalidArgument(m)
@@ -209,6 +225,19 @@ pub(crate) fn check(status: c_int) -> Result<()> {
         Ok(())
     } else {
         Err(Error::from_status(status))
+    }
+}
+
+/// The error of a failing status of a function that gives reasons (the
+/// renderer checks): libmcstat's reason (`mcstat_last_error`, thread-local:
+/// call this on the thread of the call, before any other call that gives
+/// reasons), or the status's sentence when it gave none.
+pub(crate) fn refusal(status: c_int) -> Error {
+    let why = unsafe { CStr::from_ptr(sys::mcstat_last_error()) }.to_string_lossy();
+    if why.is_empty() {
+        Error::from_status(status)
+    } else {
+        Error::with_message(status, why.into_owned())
     }
 }
 
