@@ -66,7 +66,7 @@ class BSDFModel:
 
     def _si(self, mi: Any, width: int, wi: np.ndarray) -> Any:
         si = _env.zeros(self.variant, mi.SurfaceInteraction3f, width)
-        si.wi = mi.Vector3f(*[float(c) for c in wi])
+        si.wi = _env.constant(self.variant, mi.Vector3f, wi)
         return si
 
     def sample(self, wi: Any, u: Any) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -77,11 +77,12 @@ class BSDFModel:
             _, dr = _env.modules()
 
             def one(width: int, u0: Any, u12: Any) -> Tuple[Any, ...]:
-                bs, w = self.bsdf.sample(self.ctx, self._si(mi, width, wi), u0, u12)
-                return bs.wo, _env.channel_of(w, ch, "the weight"), dr.all(w == 0.0), bs.pdf
+                si = self._si(mi, width, wi)
+                bs, w = self.bsdf.sample(self.ctx, si, u0, u12)
+                return bs.wo, _env.channel_of(w, ch, "the weight"), dr.all(w == 0.0), bs.pdf, bs, w, si
 
             wo, weight, zero, pdf = _env.batch(self.variant, one, len(u),
-                                               [(mi.Float, u[:, 0]), (mi.Point2f, u[:, 1:3])])
+                                               [(mi.Float, u[:, 0]), (mi.Point2f, u[:, 1:3])], n_out=4)
         failed = zero | ~(pdf > 0)
         n = np.linalg.norm(wo, axis=1)
         wo = np.where(n[:, None] > 0, wo / np.where(n > 0, n, 1.0)[:, None], wo)  # float32 directions, renormalised
@@ -96,10 +97,11 @@ class BSDFModel:
             def one(width: int, d: Any) -> Tuple[Any]:
                 si = self._si(mi, width, wi)
                 if which == "pdf":
-                    return (self.bsdf.pdf(self.ctx, si, d),)
-                return (_env.channel_of(self.bsdf.eval(self.ctx, si, d), ch, "eval()"),)
+                    return self.bsdf.pdf(self.ctx, si, d), si
+                v = self.bsdf.eval(self.ctx, si, d)
+                return _env.channel_of(v, ch, "eval()"), v, si
 
-            return _env.batch(self.variant, one, len(wo), [(mi.Vector3f, wo)])[0]
+            return _env.batch(self.variant, one, len(wo), [(mi.Vector3f, wo)], n_out=1)[0]
 
     def eval(self, wi: Any, wo: Any) -> np.ndarray:
         return self._at("eval", wi, wo)

@@ -24,33 +24,27 @@ from . import _env
 
 
 def _emitter_of(emitter: Any, variant: Optional[str]) -> Tuple[Any, Any, str, Any]:
-    """(emitter, its shape or None, variant, the object loaded) from a dict
-    (an emitter, a shape holding one or a scene holding one) or a loaded
-    Emitter, Shape or Scene.  The object loaded must be kept alive: an
-    emitter's pointer to its shape does not own it."""
+    """(emitter, the scene to trace or None, variant, the object loaded)
+    from a dict (an emitter, a shape holding one or a scene holding one) or
+    a loaded Emitter, Shape or Scene.  The object loaded must be kept alive:
+    an emitter's pointer to its shape does not own it."""
     mi, _ = _env.modules()
     if isinstance(emitter, dict):
-        if emitter.get("type") == "scene":
-            obj, v = _env.resolve(emitter, "Scene", "emitter", variant)
-        else:
-            _env.ensure_variant(variant)
-            try:
-                probe = mi.load_dict(emitter)
-            except Exception as e:
-                raise ValueError(f"emitter: Mitsuba could not load {emitter.get('type')!r}: {e}") from e
-            if isinstance(probe, mi.Shape):
-                obj, v = _env.resolve({"type": "scene", "light": emitter}, "Scene", "emitter", variant)
-            else:
-                obj, v = _env.resolve(emitter, "Emitter", "emitter", variant)
+        base = "Scene" if emitter.get("type") == "scene" else "Object"
+        obj, v = _env.resolve(emitter, base, "emitter", variant)
     else:
         found = [(b, _env.variant_of(emitter, b)) for b in ("Emitter", "Shape", "Scene")]
-        base = next((b for b, v_b in found if v_b is not None), None)
-        if base is None:
+        base = next((b for b, v_b in found if v_b is not None), "")
+        if not base:
             raise TypeError(f"emitter: expected a Mitsuba Emitter, a Shape holding one or a Scene holding one "
                             f"(a plugin dict or a loaded object), got {type(emitter).__name__}")
         obj, v = _env.resolve(emitter, base, "emitter", variant)
     loaded = obj
     with _env.in_variant(v) as mi:
+        if not isinstance(obj, (mi.Scene, mi.Shape, mi.Emitter)):
+            raise TypeError(f"emitter: {emitter.get('type')!r} loads as a Mitsuba {_env.kind(mi, obj)}, not an "
+                            "Emitter, a Shape holding one or a Scene")
+        scene = obj if isinstance(obj, mi.Scene) else None
         if isinstance(obj, mi.Scene):
             ems = obj.emitters()
             if len(ems) != 1:
@@ -69,7 +63,9 @@ def _emitter_of(emitter: Any, variant: Optional[str]) -> Tuple[Any, Any, str, An
         shape = obj.get_shape()
         if shape is None:
             raise ValueError(f"emitter: {obj.class_name()} is neither infinite nor attached to a shape")
-        return obj, shape, v, loaded
+        if scene is None or len(scene.shapes()) != 1:  # the light's shape alone: no occluder
+            scene = mi.load_dict({"type": "scene", "light": shape})
+        return obj, scene, v, loaded
 
 
 class EmitterModel:
@@ -80,18 +76,16 @@ class EmitterModel:
 
     def __init__(self, emitter: Any, ref: Any, *, channel: int = 0,
                  variant: Optional[str] = None) -> None:
-        self.emitter, shape, self.variant, self._loaded = _emitter_of(emitter, variant)
+        self.emitter, self.scene, self.variant, self._loaded = _emitter_of(emitter, variant)
         self.ref = np.asarray(ref, dtype=np.float64)
         if self.ref.shape != (3,) or not np.all(np.isfinite(self.ref)):
             raise ValueError(f"ref: a finite 3-vector, not {ref!r}")
         self.channel = int(channel)
-        with _env.in_variant(self.variant) as mi:
-            self.scene = None if shape is None else mi.load_dict({"type": "scene", "light": shape})
         self.eval(np.array([[0.0, 0.0, 1.0]]))  # the channel exists
 
     def _it(self, mi: Any, width: int) -> Any:
         it = _env.zeros(self.variant, mi.Interaction3f, width)
-        it.p = mi.Point3f(*[float(c) for c in self.ref])
+        it.p = _env.constant(self.variant, mi.Point3f, self.ref)
         return it
 
     def sample(self, u: Any) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -101,10 +95,11 @@ class EmitterModel:
             _, dr = _env.modules()
 
             def one(width: int, u2: Any) -> Tuple[Any, ...]:
-                ds, w = self.emitter.sample_direction(self._it(mi, width), u2)
-                return ds.d, _env.channel_of(w, ch, "the weight"), dr.all(w == 0.0), ds.pdf
+                it = self._it(mi, width)
+                ds, w = self.emitter.sample_direction(it, u2)
+                return ds.d, _env.channel_of(w, ch, "the weight"), dr.all(w == 0.0), ds.pdf, ds, w, it
 
-            d, weight, zero, pdf = _env.batch(self.variant, one, len(u), [(mi.Point2f, u[:, 0:2])])
+            d, weight, zero, pdf = _env.batch(self.variant, one, len(u), [(mi.Point2f, u[:, 0:2])], n_out=4)
         failed = zero | ~(pdf > 0)
         n = np.linalg.norm(d, axis=1)
         d = np.where(n[:, None] > 0, d / np.where(n > 0, n, 1.0)[:, None], d)  # float32 directions, renormalised
@@ -122,18 +117,18 @@ class EmitterModel:
                     if which == "eval":
                         si = _env.zeros(self.variant, mi.SurfaceInteraction3f, width)
                         si.wi = -v
-                        return (_env.channel_of(self.emitter.eval(si), ch, "eval()"),)
+                        return _env.channel_of(self.emitter.eval(si), ch, "eval()"), si, it
                     ds = _env.zeros(self.variant, mi.DirectionSample3f, width)
                     ds.d = v
-                    return (self.emitter.pdf_direction(it, ds),)
+                    return self.emitter.pdf_direction(it, ds), ds, it
                 si = self.scene.ray_intersect(mi.Ray3f(it.p, v))
                 valid = si.is_valid()  # a masked-off lane is not zeroed by eval(): select
                 if which == "eval":
-                    return (dr.select(valid, _env.channel_of(self.emitter.eval(si, valid), ch, "eval()"), 0.0),)
+                    return dr.select(valid, _env.channel_of(self.emitter.eval(si, valid), ch, "eval()"), 0.0), si, it
                 ds = mi.DirectionSample3f(self.scene, si, it)
-                return (dr.select(valid, self.emitter.pdf_direction(it, ds, valid), 0.0),)
+                return dr.select(valid, self.emitter.pdf_direction(it, ds, valid), 0.0), ds, si, it
 
-            return _env.batch(self.variant, one, len(d), [(mi.Vector3f, d)])[0]
+            return _env.batch(self.variant, one, len(d), [(mi.Vector3f, d)], n_out=1)[0]
 
     def eval(self, d: Any) -> np.ndarray:
         return self._at("eval", d)

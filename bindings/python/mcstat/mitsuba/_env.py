@@ -154,13 +154,13 @@ def resolve(obj: Any, base: str, argname: str, variant: Optional[str]) -> Tuple[
             loaded = mi.load_dict(obj)
         except Exception as e:
             raise ValueError(f"{argname}: Mitsuba could not load {obj['type']!r}: {e}") from e
-        if not isinstance(loaded, getattr(mi, base)):
-            raise TypeError(f"{argname}: {obj['type']!r} loads as a Mitsuba {_kind(mi, loaded)}, not a {base}")
+        if not isinstance(loaded, getattr(mi, base)):  # "Object": any plugin
+            raise TypeError(f"{argname}: {obj['type']!r} loads as a Mitsuba {kind(mi, loaded)}, not a {base}")
         return loaded, v
     v_obj = variant_of(obj, base)
     if v_obj is None:
-        kind = _kind(mi, obj) if mi.variant() is not None else type(obj).__name__
-        raise TypeError(f"{argname}: expected a Mitsuba {base} (a plugin dict or a loaded object), got {kind}")
+        what = kind(mi, obj) if mi.variant() is not None else type(obj).__name__
+        raise TypeError(f"{argname}: expected a Mitsuba {base} (a plugin dict or a loaded object), got {what}")
     if variant is not None and variant != v_obj:
         raise ValueError(f"{argname}: the object was loaded in variant {v_obj!r}, not {variant!r}")
     with in_variant(v_obj):
@@ -168,7 +168,7 @@ def resolve(obj: Any, base: str, argname: str, variant: Optional[str]) -> Tuple[
     return obj, v_obj
 
 
-def _kind(mi: Any, obj: Any) -> str:
+def kind(mi: Any, obj: Any) -> str:
     for base in ("BSDF", "PhaseFunction", "Emitter", "Medium", "Shape", "Scene", "Texture", "Sensor", "Integrator"):
         cls = getattr(mi, base, None)
         if cls is not None and isinstance(obj, cls):
@@ -200,6 +200,16 @@ def zeros(variant: str, cls: Any, width: int) -> Any:
         return cls()
 
 
+def constant(variant: str, cls: Any, values: Any) -> Any:
+    """A vector (wi, a reference point) as a Mitsuba ``cls``: opaque in a JIT
+    variant, so that Dr.Jit compiles one kernel for every wi rather than one
+    per wi (a literal is baked into the kernel)."""
+    _, dr = modules()
+    if not is_jit(variant):
+        return cls(*[float(c) for c in values])
+    return cls(*[dr.opaque(dr.value_t(cls), float(c)) for c in values])
+
+
 def uniforms(u: Any, variant: str) -> np.ndarray:
     """mcstat's float64 uniforms as Mitsuba takes them: float32 clamped below
     1 (float64 kept in the double variants), widened back to float64."""
@@ -224,12 +234,18 @@ def channel_of(value: Any, channel: int, what: str) -> Any:
 Column = Tuple[Callable[..., Any], np.ndarray]
 
 
-def batch(variant: str, fn: Callable[..., Sequence[Any]], k: int, cols: Sequence[Column]) -> List[np.ndarray]:
-    """Calls ``fn(width, *args)`` over k points and returns its outputs as
-    float64 (or bool) NumPy arrays, (k,) or (k, components).  Each column is
-    (constructor, array of k rows): a JIT variant gets constructor(*columns)
-    of the whole array in one call (width k), a scalar variant one call per
-    point (width 1)."""
+def batch(variant: str, fn: Callable[..., Sequence[Any]], k: int, cols: Sequence[Column],
+          n_out: Optional[int] = None) -> List[np.ndarray]:
+    """Calls ``fn(width, *args)`` over k points and returns its first
+    ``n_out`` outputs (all by default) as float64 (or bool) NumPy arrays,
+    (k,) or (k, components).  Each column is (constructor, array of k rows):
+    a JIT variant gets constructor(*columns) of the whole array in one call
+    (width k), a scalar variant one call per point (width 1).
+
+    fn returns its intermediate records (interactions, samples) after the
+    outputs: they stay referenced while the outputs are read.  Measured in
+    llvm_ad_rgb: an emitter's pdf() whose interactions were released before
+    its output was read made each check 3 times slower."""
     _, dr = modules()
     if is_jit(variant):
         args = []
@@ -239,14 +255,16 @@ def batch(variant: str, fn: Callable[..., Sequence[Any]], k: int, cols: Sequence
                 args.append(make(np.ascontiguousarray(a, dtype=np.float32)))
             else:
                 args.append(make(*[np.ascontiguousarray(a[:, j], dtype=np.float32) for j in range(a.shape[1])]))
-        return [_to_numpy(dr, o, k) for o in fn(k, *args)]
+        outs = list(fn(k, *args))
+        dr.eval(*[o for o in outs[:n_out] if dr.is_array_v(o)])  # one kernel for every output
+        return [_to_numpy(dr, o, k) for o in outs[:n_out]]
     rows = []
     for i in range(k):
         args = []
         for make, a in cols:
             x = np.asarray(a[i])
             args.append(make(float(x)) if x.ndim == 0 else make(*[float(c) for c in x]))
-        rows.append([_to_numpy(dr, o, 1)[0] for o in fn(1, *args)])
+        rows.append([_to_numpy(dr, o, 1)[0] for o in list(fn(1, *args))[:n_out]])
     if not rows:
         return []
     return [np.array([r[j] for r in rows]) for j in range(len(rows[0]))]
@@ -256,7 +274,8 @@ def _to_numpy(dr: Any, o: Any, k: int) -> np.ndarray:
     """A Mitsuba value over k points as (k,) or (k, components)."""
     if dr.is_array_v(o) and dr.size_v(o) > 0:  # a vector or spectrum: its components
         return np.stack([_to_numpy(dr, o[j], k) for j in range(len(o))], axis=1)
-    a = np.asarray(o)
-    dtype = bool if a.dtype == bool else np.float64
-    out: np.ndarray = np.array(np.broadcast_to(a.astype(dtype), (k,)))
+    # a copy in the dtype wanted, not a view of Dr.Jit's memory (holding such views
+    # made every later check several times slower)
+    a = np.array(o, dtype=bool if dr.is_mask_v(o) or isinstance(o, bool) else np.float64)
+    out: np.ndarray = np.array(np.broadcast_to(a, (k,)))
     return out

@@ -87,9 +87,9 @@ class MediumModel:
                 mei.p = x
                 mei.wi = -mi.Vector3f(*[float(c) for c in self.direction])
                 sigma_s, _, sigma_t = self.medium.get_scattering_coefficients(mei, True)
-                return _env.channel_of(sigma_s, ch, "sigma_s"), _env.channel_of(sigma_t, ch, "sigma_t")
+                return _env.channel_of(sigma_s, ch, "sigma_s"), _env.channel_of(sigma_t, ch, "sigma_t"), mei
 
-            s, st = _env.batch(self.variant, one, len(p), [(mi.Point3f, p)])
+            s, st = _env.batch(self.variant, one, len(p), [(mi.Point3f, p)], n_out=2)
         return s, st
 
     def _tau(self, t: np.ndarray) -> np.ndarray:
@@ -137,7 +137,7 @@ class MediumModel:
                 mei = self.medium.sample_interaction(ray, xi, ch, True)
                 return (mei.t, mei.is_valid(), _env.channel_of(mei.sigma_t, ch, "sigma_t"),
                         _env.channel_of(mei.combined_extinction, ch, "the majorant"),
-                        _env.channel_of(mei.sigma_s, ch, "sigma_s"))
+                        _env.channel_of(mei.sigma_s, ch, "sigma_s"), mei, ray)
 
             for j in range(MAX_COLLISIONS):
                 idx = np.flatnonzero(active)
@@ -146,7 +146,7 @@ class MediumModel:
                 o = self.origin[None, :] + t[idx, None] * d[None, :]
                 maxt = self.tmax - t[idx]
                 mt, valid, st, maj, ss = _env.batch(self.variant, tentative, len(idx), [
-                    (mi.Point3f, o), (mi.Float, maxt), (mi.Float, self._uniform(key[idx], 2 * j))])
+                    (mi.Point3f, o), (mi.Float, maxt), (mi.Float, self._uniform(key[idx], 2 * j))], n_out=5)
                 escaped = ~(valid & (mt < maxt))
                 weight[idx[escaped]] = 1.0  # passed the surface: the throughput it carries on (analog: 1)
                 xi2 = self._uniform(key[idx], 2 * j + 1)

@@ -33,7 +33,7 @@ class PhaseModel:
 
     def _mei(self, mi: Any, width: int, wi: np.ndarray) -> Any:
         mei = _env.zeros(self.variant, mi.MediumInteraction3f, width)
-        mei.wi = mi.Vector3f(*[float(c) for c in wi])
+        mei.wi = _env.constant(self.variant, mi.Vector3f, wi)
         mei.sh_frame = mi.Frame3f(mei.wi)
         return mei
 
@@ -44,10 +44,12 @@ class PhaseModel:
         with _env.in_variant(self.variant) as mi:
 
             def one(width: int, u0: Any, u12: Any) -> Tuple[Any, ...]:
-                wo, w, pdf = self.phase.sample(self.ctx, self._mei(mi, width, wi), u0, u12)
-                return wo, _env.channel_of(w, ch, "the weight"), pdf
+                mei = self._mei(mi, width, wi)
+                wo, w, pdf = self.phase.sample(self.ctx, mei, u0, u12)
+                return wo, _env.channel_of(w, ch, "the weight"), pdf, w, mei
 
-            wo, weight, pdf = _env.batch(self.variant, one, len(u), [(mi.Float, u[:, 0]), (mi.Point2f, u[:, 1:3])])
+            wo, weight, pdf = _env.batch(self.variant, one, len(u), [(mi.Float, u[:, 0]), (mi.Point2f, u[:, 1:3])],
+                                         n_out=3)
         ok = pdf > 0
         n = np.linalg.norm(wo, axis=1)
         wo = np.where(n[:, None] > 0, wo / np.where(n > 0, n, 1.0)[:, None], wo)  # float32 directions, renormalised
@@ -60,10 +62,11 @@ class PhaseModel:
         with _env.in_variant(self.variant) as mi:
 
             def one(width: int, d: Any) -> Tuple[Any]:
-                v, p = self.phase.eval_pdf(self.ctx, self._mei(mi, width, wi), d)
-                return (_env.channel_of(v, ch, "eval()") if which == 0 else p,)
+                mei = self._mei(mi, width, wi)
+                v, p = self.phase.eval_pdf(self.ctx, mei, d)
+                return (_env.channel_of(v, ch, "eval()") if which == 0 else p), v, p, mei
 
-            return _env.batch(self.variant, one, len(wo), [(mi.Vector3f, wo)])[0]
+            return _env.batch(self.variant, one, len(wo), [(mi.Vector3f, wo)], n_out=1)[0]
 
     def eval(self, wi: Any, wo: Any) -> np.ndarray:
         return self._eval_pdf(wi, wo, 0)
