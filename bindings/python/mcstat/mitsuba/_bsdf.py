@@ -94,7 +94,7 @@ class BSDFModel:
         ch = self.channel
         with _env.in_variant(self.variant) as mi:
 
-            def one(width: int, d: Any) -> Tuple[Any]:
+            def one(width: int, d: Any) -> Tuple[Any, ...]:
                 si = self._si(mi, width, wi)
                 if which == "pdf":
                     return self.bsdf.pdf(self.ctx, si, d), si

@@ -111,7 +111,7 @@ class EmitterModel:
         with _env.in_variant(self.variant) as mi:
             _, dr = _env.modules()
 
-            def one(width: int, v: Any) -> Tuple[Any]:
+            def one(width: int, v: Any) -> Tuple[Any, ...]:
                 it = self._it(mi, width)
                 if self.scene is None:  # infinite: what escapes along v
                     if which == "eval":

@@ -58,7 +58,7 @@ def _point_libllvm() -> None:
             return
 
 
-def modules() -> Tuple[Any, Any]:
+def modules() -> Tuple[Any, ...]:
     """(mitsuba, drjit), imported on first use; ImportError naming the extra
     when Mitsuba is not installed."""
     _point_libllvm()
@@ -104,11 +104,14 @@ def ensure_variant(variant: Optional[str] = None) -> str:
             mi.set_variant(variant)
     elif mi.variant() is None:
         mi.set_variant(pick_variant())
-    v = mi.variant()
+    return _supported(str(mi.variant()))
+
+
+def _supported(v: str) -> str:
     if "spectral" in v or "polarized" in v:
         raise ValueError(f"variant {v!r}: mcstat.mitsuba checks rgb and mono variants (a spectral variant samples "
                          "wavelengths and a polarised one returns Mueller matrices)")
-    return str(v)
+    return v
 
 
 def variant_of(obj: Any, base: str) -> Optional[str]:
@@ -141,21 +144,29 @@ def in_variant(variant: str) -> Iterator[Any]:
 
 def resolve(obj: Any, base: str, argname: str, variant: Optional[str]) -> Tuple[Any, str]:
     """(object, variant): ``obj`` as a loaded Mitsuba ``base`` object.  A
-    dict is loaded with mi.load_dict in ``variant`` (default: the variant
-    set, or `pick_variant`'s); an object keeps its own variant.  Anything
-    else, or a dict of another kind of plugin, raises TypeError naming
-    ``argname``."""
+    dict is loaded with mi.load_dict in ``variant`` (set for the load, the
+    previous one restored); without one, in the variant set, or in
+    `pick_variant`'s, which stays set when none was.  An object keeps its
+    own variant.  Anything else, or a dict of another kind of plugin,
+    raises TypeError naming ``argname``."""
     mi, _ = modules()
     if isinstance(obj, dict):
         if "type" not in obj:
             raise TypeError(f"{argname}: a Mitsuba plugin dict needs a 'type' key, got keys {sorted(obj)}")
-        v = ensure_variant(variant)
-        try:
-            loaded = mi.load_dict(obj)
-        except Exception as e:
-            raise ValueError(f"{argname}: Mitsuba could not load {obj['type']!r}: {e}") from e
-        if not isinstance(loaded, getattr(mi, base)):  # "Object": any plugin
-            raise TypeError(f"{argname}: {obj['type']!r} loads as a Mitsuba {kind(mi, loaded)}, not a {base}")
+        if variant is None:
+            v = ensure_variant(None)
+        elif variant not in mi.variants():
+            raise ValueError(f"variant: {variant!r} is not one of this Mitsuba's variants ({', '.join(mi.variants())})")
+        else:
+            v = _supported(variant)
+        with in_variant(v):
+            try:
+                loaded = mi.load_dict(obj)
+            except Exception as e:
+                raise ValueError(f"{argname}: Mitsuba could not load {obj['type']!r}: {e}") from e
+        mod = sys.modules["mitsuba." + v]
+        if base != "Object" and not isinstance(loaded, getattr(mod, base)):  # "Object": any plugin
+            raise TypeError(f"{argname}: {obj['type']!r} loads as a Mitsuba {kind(mod, loaded)}, not a {base}")
         return loaded, v
     v_obj = variant_of(obj, base)
     if v_obj is None:
@@ -163,9 +174,7 @@ def resolve(obj: Any, base: str, argname: str, variant: Optional[str]) -> Tuple[
         raise TypeError(f"{argname}: expected a Mitsuba {base} (a plugin dict or a loaded object), got {what}")
     if variant is not None and variant != v_obj:
         raise ValueError(f"{argname}: the object was loaded in variant {v_obj!r}, not {variant!r}")
-    with in_variant(v_obj):
-        ensure_variant(v_obj)  # refuses spectral and polarised variants
-    return obj, v_obj
+    return obj, _supported(v_obj)
 
 
 def kind(mi: Any, obj: Any) -> str:

@@ -63,9 +63,13 @@ class MediumModel:
             raise ValueError(f"tmax: a finite distance > 0, not {tmax!r}")
         self.channel = int(channel)
         with _env.in_variant(self.variant):
-            homogeneous = bool(self.medium.is_homogeneous())
+            self.homogeneous = bool(self.medium.is_homogeneous())
+        self._constant: Optional[Tuple[float, float]] = None
+        if self.homogeneous:  # its coefficients once: the scalar variants' loops skip them
+            s, st = self._coefficients(np.zeros(1))
+            self._constant = (float(s[0]), float(st[0]))
         if table is None:
-            table = 2 if homogeneous else 40001
+            table = 2 if self.homogeneous else 40001
         if int(table) < 2:
             raise ValueError(f"table: at least 2 points, not {table!r}")
         self.z = np.linspace(0.0, self.tmax, int(table))
@@ -78,11 +82,13 @@ class MediumModel:
 
     def _coefficients(self, t: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
         """(sigma_s, sigma_t) at the distances t along the ray."""
+        if self._constant is not None:
+            return np.full(len(t), self._constant[0]), np.full(len(t), self._constant[1])
         p = self.origin[None, :] + np.asarray(t, dtype=np.float64)[:, None] * self.direction[None, :]
         ch = self.channel
         with _env.in_variant(self.variant) as mi:
 
-            def one(width: int, x: Any) -> Tuple[Any, Any]:
+            def one(width: int, x: Any) -> Tuple[Any, ...]:
                 mei = _env.zeros(self.variant, mi.MediumInteraction3f, width)
                 mei.p = x
                 mei.wi = -mi.Vector3f(*[float(c) for c in self.direction])
@@ -104,6 +110,8 @@ class MediumModel:
     def _claims(self, t: Any) -> Tuple[np.ndarray, np.ndarray]:
         """(pdf, eval) at the distances t: sigma_t T and sigma_s T before tmax, 0 beyond."""
         t = np.asarray(t, dtype=np.float64)
+        if len(t) == 0:
+            return np.zeros(0), np.zeros(0)
         inside = (t >= 0) & (t < self.tmax)
         tt = np.where(inside, t, 0.0)
         s, st = self._coefficients(tt)

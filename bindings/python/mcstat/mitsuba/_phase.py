@@ -61,7 +61,7 @@ class PhaseModel:
         ch = self.channel
         with _env.in_variant(self.variant) as mi:
 
-            def one(width: int, d: Any) -> Tuple[Any]:
+            def one(width: int, d: Any) -> Tuple[Any, ...]:
                 mei = self._mei(mi, width, wi)
                 v, p = self.phase.eval_pdf(self.ctx, mei, d)
                 return (_env.channel_of(v, ch, "eval()") if which == 0 else p), v, p, mei
