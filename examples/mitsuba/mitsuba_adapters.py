@@ -190,6 +190,102 @@ def planted_dict(bsdf_dict, bug, factor=BUG_FACTOR):
     return {"type": "mcstat_planted", "key": key}
 
 
+# ---- phase functions and media with planted bugs --------------------------------------
+
+# Python plugins ("mcstat_planted_phase", "mcstat_planted_medium") wrapping a
+# correct Mitsuba object, loadable by load_dict like any plugin, so that the
+# shipped one-liners (mcstat.mitsuba.check_phase / check_medium) see them:
+#   phase   pdf      eval_pdf()'s pdf from the phase function with g * factor
+#                    (hg); sample() correct
+#           weight   sample()'s weight * factor
+#   medium  sampler  sample_interaction() from the medium with sigma_t * factor;
+#                    the coefficients (get_scattering_coefficients) correct
+#           accept   sample_interaction()'s sigma_t * factor: delta tracking then
+#                    takes a tentative collision for a real one too often (a
+#                    heterogeneous medium: in a homogeneous one every tentative
+#                    collision is real)
+PHASE_BUGS = ("pdf", "weight")
+MEDIUM_BUGS = ("sampler", "accept")
+_registered_other = set()
+
+
+def _make_planted_phase():
+    class PlantedPhase(mi.PhaseFunction):
+        def __init__(self, props):
+            mi.PhaseFunction.__init__(self, props)
+            base_dict, bug, factor = _PLANTED_REGISTRY[props["key"]]
+            self.bug, self.factor = bug, factor
+            self.base = mi.load_dict(base_dict)
+            self.wrong = mi.load_dict(dict(base_dict, g=base_dict["g"] * factor)) if bug == "pdf" else self.base
+            self.m_flags = self.base.flags()
+
+        def sample(self, ctx, mei, sample1, sample2, active=True):
+            wo, w, pdf = self.base.sample(ctx, mei, sample1, sample2, active)
+            return wo, (w * self.factor if self.bug == "weight" else w), pdf
+
+        def eval_pdf(self, ctx, mei, wo, active=True):
+            value, _ = self.base.eval_pdf(ctx, mei, wo, active)
+            return value, self.wrong.eval_pdf(ctx, mei, wo, active)[1]
+
+        def to_string(self):
+            return "PlantedPhase[%s]" % self.bug
+
+    return PlantedPhase
+
+
+def _make_planted_medium():
+    class PlantedMedium(mi.Medium):
+        def __init__(self, props):
+            mi.Medium.__init__(self, props)
+            base_dict, bug, factor = _PLANTED_REGISTRY[props["key"]]
+            self.bug, self.factor = bug, factor
+            self.base = mi.load_dict(base_dict)
+            self.wrong = mi.load_dict(dict(base_dict, sigma_t=base_dict["sigma_t"] * factor)) \
+                if bug == "sampler" else self.base
+
+        def sample_interaction(self, ray, sample, channel, active=True):
+            mei = self.wrong.sample_interaction(ray, sample, channel, active)
+            if self.bug == "accept":
+                mei.sigma_t = mei.sigma_t * self.factor
+            return mei
+
+        def get_scattering_coefficients(self, mei, active=True):
+            return self.base.get_scattering_coefficients(mei, active)
+
+        def is_homogeneous(self):
+            return self.base.is_homogeneous()
+
+        def to_string(self):
+            return "PlantedMedium[%s]" % self.bug
+
+    return PlantedMedium
+
+
+def _planted_other(kind, base_dict, bug, factor, bugs):
+    if bug not in bugs:
+        raise ValueError("bug must be one of %s, not %r" % (", ".join(bugs), bug))
+    name = "mcstat_planted_" + kind
+    if (name, mi.variant()) not in _registered_other:
+        if kind == "phase":
+            mi.register_phase(name, lambda props: _make_planted_phase()(props))
+        else:
+            mi.register_medium(name, lambda props: _make_planted_medium()(props))
+        _registered_other.add((name, mi.variant()))
+    key = "%s/%s/%d" % (kind, bug, len(_PLANTED_REGISTRY))
+    _PLANTED_REGISTRY[key] = (base_dict, bug, float(factor))
+    return {"type": name, "key": key}
+
+
+def planted_phase_dict(phase_dict, bug, factor=BUG_FACTOR):
+    """A load_dict dictionary of a phase function (hg for "pdf") with a planted bug (PHASE_BUGS)."""
+    return _planted_other("phase", phase_dict, bug, factor, PHASE_BUGS)
+
+
+def planted_medium_dict(medium_dict, bug, factor=BUG_FACTOR):
+    """A load_dict dictionary of a medium (homogeneous for "sampler") with a planted bug (MEDIUM_BUGS)."""
+    return _planted_other("medium", medium_dict, bug, factor, MEDIUM_BUGS)
+
+
 # ---- BSDF -> mcstat callables: mcstat.mitsuba's -------------------------------------
 
 def _u32(u):
