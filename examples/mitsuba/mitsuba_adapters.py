@@ -267,7 +267,8 @@ def _planted_other(kind, base_dict, bug, factor, bugs):
     name = "mcstat_planted_" + kind
     if (name, mi.variant()) not in _registered_other:
         if kind == "phase":
-            mi.register_phase(name, lambda props: _make_planted_phase()(props))
+            register = getattr(mi, "register_phase", None) or mi.register_phasefunction  # 3.6's name
+            register(name, lambda props: _make_planted_phase()(props))
         else:
             mi.register_medium(name, lambda props: _make_planted_medium()(props))
         _registered_other.add((name, mi.variant()))

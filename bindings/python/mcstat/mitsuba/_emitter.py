@@ -56,13 +56,13 @@ def _emitter_of(emitter: Any, variant: Optional[str]) -> Tuple[Any, Any, str, An
             obj = obj.emitter()
         flags = int(obj.flags())
         if flags & int(mi.EmitterFlags.Delta):
-            raise ValueError(f"emitter: {obj.class_name()} has a delta position or direction: no density over "
+            raise ValueError(f"emitter: {_env.class_name(obj)} has a delta position or direction: no density over "
                              "directions to check")
         if flags & int(mi.EmitterFlags.Infinite):
             return obj, None, v, loaded
         shape = obj.get_shape()
         if shape is None:
-            raise ValueError(f"emitter: {obj.class_name()} is neither infinite nor attached to a shape")
+            raise ValueError(f"emitter: {_env.class_name(obj)} is neither infinite nor attached to a shape")
         if scene is None or len(scene.shapes()) != 1:  # the light's shape alone: no occluder
             scene = mi.load_dict({"type": "scene", "light": shape})
         return obj, scene, v, loaded

@@ -177,6 +177,14 @@ def resolve(obj: Any, base: str, argname: str, variant: Optional[str]) -> Tuple[
     return obj, _supported(v_obj)
 
 
+def class_name(obj: Any) -> str:
+    """The plugin's C++ class (SmoothDielectric...): class_name() where
+    Mitsuba has it (3.9 does), else the head of its to_string() (3.6)."""
+    if hasattr(obj, "class_name"):
+        return str(obj.class_name())
+    return str(obj).split("[", 1)[0].strip()
+
+
 def kind(mi: Any, obj: Any) -> str:
     for base in ("BSDF", "PhaseFunction", "Emitter", "Medium", "Shape", "Scene", "Texture", "Sensor", "Integrator"):
         cls = getattr(mi, base, None)

@@ -34,10 +34,12 @@ from typing import Any, Callable, Dict, List, Tuple
 
 import numpy as np
 
+from . import _env
+
 Lobes = Callable[[np.ndarray], Tuple[np.ndarray, np.ndarray, np.ndarray]]
 
 KNOWN = {"SmoothDielectric": "dielectric", "ThinDielectric": "thindielectric", "SmoothConductor": "conductor",
-         "SmoothPlastic": "plastic", "MaskBSDF": "mask"}
+         "SmoothPlastic": "plastic", "MaskBSDF": "mask", "Mask": "mask"}  # Mask: 3.6's name
 
 
 def fresnel(cos_i: float, eta: float) -> Tuple[float, float, float]:
@@ -147,9 +149,11 @@ def delta_lobes(bsdf: Any, channel: int = 0) -> Lobes:
     """The lobes(wi) of a loaded Mitsuba BSDF with discrete lobes (in the
     variant it was loaded in): dielectric, thindielectric, conductor,
     plastic, mask.  ValueError for another one."""
-    name = bsdf.class_name()
+    name = _env.class_name(bsdf)
     kind = KNOWN.get(name)
     if kind is None:
+        if name == "BSDF":  # a Python plugin: its to_string() names it
+            name = (str(bsdf).splitlines() or [name])[0]
         raise ValueError(f"bsdf: {name} has discrete (delta) lobes that mcstat.mitsuba cannot derive (it knows "
                          f"{', '.join(sorted(KNOWN.values()))}): pass lobes=, a callable wi -> (directions, "
                          "mass, value), or lobes=None to check its smooth part alone")
