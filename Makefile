@@ -151,6 +151,8 @@ quickstart-test: install-test python rust-deps go-deps
 
 # Mitsuba 3 from PyPI (examples/mitsuba/requirements.txt).  Only when pip
 # cannot install the wheel do the tests skip, and they say pip's reason.
+# examples/mitsuba's tests include those of the package's own adapters,
+# mcstat.mitsuba (test_shipped_adapters.py).
 # The demo suite (examples/mitsuba/suite) runs under mcstat's pytest plugin
 # at master seed 0, where every case passes, and again with one planted bug,
 # where exactly the planted test must fail (a fixed-seed regression test;

@@ -188,7 +188,7 @@ def lobes_mask(opacity):
 
 class Hair:
     """Mitsuba's hair BSDF at the fibre offset h = -1 + 2 v (si.uv = (0, v)), as
-    check_bsdf's callables (ma._scalar_bsdf with uv set)."""
+    check_bsdf's callables (mcstat.mitsuba.BSDFModel's in scalar_rgb, with uv set)."""
 
     def __init__(self, spec, v):
         self.bsdf, self.v, self.ctx = mi.load_dict(spec), v, mi.BSDFContext()

@@ -1,26 +1,21 @@
-"""Mitsuba 3 BSDFs and emitters as the callables of mcstat.check_bsdf / check_emitter,
-and BSDFs with planted bugs that Mitsuba's own chi2 test sees too.
+"""The examples' Mitsuba 3 set-up over the shipped adapters (mcstat.mitsuba):
+the BSDF configurations of Mitsuba's own tests, BSDFs and area lights with
+planted bugs, and Mitsuba's own chi2 test on the same objects.
+
+The adapting itself (variant choice, float32 uniforms, the failed-sample
+convention, the callables of check_bsdf and check_emitter) is
+mcstat.mitsuba's, installed with ``pip install 'mcstat[mitsuba]'``; this
+file re-exports what the examples use of it (pick_variant, bsdf_callables,
+emitter_callables), so that there is one implementation.
 
 Variants.  In a JIT variant (llvm_ad_rgb) each callable evaluates a whole
 batch in one Dr.Jit kernel; in scalar_rgb it loops in Python (sample() 10 to
 80 times slower per sample, a whole check_bsdf 6 to 17 times: RESULTS.md).
 pick_variant() chooses llvm_ad_rgb when it works here and scalar_rgb
-otherwise.  Dr.Jit's LLVM backend needs a
-libLLVM it can generate code with: LLVM 15 aborts in code generation on some
-CPUs (a process abort, not an exception), so pick_variant() probes llvm in a
-subprocess, and points DRJIT_LIBLLVM_PATH at Debian's libllvm19 when it is
-installed and the variable is unset.
-
-Float32.  Mitsuba's rgb variants compute in float32: the uniforms mcstat
-supplies (float64 in [0, 1)) are rounded to float32 and clamped below 1 (a
-float64 just below 1 rounds to 1.0f, outside Mitsuba's [0, 1) contract), and
-directions and values come back as float32 values widened to float64.
-
-Failed samples.  Mitsuba marks a failed BSDF sample by a zero weight and may
-leave bs.pdf > 0 (e.g. a rough conductor's microfacet sample reflected below
-the horizon); mcstat wants pdf 0 and weight 0.  The adapters report pdf 0
-wherever every colour channel of the weight is 0, which is also how
-Mitsuba's own chi2 BSDFAdapter decides that a sample failed.
+otherwise (mcstat.mitsuba.pick_variant: Dr.Jit's LLVM backend needs a
+libLLVM it can generate code with; LLVM 15 aborts on some CPUs, so llvm is
+probed in a subprocess, and DRJIT_LIBLLVM_PATH points at Debian's libllvm19
+when it is installed and the variable is unset).
 
 Planted bugs (PLANTED_BUGS), each a Python BSDF plugin ("mcstat_planted",
 registered with mi.register_bsdf) wrapping a correct Mitsuba BSDF, so that
@@ -32,45 +27,23 @@ and a load_dict dictionary) test the same object:
   pdf      pdf() is the pdf of the BSDF with roughness * 1.1; sample() correct;
   eval     eval() is the eval of the BSDF with roughness * 1.1; sample() (its
            direction, pdf and weight) correct;
-  weight   sample()'s weight is 1.1 * eval/pdf; everything else correct.
+  weight   sample()'s weight is 1.1 * eval/pdf; everything else correct (also
+           on a BSDF without roughness: a dielectric's discrete samples).
 (1.1 is BUG_FACTOR, planted_dict's factor argument.)
 """
-import os
-import subprocess
-import sys
-
 import numpy as np
 
-LLVM_VARIANT = "llvm_ad_rgb"
-SCALAR_VARIANT = "scalar_rgb"
-_LIBLLVM_CANDIDATES = ("/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1", "/usr/lib/x86_64-linux-gnu/libLLVM-19.so",
-                       "/usr/lib/llvm-19/lib/libLLVM.so.1", "/usr/lib/llvm-19/lib/libLLVM-19.so")
+import mcstat.mitsuba as mm
+from mcstat.mitsuba import _env
 
-if "DRJIT_LIBLLVM_PATH" not in os.environ:
-    for _p in _LIBLLVM_CANDIDATES:
-        if os.path.exists(_p):
-            os.environ["DRJIT_LIBLLVM_PATH"] = _p
-            break
-
-import drjit as dr  # noqa: E402
-import mitsuba as mi  # noqa: E402
+LLVM_VARIANT = _env.LLVM_VARIANT
+SCALAR_VARIANT = _env.SCALAR_VARIANT
+mi, dr = _env.modules()  # DRJIT_LIBLLVM_PATH set before Dr.Jit loads
 
 PLANTED_BUGS = ("sampler", "pdf", "eval", "weight")
 BUG_FACTOR = 1.1
 _ROUGHNESS_KEYS = ("alpha", "alpha_u", "alpha_v", "roughness")
-# the largest float32 below 1: uniforms are clamped to it after rounding
-_ONE_MINUS = float(np.nextafter(np.float32(1), np.float32(0)))
-
-_PROBE = """
-import mitsuba as mi, drjit as dr
-mi.set_variant('%s')
-b = mi.load_dict({'type': 'roughconductor'})
-si = dr.zeros(mi.SurfaceInteraction3f, 16); si.wi = mi.Vector3f(0, 0, 1)
-bs, w = b.sample(mi.BSDFContext(), si, dr.full(mi.Float, 0.3, 16), mi.Point2f(0.2, 0.7))
-dr.eval(w); print('ok', w[0][0] > 0)
-"""
-
-_variant_choice = None
+pick_variant = mm.pick_variant
 
 
 def loaded_libllvm():
@@ -82,38 +55,15 @@ def loaded_libllvm():
     return None
 
 
-def pick_variant():
-    """llvm_ad_rgb when it runs here (probed once per process in a subprocess:
-    a broken LLVM aborts the process), else scalar_rgb.  MCSTAT_MITSUBA_VARIANT
-    overrides the choice."""
-    global _variant_choice
-    forced = os.environ.get("MCSTAT_MITSUBA_VARIANT")
-    if forced:
-        return forced
-    if _variant_choice is None:
-        _variant_choice = SCALAR_VARIANT
-        if LLVM_VARIANT in mi.variants():
-            try:
-                r = subprocess.run([sys.executable, "-c", _PROBE % LLVM_VARIANT], capture_output=True,
-                                   text=True, timeout=120, env=os.environ.copy())
-                if r.returncode == 0 and "ok True" in r.stdout:
-                    _variant_choice = LLVM_VARIANT
-            except (OSError, subprocess.SubprocessError):
-                pass
-    return _variant_choice
-
-
 def use_variant(variant=None):
     """Sets the Mitsuba variant (pick_variant() if None) and registers the planted-bug plugin for it."""
-    variant = variant or pick_variant()
-    if mi.variant() != variant:
-        mi.set_variant(variant)
+    variant = _env.ensure_variant(variant or pick_variant())
     _register_planted()
     return variant
 
 
 def is_jit():
-    return not mi.variant().startswith("scalar")
+    return _env.is_jit(mi.variant())
 
 
 # ---- BSDF configurations: as Mitsuba's own test suite sets them up ---------------
@@ -187,7 +137,7 @@ def _make_planted_class():
             base_dict, bug, factor = _PLANTED_REGISTRY[key]
             self.bug, self.factor = bug, factor
             self.base = mi.load_dict(base_dict)
-            self.wrong = mi.load_dict(rougher(base_dict, factor))
+            self.wrong = None if bug == "weight" else mi.load_dict(rougher(base_dict, factor))
             self.m_flags = self.base.flags()
             self.m_components = [self.base.flags(i) for i in range(self.base.component_count())]
 
@@ -240,82 +190,116 @@ def planted_dict(bsdf_dict, bug, factor=BUG_FACTOR):
     return {"type": "mcstat_planted", "key": key}
 
 
-# ---- BSDF -> mcstat callables -------------------------------------------------------
+# ---- phase functions and media with planted bugs --------------------------------------
+
+# Python plugins ("mcstat_planted_phase", "mcstat_planted_medium") wrapping a
+# correct Mitsuba object, loadable by load_dict like any plugin, so that the
+# shipped one-liners (mcstat.mitsuba.check_phase / check_medium) see them:
+#   phase   pdf      eval_pdf()'s pdf from the phase function with g * factor
+#                    (hg); sample() correct
+#           weight   sample()'s weight * factor
+#   medium  sampler  sample_interaction() from the medium with sigma_t * factor;
+#                    the coefficients (get_scattering_coefficients) correct
+#           accept   sample_interaction()'s sigma_t * factor: delta tracking then
+#                    takes a tentative collision for a real one too often (a
+#                    heterogeneous medium: in a homogeneous one every tentative
+#                    collision is real)
+PHASE_BUGS = ("pdf", "weight")
+MEDIUM_BUGS = ("sampler", "accept")
+_registered_other = set()
+
+
+def _make_planted_phase():
+    class PlantedPhase(mi.PhaseFunction):
+        def __init__(self, props):
+            mi.PhaseFunction.__init__(self, props)
+            base_dict, bug, factor = _PLANTED_REGISTRY[props["key"]]
+            self.bug, self.factor = bug, factor
+            self.base = mi.load_dict(base_dict)
+            self.wrong = mi.load_dict(dict(base_dict, g=base_dict["g"] * factor)) if bug == "pdf" else self.base
+            self.m_flags = self.base.flags()
+
+        def sample(self, ctx, mei, sample1, sample2, active=True):
+            wo, w, pdf = self.base.sample(ctx, mei, sample1, sample2, active)
+            return wo, (w * self.factor if self.bug == "weight" else w), pdf
+
+        def eval_pdf(self, ctx, mei, wo, active=True):
+            value, _ = self.base.eval_pdf(ctx, mei, wo, active)
+            return value, self.wrong.eval_pdf(ctx, mei, wo, active)[1]
+
+        def to_string(self):
+            return "PlantedPhase[%s]" % self.bug
+
+    return PlantedPhase
+
+
+def _make_planted_medium():
+    class PlantedMedium(mi.Medium):
+        def __init__(self, props):
+            mi.Medium.__init__(self, props)
+            base_dict, bug, factor = _PLANTED_REGISTRY[props["key"]]
+            self.bug, self.factor = bug, factor
+            self.base = mi.load_dict(base_dict)
+            self.wrong = mi.load_dict(dict(base_dict, sigma_t=base_dict["sigma_t"] * factor)) \
+                if bug == "sampler" else self.base
+
+        def sample_interaction(self, ray, sample, channel, active=True):
+            mei = self.wrong.sample_interaction(ray, sample, channel, active)
+            if self.bug == "accept":
+                mei.sigma_t = mei.sigma_t * self.factor
+            return mei
+
+        def get_scattering_coefficients(self, mei, active=True):
+            return self.base.get_scattering_coefficients(mei, active)
+
+        def is_homogeneous(self):
+            return self.base.is_homogeneous()
+
+        def to_string(self):
+            return "PlantedMedium[%s]" % self.bug
+
+    return PlantedMedium
+
+
+def _planted_other(kind, base_dict, bug, factor, bugs):
+    if bug not in bugs:
+        raise ValueError("bug must be one of %s, not %r" % (", ".join(bugs), bug))
+    name = "mcstat_planted_" + kind
+    if (name, mi.variant()) not in _registered_other:
+        if kind == "phase":
+            register = getattr(mi, "register_phase", None) or mi.register_phasefunction  # 3.6's name
+            register(name, lambda props: _make_planted_phase()(props))
+        else:
+            mi.register_medium(name, lambda props: _make_planted_medium()(props))
+        _registered_other.add((name, mi.variant()))
+    key = "%s/%s/%d" % (kind, bug, len(_PLANTED_REGISTRY))
+    _PLANTED_REGISTRY[key] = (base_dict, bug, float(factor))
+    return {"type": name, "key": key}
+
+
+def planted_phase_dict(phase_dict, bug, factor=BUG_FACTOR):
+    """A load_dict dictionary of a phase function (hg for "pdf") with a planted bug (PHASE_BUGS)."""
+    return _planted_other("phase", phase_dict, bug, factor, PHASE_BUGS)
+
+
+def planted_medium_dict(medium_dict, bug, factor=BUG_FACTOR):
+    """A load_dict dictionary of a medium (homogeneous for "sampler") with a planted bug (MEDIUM_BUGS)."""
+    return _planted_other("medium", medium_dict, bug, factor, MEDIUM_BUGS)
+
+
+# ---- BSDF -> mcstat callables: mcstat.mitsuba's -------------------------------------
 
 def _u32(u):
-    u = np.asarray(u, dtype=np.float64).astype(np.float32)
-    return np.minimum(u, np.float32(_ONE_MINUS))
+    """mcstat's uniforms as Mitsuba's float32 variants take them (float32, below 1)."""
+    return _env.uniforms(u, mi.variant()).astype(np.float32)
 
 
 def bsdf_callables(bsdf, channel=0):
     """(sample, eval, pdf) for mcstat.check_bsdf from a Mitsuba BSDF object (or a
-    load_dict dictionary) of the current variant.  `channel`: which colour
-    channel of eval() and of the weight is checked (each channel's weight is
-    that channel's eval / pdf)."""
-    if isinstance(bsdf, dict):
-        bsdf = mi.load_dict(bsdf)
-    ctx = mi.BSDFContext()
-    return (_jit_bsdf if is_jit() else _scalar_bsdf)(bsdf, ctx, channel)
-
-
-def _jit_bsdf(bsdf, ctx, ch):
-    def interaction(wi, k):
-        si = dr.zeros(mi.SurfaceInteraction3f, k)
-        si.wi = mi.Vector3f(*[float(c) for c in wi])
-        return si
-
-    def vec(x):
-        x = np.asarray(x, dtype=np.float32)
-        return mi.Vector3f(x[:, 0], x[:, 1], x[:, 2])
-
-    def sample(wi, u):
-        u = _u32(u)
-        k = len(u)
-        bs, w = bsdf.sample(ctx, interaction(wi, k), mi.Float(u[:, 0]), mi.Point2f(u[:, 1], u[:, 2]))
-        wo = np.array(bs.wo, dtype=np.float64).reshape(3, k).T
-        weight = np.array(w[ch], dtype=np.float64)
-        failed = np.array(dr.all(w == 0.0), dtype=bool)
-        pdf = np.where(failed, 0.0, np.array(bs.pdf, dtype=np.float64))
-        return wo, weight, pdf
-
-    def eval_(wi, wo):
-        wo = np.asarray(wo)
-        return np.array(bsdf.eval(ctx, interaction(wi, len(wo)), vec(wo))[ch], dtype=np.float64)
-
-    def pdf(wi, wo):
-        wo = np.asarray(wo)
-        return np.array(bsdf.pdf(ctx, interaction(wi, len(wo)), vec(wo)), dtype=np.float64)
-
-    return sample, eval_, pdf
-
-
-def _scalar_bsdf(bsdf, ctx, ch):
-    def interaction(wi):
-        si = mi.SurfaceInteraction3f()
-        si.wi = mi.Vector3f(*[float(c) for c in wi])
-        return si
-
-    def sample(wi, u):
-        u = _u32(u)
-        si = interaction(wi)
-        k = len(u)
-        wo, weight, pdf = np.zeros((k, 3)), np.zeros(k), np.zeros(k)
-        for i in range(k):
-            bs, w = bsdf.sample(ctx, si, float(u[i, 0]), mi.Point2f(float(u[i, 1]), float(u[i, 2])))
-            wo[i] = (bs.wo[0], bs.wo[1], bs.wo[2])
-            weight[i] = w[ch]
-            pdf[i] = 0.0 if all(w[c] == 0.0 for c in range(len(w))) else bs.pdf
-        return wo, weight, pdf
-
-    def eval_(wi, wo):
-        si = interaction(wi)
-        return np.array([bsdf.eval(ctx, si, mi.Vector3f(*map(float, d)))[ch] for d in np.asarray(wo)])
-
-    def pdf(wi, wo):
-        si = interaction(wi)
-        return np.array([bsdf.pdf(ctx, si, mi.Vector3f(*map(float, d))) for d in np.asarray(wo)])
-
-    return sample, eval_, pdf
+    load_dict dictionary) of the current variant: mcstat.mitsuba.bsdf_model's.
+    `channel`: which colour channel of eval() and of the weight is checked."""
+    m = mm.bsdf_model(bsdf, channel=channel, lobes=None, variant=mi.variant())
+    return m.sample, m.eval, m.pdf
 
 
 def config_callables(name, bug=None, channel=0, factor=BUG_FACTOR):
@@ -349,7 +333,8 @@ def emitter_scene(shape="rectangle"):
 
 def emitter_callables(shape="rectangle", ref=(0.0, 0.0, 0.0), bug=None, channel=0, factor=BUG_FACTOR):
     """(sample, eval, pdf) for mcstat.check_emitter: the area light of
-    emitter_scene(shape) sampled by direction from the point ref.  eval(d) is
+    emitter_scene(shape) sampled by direction from the point ref
+    (mcstat.mitsuba.emitter_model's callables).  eval(d) is
     the radiance arriving at ref along d (0 where the ray misses the light),
     pdf(d) Mitsuba's pdf_direction for the point the ray hits.  Planted bugs
     (EMITTER_BUGS), as plain wrappers: sampler (the first uniform u0 replaced by
@@ -359,64 +344,16 @@ def emitter_callables(shape="rectangle", ref=(0.0, 0.0, 0.0), bug=None, channel=
     1 + 2 (factor - 1) replaces the sampler's exponent 1.2."""
     if bug not in (None, "none") and bug not in EMITTER_BUGS:
         raise ValueError("bug must be one of %s or None, not %r" % (", ".join(EMITTER_BUGS), bug))
-    scene = emitter_scene(shape)
-    emitter = scene.emitters()[0]
-    ref = [float(c) for c in ref]
-    jit = is_jit()
+    model = mm.emitter_model(emitter_scene(shape), ref, channel=channel, variant=mi.variant())
+    exponent = np.float32(1.0 + 2.0 * (factor - 1.0))
 
     def raw_sample(u):
-        u = _u32(u)
         if bug == "sampler":
-            u[:, 0] = u[:, 0] ** np.float32(1.0 + 2.0 * (factor - 1.0))
-        k = len(u)
-        if jit:
-            it = dr.zeros(mi.Interaction3f, k)
-            it.p = mi.Point3f(*ref)
-            ds, spec = emitter.sample_direction(it, mi.Point2f(u[:, 0], u[:, 1]))
-            d = np.array(ds.d, dtype=np.float64).reshape(3, k).T
-            return d, np.array(spec[channel], dtype=np.float64), np.array(ds.pdf, dtype=np.float64)
-        it = mi.Interaction3f()
-        it.p = mi.Point3f(*ref)
-        d, w, p = np.zeros((k, 3)), np.zeros(k), np.zeros(k)
-        for i in range(k):
-            ds, spec = emitter.sample_direction(it, mi.Point2f(float(u[i, 0]), float(u[i, 1])))
-            d[i] = (ds.d[0], ds.d[1], ds.d[2])
-            w[i], p[i] = spec[channel], ds.pdf
-        return d, w, p
+            u = _u32(u)
+            u[:, 0] = u[:, 0] ** exponent
+        return model.sample(u)
 
-    def hit(d):
-        """(si, it): the rays from ref along the directions d (JIT variants)."""
-        d = np.asarray(d, dtype=np.float32)
-        it = dr.zeros(mi.Interaction3f, len(d))
-        it.p = mi.Point3f(*ref)
-        return scene.ray_intersect(mi.Ray3f(mi.Point3f(*ref), mi.Vector3f(d[:, 0], d[:, 1], d[:, 2]))), it
-
-    def raw_eval(d):
-        if jit:
-            si, _ = hit(d)
-            valid = si.is_valid()  # a masked-off lane is not zeroed by eval(): select
-            return np.array(dr.select(valid, emitter.eval(si, valid)[channel], 0.0), dtype=np.float64)
-        out = np.zeros(len(d))
-        for i, di in enumerate(np.asarray(d, dtype=np.float32)):
-            si = scene.ray_intersect(mi.Ray3f(mi.Point3f(*ref), mi.Vector3f(*map(float, di))))
-            if si.is_valid():
-                out[i] = emitter.eval(si)[channel]
-        return out
-
-    def raw_pdf(d):
-        if jit:
-            si, it = hit(d)
-            ds = mi.DirectionSample3f(scene, si, it)
-            valid = si.is_valid()
-            return np.array(dr.select(valid, emitter.pdf_direction(it, ds, valid), 0.0), dtype=np.float64)
-        out = np.zeros(len(d))
-        it = mi.Interaction3f()
-        it.p = mi.Point3f(*ref)
-        for i, di in enumerate(np.asarray(d, dtype=np.float32)):
-            si = scene.ray_intersect(mi.Ray3f(mi.Point3f(*ref), mi.Vector3f(*map(float, di))))
-            if si.is_valid():
-                out[i] = emitter.pdf_direction(it, mi.DirectionSample3f(scene, si, it))
-        return out
+    raw_eval, raw_pdf = model.eval, model.pdf
 
     def sample(u):
         d, w, p = raw_sample(u)

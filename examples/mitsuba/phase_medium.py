@@ -13,9 +13,10 @@ Variant scalar_rgb (no LLVM needed): every callable loops in Python over
 its points, float32 inside Mitsuba (uniforms rounded to float32 and clamped
 below 1, as in mitsuba_adapters.py).
 
-Conventions.  Phase functions: mcstat's wi is Mitsuba's mei.wi (pointing
-back along the ray), wo what sample() returns; eval is the value of
-eval_pdf, the weight sample()'s (1 for hg and rayleigh), pdf sample()'s.
+Conventions.  Phase functions (mcstat.mitsuba.PhaseModel's callables):
+mcstat's wi is Mitsuba's mei.wi (pointing back along the ray), wo what
+sample() returns; eval is the value of eval_pdf, the weight sample()'s (1
+for hg and rayleigh), pdf sample()'s.
 The medium: a ray from the origin along +z with a surface at TMAX inside a
 homogeneous medium (sigma_t 2, albedo 0.75); sample() is
 sample_interaction, an interaction at t < TMAX a scattering with the
@@ -57,6 +58,7 @@ import mitsuba as mi
 mi.set_variant("scalar_rgb")
 
 import mcstat  # noqa: E402
+import mcstat.mitsuba as mm  # noqa: E402
 
 BUG = 1.1
 ALPHA = 0.01
@@ -70,50 +72,25 @@ def _u32(u):
 
 
 class MitsubaPhase:
-    """A Mitsuba phase function as check_phase's callables."""
+    """A Mitsuba phase function as check_phase's callables: the shipped
+    mcstat.mitsuba.PhaseModel's (scalar_rgb), with the planted bugs around
+    them."""
 
     def __init__(self, spec, bug=None):
-        self.pf = mi.load_dict(spec)
+        self.model = mm.phase_model(spec, variant="scalar_rgb")
+        self.pdf_model = mm.phase_model(dict(spec, g=spec["g"] * BUG), variant="scalar_rgb") \
+            if bug == "pdf_g" else self.model
         self.bug = bug
-        self.pdf_pf = self.pf
-        if bug == "pdf_g":
-            self.pdf_pf = mi.load_dict(dict(spec, g=spec["g"] * BUG))
-        self.ctx = mi.PhaseFunctionContext(None)
-
-    def _mei(self, wi):
-        mei = mi.MediumInteraction3f()
-        mei.wi = mi.Vector3f(*[float(c) for c in wi])
-        mei.sh_frame = mi.Frame3f(mei.wi)  # as sample_interaction sets it
-        return mei
 
     def sample(self, wi, u):
-        u = _u32(u)
-        mei = self._mei(wi)
-        wo = np.empty((len(u), 3))
-        w = np.empty(len(u))
-        p = np.empty(len(u))
-        for k in range(len(u)):
-            d, weight, pdf = self.pf.sample(self.ctx, mei, float(u[k, 0]), mi.Point2f(u[k, 1], u[k, 2]))
-            wo[k] = (d[0], d[1], d[2])
-            w[k] = weight[0]
-            p[k] = pdf
-        wo /= np.linalg.norm(wo, axis=1)[:, None]  # float32 directions, renormalised in float64
-        w *= {"weight": BUG, "norm": 1 / BUG}.get(self.bug, 1.0)
-        return wo, np.where(p > 0, w, 0.0), p
-
-    def _eval_pdf(self, pf, wi, wo, which):
-        mei = self._mei(wi)
-        out = np.empty(len(wo))
-        for k in range(len(wo)):
-            v, p = pf.eval_pdf(self.ctx, mei, mi.Vector3f(*[float(c) for c in wo[k]]))
-            out[k] = v[0] if which == 0 else p
-        return out
+        wo, w, p = self.model.sample(wi, u)
+        return wo, w * {"weight": BUG, "norm": 1 / BUG}.get(self.bug, 1.0), p
 
     def eval(self, wi, wo):
-        return self._eval_pdf(self.pf, wi, wo, 0) / (BUG if self.bug == "norm" else 1.0)
+        return self.model.eval(wi, wo) / (BUG if self.bug == "norm" else 1.0)
 
     def pdf(self, wi, wo):
-        return self._eval_pdf(self.pdf_pf, wi, wo, 1) * (BUG if self.bug == "pdf" else 1.0)
+        return self.pdf_model.pdf(wi, wo) * (BUG if self.bug == "pdf" else 1.0)
 
     def check(self, n, seed):
         return mcstat.check_phase(self.sample, self.eval, self.pdf, WI, n=n, seed=seed, alpha=ALPHA, n_uniforms=3)

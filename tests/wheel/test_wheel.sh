@@ -9,7 +9,8 @@
 #      `mcstat reproduce` each say in one line which extra to install (exit
 #      status 4); then with the report extra, `mcstat reproduce --quick`;
 #      then with the image extra, `mcstat image-test --png` on .npy and .exr
-#      inputs made in the venv.
+#      inputs made in the venv; with the testing extra, the pytest plugin;
+#      with the mitsuba extra, mcstat.mitsuba's checks and fixture.
 # Any traceback on stderr or unexpected exit status fails.
 #   usage: tests/wheel/test_wheel.sh BUILD_DIR PYTHON
 # PYTHON: the developer venv's interpreter (scikit-build-core, pybind11,
@@ -143,5 +144,33 @@ grep -q "1 failed, 4 passed" "$work/plugin.out" || fail "plugin: $(tail -5 "$wor
 grep -q "alpha spent 0.001 of the suite's 0.001" "$work/plugin.out" || fail "plugin: no summary"
 grep -qE "reproduce: cd .* -m pytest test_wheel_suite.py::test_biased --mcstat-alpha 0.001 --mcstat-seed 3 " \
     "$work/plugin.out" || fail "plugin: no reproduce line"
+
+# the mitsuba extra: mcstat.mitsuba's one-liners and its pytest fixture from
+# the wheel and the extra's dependencies alone (a project's conftest.py
+# enabling mcstat.mitsuba.fixtures).  As make mitsuba-test: skipped, with
+# pip's reason, only when pip cannot install the mitsuba wheel here.
+if "$vpy" -m pip install -q "$whl[mitsuba,testing]" > "$work/pip-mitsuba.log" 2>&1; then
+    mkdir -p "$work/run/mitsuba" && cd "$work/run/mitsuba"
+    printf '[pytest]\n' > pytest.ini
+    printf 'pytest_plugins = ["mcstat.mitsuba.fixtures"]\n' > conftest.py
+    cat > test_mitsuba_extra.py <<'EOF2'
+import mcstat.mitsuba as mm
+
+WI = (0.3, -0.4, 0.866)
+
+def test_one_line_each(mitsuba_variant):  # at seed 0, where these correct plugins pass (alpha 0.01)
+    assert not mm.check_bsdf({"type": "roughconductor", "alpha": 0.2}, WI, n=20000).reject
+    assert not mm.check_bsdf({"type": "dielectric", "int_ior": 1.5}, WI, n=20000).reject
+    assert not mm.check_phase({"type": "hg", "g": 0.7}, WI, n=20000).reject
+    sphere = {"type": "sphere", "center": [0, 0, 3], "emitter": {"type": "area"}}
+    assert not mm.check_emitter(sphere, (0.0, 0.0, 0.0), n=20000).reject
+    assert not mm.check_medium({"type": "homogeneous", "sigma_t": 2.0}, tmax=1.0, n=20000).reject
+EOF2
+    run mitsuba-extra 0 "$vpy" -m pytest -q -p no:cacheprovider test_mitsuba_extra.py
+    grep -q "1 passed" "$work/mitsuba-extra.out" || fail "mitsuba extra: $(tail -5 "$work/mitsuba-extra.out")"
+    cd "$work/run"
+else
+    echo "wheel test: the mitsuba extra skipped, pip could not install it: $(tail -1 "$work/pip-mitsuba.log")"
+fi
 
 echo "wheel test passed: $(basename "$whl") ($(du -k "$raw" | cut -f1) KiB before repair, $(du -k "$whl" | cut -f1) KiB after) in $((SECONDS - t0)) s"

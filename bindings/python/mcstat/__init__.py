@@ -43,6 +43,10 @@ Gradients: `check_gradient` tests a gradient estimator (a differentiable
 renderer's) against central finite differences of the same loss with common
 random numbers, or against a reference estimator of the same derivative.
 
+Mitsuba 3: `mcstat.mitsuba` checks a Mitsuba BSDF, phase function,
+emitter or medium in one line, from its plugin dict or the loaded object
+(the extra ``mcstat[mitsuba]``; importing mcstat never imports Mitsuba).
+
 In a test suite: `mcstat.testing` (assertions, one error budget for the
 whole suite, escalation instead of reruns, and its pytest plugin, enabled
 by ``pytest --mcstat-alpha A``); `Escalation` is its two-stage test.
