@@ -8,7 +8,7 @@ tracking): tentative collisions from the medium's sample_interaction
 the flight continuing from a null collision.  A real collision at t <
 tmax reports pdf(t) and the weight sigma_s / sigma_t there; a flight that
 passes tmax (a surface) is an escape: pdf 0 and weight 1, checked
-against T(tmax) (check_medium's transmittance=).  A flight needs a random
+against T(tmax) (check_medium's escape_transmittance=).  A flight needs a random
 number of uniforms: it gets two from mcstat and derives the rest by
 splitmix64, so each flight is a pure function of its two uniforms.
 
@@ -46,7 +46,8 @@ class MediumModel:
     ``direction`` up to a surface at ``tmax`` as ``sample(u)``, ``eval(t)``
     and ``pdf(t)`` (the callables of `mcstat.check_medium`), channel
     ``channel`` of its coefficients.  ``sigma_ref`` (the mean sigma_t along
-    the ray) and ``transmittance`` (T(tmax)) are check_medium's arguments."""
+    the ray) and ``transmittance`` (T(tmax)) are check_medium's arguments
+    (sigma_ref and escape_transmittance)."""
 
     n_uniforms = 2
 
@@ -189,7 +190,7 @@ def check_medium(medium: Any, *, origin: Any = (0.5, 0.5, 0.0), direction: Any =
     the default crosses the unit cube a grid volume fills by default) to a
     surface at ``tmax``, tracked by delta tracking over the medium's
     sample_interaction (`MediumModel`).  ``sigma_ref`` defaults to the mean
-    sigma_t along the ray and ``transmittance`` to T(tmax);
+    sigma_t along the ray and ``escape_transmittance`` to T(tmax);
     ``check_kwargs`` go to `mcstat.check_medium`."""
     if "n_uniforms" in check_kwargs and check_kwargs["n_uniforms"] != MediumModel.n_uniforms:
         raise ValueError(f"n_uniforms: a flight takes {MediumModel.n_uniforms} uniforms here, "
@@ -198,5 +199,6 @@ def check_medium(medium: Any, *, origin: Any = (0.5, 0.5, 0.0), direction: Any =
                      variant=variant)
     kw = dict(check_kwargs, n_uniforms=MediumModel.n_uniforms)
     kw.setdefault("sigma_ref", m.sigma_ref)
-    kw.setdefault("transmittance", m.transmittance)
+    if "transmittance" not in kw:  # (the deprecated name, passed on as given)
+        kw.setdefault("escape_transmittance", m.transmittance)
     return _core.check_medium(m.sample, m.eval, m.pdf, **kw)
