@@ -364,16 +364,13 @@ listed pixels' values).
   and neither fix below touches it.  Block tests average such pixels
   with their neighbours.
 
-- Proposed fix 1 (libmcstat, MCSTAT_PIXELS_RENDER): a pixel constant on
-  both sides and different beyond the floor is what a side constant
-  against a varying one is - K draws that may hide another value at rate
-  up to the rule of three's pi - so give both sides the rule-of-three
-  variance floor d^2 (1 - pi) / pi instead of calling it deterministic:
-  never significant alone, counted in the notes as untestable per pixel
-  at K seeds.  A caller whose renderer is deterministic (no sampling
-  noise) could ask for deterministic differences explicitly.  Column
-  "fix 1 emulated" leaves those tests out of BH, which is what the floor
-  amounts to.
+- Fix 1, now MCSTAT_PIXELS_RENDER's own: a pixel constant on both sides
+  and different beyond the floor is what a side constant against a
+  varying one is - K draws that may hide another value at rate up to the
+  rule of three's pi - so both sides get the rule-of-three variance floor
+  d^2 (1 - pi) / pi instead of a deterministic difference: never
+  significant alone.  Column "fix 1 emulated" leaves those tests out of
+  BH, which is what the floor amounts to; it now agrees with "after".
 
 - Proposed fix 2: count a side as degenerate at the scale of the
   difference rather than at the numerical floor: a side with at most one
