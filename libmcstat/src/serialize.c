@@ -117,9 +117,11 @@ static int consistent(const mcstat_moments *m)
      * can push past half: fuzz_moments, data at 2^-1019.)
      * The looser |mean_lo| <= |mean| 2^-50 + 2^-1074 accepted mean 0 with
      * mean_lo 2^-1074, which a merge turned into a mean above max (found by
-     * tests/fuzz/fuzz_bytes). */
+     * tests/fuzz/fuzz_bytes).  A mean of 0 has no lower part: (0, 2^-1074)
+     * is not a double-double (hi = fl(hi + lo) fails), and its intervals,
+     * formed from hi + lo, left the estimate hi outside them (fuzz_bytes). */
     double am = fabs(m->mean);
-    if (fabs(m->mean_lo) > nextafter(am, INFINITY) - am)
+    if (am == 0.0 ? m->mean_lo != 0.0 : fabs(m->mean_lo) > nextafter(am, INFINITY) - am)
         return 0;
     /* The sums of powers of the same deviations bound each other: with
      * u = M3/M2^1.5, w = M4/M2^2 (scale-free), |u| <= 1, 1/n <= w <= 1, and
