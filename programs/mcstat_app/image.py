@@ -649,6 +649,15 @@ def write_bias_map(res: ImageComparison, path: str) -> None:
         raise OutputError(f"{path}: cannot write the detectable-bias map: {_reason(e)}") from e
 
 
+def _write_summary(path: str, summary: dict) -> None:
+    """The --json summary (either test's), or OutputError naming the file."""
+    try:
+        with open(path, "w") as f:
+            json.dump(summary, f, indent=1)
+    except OSError as e:
+        raise OutputError(f"{path}: cannot write the summary: {_reason(e)}") from e
+
+
 def run(reference, candidate, *, png: Optional[str] = None, json_path: Optional[str] = None, worst: int = 10,
         bias_png: Optional[str] = None, **kw) -> ImageComparison:
     """`compare`, then the PNGs and the JSON summary when paths are given."""
@@ -665,11 +674,7 @@ def run(reference, candidate, *, png: Optional[str] = None, json_path: Optional[
         write_bias_map(res, bias_png)
         res.timings["bias_png"] = time.perf_counter() - t
     if json_path:
-        try:
-            with open(json_path, "w") as f:
-                json.dump(res.summary(worst), f, indent=1)
-        except OSError as e:
-            raise OutputError(f"{json_path}: cannot write the summary: {_reason(e)}") from e
+        _write_summary(json_path, res.summary(worst))
     return res
 
 
@@ -695,10 +700,6 @@ def run_equivalence(reference, candidate, *, margin: float, atol: float = 0.0, b
     res = equivalence(sides[0], sides[1], margin=margin, atol=atol, block=32 if block is None else block,
                       alpha=alpha, channels=channels, nan_policy=nan_policy)
     if json_path:
-        try:
-            with open(json_path, "w") as f:
-                json.dump(res.summary(worst), f, indent=1)
-        except OSError as e:
-            raise OutputError(f"{json_path}: cannot write the summary: {_reason(e)}") from e
+        _write_summary(json_path, res.summary(worst))
     return res, sources
 
