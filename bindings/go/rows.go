@@ -22,11 +22,11 @@ const (
 	// OmitNaN skips NaN values in each row (+-Inf remains an error); not
 	// for the tests on accumulators.
 	OmitNaN RowFlags = C.MCSTAT_ROWS_OMIT_NAN
-	// PixelsRender makes Welch's per-pixel test valid on renders
-	// (constant or one-nonzero sides floored by the rule of three, a
-	// numerical floor from the inputs' type, Hsu's df, deterministic
-	// differences; mcstat.h, MCSTAT_PIXELS_RENDER).  Per-pixel Welch
-	// calls only.
+	// PixelsRender makes Welch's and the paired per-pixel tests valid on
+	// renders (constant or one-nonzero sides floored by the rule of three,
+	// a numerical floor from the inputs' type, Hsu's df, deterministic
+	// differences; mcstat.h, MCSTAT_PIXELS_RENDER).  Per-pixel Welch and
+	// paired calls only.
 	PixelsRender RowFlags = C.MCSTAT_PIXELS_RENDER
 )
 

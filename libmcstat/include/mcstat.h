@@ -946,8 +946,9 @@ MCSTAT_NODISCARD MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, con
 #define MCSTAT_ROWS_NO_INTERVALS 1u
 #define MCSTAT_ROWS_OMIT_NAN 2u
 /*   MCSTAT_PIXELS_RENDER      Welch's test (MCSTAT_TEST_T_2 of
- *                             mcstat_pixels_test and the _pixels calls
- *                             only; MCSTAT_EINVAL elsewhere) made valid on
+ *                             mcstat_pixels_test and the _pixels calls;
+ *                             the paired test below; MCSTAT_EINVAL
+ *                             elsewhere) made valid on
  *                             renders, whose pixels are often constant on
  *                             a side (all zeros: lit only by rare paths),
  *                             zero-inflated or spiky, at a few seeds.  With
@@ -991,7 +992,23 @@ MCSTAT_NODISCARD MCSTAT_API int mcstat_ks_test_2(const double *x, size_t nx, con
  *                             Pixels that would be tested without it are
  *                             tested, with these variances and df; the
  *                             plain Welch test (R's t.test) is the
- *                             default. */
+ *                             default.
+ *                             The paired test (MCSTAT_TEST_T_PAIRED of
+ *                             mcstat_pixels_test; same-seed renders)
+ *                             takes the same guards on the differences
+ *                             d_s = x_s - y_s: their variance is at
+ *                             least (eps M)^2; differences within that
+ *                             and equal within eps M are
+ *                             MCSTAT_EDEGENERATE; when the differences
+ *                             or either side are constant or show at
+ *                             most one nonzero value, or a side is zero
+ *                             in a seed where the other is not (it may
+ *                             hide what the other shows there), the
+ *                             variance is at least d^2 (1 - pi) / pi
+ *                             (not significant alone); the degrees of
+ *                             freedom are the fewest of n - 1 and, for a
+ *                             side or the differences with zeros and h >=
+ *                             2 nonzero values, h - 1. */
 #define MCSTAT_PIXELS_RENDER 4u
 
 /* ------------------------------------------------------------------------ */

@@ -217,7 +217,10 @@ static int single_pixel(void *vctx, size_t i)
     switch (jb->test) {
     case MCSTAT_TEST_T_PAIRED: {
         size_t n = (jb->flags & MCSTAT_ROWS_OMIT_NAN) ? complete_pairs(sc->bx, sc->by, nx) : nx;
-        st = mcstat__t_test_paired(sc->bx, sc->by, n, jb->null_value, jb->alternative, jb->alpha, q, &r);
+        st = (jb->flags & MCSTAT_PIXELS_RENDER)
+                 ? mcstat__t_test_paired_render(sc->bx, sc->by, n, jb->eps, jb->null_value, jb->alternative,
+                                                jb->alpha, q, &r)
+                 : mcstat__t_test_paired(sc->bx, sc->by, n, jb->null_value, jb->alternative, jb->alpha, q, &r);
         break;
     }
     case MCSTAT_TEST_T_1:
@@ -312,7 +315,7 @@ int mcstat_pixels_test(int test, const mcstat_pixels_in *x, const mcstat_pixels_
         return MCSTAT_EINVAL;
     if ((o.flags & ~(uint32_t)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN | MCSTAT_PIXELS_RENDER)) ||
         o.threads < 1 || o.threads > MAX_THREADS || o.reserved != 0 || !(o.resolution >= 0.0 && o.resolution < 1.0) ||
-        ((o.flags & MCSTAT_PIXELS_RENDER) && test != MCSTAT_TEST_T_2))
+        ((o.flags & MCSTAT_PIXELS_RENDER) && test != MCSTAT_TEST_T_2 && test != MCSTAT_TEST_T_PAIRED))
         return MCSTAT_EINVAL;
     const mcstat_pixels_in none = MCSTAT_PIXELS_IN_INIT;
     jb.x = none;

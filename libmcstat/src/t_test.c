@@ -53,12 +53,22 @@ static int check_args(double mu0, int alternative, double alpha, const mcstat_re
     return out && isfinite(mu0) && valid_alternative(alternative) && valid_alpha(alpha);
 }
 
-int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, double alpha, mcstat_qcache *qc,
-                     mcstat_result *out)
+/* The paired test's render guards (mcstat__t_test_paired_render): eps, the
+ * larger |mean| of the two sides (in the differences' units), whether a
+ * side or the differences may hide a rare value, the degrees of freedom. */
+typedef struct {
+    double eps, mmax, df;
+    int hides;
+} paired_guard;
+
+static int t_test_1(const mcstat_moments *x, double mu0, int alternative, double alpha, const paired_guard *g,
+                    mcstat_qcache *qc, mcstat_result *out)
 {
     if (!x || !check_args(mu0, alternative, alpha, out))
         return MCSTAT_EINVAL;
     int st = mcstat__moments_check(x);
+    if (st == MCSTAT_EDEGENERATE && g) /* the guards decide what constant means */
+        st = MCSTAT_OK;
     if (st)
         return st;
     mcstat_result r;
@@ -73,9 +83,27 @@ int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, doubl
     double n = (double)x->n, df = n - 1.0, v;
     int e;
     mcstat__moments_var_scaled(x, &v, &e);
-    double se = sqrt(v / n); /* units of 2^e */
+    if (g) { /* units in which the shift squares without overflow (Welch's) */
+        double big = fmax(fmax(g->mmax, fabs(x->mean)), fabs(mu0));
+        int eb = big > 0.0 ? ilogb(big) - 480 : e;
+        if (eb > e) {
+            v = scale2(v, 2 * (e - eb));
+            e = eb;
+        }
+    }
     mcstat_dd mean = mcstat__moments_mean_dd(x);
     double diff = dd_add_scaled(mean, -mu0, e);
+    if (g) {
+        double lim = g->eps * scale2(g->mmax, -e), floor2 = lim * lim;
+        int constant = v <= floor2;
+        if (constant && !(fabs(diff) > lim))
+            return MCSTAT_EDEGENERATE;
+        v = fmax(v, floor2);
+        if (constant || g->hides)
+            v = fmax(v, diff * diff * mcstat__rule3_ratio(n));
+        df = g->df;
+    }
+    double se = sqrt(v / n); /* units of 2^e */
     r.statistic = diff / se;
     r.df[0] = df;
     r.estimate[0] = x->mean;
@@ -96,6 +124,12 @@ int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, doubl
     r.conf_int[1] = mcstat__ci_bound(ms, r.critical[0], se, e);
     *out = r;
     return MCSTAT_OK;
+}
+
+int mcstat__t_test_1(const mcstat_moments *x, double mu0, int alternative, double alpha, mcstat_qcache *qc,
+                     mcstat_result *out)
+{
+    return t_test_1(x, mu0, alternative, alpha, NULL, qc, out);
 }
 
 /* ---- the render guards (mcstat.h, MCSTAT_PIXELS_RENDER) ----------------------
@@ -328,14 +362,25 @@ static int add_differences(mcstat_moments *m, const double *x, const double *y, 
     return MCSTAT_OK;
 }
 
-int mcstat__t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative, double alpha,
-                          mcstat_qcache *qc, mcstat_result *out)
+/* A side whose standard deviation is at most lim (unscaled). */
+static int spread_at_most(const mcstat_moments *m, double lim)
+{
+    double v;
+    int e;
+    mcstat__moments_var_scaled(m, &v, &e);
+    return !(scale2(sqrt(v), e) > lim);
+}
+
+/* The paired test, with the render guards when eps >= 0 (eps < 0: none). */
+static int t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative, double alpha,
+                         double eps, mcstat_qcache *qc, mcstat_result *out)
 {
     for (size_t i = 0; i < n; i++) /* NaN or Inf in the data, not an overflowing difference */
         if (!isfinite(x[i]) || !isfinite(y[i]))
             return MCSTAT_ENONFINITE;
     if (n < 2)
         return MCSTAT_ETOOFEW;
+    paired_guard guard, *g = NULL;
     /* Each difference is one rounding of the exact x_i - y_i.  Where one
      * overflows (x near DBL_MAX, y near -DBL_MAX) the test runs on the
      * differences halved, against mu0 halved: t, df and p are unchanged,
@@ -349,8 +394,51 @@ int mcstat__t_test_paired(const double *x, const double *y, size_t n, double mu0
     }
     if (st)
         return st;
+    if (eps >= 0.0) {
+        /* Welch's guards carried to the differences: a side that is
+         * constant or shows at most one value besides zeros may hide a rare
+         * value, and so may differences that do */
+        mcstat_moments mx, my;
+        uint64_t hx = 0, hy = 0, hd = 0, lone = 0;
+        for (size_t i = 0; i < n; i++) {
+            hx += x[i] != 0.0;
+            hy += y[i] != 0.0;
+            hd += x[i] != y[i];
+            lone += (x[i] == 0.0) != (y[i] == 0.0);
+        }
+        mcstat_moments_init(&mx);
+        mcstat_moments_init(&my);
+        if ((st = mcstat_moments_add_array(&mx, x, n)) || (st = mcstat_moments_add_array(&my, y, n)))
+            return st;
+        double mmax = fmax(fabs(mx.mean), fabs(my.mean)), lim = eps * mmax;
+        guard.eps = eps;
+        guard.mmax = scale2(mmax, -s);
+        int cx = spread_at_most(&mx, lim), cy = spread_at_most(&my, lim);
+        /* ... and so may a side that is zero in a seed where the other is
+         * not: the pair's difference is then all the other side's value,
+         * and a sampler that reaches a light through rare paths shows
+         * zeros and small values while its mean is carried by spikes it has
+         * not drawn (light tree off against on, same seeds: the paired
+         * test's smaller variance found them in half the comparisons at
+         * 16 seeds; bench/RESULTS_cycles_paired.md).  Zeros in the same
+         * seeds on both sides (paths the change left alone) are not. */
+        guard.hides = hx <= 1 || hy <= 1 || hd <= 1 || cx || cy || lone > 0;
+        /* Hsu's rule as Welch's guards take it: a sample with zeros has its
+         * spread from its h nonzero values, h - 1 degrees of freedom; the
+         * fewest among the sides and the differences.  The t of a side that
+         * shows few of the rare values making up its mean is far from
+         * Student's at the nominal n - 1 (light tree off against on, same
+         * seeds, bench/RESULTS_cycles_paired.md). */
+        double nn = (double)n, nu = nn - 1.0;
+        const uint64_t h[3] = {cx ? n : hx, cy ? n : hy, hd};
+        for (int k = 0; k < 3; k++)
+            if (h[k] >= 2 && h[k] < n && (double)h[k] - 1.0 < nu)
+                nu = (double)h[k] - 1.0;
+        guard.df = nu;
+        g = &guard;
+    }
     mcstat_result r;
-    if ((st = mcstat__t_test_1(&m, scale2(mu0, -s), alternative, alpha, qc, &r)))
+    if ((st = t_test_1(&m, scale2(mu0, -s), alternative, alpha, g, qc, &r)))
         return st;
     r.test = MCSTAT_TEST_T_PAIRED;
     r.n[1] = r.n[0];
@@ -361,6 +449,18 @@ int mcstat__t_test_paired(const double *x, const double *y, size_t n, double mu0
     r.conf_int[1] = scale2(r.conf_int[1], s);
     *out = r;
     return MCSTAT_OK;
+}
+
+int mcstat__t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative, double alpha,
+                          mcstat_qcache *qc, mcstat_result *out)
+{
+    return t_test_paired(x, y, n, mu0, alternative, alpha, -1.0, qc, out);
+}
+
+int mcstat__t_test_paired_render(const double *x, const double *y, size_t n, double eps, double mu0,
+                                 int alternative, double alpha, mcstat_qcache *qc, mcstat_result *out)
+{
+    return t_test_paired(x, y, n, mu0, alternative, alpha, eps, qc, out);
 }
 
 int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative, double alpha,

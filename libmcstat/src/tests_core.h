@@ -117,6 +117,16 @@ MCSTAT_HIDDEN int mcstat__t_test_2_pooled(const mcstat_moments *x, const mcstat_
 /* The paired t test on x - y (arguments checked but the data; qc as above). */
 MCSTAT_HIDDEN int mcstat__t_test_paired(const double *x, const double *y, size_t n, double mu0, int alternative,
                                         double alpha, mcstat_qcache *qc, mcstat_result *out);
+/* The paired test under the render guards (mcstat.h, MCSTAT_PIXELS_RENDER):
+ * the differences' variance takes Welch's floors for a side (numerical,
+ * eps times the larger |mean| of the sides; the rule of three when a side
+ * or the differences are constant or show at most one nonzero value, or a
+ * side is zero where the other is not), differences constant and equal
+ * within the numerical floor are MCSTAT_EDEGENERATE, and the degrees of
+ * freedom are Hsu's over the sides and the differences. */
+MCSTAT_HIDDEN int mcstat__t_test_paired_render(const double *x, const double *y, size_t n, double eps, double mu0,
+                                               int alternative, double alpha, mcstat_qcache *qc,
+                                               mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, double alpha,
                                      mcstat_qcache *qc, mcstat_result *out);
 MCSTAT_HIDDEN int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double ratio,

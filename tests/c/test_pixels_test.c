@@ -843,6 +843,96 @@ static void test_render_guards_extreme(void)
     CHECK(t[0][1] > 1.0);
 }
 
+/* The paired test under the guards, against closed forms: pixel 0 equal
+ * in every seed (untested); 1 a side of zeros against a varying side (the
+ * rule-of-three floor); 2 a constant nonzero difference (the same floor:
+ * t = sqrt(K / r)); 3 ordinary pairs (the plain paired test, bit for bit);
+ * 4 differences zero but in 3 seeds (df 2, t unchanged); 5 differences
+ * within the numerical floor of values near 1e6 (untested); 6 the same as
+ * 1 scaled by 2^-1000 (the same t); 7 a side zero in one seed where the
+ * other is not (the rule-of-three floor). */
+static void test_render_guards_paired(void)
+{
+    enum { K = 6, EP = 8 };
+    double x[K * EP], y[K * EP];
+    for (size_t s = 0; s < K; s++) {
+        double u = 0.3 + 0.17 * (double)s + 0.05 * (double)(s * s % 5), w = 1.0 + 0.21 * (double)((s * 7) % 6);
+        double *xs = x + s * EP, *ys = y + s * EP;
+        xs[0] = ys[0] = u;
+        xs[1] = u, ys[1] = 0.0;
+        xs[2] = w + 0.5, ys[2] = w;
+        xs[3] = w + 0.1 * u, ys[3] = u;
+        xs[4] = w + (s == 1 || s == 3 || s == 4 ? 0.2 * u : 0.0), ys[4] = w;
+        xs[5] = 1e6 + 1e-12 * u, ys[5] = 1e6;
+        xs[6] = ldexp(u, -1000), ys[6] = 0.0;
+        xs[7] = s == 0 ? 0.0 : w + 0.3, ys[7] = s == 0 ? 0.01 : w;
+    }
+    mcstat_pixels_in px = MCSTAT_PIXELS_IN_INIT, py;
+    px.type = MCSTAT_VALUE_FLOAT64;
+    px.n = K;
+    px.value_stride = EP;
+    px.pixel_stride = 1;
+    py = px;
+    px.data = x;
+    py.data = y;
+    mcstat_pixels_options o = MCSTAT_PIXELS_OPTIONS_INIT;
+    o.flags = MCSTAT_PIXELS_RENDER;
+    double p[EP], t[EP], df[EP];
+    int32_t st[EP];
+    mcstat_pixels_out out = MCSTAT_PIXELS_OUT_INIT;
+    out.p_value = p;
+    out.statistic = t;
+    out.df = df;
+    out.status = st;
+    /* the first failed pixel's status: pixel 0's */
+    CHECK_INT(mcstat_pixels_test(MCSTAT_TEST_T_PAIRED, &px, &py, 0, EP, 0.0, MCSTAT_TWO_SIDED, 0.05, &o, &out),
+              MCSTAT_EDEGENERATE);
+    double pi = 1.0 - pow(0.05, 1.0 / K), r = (1.0 - pi) / pi;
+    CHECK_INT(st[0], MCSTAT_EDEGENERATE);
+    CHECK_INT(st[5], MCSTAT_EDEGENERATE);
+    /* pixel 1: d = x; its variance floored at mean^2 r */
+    double d[K], m = 0.0, v = 0.0;
+    for (size_t s = 0; s < K; s++)
+        m += (d[s] = x[s * EP + 1]) / K;
+    for (size_t s = 0; s < K; s++)
+        v += (d[s] - m) * (d[s] - m) / (K - 1);
+    CHECK(m * m * r > v); /* the floor is what acts */
+    CHECK_INT(st[1], MCSTAT_OK);
+    CHECK_REL(t[1], m / sqrt(fmax(v, m * m * r) / K), 1e-12, "pixel 1");
+    CHECK_REL(df[1], K - 1.0, 0.0, "pixel 1 df");
+    CHECK_INT(st[6], MCSTAT_OK);
+    CHECK_REL(t[6], t[1], 1e-12, "pixel 6");
+    m = v = 0.0;
+    for (size_t s = 0; s < K; s++)
+        m += (d[s] = x[s * EP + 7] - y[s * EP + 7]) / K;
+    for (size_t s = 0; s < K; s++)
+        v += (d[s] - m) * (d[s] - m) / (K - 1);
+    CHECK(m * m * r > v);
+    CHECK_INT(st[7], MCSTAT_OK);
+    CHECK_REL(t[7], m / sqrt(fmax(v, m * m * r) / K), 1e-12, "pixel 7");
+    CHECK_INT(st[2], MCSTAT_OK);
+    CHECK_REL(t[2], sqrt(K / r), 1e-12, "pixel 2");
+    CHECK(p[2] > 0.05);
+    /* pixels 3 and 4 against the plain paired test on their own values */
+    for (size_t i = 3; i <= 4; i++) {
+        double a[K], b[K];
+        for (size_t s = 0; s < K; s++)
+            a[s] = x[s * EP + i], b[s] = y[s * EP + i];
+        mcstat_result rr;
+        CHECK_INT(mcstat_t_test_paired(a, b, K, 0.0, MCSTAT_TWO_SIDED, 0.05, &rr), MCSTAT_OK);
+        CHECK_INT(st[i], MCSTAT_OK);
+        CHECK_REL(t[i], rr.statistic, 0.0, "pixel %zu t", i);
+        CHECK_REL(df[i], i == 3 ? K - 1.0 : 2.0, 0.0, "pixel %zu df", i);
+        if (i == 3)
+            CHECK_REL(p[i], rr.p_value, 0.0, "pixel 3 p");
+        else
+            CHECK(p[i] > rr.p_value); /* fewer df: a wider null */
+    }
+    /* the guards stay refused by the one-sample and pooled tests */
+    CHECK_INT(mcstat_pixels_test(MCSTAT_TEST_T_1, &px, NULL, 0, EP, 0.0, MCSTAT_TWO_SIDED, 0.05, &o, &out),
+              MCSTAT_EINVAL);
+}
+
 int main(void)
 {
     fill();
@@ -855,5 +945,6 @@ int main(void)
     test_bad_arguments();
     test_render_guards();
     test_render_guards_extreme();
+    test_render_guards_paired();
     return h_report("test_pixels_test");
 }

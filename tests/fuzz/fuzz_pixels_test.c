@@ -171,7 +171,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     int invalid = test == 0 || test == 99 || end < begin || bad_w || !isfinite(nv) || (is_var && !(nv > 0.0)) ||
                   !fz_alpha_valid(alpha) || (alt != MCSTAT_TWO_SIDED && alt != MCSTAT_LESS && alt != MCSTAT_GREATER) ||
                   (flags & ~(unsigned)(MCSTAT_ROWS_NO_INTERVALS | MCSTAT_ROWS_OMIT_NAN | MCSTAT_PIXELS_RENDER)) ||
-                  ((flags & MCSTAT_PIXELS_RENDER) && test != MCSTAT_TEST_T_2) || threads < 1 || threads > 64 ||
+                  ((flags & MCSTAT_PIXELS_RENDER) && test != MCSTAT_TEST_T_2 && test != MCSTAT_TEST_T_PAIRED) || threads < 1 || threads > 64 ||
                   (test == MCSTAT_TEST_T_PAIRED && nx != ny);
     int written = 0;
     for (size_t i = 0; i < MAXPIX; i++)
