@@ -21,7 +21,9 @@ denoising, no adaptive sampling, no clamping (Cycles' default indirect
 clamp of 10 is a bias that differs between samplers), no glossy filter,
 the default pixel filter, 1 thread, CPU; seed i renders with
 scene.cycles.seed = offset + i, each setting its own offset (disjoint
-seeds between settings, so that two settings' renders are independent).
+seeds between settings, so that two settings' renders are independent);
+with --paired-with SETTING each setting renders with SETTING's seeds
+instead (same-seed pairs, for paired tests), saved as NAME@SETTING_....
 
 Settings (name: what differs from "base", Cycles' defaults: light tree on,
 path guiding off):
@@ -41,6 +43,7 @@ float32 (K, H, W, 3), rows top to bottom; an existing stack is extended
 
     /work/bpy-venv/bin/python bench/cycles_render.py --seeds 128 --spp 4 \
         [--size 64] [--cache /work/cycles-cache] [--settings base,lt_off,...]
+        [--paired-with base]
 """
 import argparse
 import json
@@ -267,6 +270,9 @@ def main():
     ap.add_argument("--size", type=int, default=64)
     ap.add_argument("--cache", default="/work/cycles-cache")
     ap.add_argument("--settings", default=",".join(SETTINGS))
+    ap.add_argument("--paired-with", default=None, metavar="SETTING",
+                    help="render each setting with SETTING's seeds (same-seed pairs, for paired tests); "
+                         "written to NAME@SETTING_...npy")
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:]
     a = ap.parse_args(argv)
     os.makedirs(a.cache, exist_ok=True)
@@ -280,25 +286,29 @@ def main():
         for n in names:
             if n == "mask_albedo":
                 continue
-            path = os.path.join(a.cache, f"{n}_{a.spp}spp_{a.size}x{a.size}.npy")
+            tag = f"{n}@{a.paired_with}" if a.paired_with else n
+            offset = OFFSET[a.paired_with] if a.paired_with else OFFSET[n]
+            path = os.path.join(a.cache, f"{tag}_{a.spp}spp_{a.size}x{a.size}.npy")
             have = np.load(path) if os.path.exists(path) else np.zeros((0, a.size, a.size, 3), np.float32)
             if have.shape[0] >= a.seeds:
-                print(n, "has", have.shape[0], "seeds", flush=True)
+                print(tag, "has", have.shape[0], "seeds", flush=True)
                 continue
             apply_setting(sc, n)
             t0 = time.time()
             new = []
             for i in range(have.shape[0], a.seeds):
-                new.append(render_one(sc, OFFSET[n] + i, td))
+                new.append(render_one(sc, offset + i, td))
                 if (i + 1) % 16 == 0:  # save as we go: a stopped run keeps its renders
                     have = np.concatenate([have, np.stack(new)])
                     new = []
                     np.save(path, have)
-                    print(f"{n}: {have.shape[0]} seeds, {(time.time() - t0):.0f} s", flush=True)
+                    print(f"{tag}: {have.shape[0]} seeds, {(time.time() - t0):.0f} s", flush=True)
             if new:
                 have = np.concatenate([have, np.stack(new)])
                 np.save(path, have)
-            print(n, have.shape, f"{time.time() - t0:.0f} s", flush=True)
+            print(tag, have.shape, f"{time.time() - t0:.0f} s", flush=True)
+    if a.paired_with:
+        return
     meta = os.path.join(a.cache, f"meta_{a.spp}spp_{a.size}x{a.size}.json")
     with open(meta, "w") as f:
         json.dump({"blender": bpy.app.version_string, "build_hash": bpy.app.build_hash.decode(),

@@ -117,6 +117,7 @@ def _image_equivalence(a: argparse.Namespace) -> int:
               if getattr(a, n) is not None]
     unused += ["--alternative"] if a.alternative != "two-sided" else []
     unused += ["--adjust"] if a.adjust != "BH" else []
+    unused += ["--paired"] if a.paired else []
     if unused:
         raise E.UsageError(f"{', '.join(unused)} belong to the difference test; --equivalence writes its summary "
                            "with --json")
@@ -151,7 +152,7 @@ def _image_test(a: argparse.Namespace) -> int:
     res = run(a.reference, a.candidate, png=a.png, json_path=a.json, worst=a.worst, alpha=a.alpha,
               method=a.adjust, alternative=a.alternative, channels=a.channels, seed_axis=a.seed_axis,
               nan_policy=a.nan, spp=a.spp, layer=a.layer, bias_png=a.bias_png, block=a.block,
-              detect_power=a.detect_power,
+              detect_power=a.detect_power, paired=a.paired,
               max_detectable_bias=a.max_detectable_bias,
               max_relative_detectable_bias=a.max_relative_detectable_bias, bias_quantile=a.bias_quantile)
     if not a.quiet:
@@ -216,6 +217,10 @@ def _add_image_test(sub) -> None:
                     help="test the means of N x N blocks per seed instead of pixels (valid whatever the correlation "
                          "among the pixels inside a block, e.g. a reconstruction filter's; more power for regional "
                          "biases; per-seed inputs only; edge blocks smaller)")
+    it.add_argument("--paired", action="store_true",
+                    help="the two sides' seeds are the same, in the same order (same-seed renders): the paired t "
+                         "test on the per-seed differences instead of Welch's; more power where the change leaves "
+                         "paths alone, valid only for such pairs (per-seed inputs of equal seed counts)")
     it.add_argument("--detect-power", type=float, default=0.8,
                     help="the power behind the detectable bias (default: %(default)s)")
     it.add_argument("--max-detectable-bias", type=float, default=None, metavar="X",

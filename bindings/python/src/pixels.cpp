@@ -28,7 +28,7 @@ void register_pixels(py::module_ &mod)
     mod.def(
         "_t_test_2_pixels",
         [](py::array x, py::array y, py::object weights, int alternative, double alpha, double mu0, bool intervals,
-           bool omit_nan, bool render, double resolution) {
+           bool omit_nan, bool render, double resolution, bool paired) {
             if (!(is_f32(x) || is_f64(x)) || !x.dtype().is(y.dtype()))
                 throw_invalid("x and y must both be float32 or both float64 arrays, got " +
                               std::string(py::str(x.dtype())) + " and " + std::string(py::str(y.dtype())));
@@ -60,6 +60,10 @@ void register_pixels(py::module_ &mod)
                 pixels *= static_cast<size_t>(x.shape(k));
             }
             size_t nx = static_cast<size_t>(x.shape(0)), ny = static_cast<size_t>(y.shape(0));
+            if (paired && nx != ny)
+                throw_invalid("paired tests need the same number of seeds on both sides (the pairs), got " +
+                              std::to_string(nx) + " and " + std::to_string(ny));
+            const int test = paired ? MCSTAT_TEST_T_PAIRED : MCSTAT_TEST_T_2;
             size_t stride = pixels * channels;
             const double *wp = weighted ? w.data() : nullptr;
             unsigned flags = (intervals ? 0u : MCSTAT_ROWS_NO_INTERVALS) | (omit_nan ? MCSTAT_ROWS_OMIT_NAN : 0u) |
@@ -95,12 +99,12 @@ void register_pixels(py::module_ &mod)
             opt.resolution = resolution;
             // the arguments first, on an empty range: their errors raise, a
             // pixel's only sets its status
-            int st = mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py_, 0, 0, mu0, alternative, alpha, &opt, &out);
+            int st = mcstat_pixels_test(test, &px, &py_, 0, 0, mu0, alternative, alpha, &opt, &out);
             if (st)
                 throw_status(st, "mcstat_pixels_test");
             {
                 py::gil_scoped_release nogil;
-                mcstat_pixels_test(MCSTAT_TEST_T_2, &px, &py_, 0, pixels, mu0, alternative, alpha, &opt, &out);
+                mcstat_pixels_test(test, &px, &py_, 0, pixels, mu0, alternative, alpha, &opt, &out);
             }
             py::dict d;
             d["pvalue"] = p;
@@ -118,8 +122,8 @@ void register_pixels(py::module_ &mod)
         },
         py::arg("x"), py::arg("y"), py::arg("weights") = py::none(), py::arg("alternative") = 0,
         py::arg("alpha") = 0.05, py::arg("mu0") = 0.0, py::arg("intervals") = false, py::arg("omit_nan") = false,
-        py::arg("render") = false, py::arg("resolution") = 0.0,
-        "Welch's test per pixel of x against y, (seeds, ...) float32 or float64 C-contiguous arrays read in "
+        py::arg("render") = false, py::arg("resolution") = 0.0, py::arg("paired") = false,
+        "Welch's test (paired: the paired t test, mean_x its mean difference, mean_y NaN) per pixel of x against y, (seeds, ...) float32 or float64 C-contiguous arrays read in "
         "place; with weights, the tested value is the weighted sum over the last axis. Returns a dict of arrays "
         "of the pixel shape: pvalue, statistic, df, mean_x, mean_y, std_error, status (and conf_lo, conf_hi with "
         "intervals). render: libmcstat's MCSTAT_PIXELS_RENDER guards (resolution: their numerical floor, 0 = from "

@@ -108,7 +108,7 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
             max_detectable_bias: Optional[float] = None,
             max_relative_detectable_bias: Optional[float] = None,
             bias_quantile: float = 0.9, render_guards: bool = True,
-            resolution: Optional[float] = None) -> ImageComparison:
+            resolution: Optional[float] = None, paired: bool = False) -> ImageComparison:
     """Welch's test per pixel (and channel) of candidate against reference,
     p-values adjusted together by `method` (``mcstat.p_adjust``'s names;
     BH controls the false discovery rate at `alpha` for independent or
@@ -170,6 +170,19 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     cannot be detected by any per-pixel test of means (Bahadur and
     Savage): block tests see it.
 
+    `paired`: seed s of the candidate was rendered with the same seed as
+    seed s of the reference (same-seed renders): the paired t test on the
+    per-seed differences instead of Welch's (R's ``t.test(paired = TRUE)``
+    per pixel or block).  Renders of the same seed share their random
+    numbers, and where the change leaves a path alone its noise cancels
+    from the difference, so the paired test sees smaller changes at the
+    same seeds; it is valid only for such pairs (per-seed inputs of equal
+    seed counts; the pairs in the order given).  The render guards apply
+    to the differences: a pixel whose differences, or either side, are
+    constant or show at most one nonzero value takes the rule-of-three
+    variance; pixels equal in every seed (the change did not reach them)
+    are not tested.
+
     `detect_power`: the power behind ``detectable_bias`` (see the module's
     doc).  `max_detectable_bias` (absolute, in the image's units) and
     `max_relative_detectable_bias` (relative to the absolute reference mean): the
@@ -202,6 +215,9 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         raise InvalidArgumentError(f"alpha must lie in (0, 1), got {alpha}")
     if isinstance(ref, Samples) != isinstance(cand, Samples):
         raise ImageInputError("both sides must be per-seed renders, or both per-pixel summaries (.npz)")
+    paired = bool(paired)
+    if paired and not isinstance(ref, Samples):
+        raise ImageInputError("paired=True needs per-seed renders on both sides (the pairs), not per-pixel summaries")
     if ref.shape != cand.shape:
         raise ImageInputError(f"the reference is {_fmt_shape(ref.shape)} but the candidate is {_fmt_shape(cand.shape)}")
     # The map's background: per-seed tests compute the reference's means
@@ -228,8 +244,12 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     if isinstance(ref, Samples):
         for name, s in (("reference", ref), ("candidate", cand)):
             if s.data.shape[0] < 2:
-                raise TooFewObservationsError(f"the {name} has {s.data.shape[0]} seed(s); Welch's test needs at "
+                raise TooFewObservationsError(f"the {name} has {s.data.shape[0]} seed(s); "
+                                              f"{'the paired' if paired else 'Welch' + chr(39) + 's'} test needs at "
                                               "least 2 per side")
+        if paired and ref.data.shape[0] != cand.data.shape[0]:
+            raise ImageInputError(f"paired=True needs the same seeds on both sides, got {cand.data.shape[0]} "
+                                  f"candidate and {ref.data.shape[0]} reference seeds")
         # candidate first: the alternative is a claim about it
         if nan_policy not in ("raise", "omit"):
             raise InvalidArgumentError(f"nan_policy must be 'raise' or 'omit', got {nan_policy!r}")
@@ -246,7 +266,17 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         eps_used = (float(resolution) if resolution else
                     _core.RESOLUTION_FLOAT32 if dt == np.float32 else _core.RESOLUTION_FLOAT64)
         r = _core._t_test_2_pixels(xc, yr, weights, _core._alternative_code(alternative), alpha,
-                                   omit_nan=nan_policy == "omit", render=bool(render_guards), resolution=eps_used)
+                                   omit_nan=nan_policy == "omit", render=bool(render_guards), resolution=eps_used,
+                                   paired=paired)
+        if paired:  # the test gives the mean difference; the reference's mean for the map and relative bias
+            with np.errstate(invalid="ignore"):
+                my = (np.nanmean(yr, axis=0, dtype=np.float64) if nan_policy == "omit"
+                      else yr.mean(axis=0, dtype=np.float64))
+            if weights is not None:
+                my = my @ np.asarray(weights, dtype=np.float64)
+            r["mean_y"] = my.reshape(r["mean_x"].shape)
+            r["mean_d"] = r["mean_x"]
+            r["mean_x"] = r["mean_y"] + r["mean_d"]
         shp = cand.shape
         # the handed-over renders have been read (see Owned); a side not
         # handed over is the caller's and stays as it is
@@ -260,8 +290,12 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
         del xc, yr
         pvalue, stat, status = (r[k].reshape(shp) for k in ("pvalue", "statistic", "status"))
         est_c, est_r = r["mean_x"].reshape(shp), r["mean_y"].reshape(shp)  # no stacked copy: memory
+        # the sign of the difference (paired: of the mean difference, which
+        # the sum est_r + d could round away)
+        delta = r["mean_d"].reshape(shp) if paired else None
     else:
         shp = ref.shape
+        delta = None
         f = _core._t_test_2_summary_rows(cand.n, cand.mean, cand.m2, ref.n, ref.mean, ref.m2,
                                          _core._alternative_code(alternative), alpha)
         pvalue, stat, status = (f[k].reshape(shp) for k in ("pvalue", "statistic", "status"))
@@ -295,14 +329,17 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
     tested = status == 0
     sig = padj <= alpha
     dec = np.zeros(pvalue.shape, dtype=np.int8)
-    dec[sig & (est_c > est_r)] = 1
-    dec[sig & (est_c < est_r)] = -1
+    if delta is None:
+        delta = est_c - est_r
+    dec[sig & (delta > 0)] = 1
+    dec[sig & (delta < 0)] = -1
     if alternative == "greater":
         dec[dec < 0] = 0
     elif alternative == "less":
         dec[dec > 0] = 0
     res = ImageComparison(pvalue, padj, stat, dec, tested, est_c, est_r, bg, list(ref.channel_names),
                           alpha, _canonical_method(method), alternative)
+    res.paired = paired
     res.variance_lost, res.notes = int(lost.sum()) if lost is not None else 0, notes
     res.render_guards = bool(render_guards) and isinstance(ref, Samples)
     res.resolution = eps_used if res.render_guards else None

@@ -75,6 +75,8 @@ class ImageComparison:
     # and the numerical floor they applied (relative; None without them)
     render_guards: bool = False
     resolution: Optional[float] = None
+    # the paired t test on same-seed pairs instead of Welch's
+    paired: bool = False
     _bias_stats: Optional[Dict[str, Any]] = field(default=None, repr=False)
 
     @property
@@ -150,6 +152,7 @@ class ImageComparison:
         out = {
             "image": {"height": h, "width": w, "channels": self.channel_names},
             "alpha": self.alpha,
+            "test": "paired" if self.paired else "welch",
             "alternative": self.alternative,
             "adjustment": self.method,
             "controls": "false discovery rate" if fdr else (
@@ -216,9 +219,10 @@ class ImageComparison:
         s = self.summary(worst)
         h, w = s["image"]["height"], s["image"]["width"]
         blk = s["block"]
+        test = "paired t-tests (same-seed pairs)" if s["test"] == "paired" else "Welch two-sample t-tests"
         lines = [
-            "\tPer-pixel Welch two-sample t-tests, candidate vs reference" if blk is None else
-            f"\tBlock Welch two-sample t-tests ({blk['size']} x {blk['size']} block means), candidate vs reference",
+            f"\tPer-pixel {test}, candidate vs reference" if blk is None else
+            f"\tBlock {test} ({blk['size']} x {blk['size']} block means), candidate vs reference",
             "",
             (f"image:  {w} x {h}" if blk is None else
              f"blocks: {w} x {h} of a {blk['image'][1]} x {blk['image'][0]} image (edge blocks smaller)") +
