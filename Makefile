@@ -184,7 +184,7 @@ test:
 	$(MAKE) $(TEST_STEPS) CMAKE_FLAGS="$(CMAKE_FLAGS) -DMCSTAT_REQUIRE_TEST_FRAMEWORKS=ON"
 
 # ---- API reference (make docs; part of make test) ----------------------------
-# Into $(BUILD)/docs: c/html (Doxygen over mcstat.h and mcstat_check.h,
+# Into $(BUILD)/docs: c/html (Doxygen over mcstat.h, mcstat/*.h and mcstat_check.h,
 # tools/docs/Doxyfile), python (Sphinx autodoc over the package installed in
 # .venv, tools/docs/python), rust (rustdoc of bindings/rust; its build script
 # finds the staged libmcstat) and go/mcstat.txt (go doc -all).  A warning of
@@ -222,7 +222,7 @@ docs-go: go-deps
 # $(BUILD)-abi, its ABI compared by abidiff with that of every release of
 # this SOVERSION (libmcstat/abi/README.md; MCSTAT_SOVERSION in mcstat.h
 # names the files): any change other than an addition fails.
-MCSTAT_SOVERSION := $(shell sed -n 's/^\#define MCSTAT_SOVERSION \([0-9]*\)$$/\1/p' libmcstat/include/mcstat.h)
+MCSTAT_SOVERSION := $(shell sed -n 's/^\#define MCSTAT_SOVERSION \([0-9]*\)$$/\1/p' libmcstat/include/mcstat/version.h)
 ABI_BASELINES := $(sort $(wildcard libmcstat/abi/libmcstat.so.$(MCSTAT_SOVERSION).*.abi))
 abi-check:
 	@[ -n "$(ABI_BASELINES)" ] || { echo "abi-check: no baseline for SOVERSION $(MCSTAT_SOVERSION) in libmcstat/abi"; exit 1; }

@@ -8,7 +8,7 @@
  *            renderer pays per sample;
  *   moments  mcstat_moments_add per value, for comparison (a full merge);
  *   frames   the same loop in frames (a stream re-initialised per frame) of
- *            1024 and 65536 samples, through mcstat_check.h's macros:
+ *            1024 and 65536 samples, through mcstat/embedded.h's macros:
  *            without checks, with MCSTAT_CHECK_ADD and a fixed-n
  *            MCSTAT_CHECK_MEAN per frame, and with MCSTAT_CHECK_ADD and the
  *            sequential MCSTAT_CHECK_SEQ_PUSH per frame (one look);
@@ -30,7 +30,7 @@ static long fixed_failures, seq_failures;
 #define MCSTAT_CHECK_ON_FAILURE(what, file, line, status, result)                    \
     ((void)(file), (void)(line), (void)(status), (void)(result),                     \
      *(what) == 's' ? seq_failures++ : fixed_failures++) /* "sequential mean of" */
-#include "mcstat_check.h"
+#include "mcstat/embedded.h"
 
 #include <math.h>
 #include <stdint.h>

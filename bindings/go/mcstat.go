@@ -46,6 +46,7 @@
 package mcstat
 
 // #cgo pkg-config: mcstat-rpath
+// #cgo CFLAGS: -DMCSTAT_EXPERIMENTAL
 // #include <stdlib.h>
 // #include <mcstat.h>
 //
@@ -115,7 +116,7 @@ var (
 	ErrBufferSize      = newError(C.MCSTAT_EBUFSIZE)
 	ErrCorrupt         = newError(C.MCSTAT_ECORRUPT)
 	ErrTooBig          = newError(C.MCSTAT_ETOOBIG)
-	ErrCallback        = newError(C.MCSTAT_ECALLBACK) // a renderer check's callback failed (mcstat.h section "Renderer checks")
+	ErrCallback        = newError(C.MCSTAT_ECALLBACK) // a renderer check's callback failed (mcstat/check.h)
 	// ErrHeavyTail: a sequential test ended with its kurtosis gate closed
 	// (Sequential.Finish returns it as a *HeavyTailError).
 	ErrHeavyTail = newError(C.MCSTAT_EHEAVYTAIL)

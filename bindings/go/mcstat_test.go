@@ -285,10 +285,10 @@ func TestMomentsMergeBinaryAndErrors(t *testing.T) {
 	}
 }
 
-// headerVersion is MAJOR.MINOR.PATCH of the repository's mcstat.h, the one
+// headerVersion is MAJOR.MINOR.PATCH of the repository's mcstat/version.h, the one
 // source of the version.
 func headerVersion(t *testing.T) string {
-	text, err := os.ReadFile("../../libmcstat/include/mcstat.h")
+	text, err := os.ReadFile("../../libmcstat/include/mcstat/version.h")
 	if err != nil {
 		t.Fatal(err)
 	}
@@ -296,7 +296,7 @@ func headerVersion(t *testing.T) string {
 	for _, name := range []string{"MAJOR", "MINOR", "PATCH"} {
 		m := regexp.MustCompile(`(?m)^#define MCSTAT_VERSION_` + name + ` +([0-9]+)$`).FindSubmatch(text)
 		if m == nil {
-			t.Fatalf("MCSTAT_VERSION_%s not in mcstat.h", name)
+			t.Fatalf("MCSTAT_VERSION_%s not in mcstat/version.h", name)
 		}
 		parts = append(parts, string(m[1]))
 	}

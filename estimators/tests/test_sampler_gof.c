@@ -9,6 +9,7 @@
  *     seeds (binomial bounds);
  *   - every planted bug is rejected in (nearly) every run at n = 20000.
  */
+#define MCSTAT_EXPERIMENTAL /* power, diagnostics, goodness of fit */
 #include "harness.h"
 #include "internal.h"
 #include "mcest.h"

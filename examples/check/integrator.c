@@ -1,6 +1,6 @@
 /*
  * integrator.c - a tiny multi-threaded Monte Carlo "renderer" with mcstat's
- * embedded checks (mcstat_check.h).
+ * embedded checks (mcstat/embedded.h).
  *
  * Each frame estimates the irradiance at a point under a sky of radiance
  * L(w) = 1 + cos^2(theta):  E = integral L cos dw = 1.5 pi.  Every thread
@@ -25,7 +25,7 @@
  * check failed in every frame and the other never did), 1 otherwise, 2 for
  * bad usage.
  */
-#include "mcstat_check.h"
+#include "mcstat/embedded.h"
 
 #include <math.h>
 #include <pthread.h>

@@ -1,5 +1,5 @@
 // header_warnings.cpp - mcstat_pbrt.h adds no warning to its caller's
-// code under the strict flags mcstat_check.h is held to (ctest
+// code under the strict flags mcstat/embedded.h is held to (ctest
 // testing_pbrt_header_warnings compiles this file with them and -Werror
 // as C++14; it is not run): every template of the adapter instantiated
 // for a minimal pbrt-v4-like and pbrt-v3-like BxDF, with lobes and a

@@ -8,6 +8,7 @@
 #ifndef MCSTAT_INTERNAL_H
 #define MCSTAT_INTERNAL_H
 
+#define MCSTAT_EXPERIMENTAL /* the library implements the experimental families */
 #include "mcstat.h"
 
 #include <math.h>

@@ -42,7 +42,12 @@ def exported(lib):
 
 
 def header_facts(root):
-    text = open(os.path.join(root, "libmcstat/include/mcstat.h")).read()
+    inc = os.path.join(root, "libmcstat/include")
+    # mcstat.h's families (not embedded.h, a macro header of its own), the
+    # deprecated names last (mcstat/deprecated.h)
+    fam = sorted(f for f in os.listdir(os.path.join(inc, "mcstat")) if f.endswith(".h") and f not in ("deprecated.h", "embedded.h"))
+    text = "".join(open(os.path.join(inc, "mcstat", f)).read() for f in fam)
+    text += open(os.path.join(inc, "mcstat", "deprecated.h")).read()
     macros = dict(re.findall(r"#define (mcstat_\w+)\([^)]*\)\s+(mcstat_\w+)\(", text))
     # the header's static inline functions (mcstat_stream_add): not exported,
     # a binding may mirror them

@@ -26,9 +26,9 @@ for flags in "-ffast-math" "-Ofast" "-ffinite-math-only" "-funsafe-math-optimiza
         echo "ok: $flags refused"
     fi
 done
-printf '#include "mcstat.h"\n#include "mcstat_check.h"\nint main(void) { return mcstat_strerror(0) == 0; }\n' > "$tmp.c"
+printf '#include "mcstat.h"\n#include "mcstat/embedded.h"\nint main(void) { return mcstat_strerror(0) == 0; }\n' > "$tmp.c"
 if $cc -std=gnu11 -fsyntax-only -ffast-math $inc "$tmp.c" 2> "$tmp.err"; then
-    echo "ok: a caller's code with -ffast-math includes mcstat.h and mcstat_check.h"
+    echo "ok: a caller's code with -ffast-math includes mcstat.h and mcstat/embedded.h"
 else
     echo "FAIL: mcstat.h does not compile in a caller's -ffast-math code:"; cat "$tmp.err"; fail=1
 fi

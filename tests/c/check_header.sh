@@ -8,6 +8,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cat > "$tmp/use.c" <<'SRC'
 #include <mcstat.h>
+#include <mcstat/embedded.h>
 #include <mcstat_check.h>
 int use(mcstat_result *r);
 int use(mcstat_result *r)
@@ -31,6 +32,38 @@ printf '#include <mcstat.h>\nint exp_use(mcstat_gof_options *o);\n' > "$tmp/exp.
 if "$cc" -std=c11 -DMCSTAT_NO_EXPERIMENTAL -I "$inc" -c "$tmp/exp.c" -o "$tmp/exp.o" 2> /dev/null; then
     echo "mcstat.h: MCSTAT_NO_EXPERIMENTAL leaves the experimental names in"; exit 1
 fi
+# the stable families stay with MCSTAT_NO_EXPERIMENTAL: the renderer checks
+# and the sequential tests
+printf '#include <mcstat.h>\nint st(mcstat_check_model *m, mcstat_seq *s);\n' > "$tmp/stable.c"
+"$cc" -std=c11 -Wall -Werror -DMCSTAT_NO_EXPERIMENTAL -I "$inc" -c "$tmp/stable.c" -o "$tmp/stable.o" \
+    || { echo "mcstat.h: MCSTAT_NO_EXPERIMENTAL leaves out a stable family"; exit 1; }
+# an experimental call warns, naming the opt-in, unless MCSTAT_EXPERIMENTAL
+# is defined (or deprecation warnings are off)
+cat > "$tmp/optin.c" <<'SRC'
+#include <mcstat.h>
+double p(void);
+double p(void)
+{
+    mcstat_result r;
+    return mcstat_binom_test(3, 10, 0.5, MCSTAT_TWO_SIDED, 0.05, &r) ? -1.0 : r.p_value;
+}
+SRC
+if "$cc" -std=c11 -Werror -I "$inc" -c "$tmp/optin.c" -o "$tmp/optin.o" 2> "$tmp/optin.err"; then
+    echo "mcstat.h: an experimental call without MCSTAT_EXPERIMENTAL does not warn"; exit 1
+fi
+grep -q "MCSTAT_EXPERIMENTAL" "$tmp/optin.err" \
+    || { echo "mcstat.h: the experimental warning does not name MCSTAT_EXPERIMENTAL"; cat "$tmp/optin.err"; exit 1; }
+for def in MCSTAT_EXPERIMENTAL MCSTAT_DISABLE_DEPRECATE_WARNINGS; do
+    "$cc" -std=c11 -Wall -Wextra -Wpedantic -Werror -D$def -I "$inc" -c "$tmp/optin.c" -o "$tmp/optin.o" \
+        || { echo "mcstat.h: an experimental call warns with $def"; exit 1; }
+done
+# each family compiles alone, and with the old name of mcstat/embedded.h
+for h in "$inc"/mcstat/*.h "$inc/mcstat_check.h"; do
+    name=${h#"$inc"/}
+    printf '#define MCSTAT_EXPERIMENTAL\n#define MCSTAT_CHECKS 1\n#include <%s>\nint family_alone;\n' "$name" > "$tmp/alone.c"
+    "$cc" -std=c11 -Wall -Wextra -Wpedantic -Werror -I "$inc" -c "$tmp/alone.c" -o "$tmp/alone.o" \
+        || { echo "$name: does not compile alone"; exit 1; }
+done
 # an ignored status warns where the language has [[nodiscard]] (C++17 here);
 # a (void) cast says it was meant
 cat > "$tmp/status.cpp" <<'SRC'

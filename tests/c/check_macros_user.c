@@ -1,12 +1,12 @@
 /*
  * check_macros_user.c - a renderer's translation unit using every macro of
- * mcstat_check.h, compiled as C and as C++ with checks on and off by
+ * mcstat/embedded.h, compiled as C and as C++ with checks on and off by
  * check_macros_warnings.sh, which fails on any warning.  The values each
  * check reads are kept in variables used by nothing else: with checks off
  * they must not become "unused"; a check also stands as a statement, its
  * value ignored.
  */
-#include <mcstat_check.h>
+#include <mcstat/embedded.h>
 
 static double sample(int i)
 {
@@ -46,7 +46,6 @@ int render_frame(struct worker *w, int nworkers, int n)
     return failed;
 }
 
-#ifndef MCSTAT_NO_EXPERIMENTAL
 /* The sequential mode: a test kept across frames, pushed each frame. */
 int render_frames(struct worker *w, int nworkers, int n, int frames);
 int render_frames(struct worker *w, int nworkers, int n, int frames)
@@ -76,4 +75,3 @@ int render_frames(struct worker *w, int nworkers, int n, int frames)
     MCSTAT_CHECK_SEQ_FINISH(close);
     return failed;
 }
-#endif

@@ -1,5 +1,5 @@
 #!/bin/sh
-# mcstat_check.h is warning-free in the caller's code: check_macros_user.c
+# mcstat/embedded.h is warning-free in the caller's code: check_macros_user.c
 # compiled with MCSTAT_CHECKS=0 and =1, as C (C99, C11) and C++ (C++11,
 # C++17; -Wold-style-cast, -Wzero-as-null-pointer-constant), under -Wall
 # -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion -Wundef
@@ -24,7 +24,7 @@ compile() { # what compiler args...
     shift
     if ! "$@" -I "$inc" -c -o "$tmp/user.o" > "$tmp/out" 2>&1 || [ -s "$tmp/out" ]; then
         cat "$tmp/out"
-        echo "mcstat_check.h: diagnostics in a caller's code: $what"
+        echo "mcstat/embedded.h: diagnostics in a caller's code: $what"
         exit 1
     fi
     n=$((n + 1))
@@ -48,4 +48,4 @@ for checks in 0 1; do
     compile "$cc -std=c11 MCSTAT_CHECKS=$checks MCSTAT_NO_EXPERIMENTAL" "$cc" -std=c11 $warn \
         -DMCSTAT_CHECKS=$checks -DMCSTAT_NO_EXPERIMENTAL "$src"
 done
-echo "mcstat_check.h: no diagnostic in $n compilations (C: $ccs; C++: ${cxxs:-none}; checks on and off)"
+echo "mcstat/embedded.h: no diagnostic in $n compilations (C: $ccs; C++: ${cxxs:-none}; checks on and off)"

@@ -6,6 +6,7 @@
  * domain checked on as many cases as the table was measured on.
  * Both files are written by tools/refgen/make_accuracy.py.
  */
+#define MCSTAT_EXPERIMENTAL /* power, diagnostics, goodness of fit */
 #include "harness.h"
 #include "mcstat.h"
 #include "ref_accuracy.h"

@@ -3,6 +3,7 @@
  * binom.test (tests/data/ref_binom.h, made by tools/refgen/make_binom_ref.R),
  * the acceptance region against the p-values it summarises, and bad input.
  */
+#define MCSTAT_EXPERIMENTAL /* power, diagnostics, goodness of fit */
 #include "harness.h"
 #include "mcstat.h"
 #include "ref_binom.h"

@@ -1,9 +1,9 @@
 /*
- * test_check_off.c - with MCSTAT_CHECKS off, the macros of mcstat_check.h
+ * test_check_off.c - with MCSTAT_CHECKS off, the macros of mcstat/embedded.h
  * expand to nothing: no argument is evaluated, no mcstat symbol is needed
  * (this file is linked without libmcstat), and the checks read as passed.
  */
-#include "mcstat_check.h"
+#include "mcstat/embedded.h"
 
 #include "harness.h"
 

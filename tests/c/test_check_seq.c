@@ -1,5 +1,5 @@
 /*
- * test_check_seq.c - the sequential mode of mcstat_check.h with checks
+ * test_check_seq.c - the sequential mode of mcstat/embedded.h with checks
  * compiled in, in a renderer's frame loop (per-thread streams merged at a
  * frame's end, pushed, the frame stream re-initialised): a planted bias is
  * reported once, at the look that decided, with the n it decided at; a
@@ -22,7 +22,7 @@ static struct report rep;
 struct mcstat_result;
 static void record(const char *what, int line, int status, const struct mcstat_result *r);
 #define MCSTAT_CHECK_ON_FAILURE(what, file, line, status, result) ((void)(file), record((what), (line), (status), (result)))
-#include "mcstat_check.h"
+#include "mcstat/embedded.h"
 
 #include "harness.h"
 

@@ -5,6 +5,7 @@
  * - flag rates, the t test's level at the recommended k - is measured in
  * tests/python/test_diagnose.py.)
  */
+#define MCSTAT_EXPERIMENTAL /* power, diagnostics, goodness of fit */
 #include "harness.h"
 #include "mcstat.h"
 #include <stdint.h>

@@ -1,6 +1,6 @@
 /*
  * test_fast_math_caller.c - a caller compiled and linked with -ffast-math
- * (CMakeLists.txt): it includes mcstat.h and mcstat_check.h with checks on,
+ * (CMakeLists.txt): it includes mcstat.h and mcstat/embedded.h with checks on,
  * and, on x86-64 and arm64, GCC and clang link crtfastmath.o into it, which
  * starts the process with subnormals flushed to zero.  The library must
  * answer as in a default environment.  This file compares results as bit
@@ -10,7 +10,7 @@
 #define MCSTAT_CHECKS 1
 #include "harness.h"
 #include "mcstat.h"
-#include "mcstat_check.h"
+#include "mcstat/embedded.h"
 
 #include <stdint.h>
 #include <string.h>

@@ -4,6 +4,7 @@
  * the R-style block, bad input, and calibration and power on multinomial
  * samples.
  */
+#define MCSTAT_EXPERIMENTAL /* power, diagnostics, goodness of fit */
 #include "harness.h"
 #include "mcstat.h"
 #include "ref_chisq.h"

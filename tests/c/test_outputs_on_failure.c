@@ -4,6 +4,7 @@
  * keeps its bytes (sentinel-filled here) through every failure; and the
  * stated exceptions (element-wise and text calls) behave as stated.
  */
+#define MCSTAT_EXPERIMENTAL /* power, diagnostics, goodness of fit */
 #include "harness.h"
 #include "mcstat.h"
 #include <string.h>

@@ -261,7 +261,7 @@ static void test_merge(void)
     CHECK(ra.statistic == rb.statistic);
 }
 
-/* A stream (mcstat_check.h's frame) pushes its values, and refuses NaN. */
+/* A stream (mcstat/embedded.h's frame) pushes its values, and refuses NaN. */
 static void test_stream(void)
 {
     static mcstat_stream st;

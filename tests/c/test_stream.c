@@ -1,6 +1,6 @@
 /*
  * test_stream.c - the buffered accumulator (mcstat_stream) and the checks of
- * mcstat_check.h with checks compiled in: exactness against add_array,
+ * mcstat/embedded.h with checks compiled in: exactness against add_array,
  * buffer boundaries, non-finite values, merges, and checks that pass on
  * right estimates and fail on biased or noisy ones at the stated rates.
  */
@@ -8,7 +8,7 @@
 static int failures_reported;
 #define MCSTAT_CHECK_ON_FAILURE(what, file, line, status, result) \
     ((void)(what), (void)(file), (void)(line), (void)(status), (void)(result), failures_reported++)
-#include "mcstat_check.h"
+#include "mcstat/embedded.h"
 
 #include "harness.h"
 

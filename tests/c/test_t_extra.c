@@ -5,6 +5,7 @@
  * tools/refgen/make_t_ref.R: t.test, var.test, pt(log.p = TRUE), qt), and
  * their bad input.
  */
+#define MCSTAT_EXPERIMENTAL /* power, diagnostics, goodness of fit */
 #include "harness.h"
 #include "mcstat.h"
 #include "ref_tsv.h"

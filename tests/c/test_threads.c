@@ -23,6 +23,7 @@
  * times.  Smaller values shrink the run under valgrind or sanitizers; every
  * call is still made by every thread.
  */
+#define MCSTAT_EXPERIMENTAL /* power, diagnostics, goodness of fit */
 #include "harness.h"
 #include "mcstat.h"
 

@@ -2,6 +2,7 @@
  * calculations): prints the sample size for d = 0.5 at power 0.9, one-sample
  * t, two-sided (R: power.t.test(delta = 0.5, power = 0.9, type =
  * "one.sample") gives n = 43.99548, so 44). */
+#define MCSTAT_EXPERIMENTAL /* the power calculations */
 #include <mcstat.h>
 #include <stdio.h>
 

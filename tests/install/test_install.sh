@@ -16,7 +16,7 @@ mkdir -p "$work"
 cmake --install "$build" --prefix "$stage" > "$work/install.log"
 
 fail() { echo "install test FAILED: $*" >&2; exit 1; }
-for f in include/mcstat.h include/mcstat_check.h include/mcstat_testing.h include/mcstat_pbrt.h; do
+for f in include/mcstat.h include/mcstat/base.h include/mcstat/check.h include/mcstat/embedded.h include/mcstat/version.h include/mcstat/gof.h include/mcstat_check.h include/mcstat_testing.h include/mcstat_pbrt.h; do
     [ -f "$stage/$f" ] || fail "missing $f"
 done
 libdir=$(dirname "$(find "$stage" -name libmcstat.a | head -1)")
@@ -54,8 +54,8 @@ grep -q "checks on" "$work/integrator.log" || fail "integrator built without che
 # 2. pkg-config
 export PKG_CONFIG_PATH="$libdir/pkgconfig${PKG_CONFIG_PATH:+:$PKG_CONFIG_PATH}"
 # the version and the SOVERSION are the installed header's (their one source)
-hdr_version=$(for p in MAJOR MINOR PATCH; do sed -n "s/^#define MCSTAT_VERSION_$p \([0-9]*\)$/\1/p" "$stage/include/mcstat.h"; done | paste -sd.)
-hdr_soversion=$(sed -n 's/^#define MCSTAT_SOVERSION \([0-9]*\)$/\1/p' "$stage/include/mcstat.h")
+hdr_version=$(for p in MAJOR MINOR PATCH; do sed -n "s/^#define MCSTAT_VERSION_$p \([0-9]*\)$/\1/p" "$stage/include/mcstat/version.h"; done | paste -sd.)
+hdr_soversion=$(sed -n 's/^#define MCSTAT_SOVERSION \([0-9]*\)$/\1/p' "$stage/include/mcstat/version.h")
 [ -n "$hdr_soversion" ] && [ "$(pkg-config --modversion mcstat)" = "$hdr_version" ] || fail "pkg-config version"
 [ -f "$libdir/libmcstat.so.$hdr_soversion" ] && [ -f "$libdir/libmcstat.so.$hdr_version" ] \
     || fail "libmcstat.so.$hdr_soversion / libmcstat.so.$hdr_version not installed"

@@ -98,7 +98,7 @@ def test_version_single_source():
     """The package's version is the header's (pyproject.toml reads it with a
     regex at build time), as is the linked library's."""
     from importlib.metadata import version
-    want = header_version("libmcstat/include/mcstat.h", "MCSTAT")
+    want = header_version("libmcstat/include/mcstat/version.h", "MCSTAT")
     assert mcstat.__version__ == want
     assert version("mcstat") == want
     assert mcstat.__libmcstat_version__ == want
@@ -108,7 +108,7 @@ def test_package_surface():
     for name in ["t_test", "var_test", "Moments", "batch_means", "TestResult", "BatchResult",
                  "DegenerateDataError", "NonFiniteError", "TooFewObservationsError"]:
         assert name in mcstat.__all__ and hasattr(mcstat, name)
-    assert mcstat.__libmcstat_version__ == header_version("libmcstat/include/mcstat.h", "MCSTAT")
+    assert mcstat.__libmcstat_version__ == header_version("libmcstat/include/mcstat/version.h", "MCSTAT")
     pkg = os.path.dirname(mcstat.__file__)
     assert os.path.exists(os.path.join(pkg, "py.typed")) and os.path.exists(os.path.join(pkg, "_core.pyi"))
     assert "Welch" in mcstat.t_test.__doc__ and "Parameters" in mcstat.var_test.__doc__
@@ -142,3 +142,14 @@ def test_ks_and_estimators_surface():
         assert hasattr(est, name), name
     assert est.__libmcest_version__ == header_version("estimators/include/mcest.h", "MCEST")
     assert "Parameters" in est.irradiance.__doc__ and "first_index" in est.irradiance.__doc__
+
+
+def test_experimental_families_are_marked():
+    """The calls of libmcstat's experimental families (mcstat/power.h,
+    mcstat/diagnostics.h, mcstat/gof.h) say so in the Python reference;
+    the stable ones (the renderer checks, the sequential tests) do not."""
+    for f in (mcstat.power, mcstat.ks_power, mcstat.ks_sample_size, mcstat.diagnose, mcstat.binom_test,
+              mcstat.battery_test, mcstat.chisq_gof):
+        assert "Experimental (libmcstat's mcstat/" in f.__doc__, f.__name__
+    for f in (mcstat.check_bsdf, mcstat.SequentialTest, mcstat.t_test):
+        assert "Experimental" not in (f.__doc__ or ""), f.__name__

@@ -1,9 +1,10 @@
 /* A parent project's program using a vendored mcstat: a t-test (GSL), a
- * power calculation (libRmath) and an embedded check (mcstat_check.h), so
- * the static library's dependencies must reach the parent's link. */
+ * power calculation (libRmath) and an embedded check (mcstat/embedded.h),
+ * so the static library's dependencies must reach the parent's link. */
 #define MCSTAT_CHECKS 1
+#define MCSTAT_EXPERIMENTAL /* the power calculation */
 #include <mcstat.h>
-#include <mcstat_check.h>
+#include <mcstat/embedded.h>
 #include <stdio.h>
 
 int main(void)

@@ -86,7 +86,7 @@ configure "$work/subdir" -DMCSTAT_INSTALL=ON
 cmake --build "$work/subdir" -j 2 > /dev/null
 rm -rf "$work/stage-on"
 cmake --install "$work/subdir" --prefix "$work/stage-on" > /dev/null
-for f in bin/consumer include/mcstat.h include/mcstat_check.h lib/cmake/mcstat/mcstatConfig.cmake \
+for f in bin/consumer include/mcstat.h include/mcstat/tests.h include/mcstat/embedded.h include/mcstat_check.h lib/cmake/mcstat/mcstatConfig.cmake \
          lib/cmake/mcstat/mcstatTargets.cmake lib/pkgconfig/mcstat.pc lib/libmcstat.a; do
     [ -e "$work/stage-on/$f" ] || [ -e "$work/stage-on/${f/lib\//lib64/}" ] || fail "MCSTAT_INSTALL=ON: $f not installed"
 done

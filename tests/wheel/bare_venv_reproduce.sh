@@ -14,7 +14,7 @@ py=$1 whl=$2 out=$3
 mkdir -p "$out"
 fail() { echo "bare venv: $*" >&2; exit 1; }
 version=$(awk '/#define MCSTAT_VERSION_(MAJOR|MINOR|PATCH) / {v = v (v == "" ? "" : ".") $3} END {print v}' \
-    "$root/libmcstat/include/mcstat.h")
+    "$root/libmcstat/include/mcstat/version.h")
 bundled=$("$py" -c 'import sys, zipfile; print(any(n.startswith("mcstat.libs/libgsl-") for n in zipfile.ZipFile(sys.argv[1]).namelist()))' "$whl")
 tmp=$(mktemp -d /tmp/mcstat-wheel.XXXXXX)
 trap 'rm -rf "$tmp"' EXIT

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Reference values of the sequential tests (mcstat.h, section "Sequential, anytime-valid tests") at
+"""Reference values of the sequential tests (mcstat/sequential.h) at
 50 digits, written to tests/data/seq_ref.tsv for tests/c/test_sequential.c.
 
 An independent implementation of the header's formulas: the moments are

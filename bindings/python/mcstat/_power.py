@@ -248,6 +248,9 @@ def power(test: str = "t", *, n: Optional[float] = None, effect: Optional[float]
           sd_ratio: Optional[float] = None) -> PowerResult:
     """Power and sample size of the t, chi-squared and F tests.
 
+    Experimental (libmcstat's mcstat/power.h): its name and options may change before 1.0; a
+    renamed function stays as a deprecated alias for one release.
+
     Give all but one of ``n``, ``effect``, ``alpha`` and ``power``
     (``None`` marks the unknown; ``alpha`` defaults to 0.05, pass
     ``alpha=None`` to solve for it), as R's ``power.t.test`` and
@@ -388,6 +391,9 @@ def ks_power(n: int, n_y: Optional[int] = None, *, sampler: Optional[Sampler] = 
              n_rep: int = 1000, seed: int = 0) -> KSPowerResult:
     """Power of `mcstat.ks_test` by simulation.
 
+    Experimental (libmcstat's mcstat/power.h family): its name and options may change before
+    1.0; a renamed function stays as a deprecated alias for one release.
+
     Draws ``n_rep`` pairs: y from ``sampler_y`` (default: ``sampler``, or the
     standard normal) and x = shift + scale * (a draw of ``sampler``), each a
     function ``(numpy Generator, size) -> array``; counts the rejections at
@@ -427,6 +433,9 @@ def ks_power(n: int, n_y: Optional[int] = None, *, sampler: Optional[Sampler] = 
 def ks_sample_size(power: float = 0.9, *, n_ratio: float = 1.0, n_max: int = 100000,
                    **kwargs: Any) -> KSPowerResult:
     """The smallest n whose simulated K-S power reaches ``power``.
+
+    Experimental (libmcstat's mcstat/power.h family): its name and options may change before
+    1.0; a renamed function stays as a deprecated alias for one release.
 
     Doubling, then bisection over n (``n_y = ceil(n_ratio * n)``), each step
     a `ks_power` run with the given keyword arguments (samplers, shift,

@@ -29,6 +29,9 @@ def binom_test(x: int, n: int, p: float = 0.5, *, alternative: str = "two-sided"
                alpha: float = 0.05) -> TestResult:
     """Exact binomial test of H0: P(success) = p, as R's ``binom.test``.
 
+    Experimental (libmcstat's mcstat/gof.h): its name and options may change before 1.0; a
+    renamed function stays as a deprecated alias for one release.
+
     Parameters
     ----------
     x, n : int
@@ -58,6 +61,9 @@ def battery_test(tests: Any, alpha: float = 0.05, *, n: Optional[int] = None, al
                  meta_alpha: float = 0.05) -> TestResult:
     """The meta-test of a battery: is its number of rejections consistent
     with the level `alpha` of its tests?
+
+    Experimental (libmcstat's mcstat/gof.h): its name and options may change before 1.0; a
+    renamed function stays as a deprecated alias for one release.
 
     Under every null hypothesis, k independent tests at level alpha reject
     Binomial(k, alpha) times; this is the exact binomial test of the count
@@ -229,6 +235,9 @@ def diagnose(x: Any, *, k: Optional[int] = None, m: Optional[int] = None, alpha:
              tolerance: float = 0.2, tail_k: Optional[int] = None, tail_threshold: float = 2.2,
              normality: bool = True) -> Diagnostics:
     """Diagnostics of an estimator's primary estimates `x` (1-D).
+
+    Experimental (libmcstat's mcstat/diagnostics.h): its name and options may change before 1.0;
+    a renamed function stays as a deprecated alias for one release.
 
     Reports the shape (skewness, excess kurtosis, standard errors), the
     tails (Hill's tail index of each tail; `heavy_tail` when one is below

@@ -471,7 +471,7 @@ the weight against eval/pdf ("weight"), eval() > 0 only where pdf() > 0
 eval-only estimator ("integrals"), albedo <= 1 ("energy"), the resampled
 samples against rejection sampling from eval() by Canner's K-S ("ks") and,
 when asked, reciprocity.  Deterministic routes reject on any point beyond rtol; the
-statistical ones are Holm-adjusted across routes.  mcstat.h, section "Renderer checks",
+statistical ones are Holm-adjusted across routes.  mcstat/check.h,
 says what each route checks and cannot see.
 
 Parameters

@@ -15,6 +15,9 @@ const char *CHISQ_DOC = R"doc(chisq_gof(observed, expected=None, *, expected_kin
 
 Pearson's chi-squared goodness-of-fit test of cell counts.
 
+Experimental (libmcstat's mcstat/gof.h): its name and options may change
+before 1.0; a renamed function stays as a deprecated alias for one release.
+
 Parameters
 ----------
 observed : array_like, shape (k,)

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#define MCSTAT_EXPERIMENTAL /* the package wraps the experimental families too */
 #include "mcstat.h"
 #include "real_array.hpp"
 

@@ -1,5 +1,5 @@
-// sequential.cpp - mcstat.SequentialTest: libmcstat's mcstat_seq (mcstat.h,
-// section "Sequential, anytime-valid tests"), an anytime-valid test looked at after every push.
+// sequential.cpp - mcstat.SequentialTest: libmcstat's mcstat_seq
+// (mcstat/sequential.h), an anytime-valid test looked at after every push.
 //
 // The state is the C struct itself (plain data, 448 bytes): every number,
 // decision and sentence comes from libmcstat; this file names arguments in
@@ -176,7 +176,7 @@ void register_sequential(py::module_ &mod)
     py::class_<Sequential>(mod, "SequentialTest", R"doc(
 An anytime-valid sequential test: push a batch, look, stop as soon as it
 decides, in either direction, with the error rate still at most alpha
-(libmcstat's ``mcstat_seq``; mcstat.h, section "Sequential, anytime-valid tests").
+(libmcstat's ``mcstat_seq``; mcstat/sequential.h).
 
 >>> s = mcstat.SequentialTest("mean", mu=E, alpha=0.01)
 >>> while not s.decided and s.n < 1_000_000:

@@ -6,7 +6,7 @@ simulated instead: render a batch, look, stop as soon as the test decides
 ("render until decided").  At the first receiver that sees an emitter,
 estimator A with each planted bug is compared with the trusted estimator
 by ``mcstat.SequentialTest("mean2")`` (libmcstat's Gaussian-mixture
-confidence sequence, mcstat.h section "Sequential, anytime-valid tests"), pushing ``batch`` primary
+confidence sequence, mcstat/sequential.h), pushing ``batch`` primary
 estimates of each per look, up to ``max_n`` per run.  Measured:
 
 - the stopping time (primary estimates per sample at the deciding look, or
@@ -326,7 +326,7 @@ def report(res: Dict[str, Any], fig: Any, transcript: str) -> List[str]:
     L = ["## 3.4+ Sequential tests on the planted bugs (beyond the paper)", "",
          f"Render until decided: at {res['receiver']}, A with each planted bug against {res['trusted']} by "
          f"`mcstat.SequentialTest(\"mean2\", alpha={res['alpha']:g})`, the anytime-valid test of libmcstat (a "
-         f"Gaussian-mixture confidence sequence; mcstat.h section 'Sequential, anytime-valid tests'), pushing {res['batch']} primary estimates of "
+         f"Gaussian-mixture confidence sequence; mcstat/sequential.h), pushing {res['batch']} primary estimates of "
          f"each per look, up to {nmax} per run, {res['runs']} runs per bug. It may be looked at after every batch "
          f"and stopped at any time with its error rate still at most alpha; it holds (no decision) below "
          f"{res['min_n']} values per sample. The stopping time is n, the primary estimates per sample at the "

@@ -1,8 +1,8 @@
 //! Raw FFI bindings to libmcstat (`mcstat.h`), written by hand from the
-//! header, section by section: the plain structs mirrored field by field
+//! headers (mcstat/*.h), family by family: the plain structs mirrored field by field
 //! (`#[repr(C)]`, the header's anonymous unions as named Rust unions), the
 //! enums and macros as integer constants, every exported function as
-//! declared (those of section "Deprecated names" too, marked
+//! declared (those of mcstat/deprecated.h too, marked
 //! `#[deprecated]`).  The safe API is the `mcstat` crate.
 //!
 //! Layout: the sizes are asserted at compile time against the header's own
@@ -31,7 +31,7 @@ pub const MCSTAT_EBUFSIZE: c_int = 7;
 pub const MCSTAT_ECORRUPT: c_int = 8;
 pub const MCSTAT_ETOOBIG: c_int = 9;
 pub const MCSTAT_ECALLBACK: c_int = 10;
-/// A sequential test's kurtosis gate was still closed at its end (section "Sequential, anytime-valid tests").
+/// A sequential test's kurtosis gate was still closed at its end (mcstat/sequential.h).
 pub const MCSTAT_EHEAVYTAIL: c_int = 11;
 
 pub const MCSTAT_TWO_SIDED: c_int = 0;
@@ -278,7 +278,7 @@ pub struct mcstat_result_ints_named {
     pub chisq_n_estimated: i32,
 }
 
-/// The sequential tests' integer outputs (SEQ_*, section "Sequential, anytime-valid tests").
+/// The sequential tests' integer outputs (SEQ_*, mcstat/sequential.h).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct mcstat_result_ints_seq {
@@ -346,7 +346,7 @@ pub struct mcstat_result_chisq {
     pub chisq_pool_below: f64,
 }
 
-/// The sequential tests' per-test outputs (SEQ_*, section "Sequential, anytime-valid tests").
+/// The sequential tests' per-test outputs (SEQ_*, mcstat/sequential.h).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct mcstat_result_seq {

@@ -241,11 +241,11 @@ fn layout_matches_the_c_compiler() {
     assert!(bad.is_empty(), "layouts differ: {bad:?}");
 }
 
-/// MAJOR.MINOR.PATCH of the repository's mcstat.h, the one source of
+/// MAJOR.MINOR.PATCH of the repository's mcstat/version.h, the one source of
 /// the version: Cargo.toml's and the constants here must follow it.
 fn header_version() -> (u32, u32, u32) {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../libmcstat/include/mcstat.h");
-    let text = std::fs::read_to_string(path).expect("the repository's mcstat.h");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../libmcstat/include/mcstat/version.h");
+    let text = std::fs::read_to_string(path).expect("the repository's mcstat/version.h");
     let get = |name: &str| -> u32 {
         let key = format!("#define MCSTAT_VERSION_{name} ");
         let line = text.lines().find(|l| l.starts_with(&key)).expect("a version macro");

@@ -1,4 +1,4 @@
-//! Escalation instead of reruns (`mcstat.h` section "Multiple testing"): the two-stage test
+//! Escalation instead of reruns (`mcstat/adjust.h`): the two-stage test
 //! of Bauer & Koehne (1994), for a test suite that would otherwise rerun a
 //! failed statistical test until it passes and so lose its error rate.
 use std::os::raw::c_int;

@@ -1,4 +1,4 @@
-//! Sequential, anytime-valid tests (`mcstat.h` section "Sequential, anytime-valid tests", experimental).
+//! Sequential, anytime-valid tests (`mcstat/sequential.h`).
 use std::fmt;
 use std::mem::{size_of, MaybeUninit};
 
