@@ -57,11 +57,11 @@ import (
 type Domain int
 
 const (
-	DomainSphere     Domain = C.MCSTAT_DOMAIN_SPHERE     // unit directions: BSDFs with transmission, emitters
-	DomainHemisphere Domain = C.MCSTAT_DOMAIN_HEMISPHERE // unit directions with z >= 0
-	DomainSquare     Domain = C.MCSTAT_DOMAIN_SQUARE     // (x, y) in [0, 1]^2
-	DomainDisk       Domain = C.MCSTAT_DOMAIN_DISK       // x^2 + y^2 <= 1
-	DomainInterval   Domain = C.MCSTAT_DOMAIN_INTERVAL   // x in [0, 1]
+	DomainSphere     Domain = C.MCSTAT_CHECK_DOMAIN_SPHERE     // unit directions: BSDFs with transmission, emitters
+	DomainHemisphere Domain = C.MCSTAT_CHECK_DOMAIN_HEMISPHERE // unit directions with z >= 0
+	DomainSquare     Domain = C.MCSTAT_CHECK_DOMAIN_SQUARE     // (x, y) in [0, 1]^2
+	DomainDisk       Domain = C.MCSTAT_CHECK_DOMAIN_DISK       // x^2 + y^2 <= 1
+	DomainInterval   Domain = C.MCSTAT_CHECK_DOMAIN_INTERVAL   // x in [0, 1]
 )
 
 // Dims is the number of coordinates of a point (0 for an invalid domain).
@@ -89,8 +89,8 @@ func ParseDomain(name string) (Domain, error) {
 type SampleWeight int
 
 const (
-	WeightOverPDF SampleWeight = C.MCSTAT_WEIGHT_OVER_PDF // weight = eval / pdf (Mitsuba, most path tracers)
-	WeightValue   SampleWeight = C.MCSTAT_WEIGHT_VALUE    // weight = eval (pbrt's Sample_f times |cos|)
+	WeightOverPDF SampleWeight = C.MCSTAT_CHECK_WEIGHT_OVER_PDF // weight = eval / pdf (Mitsuba, most path tracers)
+	WeightValue   SampleWeight = C.MCSTAT_CHECK_WEIGHT_VALUE    // weight = eval (pbrt's Sample_f times |cos|)
 )
 
 // Route is one of the checks a renderer check runs.
@@ -159,9 +159,9 @@ func Routes(rs ...Route) RouteSet {
 type RouteState int
 
 const (
-	RouteRan     RouteState = C.MCSTAT_ROUTE_RAN
-	RouteSkipped RouteState = C.MCSTAT_ROUTE_SKIPPED // not asked for, or not applicable
-	RouteInvalid RouteState = C.MCSTAT_ROUTE_INVALID // an assumption failed (heavy tails, too few samples)
+	RouteRan     RouteState = C.MCSTAT_CHECK_STATE_RAN
+	RouteSkipped RouteState = C.MCSTAT_CHECK_STATE_SKIPPED // not asked for, or not applicable
+	RouteInvalid RouteState = C.MCSTAT_CHECK_STATE_INVALID // an assumption failed (heavy tails, too few samples)
 )
 
 func (s RouteState) String() string {

@@ -518,7 +518,7 @@ func TestCheckMediumEscapesRefused(t *testing.T) {
 	value.Weight = WeightValue
 	_, err := CheckMedium(value, 2.0, 20000, 1, 0.01, withEscapes(0.5))
 	wantReason(t, "WeightValue", err, ErrInvalidArgument, "options.escape_transmittance needs model.weight = "+
-		"MCSTAT_WEIGHT_OVER_PDF (an escape's weight is what it carries on)")
+		"MCSTAT_CHECK_WEIGHT_OVER_PDF (an escape's weight is what it carries on)")
 	_, err = CheckPhase(isotropic(1), [3]float64{0, 0.6, 0.8}, 5000, 1, 0.01, withEscapes(0.5))
 	wantReason(t, "CheckPhase with EscapeTransmittance", err, ErrInvalidArgument,
 		"options.escape_transmittance is 0.5 in the check of a phase function: it is a medium's")

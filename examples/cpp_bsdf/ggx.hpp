@@ -268,9 +268,9 @@ template <class Bsdf> struct Callbacks {
     mcstat_check_model model()
     {
         mcstat_check_model m{};
-        m.domain = MCSTAT_DOMAIN_HEMISPHERE;
+        m.domain = MCSTAT_CHECK_DOMAIN_HEMISPHERE;
         m.n_uniforms = 2;
-        m.weight = MCSTAT_WEIGHT_OVER_PDF;
+        m.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
         m.sample_reports = 1;
         m.user = this;
         m.sample = &Callbacks::sample;

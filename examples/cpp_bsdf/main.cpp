@@ -86,7 +86,7 @@ std::string rejecting_routes(const mcstat_check_report &r)
 {
     std::string s;
     for (int k = 0; k < MCSTAT_CHECK_ROUTE_COUNT; k++)
-        if (r.route[k].state == MCSTAT_ROUTE_RAN && r.route[k].reject) {
+        if (r.route[k].state == MCSTAT_CHECK_STATE_RAN && r.route[k].reject) {
             if (!s.empty())
                 s += ",";
             s += mcstat_check_route_name(k);
@@ -153,7 +153,7 @@ int main(int argc, char **argv)
                           o.error.empty() ? "nothing" : o.error.c_str(), ok ? "ok" : "WRONG");
         } else {
             const mcstat_check_report &r = o.report;
-            bool route_rejects = c.route >= 0 && r.route[c.route].state == MCSTAT_ROUTE_RAN && r.route[c.route].reject;
+            bool route_rejects = c.route >= 0 && r.route[c.route].state == MCSTAT_CHECK_STATE_RAN && r.route[c.route].reject;
             ok = c.route == EXPECT_PASS ? !r.reject : (r.reject && route_rejects);
             std::snprintf(line, sizeof line, "%-6s %-40s %s (p = %.3g; rejecting: %s; %s)  %s", c.real,
                           ggx::bug_name(c.bug), r.reject ? "REJECTED" : "passed", r.p_value,

@@ -86,6 +86,6 @@ int main()
     auto c4 = mcstat_pbrt::adapt(b4, {0.0, 0.6, 0.8}, mcstat_pbrt::channel{1});
     auto a3 = mcstat_pbrt::adapt(b3, {0.0, 0.6, -0.8});
     a4.api().mode = Mode::Importance;
-    a4.stochastic(true).domain(MCSTAT_DOMAIN_SPHERE);
+    a4.stochastic(true).domain(MCSTAT_CHECK_DOMAIN_SPHERE);
     return exercise(a4) + exercise(c4) + exercise(a3);
 }

@@ -90,7 +90,7 @@ std::string routes_rejecting(const mcstat_check_report &r)
 {
     std::string s;
     for (int k = 0; k < MCSTAT_CHECK_ROUTE_COUNT; k++)
-        if (r.route[k].state == MCSTAT_ROUTE_RAN && r.route[k].reject)
+        if (r.route[k].state == MCSTAT_CHECK_STATE_RAN && r.route[k].reject)
             s += std::string(s.empty() ? "" : ", ") + mcstat_check_route_name(k);
     return s.empty() ? "none" : s;
 }
@@ -103,7 +103,7 @@ template <class A> void expect_rejected_by(A &check, int route, const char *what
     std::printf("%-44s %s (p = %.3g; rejecting: %s)\n", what, r.reject ? "REJECTED" : "passed", r.p_value,
                 routes_rejecting(r).c_str());
     EXPECT_TRUE(r.reject) << mcstat_testing::check_text(r);
-    EXPECT_TRUE(r.route[route].state == MCSTAT_ROUTE_RAN && r.route[route].reject)
+    EXPECT_TRUE(r.route[route].state == MCSTAT_CHECK_STATE_RAN && r.route[route].reject)
         << mcstat_check_route_name(route) << " did not reject\n"
         << mcstat_testing::check_text(r);
 }
@@ -130,8 +130,8 @@ TEST(Adapter, Pbrt3Interface)
     auto check = mcstat_pbrt::adapt(p, {0.0, 0.0, 1.0});
     mcstat_check_model m = check.model();
     EXPECT_EQ(m.n_uniforms, 2);
-    EXPECT_EQ(m.weight, MCSTAT_WEIGHT_VALUE);
-    EXPECT_EQ(m.domain, MCSTAT_DOMAIN_HEMISPHERE);
+    EXPECT_EQ(m.weight, MCSTAT_CHECK_WEIGHT_VALUE);
+    EXPECT_EQ(m.domain, MCSTAT_CHECK_DOMAIN_HEMISPHERE);
     const double top = 1.0 - std::ldexp(1.0, -53), u[2] = {top, 0.25};
     double x[3], w, pdf;
     // the BxDF's type made the sample specular, and no lobes were given: refused
@@ -146,7 +146,7 @@ TEST(Adapter, Pbrt3SideOfF)
     // LambertianReflection::f is R/pi on both sides; pbrt-v3's BSDF counts it on wo's side only
     LambertianReflection b(kAlbedo);
     auto check = mcstat_pbrt::adapt(b, {0.0, 0.0, -1.0});
-    EXPECT_EQ(check.domain(), MCSTAT_DOMAIN_SPHERE);
+    EXPECT_EQ(check.domain(), MCSTAT_CHECK_DOMAIN_SPHERE);
     mcstat_check_model m = check.model();
     const double above[3] = {0.0, 0.6, 0.8}, below[3] = {0.0, 0.6, -0.8};
     double out[2];

@@ -135,7 +135,7 @@ std::string routes_rejecting(const mcstat_check_report &r)
 {
     std::string s;
     for (int k = 0; k < MCSTAT_CHECK_ROUTE_COUNT; k++)
-        if (r.route[k].state == MCSTAT_ROUTE_RAN && r.route[k].reject)
+        if (r.route[k].state == MCSTAT_CHECK_STATE_RAN && r.route[k].reject)
             s += std::string(s.empty() ? "" : ", ") + mcstat_check_route_name(k);
     return s.empty() ? "none" : s;
 }
@@ -158,7 +158,7 @@ template <class A> void expect_rejected_by(A &check, int route, const char *what
     mcstat_check_report r = run(check, what, &status);
     ASSERT_EQ(status, MCSTAT_OK) << r.message;
     EXPECT_TRUE(r.reject) << mcstat_testing::check_text(r);
-    EXPECT_EQ(r.route[route].state, MCSTAT_ROUTE_RAN);
+    EXPECT_EQ(r.route[route].state, MCSTAT_CHECK_STATE_RAN);
     EXPECT_TRUE(r.route[route].reject) << mcstat_check_route_name(route) << " did not reject\n"
                                        << mcstat_testing::check_text(r);
 }
@@ -212,8 +212,8 @@ TEST(Adapter, NamesCosineAndWeight)
     auto check = mcstat_pbrt::adapt(p, {0.0, 0.0, 2.0});
     mcstat_check_model m = check.model();
     EXPECT_EQ(m.n_uniforms, 3);
-    EXPECT_EQ(m.weight, MCSTAT_WEIGHT_VALUE);
-    EXPECT_EQ(m.domain, MCSTAT_DOMAIN_HEMISPHERE); // reflection only, wo above
+    EXPECT_EQ(m.weight, MCSTAT_CHECK_WEIGHT_VALUE);
+    EXPECT_EQ(m.domain, MCSTAT_CHECK_DOMAIN_HEMISPHERE); // reflection only, wo above
     EXPECT_EQ(check.wo()[2], 1.0);                 // normalised
     const double wi[3] = {0.0, 0.6, 0.8}, x[3] = {0.8, 0.0, 0.6};
     double out = -1;
@@ -225,7 +225,7 @@ TEST(Adapter, NamesCosineAndWeight)
     EXPECT_EQ(out, double(0.25f * 0.6f));
     ASSERT_EQ(m.pdf(m.user, wi, x, 1, &out), 0);
     EXPECT_EQ(out, double(0.6f));
-    // the sample's weight is f |cos| (MCSTAT_WEIGHT_VALUE), its pdf Sample_f's
+    // the sample's weight is f |cos| (MCSTAT_CHECK_WEIGHT_VALUE), its pdf Sample_f's
     const double u[3] = {0.1, 0.2, 0.3};
     double xs[3], w, pdf;
     ASSERT_EQ(m.sample(m.user, wi, u, 1, xs, &w, &pdf), 0);
@@ -284,8 +284,8 @@ TEST(Adapter, ExceptionsStopTheCheckAtTheBoundary)
 TEST(Adapter, DomainFromFlagsAndSide)
 {
     DiffuseBxDF d = diffuse();
-    EXPECT_EQ(mcstat_pbrt::adapt(d, {0.3, 0.0, 0.9}).domain(), MCSTAT_DOMAIN_HEMISPHERE);
-    EXPECT_EQ(mcstat_pbrt::adapt(d, {0.3, 0.0, -0.9}).domain(), MCSTAT_DOMAIN_SPHERE);
+    EXPECT_EQ(mcstat_pbrt::adapt(d, {0.3, 0.0, 0.9}).domain(), MCSTAT_CHECK_DOMAIN_HEMISPHERE);
+    EXPECT_EQ(mcstat_pbrt::adapt(d, {0.3, 0.0, -0.9}).domain(), MCSTAT_CHECK_DOMAIN_SPHERE);
 }
 
 TEST(Adapter, ReducersOfASpectrum)

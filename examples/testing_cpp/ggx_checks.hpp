@@ -56,9 +56,9 @@ inline int cosine_pdf(void *, const double *, const double *x, size_t n, double 
 inline mcstat_check_model cosine_warp()
 {
     mcstat_check_model m{};
-    m.domain = MCSTAT_DOMAIN_HEMISPHERE;
+    m.domain = MCSTAT_CHECK_DOMAIN_HEMISPHERE;
     m.n_uniforms = 2;
-    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
     m.sample_reports = 1;
     m.sample = &cosine_sample;
     m.pdf = &cosine_pdf;
@@ -89,9 +89,9 @@ inline int iso_density(void *, const double *, const double *, size_t n, double 
 inline mcstat_check_model isotropic_phase()
 {
     mcstat_check_model m{};
-    m.domain = MCSTAT_DOMAIN_SPHERE;
+    m.domain = MCSTAT_CHECK_DOMAIN_SPHERE;
     m.n_uniforms = 2;
-    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
     m.sample_reports = 1;
     m.sample = &iso_sample;
     m.pdf = &iso_density;
@@ -134,9 +134,9 @@ inline int flight_eval(void *, const double *, const double *x, size_t n, double
 inline mcstat_check_model homogeneous_medium()
 {
     mcstat_check_model m{};
-    m.domain = MCSTAT_DOMAIN_INTERVAL;
+    m.domain = MCSTAT_CHECK_DOMAIN_INTERVAL;
     m.n_uniforms = 1;
-    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
     m.sample_reports = 1;
     m.sample = &flight_sample;
     m.pdf = &flight_pdf;
@@ -183,9 +183,9 @@ inline int wrong_cosine_value(void *, const double *, const double *x, size_t n,
 inline mcstat_check_model wrong_cosine_bsdf()
 {
     mcstat_check_model m{};
-    m.domain = MCSTAT_DOMAIN_HEMISPHERE;
+    m.domain = MCSTAT_CHECK_DOMAIN_HEMISPHERE;
     m.n_uniforms = 3;
-    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
     m.sample_reports = 1;
     m.sample = &wrong_cosine_sample;
     m.pdf = &wrong_cosine_pdf;

@@ -47,7 +47,7 @@
  *     Float, so that a float renderer's values stay float32 (the check then
  *     applies float32's numerical floor).
  *   - The weight.  pbrt's sampler returns the value f (and the integrator
- *     multiplies by |cos| / pdf): MCSTAT_WEIGHT_VALUE, weight = f |cos|.
+ *     multiplies by |cos| / pdf): MCSTAT_CHECK_WEIGHT_VALUE, weight = f |cos|.
  *   - Spectra.  mcstat checks a scalar: by default the average of the
  *     channels (Reduce = average: the spectrum's Average(), as pbrt-v4's
  *     SampledSpectrum has, else the mean of s[0 .. S::nSamples), as
@@ -348,7 +348,7 @@ public:
             wo_[c] = len > 0 && std::isfinite(len) ? wo[c] / len : wo[c]; // else mcstat refuses it (EINVAL)
         long flags = bxdf_flags(bxdf);
         bool reflection_only = flags >= 0 && !(unsigned(flags) & kTransmission);
-        domain_ = reflection_only && wo_[2] > 0 ? MCSTAT_DOMAIN_HEMISPHERE : MCSTAT_DOMAIN_SPHERE;
+        domain_ = reflection_only && wo_[2] > 0 ? MCSTAT_CHECK_DOMAIN_HEMISPHERE : MCSTAT_CHECK_DOMAIN_SPHERE;
     }
     Adapter(const BxDF &&, const double (&)[3], Reduce = Reduce()) = delete; // would dangle
 
@@ -378,7 +378,7 @@ public:
         mcstat_check_model m{};
         m.domain = domain_;
         m.n_uniforms = Api::n_uniforms;
-        m.weight = MCSTAT_WEIGHT_VALUE;
+        m.weight = MCSTAT_CHECK_WEIGHT_VALUE;
         m.sample_reports = 1;
         m.user = this;
         m.sample = &Adapter::sample_cb;

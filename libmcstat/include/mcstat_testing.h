@@ -10,9 +10,9 @@
  *
  *     TEST(Lambert, Consistent) {                   // run: MCSTAT_SUITE_ALPHA=1e-3 ./tests
  *         mcstat_check_model model = {};            // the BSDF's callbacks (mcstat.h, "Renderer checks")
- *         model.domain = MCSTAT_DOMAIN_HEMISPHERE;
+ *         model.domain = MCSTAT_CHECK_DOMAIN_HEMISPHERE;
  *         model.n_uniforms = 3;
- *         model.weight = MCSTAT_WEIGHT_OVER_PDF;
+ *         model.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
  *         model.sample_reports = 1;
  *         model.sample = lambert_sample, model.pdf = lambert_pdf, model.eval = lambert_eval;
  *         const double wi[3] = {0.48, 0.0, 0.88};

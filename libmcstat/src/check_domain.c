@@ -17,13 +17,13 @@ static const char *const domain_names[] = {"sphere", "hemisphere", "square", "di
 int mcstat__domain_get(int kind, mcstat__domain *d)
 {
     static const mcstat__domain table[] = {
-        {MCSTAT_DOMAIN_SPHERE, 3, 1, 12.566370614359172953850573533118},
-        {MCSTAT_DOMAIN_HEMISPHERE, 3, 1, 6.283185307179586476925286766559},
-        {MCSTAT_DOMAIN_SQUARE, 2, 1, 1.0},
-        {MCSTAT_DOMAIN_DISK, 2, 1, 3.1415926535897932384626433832795},
-        {MCSTAT_DOMAIN_INTERVAL, 1, 0, 1.0},
+        {MCSTAT_CHECK_DOMAIN_SPHERE, 3, 1, 12.566370614359172953850573533118},
+        {MCSTAT_CHECK_DOMAIN_HEMISPHERE, 3, 1, 6.283185307179586476925286766559},
+        {MCSTAT_CHECK_DOMAIN_SQUARE, 2, 1, 1.0},
+        {MCSTAT_CHECK_DOMAIN_DISK, 2, 1, 3.1415926535897932384626433832795},
+        {MCSTAT_CHECK_DOMAIN_INTERVAL, 1, 0, 1.0},
     };
-    if (kind < 0 || kind > MCSTAT_DOMAIN_INTERVAL)
+    if (kind < 0 || kind > MCSTAT_CHECK_DOMAIN_INTERVAL)
         return MCSTAT_EINVAL;
     *d = table[kind];
     return MCSTAT_OK;
@@ -37,14 +37,14 @@ int mcstat_check_domain_dims(int domain)
 
 const char *mcstat_check_domain_name(int domain)
 {
-    return domain >= 0 && domain <= MCSTAT_DOMAIN_INTERVAL ? domain_names[domain] : NULL;
+    return domain >= 0 && domain <= MCSTAT_CHECK_DOMAIN_INTERVAL ? domain_names[domain] : NULL;
 }
 
 int mcstat_check_domain_parse(const char *name, int *domain)
 {
     if (!name || !domain)
         return MCSTAT_EINVAL;
-    for (int i = 0; i <= MCSTAT_DOMAIN_INTERVAL; i++)
+    for (int i = 0; i <= MCSTAT_CHECK_DOMAIN_INTERVAL; i++)
         if (strcmp(name, domain_names[i]) == 0) {
             *domain = i;
             return MCSTAT_OK;
@@ -56,24 +56,24 @@ void mcstat__domain_point(const mcstat__domain *d, double s, double t, double *x
 {
     double phi = TWO_PI * t, r;
     switch (d->kind) {
-    case MCSTAT_DOMAIN_SPHERE:
+    case MCSTAT_CHECK_DOMAIN_SPHERE:
         /* r = sin(theta) = sqrt(1 - z^2) = 2 sqrt(s (1 - s)): no cancellation near the poles */
         r = 2.0 * sqrt(s * (1.0 - s));
         x[0] = r * cos(phi);
         x[1] = r * sin(phi);
         x[2] = 1.0 - 2.0 * s;
         break;
-    case MCSTAT_DOMAIN_HEMISPHERE:
+    case MCSTAT_CHECK_DOMAIN_HEMISPHERE:
         r = sqrt(s * (2.0 - s));
         x[0] = r * cos(phi);
         x[1] = r * sin(phi);
         x[2] = 1.0 - s;
         break;
-    case MCSTAT_DOMAIN_SQUARE:
+    case MCSTAT_CHECK_DOMAIN_SQUARE:
         x[0] = s;
         x[1] = t;
         break;
-    case MCSTAT_DOMAIN_DISK:
+    case MCSTAT_CHECK_DOMAIN_DISK:
         r = sqrt(s);
         x[0] = r * cos(phi);
         x[1] = r * sin(phi);
@@ -110,7 +110,7 @@ int mcstat__domain_coords(const mcstat__domain *d, const double *x, double *s, d
         double len = sqrt(len2), z = x[2] / len, rho2 = (x[0] * x[0] + x[1] * x[1]) / len2;
         /* 1 - z = rho^2 / (1 + z) for z >= 0: no cancellation near the pole */
         double one_minus_z = z >= 0.0 ? rho2 / (1.0 + z) : 1.0 - z;
-        if (d->kind == MCSTAT_DOMAIN_SPHERE) {
+        if (d->kind == MCSTAT_CHECK_DOMAIN_SPHERE) {
             *s = clamp01(0.5 * one_minus_z);
         } else {
             if (z < -1e-4)
@@ -120,7 +120,7 @@ int mcstat__domain_coords(const mcstat__domain *d, const double *x, double *s, d
         *t = azimuth(x[0], x[1]);
         return 0;
     }
-    if (d->kind == MCSTAT_DOMAIN_DISK) {
+    if (d->kind == MCSTAT_CHECK_DOMAIN_DISK) {
         double r2 = x[0] * x[0] + x[1] * x[1];
         if (r2 > 1.0 + 1e-6)
             return 1;

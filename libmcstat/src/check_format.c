@@ -114,11 +114,11 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
     const mcstat_check_route_result *rr = &r->route[i];
     int dims = mcstat_check_domain_dims(r->domain);
     put(t, "  %-12s", route_names[i]);
-    if (rr->state == MCSTAT_ROUTE_SKIPPED) {
+    if (rr->state == MCSTAT_CHECK_STATE_SKIPPED) {
         put(t, "skipped\n");
         return;
     }
-    if (rr->state == MCSTAT_ROUTE_INVALID) {
+    if (rr->state == MCSTAT_CHECK_STATE_INVALID) {
         int heavy_w = r->tail_index[0] < 2.0, heavy_v = r->tail_index[1] < 2.0;
         if ((i == MCSTAT_CHECK_ROUTE_ENERGY && heavy_w) || (i == MCSTAT_CHECK_ROUTE_INTEGRALS && (heavy_w || heavy_v))) {
             put(t, "no answer: %s heavy-tailed (tail index below 2: infinite variance), a mean test would be "
@@ -184,7 +184,7 @@ static void put_route(text *t, const mcstat_check_report *r, int i)
 static void put_budget(text *t, const mcstat_check_report *r, int i)
 {
     const mcstat_check_route_result *rr = &r->route[i];
-    if (rr->state != MCSTAT_ROUTE_RAN || (rr->deterministic && i == MCSTAT_CHECK_ROUTE_ENERGY))
+    if (rr->state != MCSTAT_CHECK_STATE_RAN || (rr->deterministic && i == MCSTAT_CHECK_ROUTE_ENERGY))
         return;
     put(t, "  %-12s", route_names[i]);
     switch (i) {
@@ -249,7 +249,7 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
         mcstat_check_domain_dims(r->domain) == 0)
         return MCSTAT_EINVAL;
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
-        if (r->route[i].state < MCSTAT_ROUTE_RAN || r->route[i].state > MCSTAT_ROUTE_INVALID)
+        if (r->route[i].state < MCSTAT_CHECK_STATE_RAN || r->route[i].state > MCSTAT_CHECK_STATE_INVALID)
             return MCSTAT_EINVAL;
     text t = {buf, size, 0};
     put(&t, "\n\t%s\n\n", kind_title(r->kind));
@@ -289,7 +289,7 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
         put(&t, "pdf() > 0 where eval() = 0 at %llu points (samples wasted there; not an error)\n",
             (unsigned long long)r->pdf_without_eval);
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
-        if (r->route[i].state == MCSTAT_ROUTE_RAN && !isnan(r->route[i].resolution)) {
+        if (r->route[i].state == MCSTAT_CHECK_STATE_RAN && !isnan(r->route[i].resolution)) {
             double res = r->route[i].resolution;
             put(&t, "numerical floor: differences of %.2g relative are rounding, not evidence%s\n", res,
                 res == MCSTAT_RESOLUTION_FLOAT32   ? " (every value a float32)"
@@ -326,7 +326,7 @@ int mcstat_check_format(const mcstat_check_report *r, char *buf, size_t size, si
     } else {
         put(&t, "INCONSISTENT:");
         for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
-            if (r->route[i].state == MCSTAT_ROUTE_RAN && r->route[i].reject)
+            if (r->route[i].state == MCSTAT_CHECK_STATE_RAN && r->route[i].reject)
                 put(&t, " %s", route_names[i]);
         put(&t, " rejected\n");
     }

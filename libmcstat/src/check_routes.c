@@ -65,7 +65,7 @@ double mcstat__check_hill_upper(double *x, uint64_t n)
 void mcstat__check_route_init(mcstat_check_route_result *rr)
 {
     memset(rr, 0, sizeof *rr);
-    rr->state = MCSTAT_ROUTE_SKIPPED;
+    rr->state = MCSTAT_CHECK_STATE_SKIPPED;
     rr->statistic = rr->df = rr->p_value = rr->p_adjusted = NAN;
     rr->effect = rr->detectable = rr->n_for_1pct = NAN;
     rr->where[0] = rr->where[1] = rr->where[2] = NAN;
@@ -76,7 +76,7 @@ void mcstat__check_route_init(mcstat_check_route_result *rr)
 static void finish_deterministic(run *r, int route)
 {
     mcstat_check_route_result *rr = &r->out->route[route];
-    rr->state = MCSTAT_ROUTE_RAN;
+    rr->state = MCSTAT_CHECK_STATE_RAN;
     rr->deterministic = 1;
     rr->checked = r->checked[route];
     rr->count = r->bad[route];
@@ -94,7 +94,7 @@ static void finish_deterministic(run *r, int route)
     rr->value[0] = r->worst_v[route][0];
     rr->value[1] = r->worst_v[route][1];
     if (r->checked[route] == 0) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         rr->why = MCSTAT_CHECK_WHY_TOO_FEW;
     }
 }
@@ -117,11 +117,11 @@ static int ran_chisq(mcstat_check_route_result *rr, double statistic, double df)
 {
     double p;
     if (mcstat_chisq_cdf(statistic, df, 1, &p) != MCSTAT_OK) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         rr->why = MCSTAT_CHECK_WHY_NUMERIC;
         return 0;
     }
-    rr->state = MCSTAT_ROUTE_RAN;
+    rr->state = MCSTAT_CHECK_STATE_RAN;
     rr->statistic = statistic;
     rr->df = df;
     rr->p_value = p;
@@ -136,7 +136,7 @@ static void route_cells(run *r, const sums *sm, double level)
         mass += fmax(r->tr.cells[c].prob, 0.0);
     double N = (double)sm->n_succ;
     if (!(mass > 0.0) || sm->n_succ < 2) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         /* no smooth part claimed and none sampled (a purely discrete BSDF):
          * nothing to compare, not too little */
         rr->why = !(mass > 0.0) && sm->n_succ == 0 ? MCSTAT_CHECK_WHY_NOTHING : MCSTAT_CHECK_WHY_TOO_FEW;
@@ -182,7 +182,7 @@ static void route_cells(run *r, const sums *sm, double level)
     rr->checked = sm->n_succ;
     rr->count = (uint64_t)groups;
     if (groups < 2) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         return;
     }
     double df = groups - 1;
@@ -294,7 +294,7 @@ static void route_mass(run *r, const sums *sm, double level)
     double z = mcstat__norm_quantile(level / 2 / mass_parts(r), 1) + POWER_Z;
     rr->checked = n;
     rr->count = x;
-    rr->state = MCSTAT_ROUTE_RAN;
+    rr->state = MCSTAT_CHECK_STATE_RAN;
     rr->statistic = phat;
     rr->resolution = r->resolution;
     int agree = fabs(r->out->mass - mhat) <= 3.0 * sqrt(var_m) + 4.0 * r->out->mass_error;
@@ -336,7 +336,7 @@ static void route_mass(run *r, const sums *sm, double level)
         } else {
             mcstat_result res;
             if (mcstat_binom_test(x, n, phat < p_lo ? p_lo : p_hi, MCSTAT_TWO_SIDED, 0.5, &res) != MCSTAT_OK) {
-                rr->state = MCSTAT_ROUTE_INVALID;
+                rr->state = MCSTAT_CHECK_STATE_INVALID;
                 return;
             }
             p = res.p_value;
@@ -477,7 +477,7 @@ static void route_integrals(run *r, const sums *sm, double level)
     int g = region_integrals(r, sm, A, B, D, S, tot, var);
     double ta = tot[0], tb = tot[1], va = var[0], vb = var[1];
     if (r->out->heavy_tailed) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         rr->why = MCSTAT_CHECK_WHY_HEAVY_TAIL;
         return;
     }
@@ -489,7 +489,7 @@ static void route_integrals(run *r, const sums *sm, double level)
     rr->checked = (uint64_t)(n + m);
     rr->count = (uint64_t)df;
     if (df < 1) {
-        rr->state = MCSTAT_ROUTE_INVALID; /* eval is zero wherever either estimator looked */
+        rr->state = MCSTAT_CHECK_STATE_INVALID; /* eval is zero wherever either estimator looked */
         rr->why = MCSTAT_CHECK_WHY_NOTHING;
         return;
     }
@@ -506,7 +506,7 @@ static void route_energy(run *r, const sums *sm, double level)
 {
     mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_ENERGY];
     if (r->out->tail_index[0] < 2.0) { /* it reads the weights only */
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         rr->why = MCSTAT_CHECK_WHY_HEAVY_TAIL;
         return;
     }
@@ -517,7 +517,7 @@ static void route_energy(run *r, const sums *sm, double level)
     rr->resolution = r->resolution;
     /* a phase function is normalised: its albedo is 1, not at most 1 */
     int exact = r->pl.kind == MCSTAT_CHECK_KIND_PHASE;
-    rr->state = MCSTAT_ROUTE_RAN;
+    rr->state = MCSTAT_CHECK_STATE_RAN;
     if (!(sd > 0.0) && isfinite(mean)) {
         /* constant weights (a sampler proportional to eval): no spread to test */
         rr->deterministic = 1;
@@ -529,7 +529,7 @@ static void route_energy(run *r, const sums *sm, double level)
         return;
     }
     if (!isfinite(mean) || !isfinite(sd) || n < 2.0) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         rr->why = isfinite(mean) ? MCSTAT_CHECK_WHY_TOO_FEW : MCSTAT_CHECK_WHY_NUMERIC;
         return;
     }
@@ -538,7 +538,7 @@ static void route_energy(run *r, const sums *sm, double level)
     double v_n = sd * sd / n, v_floor = r->resolution * r->resolution * fmax(mean * mean, 1.0);
     double t = (mean - 1.0) / sqrt(v_n + v_floor), p;
     if (mcstat_t_cdf(exact ? -fabs(t) : t, n - 1.0, !exact, &p) != MCSTAT_OK) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         rr->why = MCSTAT_CHECK_WHY_NUMERIC;
         return;
     }
@@ -557,7 +557,7 @@ static void route_ks(run *r, double level)
     rr->checked = na + nb;
     if (r->w_breach || r->v_breach) {
         /* an envelope was exceeded: the kept points do not follow what they should */
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         for (int c = 0; c < 3; c++)
             rr->where[c] = c < r->pl.d.dims ? r->breach_x[c] : NAN;
         rr->value[0] = r->breach_v[0];
@@ -567,7 +567,7 @@ static void route_ks(run *r, double level)
         return;
     }
     if (na < 50 || nb < 50) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         /* every weight and every eval() 0 (albedo 0, or no smooth part):
          * nothing to resample on either side */
         rr->why = !(r->w_envelope > 0.0) && !(r->v_largest > 0.0) ? MCSTAT_CHECK_WHY_NOTHING : MCSTAT_CHECK_WHY_TOO_FEW;
@@ -588,11 +588,11 @@ static void route_ks(run *r, double level)
     mcstat_result res;
     int st = mcstat_ks_test_2(r->s.keys_a, na, r->s.keys_b, nb, MCSTAT_TWO_SIDED, 0.5, &ko, &res);
     if (st != MCSTAT_OK) {
-        rr->state = MCSTAT_ROUTE_INVALID;
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
         rr->why = MCSTAT_CHECK_WHY_NUMERIC;
         return;
     }
-    rr->state = MCSTAT_ROUTE_RAN;
+    rr->state = MCSTAT_CHECK_STATE_RAN;
     rr->count = na;
     rr->statistic = res.statistic;
     rr->p_value = res.p_value;
@@ -619,6 +619,6 @@ void mcstat__check_route(run *r, const sums *sm, int route, double level)
     default: finish_deterministic(r, route); break;
     }
     mcstat_check_route_result *rr = &r->out->route[route];
-    if (rr->state == MCSTAT_ROUTE_INVALID && rr->why == MCSTAT_CHECK_WHY_NONE)
+    if (rr->state == MCSTAT_CHECK_STATE_INVALID && rr->why == MCSTAT_CHECK_WHY_NONE)
         rr->why = MCSTAT_CHECK_WHY_TOO_FEW; /* the routes' other exits: too little to test */
 }

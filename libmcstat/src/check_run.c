@@ -127,12 +127,12 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
     if (!m->sample || !m->pdf)
         REFUSE("model.%s is NULL: every check calls sample() and pdf()", m->sample ? "pdf" : "sample");
     if (mcstat__domain_get(m->domain, &pl->d) != MCSTAT_OK)
-        REFUSE("model.domain %d is not a domain (MCSTAT_DOMAIN_*)", m->domain);
+        REFUSE("model.domain %d is not a domain (MCSTAT_CHECK_DOMAIN_*)", m->domain);
     const char *dom = mcstat_check_domain_name(m->domain);
     if (m->n_uniforms < 1 || m->n_uniforms > MCSTAT_CHECK_MAX_UNIFORMS)
         REFUSE("model.n_uniforms must be in 1..%d, got %d", MCSTAT_CHECK_MAX_UNIFORMS, m->n_uniforms);
-    if (m->weight != MCSTAT_WEIGHT_OVER_PDF && m->weight != MCSTAT_WEIGHT_VALUE)
-        REFUSE("model.weight must be MCSTAT_WEIGHT_OVER_PDF or MCSTAT_WEIGHT_VALUE, got %d", m->weight);
+    if (m->weight != MCSTAT_CHECK_WEIGHT_OVER_PDF && m->weight != MCSTAT_CHECK_WEIGHT_VALUE)
+        REFUSE("model.weight must be MCSTAT_CHECK_WEIGHT_OVER_PDF or MCSTAT_CHECK_WEIGHT_VALUE, got %d", m->weight);
     if (m->sample_reports != 0 && m->sample_reports != 1)
         REFUSE("model.sample_reports must be 0 or 1, got %d", m->sample_reports);
     if (kind != MCSTAT_CHECK_KIND_WARP && !m->eval) /* BSDFs and emitters have an integrand and weights */
@@ -141,12 +141,12 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
         REFUSE("model.sample_reports is 0: the check of %s needs each sample's pdf and weight from sample()",
                kind_name(kind));
     if ((kind == MCSTAT_CHECK_KIND_EMITTER || kind == MCSTAT_CHECK_KIND_BSDF) &&
-        m->domain != MCSTAT_DOMAIN_SPHERE && m->domain != MCSTAT_DOMAIN_HEMISPHERE)
+        m->domain != MCSTAT_CHECK_DOMAIN_SPHERE && m->domain != MCSTAT_CHECK_DOMAIN_HEMISPHERE)
         REFUSE("model.domain of %s must be sphere or hemisphere (directions), got %s", kind_name(kind), dom);
-    if (kind == MCSTAT_CHECK_KIND_PHASE && m->domain != MCSTAT_DOMAIN_SPHERE)
+    if (kind == MCSTAT_CHECK_KIND_PHASE && m->domain != MCSTAT_CHECK_DOMAIN_SPHERE)
         REFUSE("model.domain of a phase function must be sphere (it is normalised over the whole sphere), got %s",
                dom);
-    if (kind == MCSTAT_CHECK_KIND_MEDIUM && m->domain != MCSTAT_DOMAIN_INTERVAL)
+    if (kind == MCSTAT_CHECK_KIND_MEDIUM && m->domain != MCSTAT_CHECK_DOMAIN_INTERVAL)
         REFUSE("model.domain of a medium must be interval (distances mapped to [0, 1]), got %s", dom);
     if (n < 1000)
         REFUSE("n must be at least 1000, got %zu", n);
@@ -165,8 +165,8 @@ static int make_plan(const mcstat_check_model *m, int kind, size_t n, const mcst
     if (o->escape_transmittance >= 0.0 && kind != MCSTAT_CHECK_KIND_MEDIUM)
         REFUSE("options.escape_transmittance is %g in the check of %s: it is a medium's", o->escape_transmittance,
                kind_name(kind));
-    if (o->escape_transmittance >= 0.0 && m->weight != MCSTAT_WEIGHT_OVER_PDF)
-        REFUSE("options.escape_transmittance needs model.weight = MCSTAT_WEIGHT_OVER_PDF (an escape's weight is "
+    if (o->escape_transmittance >= 0.0 && m->weight != MCSTAT_CHECK_WEIGHT_OVER_PDF)
+        REFUSE("options.escape_transmittance needs model.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF (an escape's weight is "
                "what it carries on)");
     if (o->reserved_i != 0)
         REFUSE("options.reserved_i must be 0 (reserved for later releases), got %d", o->reserved_i);
@@ -283,12 +283,12 @@ static const char *domain_rule(const mcstat__domain *d, const double *x)
         if (!isfinite(x[c]))
             return "its coordinates must be finite";
     switch (d->kind) {
-    case MCSTAT_DOMAIN_SPHERE: return "a direction must have unit length within 1e-4";
-    case MCSTAT_DOMAIN_HEMISPHERE:
+    case MCSTAT_CHECK_DOMAIN_SPHERE: return "a direction must have unit length within 1e-4";
+    case MCSTAT_CHECK_DOMAIN_HEMISPHERE:
         return fabs(x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1.0) <= 2e-4
                    ? "a direction must have z >= 0 (below the horizon: use the sphere domain)"
                    : "a direction must have unit length within 1e-4";
-    case MCSTAT_DOMAIN_DISK: return "x^2 + y^2 must be at most 1";
+    case MCSTAT_CHECK_DOMAIN_DISK: return "x^2 + y^2 must be at most 1";
     default: return "coordinates must lie in [0, 1]";
     }
 }
@@ -296,7 +296,7 @@ static const char *domain_rule(const mcstat__domain *d, const double *x)
 /* The weight as eval/pdf, whatever the model's convention. */
 static double weight_over_pdf(const run *r, double w, double p)
 {
-    return (r->pl.reports && r->m->weight == MCSTAT_WEIGHT_VALUE) ? w / p : w;
+    return (r->pl.reports && r->m->weight == MCSTAT_CHECK_WEIGHT_VALUE) ? w / p : w;
 }
 
 /* Whether v is a float32 value (a float renderer's result converted to
@@ -542,7 +542,7 @@ static int lobe_sample(run *r, sums *sm, int k, const double *x, double w, doubl
     sm->n_lobe++;
     if (!r->o.stochastic) {
         compare(r, MCSTAT_CHECK_ROUTE_PDF_VALUE, x, p, r->lobe_mass[k]);
-        if (r->m->weight == MCSTAT_WEIGHT_VALUE)
+        if (r->m->weight == MCSTAT_CHECK_WEIGHT_VALUE)
             compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, r->lobe_value[k]);
         else if (r->lobe_mass[k] > 0.0)
             compare(r, MCSTAT_CHECK_ROUTE_WEIGHT, x, w, r->lobe_value[k] / r->lobe_mass[k]);
@@ -581,7 +581,7 @@ static int pilot_and_cells(run *r)
     int leaf = (int)(pl->n_pilot / pl->cells_target);
     if (leaf < 4)
         leaf = 4;
-    mcstat__tree_build(&r->tr, &pl->d, r->s.st, got, leaf, pl->d.kind == MCSTAT_DOMAIN_SPHERE);
+    mcstat__tree_build(&r->tr, &pl->d, r->s.st, got, leaf, pl->d.kind == MCSTAT_CHECK_DOMAIN_SPHERE);
     size_t used = 0;
     int st = mcstat__cells_integrate(&r->tr, &pl->d, pdf_for_cubature, r, CUBATURE_SHARE / sqrt((double)pl->n),
                                      r->s.rects, pl->max_rects, r->s.xs, r->s.f, pl->batch, &used);
@@ -857,7 +857,7 @@ static int eval_only(run *r, sums *sm)
 static int reciprocity(run *r, const sums *sm)
 {
     double wi_z = fabs(r->wi[2]);
-    if ((wi_z < 1e-6 && r->pl.kind != MCSTAT_CHECK_KIND_PHASE) || (r->pl.d.kind == MCSTAT_DOMAIN_HEMISPHERE && r->wi[2] < 0.0)) /* eval at wi: off the domain */
+    if ((wi_z < 1e-6 && r->pl.kind != MCSTAT_CHECK_KIND_PHASE) || (r->pl.d.kind == MCSTAT_CHECK_DOMAIN_HEMISPHERE && r->wi[2] < 0.0)) /* eval at wi: off the domain */
         return MCSTAT_OK;
     for (uint64_t i = 0; i < sm->n_recip; i++) {
         const double *q = r->s.recip + 4 * i;
@@ -915,7 +915,7 @@ static int medium_sample(void *user, const double *wi, const double *u, size_t n
         x[k] = xx;
         double j = medium_jacobian(mm->sigma, xx);
         pdf[k] = j > 0.0 ? pdf[k] / j : INFINITY;
-        if (mm->m->weight == MCSTAT_WEIGHT_VALUE) /* a value is a density in t, as eval */
+        if (mm->m->weight == MCSTAT_CHECK_WEIGHT_VALUE) /* a value is a density in t, as eval */
             weight[k] = j > 0.0 ? weight[k] / j : INFINITY;
     }
     return 0;
@@ -1114,7 +1114,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
     int idx[N_STATISTICAL], k = 0;
     for (int i = 0; i < N_STATISTICAL; i++) {
         mcstat_check_route_result *rr = &out->route[statistical[i]];
-        if (rr->state == MCSTAT_ROUTE_RAN && !rr->deterministic) {
+        if (rr->state == MCSTAT_CHECK_STATE_RAN && !rr->deterministic) {
             p[k] = rr->p_value;
             idx[k++] = statistical[i];
         }
@@ -1136,7 +1136,7 @@ static int run_check(int kind, const mcstat_check_model *model, const double *wi
         }
     }
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
-        if (out->route[i].state == MCSTAT_ROUTE_RAN && out->route[i].reject) {
+        if (out->route[i].state == MCSTAT_CHECK_STATE_RAN && out->route[i].reject) {
             out->reject = 1;
             if (out->route[i].deterministic)
                 out->p_value = 0.0;

@@ -41,10 +41,10 @@ const char *mcstat_check_verdict_name(int verdict)
 static int unanswered(const mcstat_check_report *r, int i)
 {
     const mcstat_check_route_result *rr = &r->route[i];
-    if (rr->state != MCSTAT_ROUTE_INVALID || rr->why == MCSTAT_CHECK_WHY_NOTHING)
+    if (rr->state != MCSTAT_CHECK_STATE_INVALID || rr->why == MCSTAT_CHECK_WHY_NOTHING)
         return 0;
     const mcstat_check_route_result *in = &r->route[MCSTAT_CHECK_ROUTE_INTEGRALS];
-    if (i == MCSTAT_CHECK_ROUTE_KS && (in->state == MCSTAT_ROUTE_RAN || in->why == MCSTAT_CHECK_WHY_NOTHING))
+    if (i == MCSTAT_CHECK_ROUTE_KS && (in->state == MCSTAT_CHECK_STATE_RAN || in->why == MCSTAT_CHECK_WHY_NOTHING))
         return 0;
     return 1;
 }
@@ -54,7 +54,7 @@ int mcstat_check_verdict(const mcstat_check_report *report, int *verdict, uint32
     if (!report || !verdict)
         return MCSTAT_EINVAL;
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)
-        if (report->route[i].state < MCSTAT_ROUTE_RAN || report->route[i].state > MCSTAT_ROUTE_INVALID)
+        if (report->route[i].state < MCSTAT_CHECK_STATE_RAN || report->route[i].state > MCSTAT_CHECK_STATE_INVALID)
             return MCSTAT_EINVAL;
     uint32_t mask = 0;
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++)

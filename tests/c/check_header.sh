@@ -57,6 +57,16 @@ for def in MCSTAT_EXPERIMENTAL MCSTAT_DISABLE_DEPRECATE_WARNINGS; do
     "$cc" -std=c11 -Wall -Wextra -Wpedantic -Werror -D$def -I "$inc" -c "$tmp/optin.c" -o "$tmp/optin.o" \
         || { echo "mcstat.h: an experimental call warns with $def"; exit 1; }
 done
+# a renamed constant warns with its new name where the compiler can say so
+printf '#include <mcstat.h>\nint old_name(void);\nint old_name(void) { return MCSTAT_DOMAIN_SPHERE; }\n' > "$tmp/old.c"
+if "$cc" -std=c11 -Werror -I "$inc" -c "$tmp/old.c" -o "$tmp/old.o" 2> "$tmp/old.err"; then
+    case $("$cc" --version 2>&1) in
+        *gcc*|*GCC*|*clang*) echo "mcstat.h: MCSTAT_DOMAIN_SPHERE does not warn"; exit 1 ;;
+    esac
+else
+    grep -q MCSTAT_CHECK_DOMAIN_SPHERE "$tmp/old.err" \
+        || { echo "mcstat.h: the warning on MCSTAT_DOMAIN_SPHERE does not name its replacement"; exit 1; }
+fi
 # each family compiles alone, and with the old name of mcstat/embedded.h
 for h in "$inc"/mcstat/*.h "$inc/mcstat_check.h"; do
     name=${h#"$inc"/}

@@ -18,7 +18,7 @@ static void test_domains(void)
 {
     const double ss[] = {0.0, 1e-300, 1e-17, 1e-9, 0.25, 0.5, 0.75, 1 - 1e-9, 1.0};
     const double ts[] = {0.0, 1e-12, 0.3, 0.5, 0.999999};
-    for (int kind = 0; kind <= MCSTAT_DOMAIN_INTERVAL; kind++) {
+    for (int kind = 0; kind <= MCSTAT_CHECK_DOMAIN_INTERVAL; kind++) {
         mcstat__domain d;
         CHECK(mcstat__domain_get(kind, &d) == MCSTAT_OK);
         for (size_t i = 0; i < sizeof ss / sizeof ss[0]; i++)
@@ -31,8 +31,8 @@ static void test_domains(void)
                 double es = ss[i] > 0 ? fabs(s - ss[i]) / ss[i] : fabs(s);
                 CHECK_MSG(es < 1e-13 || (ss[i] > 1e-300 && ss[i] < 1e-30), "domain %d s %.17g -> %.17g", kind,
                           ss[i], s);
-                int has_t = d.two_d && !(kind == MCSTAT_DOMAIN_SPHERE && (ss[i] == 0 || ss[i] == 1)) &&
-                            !(kind != MCSTAT_DOMAIN_SQUARE && ss[i] < 1e-30);
+                int has_t = d.two_d && !(kind == MCSTAT_CHECK_DOMAIN_SPHERE && (ss[i] == 0 || ss[i] == 1)) &&
+                            !(kind != MCSTAT_CHECK_DOMAIN_SQUARE && ss[i] < 1e-30);
                 if (has_t)
                     CHECK_MSG(fabs(t - ts[j]) < 1e-12 || fabs(fabs(t - ts[j]) - 1) < 1e-12, "domain %d t %.17g -> %.17g",
                               kind, ts[j], t);
@@ -41,19 +41,19 @@ static void test_domains(void)
     /* points off the domain */
     mcstat__domain d;
     double s, t;
-    mcstat__domain_get(MCSTAT_DOMAIN_SPHERE, &d);
+    mcstat__domain_get(MCSTAT_CHECK_DOMAIN_SPHERE, &d);
     double longer[3] = {0, 0, 1.001}, nan3[3] = {NAN, 0, 1}, below[3] = {0, 0.6, -0.8};
     CHECK(mcstat__domain_coords(&d, longer, &s, &t) == 1);
     CHECK(mcstat__domain_coords(&d, nan3, &s, &t) == 1);
     CHECK(mcstat__domain_coords(&d, below, &s, &t) == 0 && fabs(s - 0.9) < 1e-15);
-    mcstat__domain_get(MCSTAT_DOMAIN_HEMISPHERE, &d);
+    mcstat__domain_get(MCSTAT_CHECK_DOMAIN_HEMISPHERE, &d);
     CHECK(mcstat__domain_coords(&d, below, &s, &t) == 1);
-    mcstat__domain_get(MCSTAT_DOMAIN_SQUARE, &d);
+    mcstat__domain_get(MCSTAT_CHECK_DOMAIN_SQUARE, &d);
     double out2[2] = {1.5, 0.5};
     CHECK(mcstat__domain_coords(&d, out2, &s, &t) == 1);
-    CHECK(mcstat_check_domain_dims(7) == 0 && mcstat_check_domain_dims(MCSTAT_DOMAIN_DISK) == 2);
+    CHECK(mcstat_check_domain_dims(7) == 0 && mcstat_check_domain_dims(MCSTAT_CHECK_DOMAIN_DISK) == 2);
     int k;
-    CHECK(mcstat_check_domain_parse("hemisphere", &k) == MCSTAT_OK && k == MCSTAT_DOMAIN_HEMISPHERE);
+    CHECK(mcstat_check_domain_parse("hemisphere", &k) == MCSTAT_OK && k == MCSTAT_CHECK_DOMAIN_HEMISPHERE);
     CHECK(mcstat_check_domain_parse("cube", &k) == MCSTAT_EINVAL);
 }
 
@@ -62,13 +62,13 @@ static void test_domains(void)
 static void test_keys(void)
 {
     mcstat__domain d;
-    mcstat__domain_get(MCSTAT_DOMAIN_SPHERE, &d);
+    mcstat__domain_get(MCSTAT_CHECK_DOMAIN_SPHERE, &d);
     CHECK(mcstat__domain_key(&d, 0.0, 0.0) == 0);
     CHECK(mcstat__domain_key(&d, 1.0, 1.0) == UINT64_MAX);
     CHECK(mcstat__domain_key(&d, 0.5, 0.0) == (1ull << 63)); /* s is the more significant */
     CHECK(mcstat__domain_key(&d, 0.0, 0.5) == (1ull << 62));
     CHECK(mcstat__domain_key(&d, 0.75, 0.25) == ((1ull << 63) | (1ull << 61) | (1ull << 60)));
-    mcstat__domain_get(MCSTAT_DOMAIN_INTERVAL, &d);
+    mcstat__domain_get(MCSTAT_CHECK_DOMAIN_INTERVAL, &d);
     CHECK(mcstat__domain_key(&d, 0.5, 0.9) == (1ull << 63));
     CHECK(mcstat__domain_key(&d, 1.0, 0.0) == UINT64_MAX - 2047);
 }
@@ -98,7 +98,7 @@ static void test_cubature(void)
     static mcstat__node nodes[2 * 400];
     static mcstat__cell cells[400];
     static mcstat__rect rects[20000];
-    for (int dom = MCSTAT_DOMAIN_SPHERE; dom <= MCSTAT_DOMAIN_HEMISPHERE; dom++) {
+    for (int dom = MCSTAT_CHECK_DOMAIN_SPHERE; dom <= MCSTAT_CHECK_DOMAIN_HEMISPHERE; dom++) {
         mcstat__domain d;
         mcstat__domain_get(dom, &d);
         uint64_t key = mcstat__stream_key(7, 1);
@@ -106,16 +106,16 @@ static void test_cubature(void)
             st[i] = (i & 1) ? mcstat__uniform(key, (uint64_t)i) : pow(mcstat__uniform(key, (uint64_t)i), 3.0);
         mcstat__tree tr = {nodes, cells, 0, 0, 800, 400, NULL, 0};
         CHECK(mcstat__tree_max_cells(M, LEAF) <= 400);
-        mcstat__tree_build(&tr, &d, st, M, LEAF, dom == MCSTAT_DOMAIN_SPHERE);
+        mcstat__tree_build(&tr, &d, st, M, LEAF, dom == MCSTAT_CHECK_DOMAIN_SPHERE);
         CHECK_MSG(tr.n_cells >= M / LEAF / 2 && tr.n_cells <= 2 * M / LEAF, "%d cells", tr.n_cells);
         size_t used = 0;
-        int st_ = mcstat__cells_integrate(&tr, &d, dom == MCSTAT_DOMAIN_SPHERE ? uniform_sphere : z_squared, NULL,
+        int st_ = mcstat__cells_integrate(&tr, &d, dom == MCSTAT_CHECK_DOMAIN_SPHERE ? uniform_sphere : z_squared, NULL,
                                           1e-6, rects, 20000, xbuf, fbuf, 4096, &used);
         CHECK(st_ == 0);
         double sum = 0, worst = 0;
         for (int c = 0; c < tr.n_cells; c++) {
             const mcstat__cell *cl = &tr.cells[c];
-            double exact = dom == MCSTAT_DOMAIN_SPHERE
+            double exact = dom == MCSTAT_CHECK_DOMAIN_SPHERE
                                ? (cl->s1 - cl->s0) * (cl->t1 - cl->t0)
                                /* a^3 - b^3 = (a - b)(a^2 + ab + b^2), a - b = s1 - s0 exactly */
                                : (cl->s1 - cl->s0) *
@@ -232,9 +232,9 @@ static mcstat_check_model lobe_model(lobe *L)
 {
     mcstat_check_model m;
     memset(&m, 0, sizeof m);
-    m.domain = MCSTAT_DOMAIN_SPHERE;
+    m.domain = MCSTAT_CHECK_DOMAIN_SPHERE;
     m.n_uniforms = 3;
-    m.weight = MCSTAT_WEIGHT_OVER_PDF;
+    m.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
     m.sample_reports = 1;
     m.user = L;
     m.sample = lobe_sample;
@@ -263,7 +263,7 @@ static void test_cubature_edge(void)
     static mcstat__rect rects[2000];
     double st[2] = {0.01, 0.5}; /* one pilot point: one cell, the square */
     mcstat__domain d;
-    mcstat__domain_get(MCSTAT_DOMAIN_SQUARE, &d);
+    mcstat__domain_get(MCSTAT_CHECK_DOMAIN_SQUARE, &d);
     mcstat__tree tr = {nodes, cells, 0, 0, 4, 2, NULL, 0};
     mcstat__tree_build(&tr, &d, st, 1, 32, 0);
     CHECK(tr.n_cells == 1);
@@ -401,7 +401,7 @@ static void test_warps(void)
 {
     for (int bug = 0; bug <= 1; bug++) {
         mcstat_check_report r;
-        mcstat_check_model m = warp_model(MCSTAT_DOMAIN_INTERVAL, 1, warp_sq_sample, warp_sq_pdf, &bug);
+        mcstat_check_model m = warp_model(MCSTAT_CHECK_DOMAIN_INTERVAL, 1, warp_sq_sample, warp_sq_pdf, &bug);
         int st = mcstat_check_warp(&m, 20000, 3, 0.01, NULL, NULL, 0, &r);
         CHECK_MSG(st == MCSTAT_OK && r.reject == bug, "interval warp bug %d: status %d reject %d", bug, st, r.reject);
         if (st == MCSTAT_OK && !bug)
@@ -409,7 +409,7 @@ static void test_warps(void)
                       "singular pdf integrates to %.12g, error estimate %g", r.mass, r.mass_error);
         if (st == MCSTAT_OK && bug)
             CHECK(r.route[MCSTAT_CHECK_ROUTE_MASS].reject);
-        m = warp_model(MCSTAT_DOMAIN_DISK, 2, warp_disk_sample, warp_disk_pdf, &bug);
+        m = warp_model(MCSTAT_CHECK_DOMAIN_DISK, 2, warp_disk_sample, warp_disk_pdf, &bug);
         st = mcstat_check_warp(&m, 20000, 3, 0.01, NULL, NULL, 0, &r);
         CHECK_MSG(st == MCSTAT_OK && r.reject == bug, "disk warp bug %d: status %d reject %d", bug, st, r.reject);
         if (st == MCSTAT_OK && bug)
@@ -460,9 +460,9 @@ static void test_calibration(void)
     mcstat_check_model m = lobe_model(&L);
     calibrate("lobe e=10", &m, wi, MCSTAT_CHECK_KIND_BSDF, 4000);
     int bug = 0;
-    m = warp_model(MCSTAT_DOMAIN_INTERVAL, 1, warp_sq_sample, warp_sq_pdf, &bug);
+    m = warp_model(MCSTAT_CHECK_DOMAIN_INTERVAL, 1, warp_sq_sample, warp_sq_pdf, &bug);
     calibrate("interval u^2", &m, NULL, MCSTAT_CHECK_KIND_WARP, 4000);
-    m = warp_model(MCSTAT_DOMAIN_DISK, 2, warp_disk_sample, warp_disk_pdf, &bug);
+    m = warp_model(MCSTAT_CHECK_DOMAIN_DISK, 2, warp_disk_sample, warp_disk_pdf, &bug);
     calibrate("disk", &m, NULL, MCSTAT_CHECK_KIND_WARP, 4000);
 }
 

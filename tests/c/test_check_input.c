@@ -61,13 +61,13 @@ typedef struct mock {
 static int in_domain(int domain, const double *x)
 {
     switch (domain) {
-    case MCSTAT_DOMAIN_SPHERE:
-    case MCSTAT_DOMAIN_HEMISPHERE:
+    case MCSTAT_CHECK_DOMAIN_SPHERE:
+    case MCSTAT_CHECK_DOMAIN_HEMISPHERE:
         return fabs(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - 1) <= 1e-4 &&
-               (domain == MCSTAT_DOMAIN_SPHERE || x[2] >= 0);
-    case MCSTAT_DOMAIN_SQUARE:
+               (domain == MCSTAT_CHECK_DOMAIN_SPHERE || x[2] >= 0);
+    case MCSTAT_CHECK_DOMAIN_SQUARE:
         return x[0] >= 0 && x[0] <= 1 && x[1] >= 0 && x[1] <= 1;
-    case MCSTAT_DOMAIN_DISK:
+    case MCSTAT_CHECK_DOMAIN_DISK:
         return x[0] * x[0] + x[1] * x[1] <= 1 + 1e-12;
     default:
         return x[0] >= 0 && x[0] <= 1;
@@ -92,10 +92,10 @@ static void observe(mock *m, const double *wi, size_t n, const double *x)
 static double density(int domain, const double *x)
 {
     switch (domain) {
-    case MCSTAT_DOMAIN_SPHERE:
-    case MCSTAT_DOMAIN_HEMISPHERE:
+    case MCSTAT_CHECK_DOMAIN_SPHERE:
+    case MCSTAT_CHECK_DOMAIN_HEMISPHERE:
         return x[2] > 0 ? x[2] / PI : 0.0;
-    case MCSTAT_DOMAIN_DISK:
+    case MCSTAT_CHECK_DOMAIN_DISK:
         return 1.0 / PI;
     default:
         return 1.0;
@@ -121,16 +121,16 @@ static int mock_sample(void *user, const double *wi, const double *u, size_t n, 
         const double *uk = u + 2 * k;
         double *xk = x + (size_t)dims * k;
         switch (m->domain) {
-        case MCSTAT_DOMAIN_SPHERE:
-        case MCSTAT_DOMAIN_HEMISPHERE: {
+        case MCSTAT_CHECK_DOMAIN_SPHERE:
+        case MCSTAT_CHECK_DOMAIN_HEMISPHERE: {
             double r = sqrt(uk[0]), phi = 2 * PI * uk[1];
             xk[0] = r * cos(phi), xk[1] = r * sin(phi), xk[2] = sqrt(fmax(0.0, 1 - uk[0]));
             break;
         }
-        case MCSTAT_DOMAIN_SQUARE:
+        case MCSTAT_CHECK_DOMAIN_SQUARE:
             xk[0] = uk[0], xk[1] = uk[1];
             break;
-        case MCSTAT_DOMAIN_DISK: {
+        case MCSTAT_CHECK_DOMAIN_DISK: {
             double r = sqrt(uk[0]), phi = 2 * PI * uk[1];
             xk[0] = r * cos(phi), xk[1] = r * sin(phi);
             break;
@@ -161,10 +161,10 @@ static int mock_sample(void *user, const double *wi, const double *u, size_t n, 
         if (hit(m, s, k, F_SAMPLE_BELOW))
             xk[0] = 0.6, xk[1] = 0.0, xk[2] = -0.8;
         if (hit(m, s, k, F_SAMPLE_OUTSIDE)) {
-            if (m->domain == MCSTAT_DOMAIN_DISK)
+            if (m->domain == MCSTAT_CHECK_DOMAIN_DISK)
                 xk[0] = 0.8, xk[1] = 0.8;
             else
-                xk[0] = m->domain == MCSTAT_DOMAIN_SQUARE ? 1.25 : -0.25;
+                xk[0] = m->domain == MCSTAT_CHECK_DOMAIN_SQUARE ? 1.25 : -0.25;
         }
         if (m->fault == F_SAMPLE_ALL_FAIL || (m->fault == F_SAMPLE_FAILED_JUNK && (s + k) % 10 == 3)) {
             pdf[k] = weight[k] = 0.0;
@@ -229,7 +229,7 @@ static mcstat_check_model make_model(mock *m, int domain, int fault)
     memset(&model, 0, sizeof model);
     model.domain = domain;
     model.n_uniforms = 2;
-    model.weight = MCSTAT_WEIGHT_OVER_PDF;
+    model.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
     model.sample_reports = 1;
     model.user = m;
     model.sample = mock_sample;
@@ -273,7 +273,7 @@ static void test_einval_arguments(void)
 {
     mcstat_check_report rep;
     mock m;
-    mcstat_check_model model = make_model(&m, MCSTAT_DOMAIN_HEMISPHERE, F_NONE);
+    mcstat_check_model model = make_model(&m, MCSTAT_CHECK_DOMAIN_HEMISPHERE, F_NONE);
 
     /* the valid call passes, so that each case below differs in one thing */
     int st = mcstat_check_bsdf(&model, WI, N, SEED, ALPHA, NULL, NULL, 0, &rep);
@@ -303,7 +303,7 @@ static void test_einval_arguments(void)
     }
     /* an emitter's points are directions */
     mock mw;
-    mcstat_check_model square = make_model(&mw, MCSTAT_DOMAIN_SQUARE, F_NONE);
+    mcstat_check_model square = make_model(&mw, MCSTAT_CHECK_DOMAIN_SQUARE, F_NONE);
     CHECK_EINVAL_WHY(mcstat_check_emitter(&square, N, SEED, ALPHA, NULL, NULL, 0, &rep), "emitter on the square", "model.domain");
 
     const int uniforms[] = {0, -1, MCSTAT_CHECK_MAX_UNIFORMS + 1};
@@ -346,7 +346,7 @@ static void test_einval_options_and_work(void)
 {
     mcstat_check_report rep;
     mock m;
-    mcstat_check_model model = make_model(&m, MCSTAT_DOMAIN_HEMISPHERE, F_NONE);
+    mcstat_check_model model = make_model(&m, MCSTAT_CHECK_DOMAIN_HEMISPHERE, F_NONE);
     mcstat_check_options opt, o;
     CHECK_INT(mcstat_check_options_init(&opt), MCSTAT_OK);
     CHECK_INT(opt.size, sizeof opt);
@@ -453,7 +453,7 @@ static void expect_fault(int kind, int domain, int fault, const mcstat_check_opt
 static void test_callback_faults(void)
 {
     const int B = MCSTAT_CHECK_KIND_BSDF, E = MCSTAT_CHECK_KIND_EMITTER, W = MCSTAT_CHECK_KIND_WARP;
-    const int H = MCSTAT_DOMAIN_HEMISPHERE, S = MCSTAT_DOMAIN_SPHERE;
+    const int H = MCSTAT_CHECK_DOMAIN_HEMISPHERE, S = MCSTAT_CHECK_DOMAIN_SPHERE;
     const int EC = MCSTAT_ECALLBACK;
 
     expect_fault(B, H, F_SAMPLE_RETURNS, NULL, EC, "sample", "sample() returns -1");
@@ -468,9 +468,9 @@ static void test_callback_faults(void)
     expect_fault(B, H, F_SAMPLE_SLIGHTLY, NULL, MCSTAT_OK, "", "sample(): direction of length 1 + 2e-5");
     expect_fault(B, H, F_SAMPLE_BELOW, NULL, EC, "sample", "sample(): z < 0 on the hemisphere");
     expect_fault(E, H, F_SAMPLE_BELOW, NULL, EC, "sample", "emitter sample(): z < 0 on the hemisphere");
-    expect_fault(W, MCSTAT_DOMAIN_SQUARE, F_SAMPLE_OUTSIDE, NULL, EC, "sample", "warp: x = 1.25 on the square");
-    expect_fault(W, MCSTAT_DOMAIN_DISK, F_SAMPLE_OUTSIDE, NULL, EC, "sample", "warp: (0.8, 0.8) on the disk");
-    expect_fault(W, MCSTAT_DOMAIN_INTERVAL, F_SAMPLE_OUTSIDE, NULL, EC, "sample", "warp: x = -0.25 on the interval");
+    expect_fault(W, MCSTAT_CHECK_DOMAIN_SQUARE, F_SAMPLE_OUTSIDE, NULL, EC, "sample", "warp: x = 1.25 on the square");
+    expect_fault(W, MCSTAT_CHECK_DOMAIN_DISK, F_SAMPLE_OUTSIDE, NULL, EC, "sample", "warp: (0.8, 0.8) on the disk");
+    expect_fault(W, MCSTAT_CHECK_DOMAIN_INTERVAL, F_SAMPLE_OUTSIDE, NULL, EC, "sample", "warp: x = -0.25 on the interval");
     /* a failed sample's point is ignored, even NaN */
     expect_fault(B, H, F_SAMPLE_FAILED_JUNK, NULL, MCSTAT_OK, "", "failed samples with NaN points");
     /* not an error: a report whose mass route sees pdf() claim samples that never succeed */
@@ -480,7 +480,7 @@ static void test_callback_faults(void)
     expect_fault(B, H, F_PDF_NAN, NULL, EC, "pdf", "pdf(): NaN");
     expect_fault(B, H, F_PDF_INF, NULL, EC, "pdf", "pdf(): Inf");
     expect_fault(B, H, F_PDF_NEG, NULL, EC, "pdf", "pdf(): negative");
-    expect_fault(W, MCSTAT_DOMAIN_SQUARE, F_PDF_NAN, NULL, EC, "pdf", "warp pdf(): NaN");
+    expect_fault(W, MCSTAT_CHECK_DOMAIN_SQUARE, F_PDF_NAN, NULL, EC, "pdf", "warp pdf(): NaN");
 
     expect_fault(B, H, F_EVAL_RETURNS, NULL, EC, "eval", "eval() returns 1");
     expect_fault(B, H, F_EVAL_NAN, NULL, EC, "eval", "eval(): NaN");
@@ -547,12 +547,12 @@ static void test_callback_inputs(void)
     const double longer[3] = {0, 3, 4}, below[3] = {0.3, -0.2, -0.9};
     const size_t batches[] = {65536, 100, 64};
     for (size_t b = 0; b < sizeof batches / sizeof batches[0]; b++) {
-        check_inputs(MCSTAT_CHECK_KIND_BSDF, MCSTAT_DOMAIN_HEMISPHERE, WI, batches[b]);
-        check_inputs(MCSTAT_CHECK_KIND_BSDF, MCSTAT_DOMAIN_SPHERE, longer, batches[b]);
-        check_inputs(MCSTAT_CHECK_KIND_BSDF, MCSTAT_DOMAIN_SPHERE, below, batches[b]);
-        check_inputs(MCSTAT_CHECK_KIND_EMITTER, MCSTAT_DOMAIN_SPHERE, NULL, batches[b]);
-        check_inputs(MCSTAT_CHECK_KIND_EMITTER, MCSTAT_DOMAIN_HEMISPHERE, NULL, batches[b]);
-        for (int d = MCSTAT_DOMAIN_SQUARE; d <= MCSTAT_DOMAIN_INTERVAL; d++)
+        check_inputs(MCSTAT_CHECK_KIND_BSDF, MCSTAT_CHECK_DOMAIN_HEMISPHERE, WI, batches[b]);
+        check_inputs(MCSTAT_CHECK_KIND_BSDF, MCSTAT_CHECK_DOMAIN_SPHERE, longer, batches[b]);
+        check_inputs(MCSTAT_CHECK_KIND_BSDF, MCSTAT_CHECK_DOMAIN_SPHERE, below, batches[b]);
+        check_inputs(MCSTAT_CHECK_KIND_EMITTER, MCSTAT_CHECK_DOMAIN_SPHERE, NULL, batches[b]);
+        check_inputs(MCSTAT_CHECK_KIND_EMITTER, MCSTAT_CHECK_DOMAIN_HEMISPHERE, NULL, batches[b]);
+        for (int d = MCSTAT_CHECK_DOMAIN_SQUARE; d <= MCSTAT_CHECK_DOMAIN_INTERVAL; d++)
             check_inputs(MCSTAT_CHECK_KIND_WARP, d, NULL, batches[b]);
     }
 }

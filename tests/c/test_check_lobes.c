@@ -79,7 +79,7 @@ int main(void)
     static mcstat_check_report r;
     const double wi[3] = {0.4, 0.1, 0.9};
     coated b = {1, 1, 1, 0};
-    mcstat_check_model m = {MCSTAT_DOMAIN_HEMISPHERE, 3, MCSTAT_WEIGHT_OVER_PDF, 1, &b, co_sample, co_pdf, co_eval,
+    mcstat_check_model m = {MCSTAT_CHECK_DOMAIN_HEMISPHERE, 3, MCSTAT_CHECK_WEIGHT_OVER_PDF, 1, &b, co_sample, co_pdf, co_eval,
                             {{0, 0, 0, 0}}};
     m.lobes = co_lobes;
     CHECK_INT(mcstat_check_bsdf(&m, wi, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_OK);
@@ -87,7 +87,7 @@ int main(void)
     CHECK(r.lobes == 1 && r.n_lobe > 5000 && r.n_lobe < 7000 && r.n_failed == 0);
     CHECK_REL(r.lobe_mass, Q, 1e-15, "lobe mass");
     CHECK_REL(r.lobe_albedo, fresnel(0.9 / sqrt(0.98)), 1e-12, "lobe albedo");
-    CHECK(r.route[MCSTAT_CHECK_ROUTE_CELLS].state == MCSTAT_ROUTE_RAN);
+    CHECK(r.route[MCSTAT_CHECK_ROUTE_CELLS].state == MCSTAT_CHECK_STATE_RAN);
     CHECK(r.route[MCSTAT_CHECK_ROUTE_PDF_VALUE].checked == 20000); /* smooth and discrete samples */
     /* the smooth albedo from the weights against eval's; the discrete part apart */
     CHECK_REL(r.albedo, (1 - fresnel(0.9 / sqrt(0.98))) * RHO, 0.02, "smooth albedo");
@@ -136,10 +136,10 @@ int main(void)
     b.garbage = 0;
 
     /* lobes are for BSDFs; the reserved fields stay zero */
-    m.domain = MCSTAT_DOMAIN_SPHERE;
+    m.domain = MCSTAT_CHECK_DOMAIN_SPHERE;
     CHECK_INT(mcstat_check_phase(&m, wi, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
     CHECK_INT(mcstat_check_emitter(&m, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
-    m.domain = MCSTAT_DOMAIN_HEMISPHERE;
+    m.domain = MCSTAT_CHECK_DOMAIN_HEMISPHERE;
     m.reserved_rest[0] = 1;
     CHECK_INT(mcstat_check_bsdf(&m, wi, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
     m.reserved_rest[0] = 0;

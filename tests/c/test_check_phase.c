@@ -79,10 +79,10 @@ int main(void)
     static mcstat_check_report r;
     const double wi[3] = {0, 0.6, 0.8};
     phase ph = {1.0};
-    mcstat_check_model m = {MCSTAT_DOMAIN_SPHERE, 2, MCSTAT_WEIGHT_OVER_PDF, 1, &ph, iso_sample, iso_pdf, iso_eval,
+    mcstat_check_model m = {MCSTAT_CHECK_DOMAIN_SPHERE, 2, MCSTAT_CHECK_WEIGHT_OVER_PDF, 1, &ph, iso_sample, iso_pdf, iso_eval,
                             {{0, 0, 0, 0}}};
     CHECK_INT(mcstat_check_phase(&m, wi, 5000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_OK);
-    CHECK(!r.reject && r.kind == MCSTAT_CHECK_KIND_PHASE && r.route[MCSTAT_CHECK_ROUTE_ENERGY].state == MCSTAT_ROUTE_RAN);
+    CHECK(!r.reject && r.kind == MCSTAT_CHECK_KIND_PHASE && r.route[MCSTAT_CHECK_ROUTE_ENERGY].state == MCSTAT_CHECK_STATE_RAN);
     CHECK_REL(r.wi[1], 0.6, 1e-12, "wi");
     ph.scale = 0.9; /* passes the BSDF check (absorption allowed), not the phase check */
     CHECK_INT(mcstat_check_bsdf(&m, wi, 5000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_OK);
@@ -92,14 +92,14 @@ int main(void)
     char buf[4096];
     CHECK_INT(mcstat_check_format(&r, buf, sizeof buf, NULL), MCSTAT_OK);
     CHECK(strstr(buf, "Phase function check") != NULL);
-    m.domain = MCSTAT_DOMAIN_HEMISPHERE;
+    m.domain = MCSTAT_CHECK_DOMAIN_HEMISPHERE;
     CHECK_INT(mcstat_check_phase(&m, wi, 5000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
-    m.domain = MCSTAT_DOMAIN_SPHERE;
+    m.domain = MCSTAT_CHECK_DOMAIN_SPHERE;
     const double zero[3] = {0, 0, 0};
     CHECK_INT(mcstat_check_phase(&m, zero, 5000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
 
     medium md = {ST};
-    mcstat_check_model d = {MCSTAT_DOMAIN_INTERVAL, 1, MCSTAT_WEIGHT_OVER_PDF, 1, &md, med_sample, med_pdf, med_eval,
+    mcstat_check_model d = {MCSTAT_CHECK_DOMAIN_INTERVAL, 1, MCSTAT_CHECK_WEIGHT_OVER_PDF, 1, &md, med_sample, med_pdf, med_eval,
                             {{0, 0, 0, 0}}};
     CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_OK);
     CHECK(!r.reject && r.kind == MCSTAT_CHECK_KIND_MEDIUM && r.sigma_ref == 2.0);
@@ -141,12 +141,12 @@ int main(void)
     o.escape_transmittance = 1.5;
     CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_EINVAL);
     o.escape_transmittance = 0.5;
-    d.weight = MCSTAT_WEIGHT_VALUE;
+    d.weight = MCSTAT_CHECK_WEIGHT_VALUE;
     CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_EINVAL);
-    d.weight = MCSTAT_WEIGHT_OVER_PDF;
+    d.weight = MCSTAT_CHECK_WEIGHT_OVER_PDF;
     CHECK_INT(mcstat_check_phase(&m, wi, 5000, 1, 0.01, &o, NULL, 0, &r), MCSTAT_EINVAL);
     d.sample = med_sample;
-    d.domain = MCSTAT_DOMAIN_SQUARE;
+    d.domain = MCSTAT_CHECK_DOMAIN_SQUARE;
     CHECK_INT(mcstat_check_medium(&d, 2.0, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_EINVAL);
     return h_report("test_check_phase");
 }

@@ -65,7 +65,7 @@ int main(void)
 {
     static mcstat_check_report r;
     const double up[3] = {0, 0, 1};
-    mcstat_check_model m = {MCSTAT_DOMAIN_SPHERE, 2, MCSTAT_WEIGHT_OVER_PDF, 1, NULL, iso_sample, iso_density,
+    mcstat_check_model m = {MCSTAT_CHECK_DOMAIN_SPHERE, 2, MCSTAT_CHECK_WEIGHT_OVER_PDF, 1, NULL, iso_sample, iso_density,
                             iso_density, {{0, 0, 0, 0}}};
     int v = -1;
     uint32_t open = 99;
@@ -104,7 +104,7 @@ int main(void)
     }
 
     /* heavy-tailed weights: inconclusive, the routes and why */
-    mcstat_check_model wc = {MCSTAT_DOMAIN_HEMISPHERE, 3, MCSTAT_WEIGHT_OVER_PDF, 1, NULL, wc_sample, wc_density,
+    mcstat_check_model wc = {MCSTAT_CHECK_DOMAIN_HEMISPHERE, 3, MCSTAT_CHECK_WEIGHT_OVER_PDF, 1, NULL, wc_sample, wc_density,
                              wc_eval, {{0, 0, 0, 0}}};
     CHECK_INT(mcstat_check_bsdf(&wc, up, 20000, 1, 0.01, NULL, NULL, 0, &r), MCSTAT_OK);
     CHECK(!r.reject && r.heavy_tailed);

@@ -24,6 +24,17 @@ static int same_results(const mcstat_result *a, const mcstat_result *b, size_t n
     return memcmp(a, b, n * sizeof *a) == 0;
 }
 
+/* The renderer checks' constants under their old names: the same values. */
+static void test_check_constants(void)
+{
+    CHECK(MCSTAT_DOMAIN_SPHERE == MCSTAT_CHECK_DOMAIN_SPHERE && MCSTAT_DOMAIN_HEMISPHERE == MCSTAT_CHECK_DOMAIN_HEMISPHERE);
+    CHECK(MCSTAT_DOMAIN_SQUARE == MCSTAT_CHECK_DOMAIN_SQUARE && MCSTAT_DOMAIN_DISK == MCSTAT_CHECK_DOMAIN_DISK);
+    CHECK(MCSTAT_DOMAIN_INTERVAL == MCSTAT_CHECK_DOMAIN_INTERVAL);
+    CHECK(MCSTAT_WEIGHT_OVER_PDF == MCSTAT_CHECK_WEIGHT_OVER_PDF && MCSTAT_WEIGHT_VALUE == MCSTAT_CHECK_WEIGHT_VALUE);
+    CHECK(MCSTAT_ROUTE_RAN == MCSTAT_CHECK_STATE_RAN && MCSTAT_ROUTE_SKIPPED == MCSTAT_CHECK_STATE_SKIPPED);
+    CHECK(MCSTAT_ROUTE_INVALID == MCSTAT_CHECK_STATE_INVALID);
+}
+
 static void test_sizes(void)
 {
     CHECK(mcstat_moments_bytes() == mcstat_sizeof_moments_bytes());
@@ -136,6 +147,7 @@ static void test_rows(void)
 int main(void)
 {
     test_sizes();
+    test_check_constants();
     test_diag();
     test_gof();
     test_seq();

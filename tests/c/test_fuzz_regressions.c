@@ -511,7 +511,7 @@ static int hemi_eval(void *user, const double *wi, const double *x, size_t n, do
 static void test_check_reciprocity_wi_below_hemisphere(void)
 {
     hemi_model hm = {0};
-    mcstat_check_model m = {MCSTAT_DOMAIN_HEMISPHERE, 3, MCSTAT_WEIGHT_OVER_PDF, 1, &hm, hemi_sample, hemi_pdf,
+    mcstat_check_model m = {MCSTAT_CHECK_DOMAIN_HEMISPHERE, 3, MCSTAT_CHECK_WEIGHT_OVER_PDF, 1, &hm, hemi_sample, hemi_pdf,
                             hemi_eval, {{0, 0, 0, 0}}};
     mcstat_check_options o;
     mcstat_check_options_init(&o);
@@ -520,7 +520,7 @@ static void test_check_reciprocity_wi_below_hemisphere(void)
     mcstat_check_report r;
     CHECK_INT(mcstat_check_bsdf(&m, wi, 1000, 1, 0.05, &o, NULL, 0, &r), MCSTAT_OK);
     CHECK_MSG(hm.off_domain == 0, "eval() got %d points below the horizon", hm.off_domain);
-    CHECK(r.route[MCSTAT_CHECK_ROUTE_RECIPROCITY].state == MCSTAT_ROUTE_INVALID);
+    CHECK(r.route[MCSTAT_CHECK_ROUTE_RECIPROCITY].state == MCSTAT_CHECK_STATE_INVALID);
 }
 
 /* fuzz_checks: pdf() finite but near DBL_MAX (valid by the contract: the
@@ -550,7 +550,7 @@ static int square_pdf_huge(void *user, const double *wi, const double *x, size_t
 
 static void test_check_mass_pdf_integral_overflows(void)
 {
-    mcstat_check_model m = {MCSTAT_DOMAIN_SQUARE, 2, MCSTAT_WEIGHT_OVER_PDF, 1, NULL, square_sample,
+    mcstat_check_model m = {MCSTAT_CHECK_DOMAIN_SQUARE, 2, MCSTAT_CHECK_WEIGHT_OVER_PDF, 1, NULL, square_sample,
                             square_pdf_huge, NULL, {{0, 0, 0, 0}}};
     mcstat_check_options o;
     mcstat_check_options_init(&o);
@@ -558,7 +558,7 @@ static void test_check_mass_pdf_integral_overflows(void)
     mcstat_check_report r;
     CHECK_INT(mcstat_check_warp(&m, 1000, 1, 0.05, &o, NULL, 0, &r), MCSTAT_OK);
     const mcstat_check_route_result *rr = &r.route[MCSTAT_CHECK_ROUTE_MASS];
-    CHECK_INT(rr->state, MCSTAT_ROUTE_RAN);
+    CHECK_INT(rr->state, MCSTAT_CHECK_STATE_RAN);
     CHECK_MSG(rr->p_value >= 0.0 && rr->p_value <= 1.0, "MASS p-value %g", rr->p_value);
     CHECK(rr->reject == 1 && r.reject == 1);
 }

@@ -92,11 +92,11 @@ static double off_domain(int domain, const double *x)
     if (dims == 3) {
         double len2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
         double e = fabs(len2 - 1.0) - 2e-4;
-        if (domain == MCSTAT_DOMAIN_HEMISPHERE && len2 > 0.0)
+        if (domain == MCSTAT_CHECK_DOMAIN_HEMISPHERE && len2 > 0.0)
             e = fmax(e, -1e-4 - x[2] / sqrt(len2));
         return e;
     }
-    if (domain == MCSTAT_DOMAIN_DISK)
+    if (domain == MCSTAT_CHECK_DOMAIN_DISK)
         return x[0] * x[0] + x[1] * x[1] - 1.0 - 1e-6;
     double e = -INFINITY;
     for (int c = 0; c < dims; c++)
@@ -113,10 +113,10 @@ static double off_domain(int domain, const double *x)
 static double density(const model_state *m, const double *x)
 {
     switch (m->domain) {
-    case MCSTAT_DOMAIN_SPHERE: return m->variant ? fabs(x[2]) / (2 * PI) : 1.0 / (4 * PI);
-    case MCSTAT_DOMAIN_HEMISPHERE: return m->variant ? fmax(x[2], 0.0) / PI : 1.0 / (2 * PI);
-    case MCSTAT_DOMAIN_SQUARE: return m->variant ? 2.0 * fmin(fmax(x[0], 0.0), 1.0) : 1.0;
-    case MCSTAT_DOMAIN_DISK: return m->variant ? 3.0 * sqrt(fmin(x[0] * x[0] + x[1] * x[1], 1.0)) / (2 * PI) : 1.0 / PI;
+    case MCSTAT_CHECK_DOMAIN_SPHERE: return m->variant ? fabs(x[2]) / (2 * PI) : 1.0 / (4 * PI);
+    case MCSTAT_CHECK_DOMAIN_HEMISPHERE: return m->variant ? fmax(x[2], 0.0) / PI : 1.0 / (2 * PI);
+    case MCSTAT_CHECK_DOMAIN_SQUARE: return m->variant ? 2.0 * fmin(fmax(x[0], 0.0), 1.0) : 1.0;
+    case MCSTAT_CHECK_DOMAIN_DISK: return m->variant ? 3.0 * sqrt(fmin(x[0] * x[0] + x[1] * x[1], 1.0)) / (2 * PI) : 1.0 / PI;
     default: return m->variant ? 2.0 * fmin(fmax(x[0], 0.0), 1.0) : 1.0;
     }
 }
@@ -126,7 +126,7 @@ static void draw(const model_state *m, const double *u, double *x)
     double u0 = u[0], u1 = m->nu >= 2 ? u[1] : fmod(u0 * 65536.0, 1.0);
     double phi = 2 * PI * u1, z, r;
     switch (m->domain) {
-    case MCSTAT_DOMAIN_SPHERE:
+    case MCSTAT_CHECK_DOMAIN_SPHERE:
         if (m->variant)
             z = u0 < 0.5 ? sqrt(2 * u0) : -sqrt(2 * u0 - 1);
         else
@@ -134,13 +134,13 @@ static void draw(const model_state *m, const double *u, double *x)
         r = sqrt(fmax(0.0, 1 - z * z));
         x[0] = r * cos(phi), x[1] = r * sin(phi), x[2] = z;
         break;
-    case MCSTAT_DOMAIN_HEMISPHERE:
+    case MCSTAT_CHECK_DOMAIN_HEMISPHERE:
         z = m->variant ? sqrt(u0) : u0;
         r = sqrt(fmax(0.0, 1 - z * z));
         x[0] = r * cos(phi), x[1] = r * sin(phi), x[2] = z;
         break;
-    case MCSTAT_DOMAIN_SQUARE: x[0] = m->variant ? sqrt(u0) : u0, x[1] = u1; break;
-    case MCSTAT_DOMAIN_DISK:
+    case MCSTAT_CHECK_DOMAIN_SQUARE: x[0] = m->variant ? sqrt(u0) : u0, x[1] = u1; break;
+    case MCSTAT_CHECK_DOMAIN_DISK:
         r = m->variant ? cbrt(u0) : sqrt(u0);
         x[0] = r * cos(phi), x[1] = r * sin(phi);
         break;
@@ -203,7 +203,7 @@ static uint64_t enter(model_state *m, int cb, const double *wi, size_t n)
         FZ_ASSERT(wi != NULL, "%s() got wi NULL", cb_names[cb]);
         int same = wi[0] == m->wi[0] && wi[1] == m->wi[1] && wi[2] == m->wi[2];
         /* reciprocity: eval(x, wi) one point at a time, x a sampled direction */
-        int swapped = cb == CB_EVAL && n == 1 && off_domain(MCSTAT_DOMAIN_SPHERE, wi) <= AMBIGUOUS;
+        int swapped = cb == CB_EVAL && n == 1 && off_domain(MCSTAT_CHECK_DOMAIN_SPHERE, wi) <= AMBIGUOUS;
         FZ_ASSERT(same || swapped, "%s() got wi (%a, %a, %a), the check's is (%a, %a, %a)", cb_names[cb], wi[0],
                   wi[1], wi[2], m->wi[0], m->wi[1], m->wi[2]);
     } else {
@@ -240,7 +240,7 @@ static int cb_sample(void *user, const double *wi, const double *u, size_t n, do
             FZ_ASSERT(u[k * m->nu + j] >= 0.0 && u[k * m->nu + j] < 1.0, "uniform %a", u[k * m->nu + j]);
         double *xk = x + k * dims;
         draw(m, u + k * m->nu, xk);
-        double p = density(m, xk), w = m->weight == MCSTAT_WEIGHT_VALUE ? m->albedo * p : m->albedo;
+        double p = density(m, xk), w = m->weight == MCSTAT_CHECK_WEIGHT_VALUE ? m->albedo * p : m->albedo;
         for (int i = 0; i < m->n_faults; i++) {
             const fault *f = &m->faults[i];
             if (f->what == F_STATUS || !fault_applies(f, CB_SAMPLE, call, k, xk))
@@ -270,7 +270,7 @@ static int cb_sample(void *user, const double *wi, const double *u, size_t n, do
                 bad = 1;
             else if (e >= -AMBIGUOUS)
                 amb = 1; /* at the rule's edge rounding decides */
-            if (m->reports && m->weight == MCSTAT_WEIGHT_VALUE && isinf(w / p))
+            if (m->reports && m->weight == MCSTAT_CHECK_WEIGHT_VALUE && isinf(w / p))
                 m->overflow = 1;
         }
     }
@@ -559,15 +559,15 @@ static void check_report(int st, const decoded *d, const model_state *m, const m
     double min_adj = 1.0;
     for (int i = 0; i < MCSTAT_CHECK_ROUTE_COUNT; i++) {
         const mcstat_check_route_result *rr = &r->route[i];
-        FZ_ASSERT(rr->state == MCSTAT_ROUTE_RAN || rr->state == MCSTAT_ROUTE_SKIPPED ||
-                      rr->state == MCSTAT_ROUTE_INVALID,
+        FZ_ASSERT(rr->state == MCSTAT_CHECK_STATE_RAN || rr->state == MCSTAT_CHECK_STATE_SKIPPED ||
+                      rr->state == MCSTAT_CHECK_STATE_INVALID,
                   "route %d state %d", i, rr->state);
         FZ_ASSERT(rr->reject == 0 || rr->reject == 1, "route %d reject %d", i, rr->reject);
         FZ_ASSERT(rr->deterministic == 0 || rr->deterministic == 1, "route %d deterministic %d", i,
                   rr->deterministic);
         if (!(want & (1u << i)))
-            FZ_ASSERT(rr->state == MCSTAT_ROUTE_SKIPPED, "route %d not asked for, state %d", i, rr->state);
-        if (rr->state != MCSTAT_ROUTE_RAN) {
+            FZ_ASSERT(rr->state == MCSTAT_CHECK_STATE_SKIPPED, "route %d not asked for, state %d", i, rr->state);
+        if (rr->state != MCSTAT_CHECK_STATE_RAN) {
             FZ_ASSERT(!rr->reject, "route %d rejects in state %d", i, rr->state);
             continue;
         }
@@ -605,7 +605,7 @@ static void check_names(int v)
     if (s)
         FZ_ASSERT(mcstat_check_route_parse(s, &back) == MCSTAT_OK && back == v, "route_parse(%s)", s);
     s = mcstat_check_domain_name(v);
-    valid = v >= 0 && v <= MCSTAT_DOMAIN_INTERVAL;
+    valid = v >= 0 && v <= MCSTAT_CHECK_DOMAIN_INTERVAL;
     FZ_ASSERT((s != NULL) == valid && (mcstat_check_domain_dims(v) != 0) == valid, "domain_name(%d)", v);
     if (s)
         FZ_ASSERT(mcstat_check_domain_parse(s, &back) == MCSTAT_OK && back == v, "domain_parse(%s)", s);

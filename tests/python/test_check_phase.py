@@ -302,7 +302,7 @@ def test_escape_transmittance_bad_arguments():
         with pytest.raises(mcstat.InvalidArgumentError) as e:
             mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, escape_transmittance=bad, n=2000)
         assert str(e.value) == f"escape_transmittance must be negative (off) or in [0, 1], got {shown}"
-    with pytest.raises(mcstat.InvalidArgumentError, match="MCSTAT_WEIGHT_OVER_PDF"):
+    with pytest.raises(mcstat.InvalidArgumentError, match="MCSTAT_CHECK_WEIGHT_OVER_PDF"):
         mcstat.check_medium(m.sample, m.eval, m.pdf, sigma_ref=2.0, escape_transmittance=0.5, weight="value",
                             n=2000)
     ph = Phase("hg", 0.3)

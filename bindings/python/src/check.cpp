@@ -226,7 +226,7 @@ py::object nan_to_none(double v)
 
 const char *state_name(int s)
 {
-    return s == MCSTAT_ROUTE_RAN ? "ran" : (s == MCSTAT_ROUTE_SKIPPED ? "skipped" : "invalid");
+    return s == MCSTAT_CHECK_STATE_RAN ? "ran" : (s == MCSTAT_CHECK_STATE_SKIPPED ? "skipped" : "invalid");
 }
 
 std::string report_text(const mcstat_check_report &r)
@@ -260,9 +260,9 @@ int parse_enum(PyObject *o, const char *name, int (*parse)(const char *, int *),
 int parse_weight(const char *s, int *v)
 {
     if (std::string(s) == "over_pdf")
-        *v = MCSTAT_WEIGHT_OVER_PDF;
+        *v = MCSTAT_CHECK_WEIGHT_OVER_PDF;
     else if (std::string(s) == "value")
-        *v = MCSTAT_WEIGHT_VALUE;
+        *v = MCSTAT_CHECK_WEIGHT_VALUE;
     else
         return MCSTAT_EINVAL;
     return MCSTAT_OK;
@@ -314,7 +314,7 @@ py::object run(int kind, py::object sample, py::object eval, py::object pdf, py:
     m.domain = parse_enum(get("domain", py::str(domain_default)).ptr(), "domain", mcstat_check_domain_parse,
                           choices_of(mcstat_check_domain_name));
     cb.dims = mcstat_check_domain_dims(m.domain);
-    int nu_default = kind == MCSTAT_CHECK_KIND_BSDF ? 3 : (m.domain == MCSTAT_DOMAIN_INTERVAL ? 1 : 2);
+    int nu_default = kind == MCSTAT_CHECK_KIND_BSDF ? 3 : (m.domain == MCSTAT_CHECK_DOMAIN_INTERVAL ? 1 : 2);
     if (kind == MCSTAT_CHECK_KIND_PHASE)
         nu_default = 2;
     uint64_t nu = get_count(get("n_uniforms", py::int_(nu_default)), "n_uniforms");
@@ -650,7 +650,7 @@ void register_check(py::module_ &mod)
                                                                           nan_to_none(r.r.value[1])); })
         .def_property_readonly("why", [](const Route &r) -> py::object {
             const char *t = mcstat_check_why_text(r.r.why);
-            return r.r.state == MCSTAT_ROUTE_INVALID && t ? py::object(py::str(t)) : py::none();
+            return r.r.state == MCSTAT_CHECK_STATE_INVALID && t ? py::object(py::str(t)) : py::none();
         }, "state 'invalid': why the route could not answer and what would let it (None otherwise).")
         .def_property_readonly("resolution", [](const Route &r) { return nan_to_none(r.r.resolution); },
                                "Statistical routes: the relative numerical floor applied (differences at that "
@@ -660,7 +660,7 @@ void register_check(py::module_ &mod)
         .def("__repr__", [](const Route &r) {
             std::string s = std::string("CheckRoute(") + mcstat_check_route_name(r.index) + ", " +
                             state_name(r.r.state);
-            if (r.r.state == MCSTAT_ROUTE_RAN)
+            if (r.r.state == MCSTAT_CHECK_STATE_RAN)
                 s += std::string(", ") + (r.r.reject ? "reject" : "pass");
             if (!std::isnan(r.r.p_value))
                 s += ", p=" + std::string(py::str(py::float_(r.r.p_value)));

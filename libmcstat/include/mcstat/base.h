@@ -61,6 +61,15 @@ extern "C" {
 #else
 #  define MCSTAT_DEPRECATED(replacement)
 #endif
+/* MCSTAT_DEPRECATED_ENUMERATOR: the same for a renamed constant, where the
+ * compiler can mark an enumerator (GCC 6, Clang); elsewhere it is silent. */
+#if defined(MCSTAT_DISABLE_DEPRECATE_WARNINGS)
+#  define MCSTAT_DEPRECATED_ENUMERATOR(replacement)
+#elif (defined(__GNUC__) && __GNUC__ >= 6) || defined(__clang__)
+#  define MCSTAT_DEPRECATED_ENUMERATOR(replacement) __attribute__((deprecated("use " replacement)))
+#else
+#  define MCSTAT_DEPRECATED_ENUMERATOR(replacement)
+#endif
 /* MCSTAT_EXPERIMENTAL_API marks the calls of the experimental families
  * (mcstat/power.h, mcstat/diagnostics.h, mcstat/gof.h): their names and
  * options may still change.  A program opts in by defining

@@ -44,8 +44,8 @@ extern "C" {
 /*     point x[k*dims ..], the sample weight                                 */
 /*     weight[k] and the density pdf[k] the renderer's sampler reports.  A   */
 /*     sample that failed (the renderer's "invalid sample") has pdf 0 and    */
-/*     weight 0; x is then ignored.  With MCSTAT_WEIGHT_OVER_PDF (Mitsuba's  */
-/*     BSDFSample weight) weight = eval/pdf; with MCSTAT_WEIGHT_VALUE (pbrt's */
+/*     weight 0; x is then ignored.  With MCSTAT_CHECK_WEIGHT_OVER_PDF (Mitsuba's  */
+/*     BSDFSample weight) weight = eval/pdf; with MCSTAT_CHECK_WEIGHT_VALUE (pbrt's */
 /*     Sample_f times |cos|) weight = eval.                                  */
 /*   pdf(user, wi, x, n, out): out[k] the density at x[k*dims ..].           */
 /*   eval(user, wi, x, n, out): out[k] the integrand the sampler is built    */
@@ -58,16 +58,25 @@ extern "C" {
 /* flush subnormals sees them kept inside the check.                         */
 /* ------------------------------------------------------------------------ */
 enum mcstat_check_domain {
-    MCSTAT_DOMAIN_SPHERE = 0,
-    MCSTAT_DOMAIN_HEMISPHERE = 1,
-    MCSTAT_DOMAIN_SQUARE = 2,
-    MCSTAT_DOMAIN_DISK = 3,
-    MCSTAT_DOMAIN_INTERVAL = 4
+    MCSTAT_CHECK_DOMAIN_SPHERE = 0,
+    MCSTAT_CHECK_DOMAIN_HEMISPHERE = 1,
+    MCSTAT_CHECK_DOMAIN_SQUARE = 2,
+    MCSTAT_CHECK_DOMAIN_DISK = 3,
+    MCSTAT_CHECK_DOMAIN_INTERVAL = 4,
+    /* the names before 0.3 (mcstat/deprecated.h) */
+    MCSTAT_DOMAIN_SPHERE MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_DOMAIN_SPHERE") = 0,
+    MCSTAT_DOMAIN_HEMISPHERE MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_DOMAIN_HEMISPHERE") = 1,
+    MCSTAT_DOMAIN_SQUARE MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_DOMAIN_SQUARE") = 2,
+    MCSTAT_DOMAIN_DISK MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_DOMAIN_DISK") = 3,
+    MCSTAT_DOMAIN_INTERVAL MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_DOMAIN_INTERVAL") = 4
 };
 
 enum mcstat_check_weight {
-    MCSTAT_WEIGHT_OVER_PDF = 0, /* weight = eval / pdf (Mitsuba, most path tracers) */
-    MCSTAT_WEIGHT_VALUE = 1     /* weight = eval (the sampled value, not divided) */
+    MCSTAT_CHECK_WEIGHT_OVER_PDF = 0, /* weight = eval / pdf (Mitsuba, most path tracers) */
+    MCSTAT_CHECK_WEIGHT_VALUE = 1,    /* weight = eval (the sampled value, not divided) */
+    /* the names before 0.3 (mcstat/deprecated.h) */
+    MCSTAT_WEIGHT_OVER_PDF MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_WEIGHT_OVER_PDF") = 0,
+    MCSTAT_WEIGHT_VALUE MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_WEIGHT_VALUE") = 1
 };
 
 #define MCSTAT_CHECK_MAX_UNIFORMS 8
@@ -87,7 +96,7 @@ typedef int (*mcstat_check_density_fn)(void *user, const double *wi, const doubl
  * mass[k] in [0, 1] with which sample() returns it (what sample()
  * reports as its pdf there), and value[k] >= 0, the integral of
  * f |cos| over the lobe (its albedo: Fresnel's R for a mirror-like
- * reflection), so that its weight is value/mass (MCSTAT_WEIGHT_VALUE:
+ * reflection), so that its weight is value/mass (MCSTAT_CHECK_WEIGHT_VALUE:
  * value).  A sample within MCSTAT_CHECK_LOBE_TOLERANCE (chord length) of
  * a lobe's direction is that lobe's sample; lobes must lie further apart
  * than twice that.  Called once per check (mcstat_check_bsdf only). */
@@ -253,9 +262,13 @@ MCSTAT_API const char *mcstat_check_route_name(int route); /* NULL if invalid */
 MCSTAT_NODISCARD MCSTAT_API int mcstat_check_route_parse(const char *name, int *route);
 
 enum mcstat_check_state {
-    MCSTAT_ROUTE_RAN = 0,
-    MCSTAT_ROUTE_SKIPPED = 1, /* not asked for, or not applicable to this model */
-    MCSTAT_ROUTE_INVALID = 2  /* an assumption failed (heavy tails, too few samples): no answer */
+    MCSTAT_CHECK_STATE_RAN = 0,
+    MCSTAT_CHECK_STATE_SKIPPED = 1, /* not asked for, or not applicable to this model */
+    MCSTAT_CHECK_STATE_INVALID = 2, /* an assumption failed (heavy tails, too few samples): no answer */
+    /* the names before 0.3 (mcstat/deprecated.h) */
+    MCSTAT_ROUTE_RAN MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_STATE_RAN") = 0,
+    MCSTAT_ROUTE_SKIPPED MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_STATE_SKIPPED") = 1,
+    MCSTAT_ROUTE_INVALID MCSTAT_DEPRECATED_ENUMERATOR("MCSTAT_CHECK_STATE_INVALID") = 2
 };
 
 /* Why a route could not answer (its state INVALID): the report's `why`.
@@ -309,7 +322,7 @@ typedef struct mcstat_check_options {
                               T(tmax)/P(escape) when the distances follow another density): MASS
                               also tests that the mean over the n flights of the escapes' weights
                               (0 for a scattering) equals T(tmax), by a two-sided t test.  Needs
-                              MCSTAT_WEIGHT_OVER_PDF */
+                              MCSTAT_CHECK_WEIGHT_OVER_PDF */
     double resolution;     /* the relative resolution of the caller's arithmetic: differences of
                               integrals at that scale are rounding, not evidence.  The statistical
                               routes add it as an error of what they compare (INTEGRALS: a
@@ -517,7 +530,7 @@ MCSTAT_API const char *mcstat_check_verdict_name(int verdict); /* "consistent", 
 /* Statuses: MCSTAT_EINVAL (NULL model, callbacks or out, a bad domain,      */
 /* n_uniforms or weight, lobes given to a check other than mcstat_check_bsdf, */
 /* escape_transmittance NaN or above 1, or at least 0 for a check other     */
-/* than mcstat_check_medium or with MCSTAT_WEIGHT_VALUE,                     */
+/* than mcstat_check_medium or with MCSTAT_CHECK_WEIGHT_VALUE,                     */
 /* a BSDF, emitter, phase function or medium without */
 /* eval or with sample_reports 0, a phase function off SPHERE, a medium    */
 /* off INTERVAL or sigma_ref not > 0 finite, n < 1000, alpha outside       */

@@ -27,6 +27,11 @@ extern "C" {
 /* They still link (the ABI keeps every exported symbol of its SOVERSION)   */
 /* and give bit-identical results; MCSTAT_DEPRECATED names the replacement. */
 /* ======================================================================== */
+/* renderer checks: MCSTAT_DOMAIN_*, MCSTAT_WEIGHT_* and MCSTAT_ROUTE_RAN,
+ * _SKIPPED, _INVALID became MCSTAT_CHECK_DOMAIN_*, MCSTAT_CHECK_WEIGHT_*
+ * and MCSTAT_CHECK_STATE_*; the old names stay in their enums
+ * (mcstat/check.h), so that they keep their enum's type. */
+
 /* sizes: mcstat_sizeof_<thing> */
 MCSTAT_DEPRECATED("mcstat_sizeof_moments_bytes") MCSTAT_API size_t mcstat_moments_bytes(void);
 MCSTAT_DEPRECATED("mcstat_sizeof_gof_options") MCSTAT_API size_t mcstat_sizeof_chisq_options(void);
@@ -45,7 +50,7 @@ MCSTAT_API int mcstat_batch_size_recommend(double skewness, double kurtosis, uin
                                            double tolerance, uint64_t *k);
 
 /* goodness of fit: the mcstat_gof_ stem (mcstat_chisq_ is the distribution) */
-typedef struct mcstat_chisq_options mcstat_chisq_options;
+typedef struct mcstat_gof_options mcstat_chisq_options;
 #define mcstat_chisq_expected mcstat_gof_expected
 #define MCSTAT_CHISQ_PROBABILITIES MCSTAT_GOF_PROBABILITIES
 #define MCSTAT_CHISQ_COUNTS MCSTAT_GOF_COUNTS

@@ -74,7 +74,7 @@ enum mcstat_gof_expected {
 /* Options; grows by appending fields ("Conventions", compatibility), so
  * always start from the initialiser. */
 /* (The struct keeps 0.1.0's tag, mcstat_chisq_options, for the ABI.) */
-typedef struct mcstat_chisq_options {
+typedef struct mcstat_gof_options {
     uint32_t size;        /* sizeof(mcstat_gof_options): set by the initialiser */
     int32_t expected;     /* enum mcstat_gof_expected; default PROBABILITIES */
     int32_t pool;         /* 1 (default): pool cells of low expectation (above); 0: never */

@@ -651,17 +651,33 @@ pub struct mcstat_gof_options {
 pub const MCSTAT_GOF_OPTIONS_SIZE_0_1: usize = 32;
 
 // ============================================================================
-// Renderer checks (experimental).
+// Renderer checks (mcstat/check.h).
 // ============================================================================
 
-pub const MCSTAT_DOMAIN_SPHERE: i32 = 0;
-pub const MCSTAT_DOMAIN_HEMISPHERE: i32 = 1;
-pub const MCSTAT_DOMAIN_SQUARE: i32 = 2;
-pub const MCSTAT_DOMAIN_DISK: i32 = 3;
-pub const MCSTAT_DOMAIN_INTERVAL: i32 = 4;
+pub const MCSTAT_CHECK_DOMAIN_SPHERE: i32 = 0;
+pub const MCSTAT_CHECK_DOMAIN_HEMISPHERE: i32 = 1;
+pub const MCSTAT_CHECK_DOMAIN_SQUARE: i32 = 2;
+pub const MCSTAT_CHECK_DOMAIN_DISK: i32 = 3;
+pub const MCSTAT_CHECK_DOMAIN_INTERVAL: i32 = 4;
 
-pub const MCSTAT_WEIGHT_OVER_PDF: i32 = 0;
-pub const MCSTAT_WEIGHT_VALUE: i32 = 1;
+pub const MCSTAT_CHECK_WEIGHT_OVER_PDF: i32 = 0;
+pub const MCSTAT_CHECK_WEIGHT_VALUE: i32 = 1;
+
+// the names before 0.3
+#[deprecated(note = "use MCSTAT_CHECK_DOMAIN_SPHERE")]
+pub const MCSTAT_DOMAIN_SPHERE: i32 = MCSTAT_CHECK_DOMAIN_SPHERE;
+#[deprecated(note = "use MCSTAT_CHECK_DOMAIN_HEMISPHERE")]
+pub const MCSTAT_DOMAIN_HEMISPHERE: i32 = MCSTAT_CHECK_DOMAIN_HEMISPHERE;
+#[deprecated(note = "use MCSTAT_CHECK_DOMAIN_SQUARE")]
+pub const MCSTAT_DOMAIN_SQUARE: i32 = MCSTAT_CHECK_DOMAIN_SQUARE;
+#[deprecated(note = "use MCSTAT_CHECK_DOMAIN_DISK")]
+pub const MCSTAT_DOMAIN_DISK: i32 = MCSTAT_CHECK_DOMAIN_DISK;
+#[deprecated(note = "use MCSTAT_CHECK_DOMAIN_INTERVAL")]
+pub const MCSTAT_DOMAIN_INTERVAL: i32 = MCSTAT_CHECK_DOMAIN_INTERVAL;
+#[deprecated(note = "use MCSTAT_CHECK_WEIGHT_OVER_PDF")]
+pub const MCSTAT_WEIGHT_OVER_PDF: i32 = MCSTAT_CHECK_WEIGHT_OVER_PDF;
+#[deprecated(note = "use MCSTAT_CHECK_WEIGHT_VALUE")]
+pub const MCSTAT_WEIGHT_VALUE: i32 = MCSTAT_CHECK_WEIGHT_VALUE;
 
 pub const MCSTAT_CHECK_MAX_UNIFORMS: i32 = 8;
 
@@ -773,9 +789,15 @@ pub const MCSTAT_CHECK_ROUTE_RECIPROCITY: i32 = 7;
 pub const MCSTAT_CHECK_ROUTE_KS: i32 = 8;
 pub const MCSTAT_CHECK_ROUTE_COUNT: usize = 9;
 
-pub const MCSTAT_ROUTE_RAN: i32 = 0;
-pub const MCSTAT_ROUTE_SKIPPED: i32 = 1;
-pub const MCSTAT_ROUTE_INVALID: i32 = 2;
+pub const MCSTAT_CHECK_STATE_RAN: i32 = 0;
+pub const MCSTAT_CHECK_STATE_SKIPPED: i32 = 1;
+pub const MCSTAT_CHECK_STATE_INVALID: i32 = 2;
+#[deprecated(note = "use MCSTAT_CHECK_STATE_RAN")]
+pub const MCSTAT_ROUTE_RAN: i32 = MCSTAT_CHECK_STATE_RAN;
+#[deprecated(note = "use MCSTAT_CHECK_STATE_SKIPPED")]
+pub const MCSTAT_ROUTE_SKIPPED: i32 = MCSTAT_CHECK_STATE_SKIPPED;
+#[deprecated(note = "use MCSTAT_CHECK_STATE_INVALID")]
+pub const MCSTAT_ROUTE_INVALID: i32 = MCSTAT_CHECK_STATE_INVALID;
 
 pub const MCSTAT_CHECK_ROUTE_ALL: u32 = (1u32 << MCSTAT_CHECK_ROUTE_COUNT) - 1;
 
@@ -800,7 +822,7 @@ pub struct mcstat_check_options {
     /// transmittance to the surface, and such a flight reports pdf 0 and the
     /// weight it carries on; MASS also tests that the mean over the n flights
     /// of the escapes' weights (0 for a scattering) equals T(tmax).  Needs
-    /// `MCSTAT_WEIGHT_OVER_PDF`; NaN, > 1, or >= 0 for another check:
+    /// `MCSTAT_CHECK_WEIGHT_OVER_PDF`; NaN, > 1, or >= 0 for another check:
     /// `MCSTAT_EINVAL`.
     pub escape_transmittance: f64,
     /// Since 0.3.  The relative resolution of the caller's arithmetic:

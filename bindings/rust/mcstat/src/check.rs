@@ -98,11 +98,11 @@ impl Domain {
     pub const ALL: [Domain; 5] = [Domain::Sphere, Domain::Hemisphere, Domain::Square, Domain::Disk, Domain::Interval];
     fn raw(self) -> c_int {
         match self {
-            Domain::Sphere => sys::MCSTAT_DOMAIN_SPHERE,
-            Domain::Hemisphere => sys::MCSTAT_DOMAIN_HEMISPHERE,
-            Domain::Square => sys::MCSTAT_DOMAIN_SQUARE,
-            Domain::Disk => sys::MCSTAT_DOMAIN_DISK,
-            Domain::Interval => sys::MCSTAT_DOMAIN_INTERVAL,
+            Domain::Sphere => sys::MCSTAT_CHECK_DOMAIN_SPHERE,
+            Domain::Hemisphere => sys::MCSTAT_CHECK_DOMAIN_HEMISPHERE,
+            Domain::Square => sys::MCSTAT_CHECK_DOMAIN_SQUARE,
+            Domain::Disk => sys::MCSTAT_CHECK_DOMAIN_DISK,
+            Domain::Interval => sys::MCSTAT_CHECK_DOMAIN_INTERVAL,
         }
     }
     fn from_raw(v: c_int) -> Option<Domain> {
@@ -594,8 +594,8 @@ fn raw_model(model: &CheckModel, user: *mut c_void) -> Result<sys::mcstat_check_
         domain: model.domain.raw(),
         n_uniforms,
         weight: match model.weight {
-            WeightConvention::OverPdf => sys::MCSTAT_WEIGHT_OVER_PDF,
-            WeightConvention::Value => sys::MCSTAT_WEIGHT_VALUE,
+            WeightConvention::OverPdf => sys::MCSTAT_CHECK_WEIGHT_OVER_PDF,
+            WeightConvention::Value => sys::MCSTAT_CHECK_WEIGHT_VALUE,
         },
         sample_reports: model.sample_reports as i32,
         user,
@@ -722,8 +722,8 @@ fn some(v: f64) -> Option<f64> {
 impl RouteResult {
     pub fn state(&self) -> RouteState {
         match self.raw.state {
-            sys::MCSTAT_ROUTE_RAN => RouteState::Ran,
-            sys::MCSTAT_ROUTE_SKIPPED => RouteState::Skipped,
+            sys::MCSTAT_CHECK_STATE_RAN => RouteState::Ran,
+            sys::MCSTAT_CHECK_STATE_SKIPPED => RouteState::Skipped,
             _ => RouteState::Invalid,
         }
     }
