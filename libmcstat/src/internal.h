@@ -36,6 +36,9 @@ static inline int valid_alpha(double alpha)
  * when it starts (mcstat__error_clear), so no earlier call's shows. */
 MCSTAT_HIDDEN int mcstat__refuse(int status, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 MCSTAT_HIDDEN void mcstat__error_clear(void);
+/* The tests' common arguments, refused with their reason: alternative,
+ * alpha and the result pointer; MCSTAT_OK when they are fine. */
+MCSTAT_HIDDEN int mcstat__refuse_test_args(int alternative, double alpha, const void *out);
 
 /* One header per concern, in dependency order. */
 #include "fpenv.h"      /* IEEE semantics and the caller's FP mode */

@@ -552,11 +552,13 @@ mcstat_dd mcstat__moments_mean_dd(const mcstat_moments *m)
 int mcstat__moments_check(const mcstat_moments *m)
 {
     if (!is_valid(m))
-        return MCSTAT_EINVAL;
+        return mcstat__refuse(MCSTAT_EINVAL, "an accumulator is not valid (not set up by mcstat_moments_init, "
+                                             "or its fields were changed)");
     if (m->n < 2)
         return MCSTAT_ETOOFEW;
     if (!isfinite(m->mean) || !isfinite(m->m2) || !(m->m2 >= 0.0))
-        return MCSTAT_EINVAL;
+        return mcstat__refuse(MCSTAT_EINVAL, "an accumulator's mean or M2 is not finite (mean %g, M2 %g)", m->mean,
+                              m->m2);
     /* "Equal to within rounding": the standard deviation is below 10 eps |mean|
      * (compared in scaled units).  R's t.test tests the standard error
      * instead, which rejects legitimate large samples (1e6 values at

@@ -86,3 +86,16 @@ const char *mcstat_decision_name(int decision)
     default: return NULL;
     }
 }
+
+int mcstat__refuse_test_args(int alternative, double alpha, const void *out)
+{
+    if (!valid_alternative(alternative))
+        return mcstat__refuse(MCSTAT_EINVAL,
+                              "alternative must be MCSTAT_TWO_SIDED (0), MCSTAT_LESS (1) or MCSTAT_GREATER (2), got %d",
+                              alternative);
+    if (!valid_alpha(alpha))
+        return mcstat__refuse(MCSTAT_EINVAL, "alpha must be in (0, 1), got %g", alpha);
+    if (!out)
+        return mcstat__refuse(MCSTAT_EINVAL, "out (the result) is NULL");
+    return MCSTAT_OK;
+}

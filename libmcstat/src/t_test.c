@@ -48,9 +48,18 @@ double mcstat__ci_bound(mcstat_dd est, double c, double se, int e)
     return scale2(b.hi + b.lo, e);
 }
 
-static int check_args(double mu0, int alternative, double alpha, const mcstat_result *out)
+/* The t tests' arguments but the data's values, refused with a reason
+ * (mcstat_last_error): y NULL only where the test has one sample. */
+static int check_args(const void *x, const void *y, int two, double mu0, int alternative, double alpha,
+                      const mcstat_result *out)
 {
-    return out && isfinite(mu0) && valid_alternative(alternative) && valid_alpha(alpha);
+    if (!x)
+        return mcstat__refuse(MCSTAT_EINVAL, "x is NULL");
+    if (two && !y)
+        return mcstat__refuse(MCSTAT_EINVAL, "y is NULL");
+    if (!isfinite(mu0))
+        return mcstat__refuse(MCSTAT_EINVAL, "mu0 must be finite, got %g", mu0);
+    return mcstat__refuse_test_args(alternative, alpha, out);
 }
 
 /* The paired test's render guards (mcstat__t_test_paired_render): eps, the
@@ -64,8 +73,9 @@ typedef struct {
 static int t_test_1(const mcstat_moments *x, double mu0, int alternative, double alpha, const paired_guard *g,
                     mcstat_qcache *qc, mcstat_result *out)
 {
-    if (!x || !check_args(mu0, alternative, alpha, out))
-        return MCSTAT_EINVAL;
+    int st_args = check_args(x, NULL, 0, mu0, alternative, alpha, out);
+    if (st_args)
+        return st_args;
     int st = mcstat__moments_check(x);
     if (st == MCSTAT_EDEGENERATE && g) /* the guards decide what constant means */
         st = MCSTAT_OK;
@@ -148,8 +158,9 @@ double mcstat__rule3_ratio(double n)
 static int t_test_2(const mcstat_moments *x, const mcstat_moments *y, double mu0, int alternative, double alpha,
                     int pooled, const mcstat__render_guard *rg, mcstat_qcache *qc, mcstat_result *out)
 {
-    if (!x || !y || !check_args(mu0, alternative, alpha, out))
-        return MCSTAT_EINVAL;
+    int st_args = check_args(x, y, 1, mu0, alternative, alpha, out);
+    if (st_args)
+        return st_args;
     int st = mcstat__moments_check(x);
     if (st == MCSTAT_EDEGENERATE) /* both tests need spread only in the pair (R's rule) */
         st = MCSTAT_OK;
@@ -288,6 +299,7 @@ int mcstat_t_test_1_moments(const mcstat_moments *x, double mu0, int alternative
                             mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__t_test_1(x, mu0, alternative, alpha, &qc, out);
@@ -297,6 +309,7 @@ int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, do
                             int alternative, double alpha, mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__t_test_2(x, y, mu0, alternative, alpha, &qc, out);
@@ -305,8 +318,10 @@ int mcstat_t_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, do
 int mcstat_t_test_1(const double *x, size_t n, double mu0, int alternative, double alpha, mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
-    if (!x || !check_args(mu0, alternative, alpha, out))
-        return MCSTAT_EINVAL;
+    mcstat__error_clear();
+    int st_args = check_args(x, NULL, 0, mu0, alternative, alpha, out);
+    if (st_args)
+        return st_args;
     mcstat_moments m;
     mcstat_moments_init(&m);
     int st = mcstat_moments_add_array(&m, x, n);
@@ -317,8 +332,10 @@ int mcstat_t_test_2(const double *x, size_t nx, const double *y, size_t ny, doub
                     double alpha, mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
-    if (!x || !y || !check_args(mu0, alternative, alpha, out))
-        return MCSTAT_EINVAL;
+    mcstat__error_clear();
+    int st_args = check_args(x, y, 1, mu0, alternative, alpha, out);
+    if (st_args)
+        return st_args;
     mcstat_moments mx, my;
     int st = mcstat__moments_of_two(x, nx, y, ny, &mx, &my);
     return st ? st : mcstat_t_test_2_moments(&mx, &my, mu0, alternative, alpha, out);
@@ -328,6 +345,7 @@ int mcstat_t_test_2_pooled_moments(const mcstat_moments *x, const mcstat_moments
                                    double alpha, mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__t_test_2_pooled(x, y, mu0, alternative, alpha, &qc, out);
@@ -337,8 +355,10 @@ int mcstat_t_test_2_pooled(const double *x, size_t nx, const double *y, size_t n
                            double alpha, mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
-    if (!x || !y || !check_args(mu0, alternative, alpha, out))
-        return MCSTAT_EINVAL;
+    mcstat__error_clear();
+    int st_args = check_args(x, y, 1, mu0, alternative, alpha, out);
+    if (st_args)
+        return st_args;
     mcstat_moments mx, my;
     int st = mcstat__moments_of_two(x, nx, y, ny, &mx, &my);
     return st ? st : mcstat_t_test_2_pooled_moments(&mx, &my, mu0, alternative, alpha, out);
@@ -467,8 +487,10 @@ int mcstat_t_test_paired(const double *x, const double *y, size_t n, double mu0,
                          mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
-    if (!x || !y || !check_args(mu0, alternative, alpha, out))
-        return MCSTAT_EINVAL;
+    mcstat__error_clear();
+    int st_args = check_args(x, y, 1, mu0, alternative, alpha, out);
+    if (st_args)
+        return st_args;
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__t_test_paired(x, y, n, mu0, alternative, alpha, &qc, out);

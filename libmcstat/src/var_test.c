@@ -80,9 +80,13 @@ static int var_bound(const mcstat_result *r, int which, double num, int k, doubl
 int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, double alpha,
                        mcstat_qcache *qc, mcstat_result *out)
 {
-    if (!x || !out || !(sigma2 > 0.0) || !isfinite(sigma2) || !valid_alternative(alternative) ||
-        !valid_alpha(alpha))
-        return MCSTAT_EINVAL;
+    if (!x)
+        return mcstat__refuse(MCSTAT_EINVAL, "x is NULL");
+    if (!(sigma2 > 0.0) || !isfinite(sigma2))
+        return mcstat__refuse(MCSTAT_EINVAL, "sigma2 must be finite and > 0, got %g", sigma2);
+    int st_args = mcstat__refuse_test_args(alternative, alpha, out);
+    if (st_args)
+        return st_args;
     int st = mcstat__moments_check(x);
     if (st)
         return st;
@@ -122,9 +126,13 @@ int mcstat__var_test_1(const mcstat_moments *x, double sigma2, int alternative, 
 int mcstat__var_test_2(const mcstat_moments *x, const mcstat_moments *y, double ratio, int alternative,
                        double alpha, mcstat_qcache *qc, mcstat_result *out)
 {
-    if (!x || !y || !out || !(ratio > 0.0) || !isfinite(ratio) || !valid_alternative(alternative) ||
-        !valid_alpha(alpha))
-        return MCSTAT_EINVAL;
+    if (!x || !y)
+        return mcstat__refuse(MCSTAT_EINVAL, "%s is NULL", x ? "y" : "x");
+    if (!(ratio > 0.0) || !isfinite(ratio))
+        return mcstat__refuse(MCSTAT_EINVAL, "ratio must be finite and > 0, got %g", ratio);
+    int st_args = mcstat__refuse_test_args(alternative, alpha, out);
+    if (st_args)
+        return st_args;
     int st = mcstat__moments_check(x);
     if (!st)
         st = mcstat__moments_check(y);
@@ -174,6 +182,7 @@ int mcstat_var_test_1_moments(const mcstat_moments *x, double sigma2, int altern
                               mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__var_test_1(x, sigma2, alternative, alpha, &qc, out);
@@ -183,6 +192,7 @@ int mcstat_var_test_2_moments(const mcstat_moments *x, const mcstat_moments *y, 
                               int alternative, double alpha, mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     mcstat_qcache qc;
     mcstat__qcache_init(&qc);
     return mcstat__var_test_2(x, y, ratio, alternative, alpha, &qc, out);
@@ -192,8 +202,9 @@ int mcstat_var_test_1(const double *x, size_t n, double sigma2, int alternative,
                       mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     if (!x || !out)
-        return MCSTAT_EINVAL;
+        return mcstat__refuse(MCSTAT_EINVAL, "%s is NULL", x ? "out (the result)" : "x");
     mcstat_moments m;
     mcstat_moments_init(&m);
     int st = mcstat_moments_add_array(&m, x, n);
@@ -204,8 +215,9 @@ int mcstat_var_test_2(const double *x, size_t nx, const double *y, size_t ny, do
                       int alternative, double alpha, mcstat_result *out)
 {
     MCSTAT_IEEE_SCOPE();
+    mcstat__error_clear();
     if (!x || !y || !out)
-        return MCSTAT_EINVAL;
+        return mcstat__refuse(MCSTAT_EINVAL, "%s is NULL", !x ? "x" : !y ? "y" : "out (the result)");
     mcstat_moments mx, my;
     int st = mcstat__moments_of_two(x, nx, y, ny, &mx, &my);
     return st ? st : mcstat_var_test_2_moments(&mx, &my, ratio, alternative, alpha, out);

@@ -147,7 +147,8 @@ MCSTAT_API const char *mcstat_strerror(int status);
  * reasons clear it when they start, so after one of them it belongs to
  * that call: in 0.3.0 the renderer checks (mcstat_check_bsdf, _emitter,
  * _warp, _phase, _medium, mcstat_check_work_size), for every MCSTAT_EINVAL
- * and MCSTAT_ETOOBIG they return.  Thread-local storage, valid until the
+ * and MCSTAT_ETOOBIG they return, and the t and variance tests
+ * (mcstat_t_test_*, mcstat_var_test_*), for every MCSTAT_EINVAL.  Thread-local storage, valid until the
  * thread's next call of such a function; never NULL.  (Since 0.3.) */
 MCSTAT_API const char *mcstat_last_error(void);
 
