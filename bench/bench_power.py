@@ -68,8 +68,10 @@ N_MIN = 1000                     # the checks refuse n < 1000
 TWO_PI = 2 * np.pi
 
 
-def grid(n_max, n_min=N_MIN):
-    g, k = [], 0
+def grid(n_max, n_min=N_MIN, k0=0):
+    """n_min * sqrt(2)^k for k >= k0 up to n_max (the oracles start below the
+    checks' smallest n, k0 = -6: 125)."""
+    g, k = [], k0
     while True:
         n = int(round(n_min * 2 ** (k / 2)))
         if n > n_max:
@@ -632,7 +634,7 @@ def fmt_n(n):
 
 def fmt_search(r, n_max, scale=1):
     if r is None:
-        return "blind"
+        return "-"
     if r.get("det"):
         return r["det"]
     if r["n90"] is None:
@@ -640,7 +642,8 @@ def fmt_search(r, n_max, scale=1):
         tail = f" ({last[1]}/{last[2]} at {fmt_n(last[0] * scale)})" if last else ""
         return f"> {fmt_n(n_max * scale)}{tail}"
     lo, hi = cp_interval(r["k"], r["seeds"])
-    s = f"{fmt_n(r['n90'] * scale)} ({r['k']}/{r['seeds']}, CI {lo:.2f}-{hi:.2f}"
+    floor = "<= " if not r.get("below") else ""
+    s = f"{floor}{fmt_n(r['n90'] * scale)} ({r['k']}/{r['seeds']}, CI {lo:.2f}-{hi:.2f}"
     if r.get("below"):
         nb, kb, db = r["below"]
         lo2, hi2 = cp_interval(kb, db)
@@ -652,7 +655,12 @@ def ratio(a, b):
     """n90 ratio a/b with the censoring written out."""
     if a is None or b is None:
         return "-"
-    (va, ca), (vb, cb) = a, b
+    if len(a) > 2 and a[2]:
+        # a at the checks' smallest n: an upper bound only, none when b is there too
+        return "- (floor)" if len(b) > 2 and b[2] else "<= %.3g" % (a[0] / b[0])
+    if len(b) > 2 and b[2]:
+        return ">= %.3g" % (a[0] / b[0])
+    (va, ca), (vb, cb) = a[:2], b[:2]
     if ca and cb:
         return "?"
     r = va / vb
@@ -668,16 +676,65 @@ def n90_value(r, n_max):
     if r is None:
         return None
     if r.get("det"):
-        return (r["value"], False)
+        return (r["value"], False, True)
     if r["n90"] is None:
         return (n_max, True)
-    return (r["n90"], False)
+    return (r["n90"], False, not r.get("below"))
 
 
 def environment():
     import scipy
     return (f"{machine()}; Python {platform.python_version()}, NumPy {np.__version__}, SciPy {scipy.__version__}, "
             f"mcstat {mcstat.__version__}")
+
+
+# ---- diagnosis: which route, which alpha split, which cell layout ------------------------------
+
+DIAG_CASES = ("cosine hemisphere warp / sampler exponent x1.05", "HG g=0.7 / pdf 3% high on y>0, renormalised",
+              "GGX a=0.3, wi 40deg / sampler alpha x1.05", "GGX 0.3 + Lambert 0.8, s=0.5 / lobe pick x1.05",
+              "cosine hemisphere warp / sampler exponent x1.02")
+
+
+def diagnose(a, log):
+    """n90 of mcstat's check restricted to one route and to a fixed cell
+    count (options routes= and cells=; the library is not changed)."""
+    ns = grid(a.n_max)
+    L = ["| case | configuration | n90 | cells at n90 | n90 / oracle n90 |", "|---|---|---|---:|---:|"]
+    by_name = {c.name: c for c in cases(a.pool)}
+    for name in DIAG_CASES:
+        if not fnmatch.fnmatch(name, a.only):
+            continue
+        c = by_name[name]
+        o = LROracle(c.truth, c.claim, a.pool)
+        orc = search(lambda n, s: o.reject(n, s), grid(a.n_max, k0=-6), a.seeds)
+        configs = [("full check (default)", {}), ("cells route alone, automatic cells", dict(routes=["cells"]))]
+        for k in (16, 64, 256):
+            configs.append((f"cells route alone, cells={k}", dict(routes=["cells"], cells=k)))
+        configs.append(("full check, cells=16", dict(cells=16)))
+        if c.kind != "warp":
+            configs.append(("integrals route alone", dict(routes=["integrals"])))
+        s_, e_, p_ = c.callables()
+        for label, kw in configs:
+            cells_seen = {}
+
+            def run(n, seed, kw=kw):
+                base = dict(n=n, seed=seed, alpha=ALPHA, **kw)
+                if c.kind == "warp":
+                    r = mcstat.check_warp(s_, p_, domain=c.domain, **base)
+                elif c.kind == "phase":
+                    r = mcstat.check_phase(s_, e_, p_, c.wi, **base)
+                else:
+                    r = mcstat.check_bsdf(s_, e_, p_, c.wi, domain=c.domain, **base)
+                cells_seen[n] = r.cells
+                return bool(r.reject), [x.name for x in r.routes if x.reject]
+
+            log(f"  {name}: {label}")
+            r = search(run, ns, a.seeds, log)
+            mv, ov = n90_value(r, ns[-1]), n90_value(orc, ns[-1])
+            L.append(f"| {name} | {label} | {fmt_search(r, ns[-1])} | "
+                     f"{cells_seen.get(r['n90'], '-') if r['n90'] else '-'} | {ratio(mv, ov)} |")
+            print(L[-1], flush=True)
+    return L
 
 
 # ---- main ---------------------------------------------------------------------------------------
@@ -692,6 +749,8 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="smoke run: 6 seeds, small grids, a few cases")
     ap.add_argument("--no-chi2", action="store_true")
     ap.add_argument("--write", action="store_true", help="write bench/RESULTS_power.md")
+    ap.add_argument("--diagnose", action="store_true",
+                    help="instead: n90 of single routes and fixed cell counts on the worst cases (markdown)")
     a = ap.parse_args(argv)
     if a.quick:
         a.seeds, a.n_max, a.chi2_n_max, a.pool = 6, 1.7e4, 1.7e4, 200_000
@@ -700,8 +759,15 @@ def main(argv=None):
     mcstat.set_num_threads(1)
     t_start = time.time()
     log = (lambda s: print(s, file=sys.stderr, flush=True))
+    if a.diagnose:
+        L = diagnose(a, log)
+        print(f"\n`bench/bench_power.py --diagnose --seeds {a.seeds}`, {time.time() - t_start:.0f} s; "
+              f"{environment()}\n")
+        print("\n".join(L))
+        return L
     env0 = environment()
     ns, ns_chi2 = grid(a.n_max), grid(a.chi2_n_max)
+    ns_o = grid(a.n_max, k0=-6)
     rows, details = [], []
     for c in cases(a.pool):
         if not fnmatch.fnmatch(c.name, a.only):
@@ -718,7 +784,7 @@ def main(argv=None):
             o = LROracle(c.truth, c.claim, a.pool)
             o_an = o.n90()
             log(f"  oracle LR (analytic n90 {o_an:.4g})")
-            res["oracle"] = search(lambda n, s: o.reject(n, s), ns, a.seeds, log)
+            res["oracle"] = search(lambda n, s: o.reject(n, s), ns_o, a.seeds, log)
             oracle_text = "NP likelihood ratio"
             if res["oracle"]["n90"] and isinstance(c.claim, (GGX, HG, CosPow, Mixture)):
                 o.claim_sampler = c.claim
@@ -732,7 +798,7 @@ def main(argv=None):
             if o.sd0 == 0:
                 res["oracle"] = dict(det="1 (H0 weights constant)", value=1)
             else:
-                res["oracle"] = search(lambda n, s: o.reject(n, s), ns, a.seeds, log)
+                res["oracle"] = search(lambda n, s: o.reject(n, s), ns_o, a.seeds, log)
                 if res["oracle"]["n90"] is None:
                     pass
             oracle_text = "z on the mean weight"
@@ -743,7 +809,7 @@ def main(argv=None):
             e = c.estimator
             o_an = e.oracle_n90()
             log(f"  oracle estimator (analytic n90 {o_an:.4g})")
-            res["oracle"] = search(lambda n, s: e.oracle_reject(n, s), ns, a.seeds, log)
+            res["oracle"] = search(lambda n, s: e.oracle_reject(n, s), ns_o, a.seeds, log)
             oracle_text = "z on the mean" if e.kind == "gauss" else "z on the mean log"
             nn = res["oracle"]["n90"]
             if nn:
@@ -819,9 +885,13 @@ def main(argv=None):
         pbv_tot = (pbv[0] * 5, pbv[1]) if pbv else None
         an = f" ({fmt_n(o_an)})" if o_an and math.isfinite(o_an) and not (res["oracle"] or {}).get("det") else ""
         mi_txt = fmt_search(res["mitsuba"], ns_chi2[-1]) if c.chi2 else "blind"
+        if c.chi2 and res["mitsuba"] is None:
+            mi_txt = "not run"
         if mi_def:
             mi_txt += f" [{mi_def[0]}/{mi_def[1]} at 1M]"
         pb_txt = fmt_search(res["pbrt"], grid(a.chi2_n_max / 5)[-1]) if c.chi2 else "blind"
+        if c.chi2 and res["pbrt"] is None:
+            pb_txt = "not run"
         mname = c.model + (" (stochastic=True)" if c.stochastic else "")
         p(f"| {mname} | {c.bug} | {fmt_search(m, ns[-1])} | {routes} | {otext} | "
           f"{fmt_search(res['oracle'], ns[-1]) if res['oracle'] else '-'}{an} | {mi_txt} | {pb_txt} | "
