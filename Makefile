@@ -330,7 +330,7 @@ bench-python: python
 
 # Power of the renderer checks against the Neyman-Pearson oracle and the chi2
 # tests of Mitsuba 3 and pbrt-v4 (n90 per planted bug, one core, about
-# 40 minutes); rewrites bench/RESULTS_power.md above its diagnosis.
+# 11 minutes); rewrites bench/RESULTS_power.md above its diagnosis.
 bench-power: python
 	$(PY) bench/bench_power.py --write
 
