@@ -18,7 +18,7 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 .PHONY: fuzz fuzz-build fuzz-replay fuzz-report
 .PHONY: accuracy accuracy-refs
 .PHONY: docs docs-c docs-python docs-rust docs-go binding-coverage
-.PHONY: all deps python-deps build test ctest python pytest wheel-test wheel-test-extra wheels sdist-test install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test quickstart-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators references clean
+.PHONY: all deps python-deps build test ctest python pytest wheel-test wheel-test-extra wheels sdist-test install-test vendor-test ctypes-test rust-deps go-deps rust-test go-test quickstart-test mitsuba-test demo demo-quick demo-c bench bench-check bench-python bench-estimators bench-power references clean
 
 all: build
 
@@ -327,6 +327,12 @@ bench-check:
 
 bench-python: python
 	$(PY) bench/bench_python.py
+
+# Power of the renderer checks against the Neyman-Pearson oracle and the chi2
+# tests of Mitsuba 3 and pbrt-v4 (n90 per planted bug, one core, about
+# 11 minutes); rewrites bench/RESULTS_power.md above its diagnosis.
+bench-power: python
+	$(PY) bench/bench_power.py --write
 
 # C estimators against their NumPy twins; rewrites bench/RESULTS_estimators.md.
 bench-estimators: python-deps
