@@ -221,12 +221,11 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
     const int px = pow2_count((size_t)nx), py = pow2_count((size_t)ny);
     const double ix = 1.0 / nx, iy = 1.0 / ny;
     unsigned char both[PIX_BLOCK];
-    for (size_t j = 0; j < k; j++) {
-        double vx = m2x[j] / (nx - 1.0), vy = m2y[j] / (ny - 1.0), dfr = 0.0;
-        mcstat_dd diff = dd_add(mx[j], dd_neg(my[j]));
-        mcstat_dd sh = dd_add(diff, (mcstat_dd){-mu0, 0.0});
-        both[j] = 0;
-        if (render) { /* loop-invariant: unswitched */
+    if (render) {
+        for (size_t j = 0; j < k; j++) {
+            double vx = m2x[j] / (nx - 1.0), vy = m2y[j] / (ny - 1.0);
+            mcstat_dd diff = dd_add(mx[j], dd_neg(my[j]));
+            mcstat_dd sh = dd_add(diff, (mcstat_dd){-mu0, 0.0});
             mcstat__render_guard rg = {eps, (uint64_t)hx[j], (uint64_t)hy[j]};
             mcstat__render_welch g;
             mcstat__render_adjust(&rg, nx, ny, rx, ry, vx, vy, dmax(fabs(mx[j].hi), fabs(my[j].hi)), sh.hi + sh.lo,
@@ -237,38 +236,51 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
              * constancy differently: the single call's decides */
             int near = (vx > num * (1.0 - 1e-6) && vx < num * (1.0 + 1e-6)) ||
                        (vy > num * (1.0 - 1e-6) && vy < num * (1.0 + 1e-6));
-            vx = g.vx;
-            vy = g.vy;
-            dfr = g.df;
             both[j] = (unsigned char)(g.both_constant || near);
+            double a = div_by(g.vx, nx, ix, px), b = div_by(g.vy, ny, iy, py), se = sqrt(a + b);
+            bs->df[j] = g.df;
+            bs->t[j] = (sh.hi + sh.lo) / se;
+            bs->se[j] = se;
+            bs->dhi[j] = diff.hi;
+            bs->dlo[j] = diff.lo;
+            bs->sdmax[j] = sqrt(dmax(g.vx, g.vy));
+            bs->lim[j] = 10.0 * DBL_EPSILON * dmax(fabs(mx[j].hi), fabs(my[j].hi));
         }
-        double a = div_by(vx, nx, ix, px), b = div_by(vy, ny, iy, py), se = sqrt(a + b);
-        double m = dmax(a, b), ra = a / m, rb = b / m;
-        bs->df[j] = render ? dfr : (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
-        bs->t[j] = (sh.hi + sh.lo) / se;
-        bs->se[j] = se;
-        bs->dhi[j] = diff.hi;
-        bs->dlo[j] = diff.lo;
-        bs->sdmax[j] = sqrt(dmax(vx, vy));
-        bs->lim[j] = 10.0 * DBL_EPSILON * dmax(fabs(mx[j].hi), fabs(my[j].hi));
+    } else {
+        /* the same operations without the guards, in a loop with no branch
+         * (it vectorises: its eight divisions a pixel were a quarter of
+         * the kernel's time done one at a time) */
+        for (size_t j = 0; j < k; j++) {
+            double vx = m2x[j] / (nx - 1.0), vy = m2y[j] / (ny - 1.0);
+            mcstat_dd diff = dd_add(mx[j], dd_neg(my[j]));
+            mcstat_dd sh = dd_add(diff, (mcstat_dd){-mu0, 0.0});
+            double a = div_by(vx, nx, ix, px), b = div_by(vy, ny, iy, py), se = sqrt(a + b);
+            double m = dmax(a, b), ra = a / m, rb = b / m;
+            bs->df[j] = (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
+            bs->t[j] = (sh.hi + sh.lo) / se;
+            bs->se[j] = se;
+            bs->dhi[j] = diff.hi;
+            bs->dlo[j] = diff.lo;
+            bs->sdmax[j] = sqrt(dmax(vx, vy));
+            bs->lim[j] = 10.0 * DBL_EPSILON * dmax(fabs(mx[j].hi), fabs(my[j].hi));
+        }
     }
     for (size_t j = 0; j < k; j++) {
-        double m2a = m2x[j], m2b = m2y[j], sdmax = bs->sdmax[j], lim = bs->lim[j];
-        /* moments.c's var_scaled moves exponents beyond 2^+-500 out of m2 */
-        int extreme = (m2a > 0.0 && (m2a < 0x1p-500 || m2a > 0x1p+500)) ||
-                      (m2b > 0.0 && (m2b < 0x1p-500 || m2b > 0x1p+500));
+        double m2a = m2x[j], m2b = m2y[j], sdmax = bs->sdmax[j], lim = bs->lim[j], se = bs->se[j];
+        /* moments.c's var_scaled moves exponents beyond 2^+-500 out of m2;
+         * (bitwise & and |: the loop has no branch) */
+        int extreme = ((m2a > 0.0) & ((m2a < 0x1p-500) | (m2a > 0x1p+500))) |
+                      ((m2b > 0.0) & ((m2b < 0x1p-500) | (m2b > 0x1p+500)));
         /* t_test.c's "constant to within rounding"; near its edge, where the
          * two accumulations of M2 might decide differently, the slow path
          * decides */
-        int degenerate = !render && (!(bs->se[j] > 0.0) || sdmax < lim * (1.0 - 1e-6));
+        int degenerate = (render == 0) & (!(se > 0.0) | (sdmax < lim * (1.0 - 1e-6)));
         /* with the guards, both sides constant (their tests' own), no
          * spread at all or a floor that overflowed (a shift beyond 2^512
          * squared) go to the single call, which scales */
-        int edge = render ? both[j] || !(bs->se[j] > 0.0 && bs->se[j] < INFINITY) : sdmax < lim * (1.0 + 1e-6);
-        bs->kind[j] = (unsigned char)(bx[j] || by[j] || extreme ? PIX_SLOW
-                                      : degenerate              ? PIX_DEGENERATE
-                                      : edge                    ? PIX_SLOW
-                                                                : PIX_FAST);
+        int edge = render ? (both[j] != 0) | !((se > 0.0) & (se < INFINITY)) : sdmax < lim * (1.0 + 1e-6);
+        int slow = (bx[j] != 0) | (by[j] != 0) | extreme;
+        bs->kind[j] = (unsigned char)(slow ? PIX_SLOW : degenerate ? PIX_DEGENERATE : edge ? PIX_SLOW : PIX_FAST);
     }
     /* the t prefactor (t_prefactor_init), where the fast tail can use it */
     for (size_t j = 0; j < k; j++) {
