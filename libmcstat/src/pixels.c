@@ -197,7 +197,7 @@ enum { PIX_FAST, PIX_SLOW, PIX_DEGENERATE };
 
 typedef struct {
     double t[PIX_BLOCK], df[PIX_BLOCK], se[PIX_BLOCK], dhi[PIX_BLOCK], dlo[PIX_BLOCK];
-    double sdmax[PIX_BLOCK], lim[PIX_BLOCK];
+    double sdmax[PIX_BLOCK], lim[PIX_BLOCK]; /* with the render guards; squared without */
     double pa[PIX_BLOCK], pf[PIX_BLOCK], plc[PIX_BLOCK]; /* t_prefactor's a, f, lc */
     double lower[PIX_BLOCK], upper[PIX_BLOCK]; /* the tails, where tail_ok */
     double conf_lo[PIX_BLOCK], conf_hi[PIX_BLOCK]; /* the interval, where bound_ok, then the outputs' */
@@ -248,24 +248,38 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
             bs->lim[j] = 10.0 * DBL_EPSILON * dmax(fabs(mx[j].hi), fabs(my[j].hi));
         }
     } else {
-        /* the same operations without the guards, in a loop with no branch
-         * (it vectorises: its eight divisions a pixel were a quarter of
-         * the kernel's time done one at a time) */
+        /* the same numbers without the guards, in a loop with no branch
+         * (it vectorises: its divisions, one at a time, were a quarter of
+         * the kernel's time), and with fewer divisions, the vector unit's
+         * slowest operation.  Of ra = a/m and rb = b/m (m = max(a, b) > 0
+         * on the fast path) one is m/m = 1 exactly and the other r =
+         * min/max, so df = (1+r)^2 / (1/(n1-1) + r^2/(n2-1)) with the
+         * sides ordered: the same bits as the single call's formula, with
+         * 1/(nx-1), 1/(ny-1) the divisions of 1*1 it makes.  And sdmax is
+         * kept squared (sd2max, against lim^2). */
+        const double cx = 1.0 / (nx - 1.0), cy = 1.0 / (ny - 1.0);
         for (size_t j = 0; j < k; j++) {
             double vx = m2x[j] / (nx - 1.0), vy = m2y[j] / (ny - 1.0);
             mcstat_dd diff = dd_add(mx[j], dd_neg(my[j]));
             mcstat_dd sh = dd_add(diff, (mcstat_dd){-mu0, 0.0});
             double a = div_by(vx, nx, ix, px), b = div_by(vy, ny, iy, py), se = sqrt(a + b);
-            double m = dmax(a, b), ra = a / m, rb = b / m;
-            bs->df[j] = (ra + rb) * (ra + rb) / (ra * ra / (nx - 1.0) + rb * rb / (ny - 1.0));
+            int xbig = a >= b;
+            double r = (xbig ? b : a) / (xbig ? a : b), r2 = r * r / (xbig ? ny - 1.0 : nx - 1.0);
+            bs->df[j] = (1.0 + r) * (1.0 + r) / (xbig ? cx + r2 : r2 + cy);
             bs->t[j] = (sh.hi + sh.lo) / se;
             bs->se[j] = se;
             bs->dhi[j] = diff.hi;
             bs->dlo[j] = diff.lo;
-            bs->sdmax[j] = sqrt(dmax(vx, vy));
-            bs->lim[j] = 10.0 * DBL_EPSILON * dmax(fabs(mx[j].hi), fabs(my[j].hi));
+            bs->sdmax[j] = dmax(vx, vy);
+            double lim = 10.0 * DBL_EPSILON * dmax(fabs(mx[j].hi), fabs(my[j].hi));
+            bs->lim[j] = lim * lim;
         }
     }
+    /* The classification compares sdmax with lim (the render loop) or
+     * their squares (the other), with margins of 1e-6 around the single
+     * call's threshold, far wider than the squares' rounding. */
+    const double lo_margin = render ? 1.0 - 1e-6 : (1.0 - 1e-6) * (1.0 - 1e-6),
+                 hi_margin = render ? 1.0 + 1e-6 : (1.0 + 1e-6) * (1.0 + 1e-6);
     for (size_t j = 0; j < k; j++) {
         double m2a = m2x[j], m2b = m2y[j], sdmax = bs->sdmax[j], lim = bs->lim[j], se = bs->se[j];
         /* moments.c's var_scaled moves exponents beyond 2^+-500 out of m2;
@@ -275,11 +289,11 @@ static PIX_INLINE void block_statistics(size_t k, double nx, const mcstat_dd *mx
         /* t_test.c's "constant to within rounding"; near its edge, where the
          * two accumulations of M2 might decide differently, the slow path
          * decides */
-        int degenerate = (render == 0) & (!(se > 0.0) | (sdmax < lim * (1.0 - 1e-6)));
+        int degenerate = (render == 0) & (!(se > 0.0) | (sdmax < lim * lo_margin));
         /* with the guards, both sides constant (their tests' own), no
          * spread at all or a floor that overflowed (a shift beyond 2^512
          * squared) go to the single call, which scales */
-        int edge = render ? (both[j] != 0) | !((se > 0.0) & (se < INFINITY)) : sdmax < lim * (1.0 + 1e-6);
+        int edge = render ? (both[j] != 0) | !((se > 0.0) & (se < INFINITY)) : sdmax < lim * hi_margin;
         int slow = (bx[j] != 0) | (by[j] != 0) | extreme;
         bs->kind[j] = (unsigned char)(slow ? PIX_SLOW : degenerate ? PIX_DEGENERATE : edge ? PIX_SLOW : PIX_FAST);
     }
