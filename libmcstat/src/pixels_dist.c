@@ -382,10 +382,7 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
             int e = 1021 - (int)(bits >> 52); /* y in [2^-(e+2), 2^-(e+1)), as 0 < y < 1/2 here */
             bin[nc] = (unsigned char)(e < Y_BINS - 1 ? e : Y_BINS - 1);
             cnt[bin[nc] + 1]++;
-            idx[nc] = j;
-            cA[nc] = A;
-            cy[nc] = y;
-            ck[nc] = kj;
+            idx[nc] = j; /* A, y, K are read from their arrays by the sort */
             nc++;
         }
     }
@@ -393,11 +390,11 @@ static PIX_INLINE void block_tails(size_t k, const double *t, const double *df, 
     for (int b = 0; b < Y_BINS; b++)
         cnt[b + 1] += cnt[b];
     for (size_t g = 0; g < nc; g++) {
-        size_t o = cnt[bin[g]]++;
-        sidx[o] = idx[g];
-        sA[o] = cA[g];
-        sy[o] = cy[g];
-        sk[o] = ck[g];
+        size_t o = cnt[bin[g]]++, j = idx[g];
+        sidx[o] = j;
+        sA[o] = pa[j] + 0.5;
+        sy[o] = yy[j];
+        sk[o] = kk[j];
     }
     for (size_t g = nc; g % 8; g++) { /* padding lanes: converged at once */
         sA[g] = 1.0;
