@@ -403,9 +403,21 @@ static void rect_sides(const mcstat__domain *d, const mcstat__rect *r, double *l
 {
     double s = 0.5 * (r->s0 + r->s1), ds = r->s1 - r->s0, dt = r->t1 - r->t0, rho;
     switch (d->kind) {
-    case MCSTAT_CHECK_DOMAIN_SPHERE: rho = 2.0 * sqrt(s * (1.0 - s)); *ls = 2.0 * ds / rho; *lt = TWO_PI * rho * dt; break;
-    case MCSTAT_CHECK_DOMAIN_HEMISPHERE: rho = sqrt(s * (2.0 - s)); *ls = ds / rho; *lt = TWO_PI * rho * dt; break;
-    case MCSTAT_CHECK_DOMAIN_DISK: rho = sqrt(s); *ls = ds / (2.0 * rho); *lt = TWO_PI * rho * dt; break;
+    case MCSTAT_CHECK_DOMAIN_SPHERE:
+        rho = 2.0 * sqrt(s * (1.0 - s));
+        *ls = 2.0 * ds / rho;
+        *lt = TWO_PI * rho * dt;
+        break;
+    case MCSTAT_CHECK_DOMAIN_HEMISPHERE:
+        rho = sqrt(s * (2.0 - s));
+        *ls = ds / rho;
+        *lt = TWO_PI * rho * dt;
+        break;
+    case MCSTAT_CHECK_DOMAIN_DISK:
+        rho = sqrt(s);
+        *ls = ds / (2.0 * rho);
+        *lt = TWO_PI * rho * dt;
+        break;
     default: *ls = ds, *lt = dt; break;
     }
 }
@@ -466,7 +478,8 @@ static size_t aspect_cuts(mcstat__tree *tr, const mcstat__domain *d, mcstat__rec
 static size_t pole_layers(mcstat__tree *tr, const mcstat__domain *d, mcstat__rect *rects, size_t nr,
                           size_t max_rects)
 {
-    int low = d->kind == MCSTAT_CHECK_DOMAIN_SPHERE || d->kind == MCSTAT_CHECK_DOMAIN_HEMISPHERE || d->kind == MCSTAT_CHECK_DOMAIN_DISK;
+    int low = d->kind == MCSTAT_CHECK_DOMAIN_SPHERE || d->kind == MCSTAT_CHECK_DOMAIN_HEMISPHERE ||
+              d->kind == MCSTAT_CHECK_DOMAIN_DISK;
     int high = d->kind == MCSTAT_CHECK_DOMAIN_SPHERE;
     size_t n0 = nr;
     for (size_t i = 0; i < n0 && nr + POLE_LAYERS <= max_rects; i++) {

@@ -857,7 +857,9 @@ static int eval_only(run *r, sums *sm)
 static int reciprocity(run *r, const sums *sm)
 {
     double wi_z = fabs(r->wi[2]);
-    if ((wi_z < 1e-6 && r->pl.kind != MCSTAT_CHECK_KIND_PHASE) || (r->pl.d.kind == MCSTAT_CHECK_DOMAIN_HEMISPHERE && r->wi[2] < 0.0)) /* eval at wi: off the domain */
+    /* eval at wi: off the domain */
+    if ((wi_z < 1e-6 && r->pl.kind != MCSTAT_CHECK_KIND_PHASE) ||
+        (r->pl.d.kind == MCSTAT_CHECK_DOMAIN_HEMISPHERE && r->wi[2] < 0.0))
         return MCSTAT_OK;
     for (uint64_t i = 0; i < sm->n_recip; i++) {
         const double *q = r->s.recip + 4 * i;
