@@ -128,25 +128,15 @@ static int ran_chisq(mcstat_check_route_result *rr, double statistic, double df)
     return 1;
 }
 
-static void route_cells(run *r, const sums *sm, double level)
+/* Pearson's statistic over the cells pooled in leaf order (consecutive
+ * cells touch) into groups of expected count at least `target`; each
+ * group's variance grows by the square of its expectation's cubature
+ * error.  Returns the number of groups. */
+static int pooled_chisq(const run *r, const sums *sm, double mass, double target, double *x2_out)
 {
-    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_CELLS];
-    double mass = 0.0;
-    for (int32_t c = 0; c < r->tr.n_cells; c++)
-        mass += fmax(r->tr.cells[c].prob, 0.0);
-    double N = (double)sm->n_succ;
-    if (!(mass > 0.0) || sm->n_succ < 2) {
-        rr->state = MCSTAT_CHECK_STATE_INVALID;
-        /* no smooth part claimed and none sampled (a purely discrete BSDF):
-         * nothing to compare, not too little */
-        rr->why = !(mass > 0.0) && sm->n_succ == 0 ? MCSTAT_CHECK_WHY_NOTHING : MCSTAT_CHECK_WHY_TOO_FEW;
-        return;
-    }
-    /* pool consecutive cells to an expected count of 5; each pooled cell's
-     * variance grows by the square of its expectation's cubature error */
     double x2 = 0.0, O = 0.0, E = 0.0, V = 0.0, lastO = 0, lastE = 0, lastV = 0;
     int groups = 0, have_last = 0;
-    double m_eval = (double)r->pl.n_eval;
+    double N = (double)sm->n_succ, m_eval = (double)r->pl.n_eval;
     for (int32_t c = 0; c < r->tr.n_cells; c++) {
         /* The cubature's error estimate can fall short (a feature its points
          * miss, a singular point): the table points give an unbiased
@@ -162,7 +152,7 @@ static void route_cells(run *r, const sums *sm, double level)
         O += r->s.counts[c];
         E += N * fmax(r->tr.cells[c].prob, 0.0) / mass;
         V += N * err / mass;
-        if (E >= 5.0) {
+        if (E >= target) {
             if (have_last) {
                 x2 += (lastO - lastE) * (lastO - lastE) / (lastE + lastV * lastV);
                 groups++;
@@ -179,15 +169,59 @@ static void route_cells(run *r, const sums *sm, double level)
         x2 += (O - E) * (O - E) / (E + V * V);
         groups++;
     }
+    *x2_out = x2;
+    return groups;
+}
+
+/* Cells of the coarse level: a smooth error (a sampler's parameter a few
+ * percent off, a pdf a few percent high over half the domain) moves
+ * probability between large regions, which the fine level's hundreds of
+ * cells dilute over as many degrees of freedom (bench/RESULTS_power.md). */
+#define COARSE_GROUPS 16.0
+
+/* The cells route: Pearson's test at two levels of the same cells, the
+ * fine one (groups of expected count 5, for narrow features) and a coarse
+ * one (about COARSE_GROUPS groups, for smooth errors), Bonferroni across
+ * the two.  The statistic and df reported are the deciding level's. */
+static void route_cells(run *r, const sums *sm, double level)
+{
+    mcstat_check_route_result *rr = &r->out->route[MCSTAT_CHECK_ROUTE_CELLS];
+    double mass = 0.0;
+    for (int32_t c = 0; c < r->tr.n_cells; c++)
+        mass += fmax(r->tr.cells[c].prob, 0.0);
+    double N = (double)sm->n_succ;
+    if (!(mass > 0.0) || sm->n_succ < 2) {
+        rr->state = MCSTAT_CHECK_STATE_INVALID;
+        /* no smooth part claimed and none sampled (a purely discrete BSDF):
+         * nothing to compare, not too little */
+        rr->why = !(mass > 0.0) && sm->n_succ == 0 ? MCSTAT_CHECK_WHY_NOTHING : MCSTAT_CHECK_WHY_TOO_FEW;
+        return;
+    }
+    double x2;
+    int groups = pooled_chisq(r, sm, mass, 5.0, &x2);
     rr->checked = sm->n_succ;
     rr->count = (uint64_t)groups;
     if (groups < 2) {
         rr->state = MCSTAT_CHECK_STATE_INVALID;
         return;
     }
-    double df = groups - 1;
+    double df = groups - 1, x2c = 0.0;
+    int coarse = groups > 2.0 * COARSE_GROUPS ? pooled_chisq(r, sm, mass, N / COARSE_GROUPS, &x2c) : 0;
     rr->resolution = r->resolution;
-    if (!ran_chisq(rr, x2, df))
+    if (coarse >= 2) {
+        double pf, pc;
+        if (mcstat_chisq_cdf(x2, df, 1, &pf) != MCSTAT_OK || mcstat_chisq_cdf(x2c, coarse - 1.0, 1, &pc) != MCSTAT_OK) {
+            rr->state = MCSTAT_CHECK_STATE_INVALID;
+            rr->why = MCSTAT_CHECK_WHY_NUMERIC;
+            return;
+        }
+        int use_coarse = pc < pf;
+        rr->state = MCSTAT_CHECK_STATE_RAN;
+        rr->statistic = use_coarse ? x2c : x2;
+        rr->df = use_coarse ? coarse - 1.0 : df;
+        rr->p_value = fmin(1.0, 2.0 * fmin(pf, pc));
+        level *= 0.5; /* each level's share */
+    } else if (!ran_chisq(rr, x2, df))
         return;
     rr->effect = sqrt(x2 / N);
     double lambda = detectable_noncentrality(df, level);

@@ -315,9 +315,13 @@ def test_pure_mirror_is_consistent():
 
 
 def test_black_bsdf_is_consistent():
+    """Weights and eval all zero break no route: over 20 seeds at most two
+    rejections, as a correct model at alpha = 0.01 gives (three or more: a
+    chance of 0.1%)."""
     m = Black()
-    r = mcstat.check_bsdf(m.sample, m.eval, m.pdf, _WI45, n=20000, seed=0, alpha=0.01, domain="hemisphere")
-    assert r.verdict == "consistent", str(r)
+    bad = [r for r in (mcstat.check_bsdf(m.sample, m.eval, m.pdf, _WI45, n=20000, seed=s, alpha=0.01,
+                                         domain="hemisphere") for s in range(20)) if r.verdict != "consistent"]
+    assert len(bad) <= 2, "\n".join(str(r) for r in bad)
 
 
 # ---- the demo suite's excluded rectangle light -------------------------------------------

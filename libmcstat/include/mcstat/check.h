@@ -44,9 +44,10 @@ extern "C" {
 /*     point x[k*dims ..], the sample weight                                 */
 /*     weight[k] and the density pdf[k] the renderer's sampler reports.  A   */
 /*     sample that failed (the renderer's "invalid sample") has pdf 0 and    */
-/*     weight 0; x is then ignored.  With MCSTAT_CHECK_WEIGHT_OVER_PDF (Mitsuba's  */
-/*     BSDFSample weight) weight = eval/pdf; with MCSTAT_CHECK_WEIGHT_VALUE (pbrt's */
-/*     Sample_f times |cos|) weight = eval.                                  */
+/*     weight 0; x is then ignored.  With MCSTAT_CHECK_WEIGHT_OVER_PDF       */
+/*     (Mitsuba's BSDFSample weight) weight = eval/pdf; with                 */
+/*     MCSTAT_CHECK_WEIGHT_VALUE (pbrt's Sample_f times |cos|) weight =      */
+/*     eval.                                                                 */
 /*   pdf(user, wi, x, n, out): out[k] the density at x[k*dims ..].           */
 /*   eval(user, wi, x, n, out): out[k] the integrand the sampler is built    */
 /*     for: f(wi, x) |cos(x)| for a BSDF (Mitsuba's eval includes the        */
@@ -155,8 +156,15 @@ MCSTAT_API const char *mcstat_check_domain_name(int domain); /* NULL if invalid 
 /*                count is 5, and the remaining cubature error enters each   */
 /*                cell's variance, so an integration that falls short costs  */
 /*                power, never the level.                                    */
-/*                df = pooled cells - 1.  Blind to: pdf() scaled by a        */
-/*                constant, everything about weights and eval.              */
+/*                df = pooled cells - 1.  Beside this fine level, a coarse   */
+/*                one pools the same cells, in the same order, into about    */
+/*                16 groups (where the fine level has more than 32): a      */
+/*                smooth error (a parameter a few percent off) moves         */
+/*                probability between large regions, which hundreds of      */
+/*                cells dilute.  The p-value is twice the smaller of the     */
+/*                two (Bonferroni); statistic and df are the deciding        */
+/*                level's.  Blind to: pdf() scaled by a constant,            */
+/*                everything about weights and eval.                         */
 /*   MASS         the fraction of samples that succeed equals the integral   */
 /*                of pdf() over the domain.  Two estimates: the cubature's  */
 /*                integral C (error e) and the mean M of pdf/table at the   */
