@@ -29,7 +29,7 @@ func CheckABI() error {
 			unsafe.Sizeof(C.struct_mcstat_power_options{})},
 		{"mcstat_diag_options", uintptr(C.mcstat_sizeof_diag_options()), unsafe.Sizeof(C.struct_mcstat_diag_options{})},
 		{"mcstat_diagnostics", uintptr(C.mcstat_sizeof_diagnostics()), unsafe.Sizeof(C.struct_mcstat_diagnostics{})},
-		{"mcstat_gof_options", uintptr(C.mcstat_sizeof_gof_options()), unsafe.Sizeof(C.struct_mcstat_chisq_options{})},
+		{"mcstat_gof_options", uintptr(C.mcstat_sizeof_gof_options()), unsafe.Sizeof(C.struct_mcstat_gof_options{})},
 		{"mcstat_check_options", uintptr(C.mcstat_sizeof_check_options()),
 			unsafe.Sizeof(C.struct_mcstat_check_options{})},
 		{"mcstat_check_model", uintptr(C.mcstat_sizeof_check_model()), unsafe.Sizeof(C.struct_mcstat_check_model{})},

@@ -213,3 +213,17 @@ func TestCheckBindingHoldsNoRange(t *testing.T) {
 		t.Errorf("check.go compares %q", m)
 	}
 }
+
+// The t and variance tests give C's reason too.
+func TestTestRefusalIsCsReason(t *testing.T) {
+	x := []float64{1, 2.5, 3, 4.5, 2}
+	_, err := TTest1(x, 0, TwoSided, 1.5)
+	wantReason(t, "TTest1 alpha", err, ErrInvalidArgument, "alpha must be in (0, 1), got 1.5")
+	_, err = VarTest1(x, -1, TwoSided, 0.05)
+	wantReason(t, "VarTest1 sigma2", err, ErrInvalidArgument, "sigma2 must be finite and > 0, got -1")
+	_, err = TTest2(x, x, math.Inf(1), Less, 0.05)
+	wantReason(t, "TTest2 mu0", err, ErrInvalidArgument, "mu0 must be finite, got inf")
+	if _, err := TTest1(x, 0, TwoSided, 0.05); err != nil {
+		t.Fatal(err)
+	}
+}

@@ -98,8 +98,8 @@ type GOFOptions struct {
 	NEstimated  int     // parameters of the expected probabilities estimated from the counts
 }
 
-func gofOptionsInit() C.struct_mcstat_chisq_options {
-	var o C.struct_mcstat_chisq_options
+func gofOptionsInit() C.struct_mcstat_gof_options {
+	var o C.struct_mcstat_gof_options
 	C.mcstat_gof_options_init_size(&o, C.size_t(unsafe.Sizeof(o)))
 	return o
 }

@@ -74,6 +74,7 @@ import "C"
 import (
 	"fmt"
 	"math"
+	"runtime"
 	"unsafe"
 )
 
@@ -81,7 +82,8 @@ import (
 
 // Error is a non-zero libmcstat status with a message: mcstat_strerror's
 // sentence, or one naming what is wrong.  The renderer checks (CheckBSDF,
-// CheckEmitter, CheckWarp, CheckPhase, CheckMedium, CheckWorkSize) give
+// CheckEmitter, CheckWarp, CheckPhase, CheckMedium, CheckWorkSize) and the
+// t and variance tests (TTest1, VarTest2, their Moments forms, ...) give
 // libmcstat's reason for every ErrInvalidArgument and ErrTooBig they
 // return (C's mcstat_last_error(), read on the OS thread of the call),
 // verbatim: it names the field as C spells it, with C's prefix, e.g.
@@ -431,18 +433,30 @@ func run(f func(out *C.struct_mcstat_result) C.int) (*Result, error) {
 	return fromC(&out), nil
 }
 
+// runReasons is run for the calls that give reasons (the t and variance
+// tests): a refusal carries C's reason, read on the OS thread of the call.
+func runReasons(f func(out *C.struct_mcstat_result) C.int) (*Result, error) {
+	var out C.struct_mcstat_result
+	runtime.LockOSThread()
+	defer runtime.UnlockOSThread()
+	if st := f(&out); st != C.MCSTAT_OK {
+		return nil, refusal(st, C.GoString(C.mcstat_last_error()))
+	}
+	return fromC(&out), nil
+}
+
 // ---- the tests on slices -------------------------------------------------------
 
 // TTest1 is the one-sample t test of mean(x) against mu0.
 func TTest1(x []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_1(ptr(x), C.size_t(len(x)), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // TTest2 is Welch's two-sample t test of mean(x) - mean(y) against mu0.
 func TTest2(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_2(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.double(mu0), C.int(alt),
 			C.double(alpha), o)
 	})
@@ -452,7 +466,7 @@ func TTest2(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Resul
 // mean(y) against mu0 (R's t.test(var.equal = TRUE), SciPy's ttest_ind
 // default).
 func TTest2Pooled(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_2_pooled(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.double(mu0),
 			C.int(alt), C.double(alpha), o)
 	})
@@ -464,7 +478,7 @@ func TTestPaired(x, y []float64, mu0 float64, alt Alternative, alpha float64) (*
 	if len(x) != len(y) {
 		return nil, invalid(fmt.Sprintf("paired samples differ in length: x has %d, y %d", len(x), len(y)))
 	}
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_paired(ptr(x), ptr(y), C.size_t(len(x)), C.double(mu0), C.int(alt),
 			C.double(alpha), o)
 	})
@@ -499,14 +513,14 @@ func (r *Result) ConfIntAt(confidenceLevel float64) ([2]float64, error) {
 
 // VarTest1 is the one-sample chi-squared test of var(x) against sigma2.
 func VarTest1(x []float64, sigma2 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_var_test_1(ptr(x), C.size_t(len(x)), C.double(sigma2), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // VarTest2 is the F test of var(x)/var(y) against ratio.
 func VarTest2(x, y []float64, ratio float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_var_test_2(ptr(x), C.size_t(len(x)), ptr(y), C.size_t(len(y)), C.double(ratio), C.int(alt),
 			C.double(alpha), o)
 	})
@@ -633,14 +647,14 @@ func (m *Moments) UnmarshalBinary(b []byte) error {
 
 // TTest1Moments is TTest1 on an accumulator.
 func TTest1Moments(x *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_1_moments(x.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // TTest2Moments is TTest2 on accumulators.
 func TTest2Moments(x, y *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_2_moments(x.c(), y.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
@@ -660,21 +674,21 @@ func EfficiencyTest(x, y, timeX, timeY *Moments, ratio float64, alt Alternative,
 
 // TTest2PooledMoments is TTest2Pooled on accumulators.
 func TTest2PooledMoments(x, y *Moments, mu0 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_t_test_2_pooled_moments(x.c(), y.c(), C.double(mu0), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // VarTest1Moments is VarTest1 on an accumulator.
 func VarTest1Moments(x *Moments, sigma2 float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_var_test_1_moments(x.c(), C.double(sigma2), C.int(alt), C.double(alpha), o)
 	})
 }
 
 // VarTest2Moments is VarTest2 on accumulators.
 func VarTest2Moments(x, y *Moments, ratio float64, alt Alternative, alpha float64) (*Result, error) {
-	return run(func(o *C.struct_mcstat_result) C.int {
+	return runReasons(func(o *C.struct_mcstat_result) C.int {
 		return C.mcstat_var_test_2_moments(x.c(), y.c(), C.double(ratio), C.int(alt), C.double(alpha), o)
 	})
 }

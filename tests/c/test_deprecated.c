@@ -37,6 +37,11 @@ static void test_check_constants(void)
 
 static void test_sizes(void)
 {
+    /* 0.1.0's options name, as typedef and as struct tag (source code of
+     * either form still compiles) */
+    struct mcstat_chisq_options tagged;
+    mcstat_chisq_options typed;
+    CHECK(sizeof tagged == sizeof(mcstat_gof_options) && sizeof typed == sizeof(mcstat_gof_options));
     CHECK(mcstat_moments_bytes() == mcstat_sizeof_moments_bytes());
     CHECK(mcstat_sizeof_moments_bytes() == MCSTAT_MOMENTS_BYTES);
     CHECK(mcstat_sizeof_chisq_options() == mcstat_sizeof_gof_options());

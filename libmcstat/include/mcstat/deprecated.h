@@ -50,7 +50,9 @@ MCSTAT_API int mcstat_batch_size_recommend(double skewness, double kurtosis, uin
                                            double tolerance, uint64_t *k);
 
 /* goodness of fit: the mcstat_gof_ stem (mcstat_chisq_ is the distribution) */
-typedef struct mcstat_gof_options mcstat_chisq_options;
+/* 0.1.0's name of the options, as a typedef and as a struct tag alike (a
+ * macro, so that `struct mcstat_chisq_options` still names them) */
+#define mcstat_chisq_options mcstat_gof_options
 #define mcstat_chisq_expected mcstat_gof_expected
 #define MCSTAT_CHISQ_PROBABILITIES MCSTAT_GOF_PROBABILITIES
 #define MCSTAT_CHISQ_COUNTS MCSTAT_GOF_COUNTS

@@ -635,7 +635,7 @@ pub const MCSTAT_GOF_PROBABILITIES: i32 = 0;
 pub const MCSTAT_GOF_COUNTS: i32 = 1;
 pub const MCSTAT_GOF_DEFAULT_MIN_EXPECTED: f64 = 5.0;
 
-/// `mcstat_gof_options` (C tag: `mcstat_chisq_options`, 0.1.0's name).
+/// `mcstat_gof_options` (its C tag too since 0.3; 0.1.0 named it `mcstat_chisq_options`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct mcstat_gof_options {

@@ -65,9 +65,11 @@ pub use seq::{SeqHold, SeqKind, SeqOptions, SeqOutcome, SequentialTest};
 /// a renderer check refused its arguments.
 ///
 /// The renderer checks ([`check_bsdf`], [`check_emitter`], [`check_warp`],
-/// [`check_phase`], [`check_medium`], [`check::check_work_size`]) give
-/// libmcstat's reason for each [`InvalidArgument`](Error::InvalidArgument)
-/// and [`TooBig`](Error::TooBig) they return, verbatim (C's
+/// [`check_phase`], [`check_medium`], [`check::check_work_size`]) and the
+/// t and variance tests ([`t_test_1`], [`var_test_2`], their `_moments`
+/// forms, ...) give libmcstat's reason for each
+/// [`InvalidArgument`](Error::InvalidArgument) and [`TooBig`](Error::TooBig)
+/// they return, verbatim (C's
 /// `mcstat_last_error()`, read on the calling thread right after the call):
 /// it names the field as C spells it, which is the Rust name too
 /// (`"options.cells must be 0 (automatic) or 2..1048576, got 1"` for
@@ -799,22 +801,33 @@ pub(crate) fn run(f: impl FnOnce(*mut sys::mcstat_result) -> c_int) -> Result<Te
     Ok(TestResult { raw: unsafe { raw.assume_init() } })
 }
 
+/// [`run`] for the calls that give reasons (the t and variance tests): a
+/// refusal carries libmcstat's reason ([`refusal`]).
+pub(crate) fn run_reasons(f: impl FnOnce(*mut sys::mcstat_result) -> c_int) -> Result<TestResult> {
+    let mut raw = std::mem::MaybeUninit::<sys::mcstat_result>::zeroed();
+    let status = f(raw.as_mut_ptr());
+    if status != 0 {
+        return Err(refusal(status));
+    }
+    Ok(TestResult { raw: unsafe { raw.assume_init() } })
+}
+
 // ---- the tests on slices -------------------------------------------------------
 
 /// One-sample t test of mean(x) against `mu0`.
 pub fn t_test_1(x: &[f64], mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_t_test_1(x.as_ptr(), x.len(), mu0, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_t_test_1(x.as_ptr(), x.len(), mu0, alternative.raw(), alpha, out) })
 }
 
 /// Welch's two-sample t test of mean(x) - mean(y) against `mu0`.
 pub fn t_test_2(x: &[f64], y: &[f64], mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_t_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), mu0, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_t_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), mu0, alternative.raw(), alpha, out) })
 }
 
 /// Student's pooled-variance two-sample t test of mean(x) - mean(y) against
 /// `mu0` (R's `t.test(var.equal = TRUE)`, SciPy's `ttest_ind` default).
 pub fn t_test_2_pooled(x: &[f64], y: &[f64], mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe {
+    run_reasons(|out| unsafe {
         sys::mcstat_t_test_2_pooled(x.as_ptr(), x.len(), y.as_ptr(), y.len(), mu0, alternative.raw(), alpha, out)
     })
 }
@@ -828,17 +841,17 @@ pub fn t_test_paired(x: &[f64], y: &[f64], mu0: f64, alternative: Alternative, a
             format!("paired samples differ in length: x has {}, y has {}", x.len(), y.len()),
         ));
     }
-    run(|out| unsafe { sys::mcstat_t_test_paired(x.as_ptr(), y.as_ptr(), x.len(), mu0, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_t_test_paired(x.as_ptr(), y.as_ptr(), x.len(), mu0, alternative.raw(), alpha, out) })
 }
 
 /// One-sample chi-squared test of var(x) against `sigma2`.
 pub fn var_test_1(x: &[f64], sigma2: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_var_test_1(x.as_ptr(), x.len(), sigma2, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_var_test_1(x.as_ptr(), x.len(), sigma2, alternative.raw(), alpha, out) })
 }
 
 /// Two-sample F test of var(x)/var(y) against `ratio`.
 pub fn var_test_2(x: &[f64], y: &[f64], ratio: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_var_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), ratio, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_var_test_2(x.as_ptr(), x.len(), y.as_ptr(), y.len(), ratio, alternative.raw(), alpha, out) })
 }
 
 // ---- equivalence (TOST) ---------------------------------------------------------

@@ -1,7 +1,7 @@
 //! Accumulators: one sample ([`Moments`]), one per pixel ([`MomentsArray`]),
 //! and the per-thread buffer of a renderer ([`Stream`]).
 use crate::rows::{Matrix, RowFlags, Statuses};
-use crate::{check, run, sys, Alternative, Error, Result, TestResult};
+use crate::{check, run, run_reasons, sys, Alternative, Error, Result, TestResult};
 use std::mem::MaybeUninit;
 use std::ops::{Deref, DerefMut};
 
@@ -108,12 +108,12 @@ impl Moments {
 
 /// One-sample t test on an accumulator.
 pub fn t_test_1_moments(x: &Moments, mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_t_test_1_moments(&x.raw, mu0, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_t_test_1_moments(&x.raw, mu0, alternative.raw(), alpha, out) })
 }
 
 /// Welch's t test on accumulators.
 pub fn t_test_2_moments(x: &Moments, y: &Moments, mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_t_test_2_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_t_test_2_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })
 }
 
 /// The efficiency-ratio test: rho = eff(x) / eff(y) = (var_y tau_y) /
@@ -137,17 +137,17 @@ pub fn efficiency_test(
 
 /// Student's pooled-variance t test on accumulators.
 pub fn t_test_2_pooled_moments(x: &Moments, y: &Moments, mu0: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_t_test_2_pooled_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_t_test_2_pooled_moments(&x.raw, &y.raw, mu0, alternative.raw(), alpha, out) })
 }
 
 /// One-sample chi-squared test on an accumulator.
 pub fn var_test_1_moments(x: &Moments, sigma2: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_var_test_1_moments(&x.raw, sigma2, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_var_test_1_moments(&x.raw, sigma2, alternative.raw(), alpha, out) })
 }
 
 /// F test on accumulators.
 pub fn var_test_2_moments(x: &Moments, y: &Moments, ratio: f64, alternative: Alternative, alpha: f64) -> Result<TestResult> {
-    run(|out| unsafe { sys::mcstat_var_test_2_moments(&x.raw, &y.raw, ratio, alternative.raw(), alpha, out) })
+    run_reasons(|out| unsafe { sys::mcstat_var_test_2_moments(&x.raw, &y.raw, ratio, alternative.raw(), alpha, out) })
 }
 
 // ---- arrays of accumulators --------------------------------------------------------

@@ -248,3 +248,21 @@ fn the_crate_holds_no_range() {
         }
     }
 }
+
+/// The t and variance tests give C's reason too.
+#[test]
+fn test_refusal_is_c_reason() {
+    use mcstat::{t_test_1, t_test_2, var_test_1, Alternative};
+    let x = [1.0, 2.5, 3.0, 4.5, 2.0];
+    for (err, want) in [
+        (t_test_1(&x, 0.0, Alternative::TwoSided, 1.5).unwrap_err(), "alpha must be in (0, 1), got 1.5"),
+        (var_test_1(&x, -1.0, Alternative::TwoSided, 0.05).unwrap_err(), "sigma2 must be finite and > 0, got -1"),
+        (t_test_2(&x, &x, f64::INFINITY, Alternative::Less, 0.05).unwrap_err(), "mu0 must be finite, got inf"),
+    ] {
+        assert_eq!(err.kind(), ErrorKind::InvalidArgument, "{err}");
+        assert_eq!(err.message(), want);
+    }
+    t_test_1(&x, 0.0, Alternative::TwoSided, 0.05).unwrap();
+    let why = unsafe { CStr::from_ptr(sys::mcstat_last_error()) }.to_string_lossy().into_owned();
+    assert_eq!(why, "", "a success leaves no reason");
+}
