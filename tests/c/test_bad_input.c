@@ -279,45 +279,29 @@ static void test_reasons(void)
     mcstat_moments m, bad;
     mcstat_moments_init(&m);
     CHECK_INT(mcstat_moments_add_array(&m, good, 5), MCSTAT_OK);
-    struct {
-        int st;
-        const char *want;
-    } c[] = {
-        {mcstat_t_test_1(good, 5, 0.0, MCSTAT_TWO_SIDED, 1.5, &r), "alpha must be in (0, 1), got 1.5"},
-        {mcstat_t_test_1(good, 5, NAN, MCSTAT_TWO_SIDED, 0.05, &r), "mu0 must be finite, got nan"},
-        {mcstat_t_test_1(good, 5, 0.0, 7, 0.05, &r),
-         "alternative must be MCSTAT_TWO_SIDED (0), MCSTAT_LESS (1) or MCSTAT_GREATER (2), got 7"},
-        {mcstat_t_test_1(good, 5, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL), "out (the result) is NULL"},
-        {mcstat_t_test_2(good, 5, NULL, 5, 0.0, MCSTAT_TWO_SIDED, 0.05, &r), "y is NULL"},
-        {mcstat_t_test_1_moments(NULL, 0.0, MCSTAT_TWO_SIDED, 0.05, &r), "x is NULL"},
-        {mcstat_t_test_2_pooled(good, 5, good, 5, INFINITY, MCSTAT_LESS, 0.05, &r), "mu0 must be finite, got inf"},
-        {mcstat_t_test_paired(good, good, 5, 0.0, MCSTAT_GREATER, 0.0, &r), "alpha must be in (0, 1), got 0"},
-        {mcstat_var_test_1(good, 5, -1.0, MCSTAT_TWO_SIDED, 0.05, &r), "sigma2 must be finite and > 0, got -1"},
-        {mcstat_var_test_2(good, 5, good, 5, NAN, MCSTAT_TWO_SIDED, 0.05, &r), "ratio must be finite and > 0, got nan"},
-        {mcstat_var_test_2_moments(&m, NULL, 1.0, MCSTAT_TWO_SIDED, 0.05, &r), "y is NULL"},
-        {mcstat_var_test_1(good, 5, 1.0, MCSTAT_TWO_SIDED, 0.05, NULL), "out (the result) is NULL"},
-    };
-    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++)
-        CHECK_MSG(c[i].st == MCSTAT_EINVAL, "case %zu: status %d", i, c[i].st);
-    /* each reason as it stands right after its own call */
-    for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
-        switch (i) {
-        case 0: (void)mcstat_t_test_1(good, 5, 0.0, MCSTAT_TWO_SIDED, 1.5, &r); break;
-        case 1: (void)mcstat_t_test_1(good, 5, NAN, MCSTAT_TWO_SIDED, 0.05, &r); break;
-        case 2: (void)mcstat_t_test_1(good, 5, 0.0, 7, 0.05, &r); break;
-        case 3: (void)mcstat_t_test_1(good, 5, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL); break;
-        case 4: (void)mcstat_t_test_2(good, 5, NULL, 5, 0.0, MCSTAT_TWO_SIDED, 0.05, &r); break;
-        case 5: (void)mcstat_t_test_1_moments(NULL, 0.0, MCSTAT_TWO_SIDED, 0.05, &r); break;
-        case 6: (void)mcstat_t_test_2_pooled(good, 5, good, 5, INFINITY, MCSTAT_LESS, 0.05, &r); break;
-        case 7: (void)mcstat_t_test_paired(good, good, 5, 0.0, MCSTAT_GREATER, 0.0, &r); break;
-        case 8: (void)mcstat_var_test_1(good, 5, -1.0, MCSTAT_TWO_SIDED, 0.05, &r); break;
-        case 9: (void)mcstat_var_test_2(good, 5, good, 5, NAN, MCSTAT_TWO_SIDED, 0.05, &r); break;
-        case 10: (void)mcstat_var_test_2_moments(&m, NULL, 1.0, MCSTAT_TWO_SIDED, 0.05, &r); break;
-        default: (void)mcstat_var_test_1(good, 5, 1.0, MCSTAT_TWO_SIDED, 0.05, NULL); break;
-        }
-        CHECK_MSG(strcmp(mcstat_last_error(), c[i].want) == 0, "case %zu: \"%s\", want \"%s\"", i,
-                  mcstat_last_error(), c[i].want);
-    }
+    /* each call's status, and its reason as it stands right after it */
+#define REFUSED(call, want)                                                                                       \
+    do {                                                                                                          \
+        int st_ = (call);                                                                                         \
+        CHECK_MSG(st_ == MCSTAT_EINVAL, "%s: status %d", #call, st_);                                             \
+        CHECK_MSG(strcmp(mcstat_last_error(), (want)) == 0, "%s: \"%s\", want \"%s\"", #call, mcstat_last_error(), \
+                  (want));                                                                                        \
+    } while (0)
+    REFUSED(mcstat_t_test_1(good, 5, 0.0, MCSTAT_TWO_SIDED, 1.5, &r), "alpha must be in (0, 1), got 1.5");
+    REFUSED(mcstat_t_test_1(good, 5, NAN, MCSTAT_TWO_SIDED, 0.05, &r), "mu0 must be finite, got nan");
+    REFUSED(mcstat_t_test_1(good, 5, 0.0, 7, 0.05, &r),
+            "alternative must be MCSTAT_TWO_SIDED (0), MCSTAT_LESS (1) or MCSTAT_GREATER (2), got 7");
+    REFUSED(mcstat_t_test_1(good, 5, 0.0, MCSTAT_TWO_SIDED, 0.05, NULL), "out (the result) is NULL");
+    REFUSED(mcstat_t_test_2(good, 5, NULL, 5, 0.0, MCSTAT_TWO_SIDED, 0.05, &r), "y is NULL");
+    REFUSED(mcstat_t_test_1_moments(NULL, 0.0, MCSTAT_TWO_SIDED, 0.05, &r), "x is NULL");
+    REFUSED(mcstat_t_test_2_pooled(good, 5, good, 5, INFINITY, MCSTAT_LESS, 0.05, &r), "mu0 must be finite, got inf");
+    REFUSED(mcstat_t_test_paired(good, good, 5, 0.0, MCSTAT_GREATER, 0.0, &r), "alpha must be in (0, 1), got 0");
+    REFUSED(mcstat_var_test_1(good, 5, -1.0, MCSTAT_TWO_SIDED, 0.05, &r), "sigma2 must be finite and > 0, got -1");
+    REFUSED(mcstat_var_test_2(good, 5, good, 5, NAN, MCSTAT_TWO_SIDED, 0.05, &r),
+            "ratio must be finite and > 0, got nan");
+    REFUSED(mcstat_var_test_2_moments(&m, NULL, 1.0, MCSTAT_TWO_SIDED, 0.05, &r), "y is NULL");
+    REFUSED(mcstat_var_test_1(good, 5, 1.0, MCSTAT_TWO_SIDED, 0.05, NULL), "out (the result) is NULL");
+#undef REFUSED
     /* an accumulator whose fields were changed */
     bad = m;
     bad.m2 = NAN;
