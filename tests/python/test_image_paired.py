@@ -112,6 +112,22 @@ def test_more_power_than_welch_on_same_seed_pairs():
     assert np.mean(welch) < 0.5 * np.mean(paired), (np.mean(welch), np.mean(paired))
 
 
+def test_omitted_pairs_leave_both_means():
+    """nan_policy="omit" drops a pair with a NaN on either side: the
+    reference's mean (the map, the relative bias) is over the kept pairs,
+    as the test's mean difference is."""
+    rng = np.random.default_rng(8)
+    ref = rng.gamma(2.0, 1.0, (6, 3, 4, 3))
+    cand = ref + rng.normal(0.05, 0.1, ref.shape)
+    cand[2, 1, 1, 0] = np.nan  # a NaN in one channel of the candidate's pixel (1, 1)
+    r = mi.compare(ref, cand, paired=True, nan_policy="omit", render_guards=False, method="none", seed_axis=0)
+    keep = np.arange(6) != 2
+    rl, cl = (ref @ W)[:, 1, 1], (cand @ W)[:, 1, 1]
+    assert r.mean_reference[1, 1, 0] == pytest.approx(rl[keep].mean(), rel=1e-12)
+    assert r.mean_candidate[1, 1, 0] == pytest.approx(cl[keep].mean(), rel=1e-12)
+    assert r.pvalue[1, 1, 0] == pytest.approx(st.ttest_rel(cl[keep], rl[keep]).pvalue, rel=1e-10)
+
+
 def test_paired_blocks_are_the_paired_test_of_block_means():
     rng = np.random.default_rng(3)
     ref = rng.gamma(2.0, 1.0, (6, 8, 8))

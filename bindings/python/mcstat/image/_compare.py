@@ -269,11 +269,14 @@ def compare(reference, candidate, *, alpha: float = 0.05, method: str = "BH", al
                                    omit_nan=nan_policy == "omit", render=bool(render_guards), resolution=eps_used,
                                    paired=paired)
         if paired:  # the test gives the mean difference; the reference's mean for the map and relative bias
-            with np.errstate(invalid="ignore"):
-                my = (np.nanmean(yr, axis=0, dtype=np.float64) if nan_policy == "omit"
-                      else yr.mean(axis=0, dtype=np.float64))
-            if weights is not None:
-                my = my @ np.asarray(weights, dtype=np.float64)
+            w = None if weights is None else np.asarray(weights, dtype=np.float64)
+            yv = yr if w is None else yr @ w  # the tested values, as the test forms them
+            if nan_policy == "omit":  # over the pairs the test kept: neither side NaN
+                xv = xc if w is None else xc @ w
+                with np.errstate(invalid="ignore"):
+                    my = np.nanmean(np.where(np.isnan(xv), np.nan, yv), axis=0, dtype=np.float64)
+            else:
+                my = yv.mean(axis=0, dtype=np.float64)
             r["mean_y"] = my.reshape(r["mean_x"].shape)
             r["mean_d"] = r["mean_x"]
             r["mean_x"] = r["mean_y"] + r["mean_d"]
